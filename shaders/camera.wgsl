@@ -1,0 +1,77 @@
+// camera.wgsl: from a pixel to a primary ray (spec section 1).
+
+struct Ray {
+    origin: vec3<f32>,
+    dir: vec3<f32>,          // unit length
+}
+
+/// The camera's orthonormal basis, as on the slides.
+struct Basis {
+    u: vec3<f32>,
+    v: vec3<f32>,
+    w: vec3<f32>,
+}
+
+/// w points backwards (away from what we look at), u to the right, v up.
+/// When `up` is (nearly) parallel to w, cross(up, w) vanishes: replace up by
+/// the world axis along which w is smallest (x, y, z first on a tie).
+fn camera_basis(eye: vec3<f32>, look_at: vec3<f32>, up_in: vec3<f32>) -> Basis {
+    let w = normalize(eye - look_at);
+    var up = up_in;
+    if length(cross(up, w)) < 1e-6 * length(up) {
+        let a = abs(w);
+        if a.x <= a.y && a.x <= a.z {
+            up = vec3(1.0, 0.0, 0.0);
+        } else if a.y <= a.z {
+            up = vec3(0.0, 1.0, 0.0);
+        } else {
+            up = vec3(0.0, 0.0, 1.0);
+        }
+    }
+    let u = normalize(cross(up, w));
+    let v = cross(w, u);
+    return Basis(u, v, w);
+}
+
+/// Sample k of the R4 sequence (Roberts 2018): fract(0.5 + k alpha) with
+/// alpha = (1/g, 1/g^2, 1/g^3, 1/g^4), g^5 = g + 1. Sample 0 is (0.5, ...):
+/// the pixel centre and the lens centre. xy = pixel offset, zw = lens sample.
+fn sample_r4(k: u32) -> vec4<f32> {
+    let alpha = vec4(0.8566748838545029, 0.733891856627126, 0.6287067210378086, 0.53859725722361);
+    return fract(vec4(0.5) + f32(k) * alpha);
+}
+
+/// Shirley and Chiu's concentric map from the unit square to the unit disk:
+/// it keeps strata apart, and maps the square's centre to the disk's centre.
+fn concentric_disk(s: vec2<f32>) -> vec2<f32> {
+    let a = 2.0 * s - 1.0;
+    if a.x == 0.0 && a.y == 0.0 {
+        return vec2(0.0);
+    }
+    let quarter_pi = 0.78539816339744831;
+    if abs(a.x) > abs(a.y) {
+        let phi = quarter_pi * (a.y / a.x);
+        return a.x * vec2(cos(phi), sin(phi));
+    }
+    let phi = 2.0 * quarter_pi - quarter_pi * (a.x / a.y);
+    return a.y * vec2(cos(phi), sin(phi));
+}
+
+/// The ray through film position `pixel` (in pixels, y down from the top) with
+/// lens sample `lens` in the unit disk. The direction is built from the basis,
+/// x u + y v - w, never as the difference of two far-away world points.
+fn camera_ray(pixel: vec2<f32>, lens: vec2<f32>) -> Ray {
+    let b = camera_basis(globals.eye, globals.look_at, globals.up);
+    let size = vec2<f32>(globals.resolution);
+    let h = globals.film_height;
+    let x = h * (size.x / size.y) * (pixel.x / size.x - 0.5);
+    let y = h * (0.5 - pixel.y / size.y);
+    let to_film = x * b.u + y * b.v - b.w;
+    if globals.aperture > 0.0 {
+        // Thin lens: aim from the lens point at P = e + focus_distance * to_film.
+        let lens_offset = globals.aperture * (lens.x * b.u + lens.y * b.v);
+        let dir = globals.focus_distance * to_film - lens_offset;
+        return Ray(globals.eye + lens_offset, normalize(dir));
+    }
+    return Ray(globals.eye, normalize(to_film));
+}

@@ -1,0 +1,84 @@
+// scene.wgsl: the scene as the GPU sees it.
+//
+// Every struct here has a twin in src/gpu/layout.rs (`#[repr(C)]`, bytemuck);
+// a unit test checks that sizes and field offsets agree. Vectors are vec3 with
+// a scalar packed into the fourth slot, so no field hides implicit padding.
+
+/// Camera, render settings and counts: one uniform buffer, written on every change.
+struct Globals {
+    eye: vec3<f32>,          // camera `from`
+    film_height: f32,        // h = 2 tan(fov / 2), the film height at unit distance
+    look_at: vec3<f32>,      // camera `to`
+    aperture: f32,           // lens radius, 0 = pinhole
+    up: vec3<f32>,
+    focus_distance: f32,
+    background: vec3<f32>,
+    min_weight: f32,
+    ambient: vec3<f32>,
+    exposure: f32,
+    resolution: vec2<u32>,   // image size in pixels
+    sample_start: u32,       // index of the first sample this pass adds
+    sample_count: u32,       // samples per pixel added by this pass
+    max_depth: u32,
+    sphere_count: u32,
+    plane_count: u32,
+    cube_count: u32,
+    light_count: u32,
+    _pad0: u32,
+    output_size: vec2<u32>,  // size of the display target (may exceed `resolution`)
+}
+
+struct Sphere {
+    center: vec3<f32>,
+    radius: f32,
+    material: u32,
+    _pad0: u32,
+    _pad1: u32,
+    _pad2: u32,
+}
+
+/// An infinite two-sided plane; `normal` is unit length.
+struct Plane {
+    point: vec3<f32>,
+    material: u32,
+    normal: vec3<f32>,
+    _pad: u32,
+}
+
+/// A box: world = center + rotation * local, local in [-half_size, half_size].
+struct Cube {
+    center: vec3<f32>,
+    material: u32,
+    half_size: vec3<f32>,
+    _pad: u32,
+    rotation: mat3x3<f32>,   // Rz Ry Rx, columns are the box's local axes in the world
+}
+
+struct Material {
+    color: vec3<f32>,
+    diffuse: f32,
+    checker_color: vec3<f32>,
+    checker_size: f32,       // 0 = no checker
+    specular: f32,
+    shininess: f32,
+    mirror: f32,
+    transparency: f32,
+    ior: f32,
+    _pad0: u32,
+    _pad1: u32,
+    _pad2: u32,
+}
+
+struct Light {
+    position: vec3<f32>,
+    _pad: u32,
+    radiance: vec3<f32>,     // color * intensity
+    _pad1: u32,
+}
+
+@group(0) @binding(0) var<uniform> globals: Globals;
+@group(0) @binding(1) var<storage, read> spheres: array<Sphere>;
+@group(0) @binding(2) var<storage, read> planes: array<Plane>;
+@group(0) @binding(3) var<storage, read> cubes: array<Cube>;
+@group(0) @binding(4) var<storage, read> materials: array<Material>;
+@group(0) @binding(5) var<storage, read> lights: array<Light>;

@@ -1,0 +1,178 @@
+// shade.wgsl: Whitted shading (spec sections 3 and 4).
+
+/// Moves p off the surface along n by 128 units in the last place of the
+/// scale of the numbers involved: max(|p|_max, the shape's error_scale, 1/32).
+/// A computed hit point is off the surface by a few rounding errors of that
+/// scale, and so is the next ray's test against the same surface; starting
+/// the new ray well beyond both keeps it from hitting its own surface at
+/// t ~ 0 ("shadow acne"), in scenes of any size. The idea is Wachter and
+/// Binder's (Ray Tracing Gems ch. 6: a fixed number of ulps, a floor near the
+/// origin), with the ulps measured at the shape's scale rather than at each
+/// coordinate of p: on a huge ground sphere the error near y = 0 comes from
+/// the centre's magnitude, not from p.y. docs/implementation.md has the f64 twin.
+fn offset_ray(p: vec3<f32>, n: vec3<f32>, error_scale: f32) -> vec3<f32> {
+    const OFFSET_ULPS: f32 = 128.0 * 1.1920929e-7;   // 128 * 2^-23
+    const MIN_SCALE: f32 = 1.0 / 32.0;
+    let scale = max(max3(abs(p)), max(error_scale, MIN_SCALE));
+    return p + (OFFSET_ULPS * scale) * n;
+}
+
+/// Albedo at p: the material colour, or the checker's second colour on odd
+/// cells. q steps 0.001 s into the surface so a plane lying on a cell
+/// boundary does not flicker between two cells.
+fn albedo_at(m: Material, p: vec3<f32>, n: vec3<f32>) -> vec3<f32> {
+    if m.checker_size <= 0.0 {
+        return m.color;
+    }
+    let s = m.checker_size;
+    let cell = vec3<i32>(floor((p - 0.001 * s * n) / s));
+    if ((cell.x + cell.y + cell.z) & 1) == 0 {
+        return m.color;
+    }
+    return m.checker_color;
+}
+
+/// The exact unpolarised Fresnel reflectance of a dielectric interface from
+/// index n1 into n2, for cos_i = cos of the angle of incidence. Total internal
+/// reflection and grazing incidence (cos_i = 0) reflect everything.
+fn fresnel(cos_i: f32, n1: f32, n2: f32) -> f32 {
+    if cos_i <= 0.0 {
+        return 1.0;
+    }
+    let eta = n1 / n2;
+    let sin2_t = eta * eta * (1.0 - cos_i * cos_i);
+    if sin2_t >= 1.0 {
+        return 1.0;
+    }
+    let cos_t = sqrt(1.0 - sin2_t);
+    let r_s = (n1 * cos_i - n2 * cos_t) / (n1 * cos_i + n2 * cos_t);
+    let r_p = (n2 * cos_i - n1 * cos_t) / (n2 * cos_i + n1 * cos_t);
+    return 0.5 * (r_s * r_s + r_p * r_p);
+}
+
+/// Mirror direction of d about the surface normal ns.
+fn reflect_dir(d: vec3<f32>, ns: vec3<f32>) -> vec3<f32> {
+    return normalize(d - 2.0 * dot(d, ns) * ns);
+}
+
+/// Snell's law with eta = n1 / n2 and ns facing the incoming ray; the caller
+/// has ruled out total internal reflection (fresnel < 1).
+fn refract_dir(d: vec3<f32>, ns: vec3<f32>, eta: f32) -> vec3<f32> {
+    let cos_i = -dot(d, ns);
+    let cos_t = sqrt(max(0.0, 1.0 - eta * eta * (1.0 - cos_i * cos_i)));
+    return normalize(eta * d + (eta * cos_i - cos_t) * ns);
+}
+
+/// Local illumination: ambient, plus Lambert and Blinn-Phong for every light
+/// that the point sees (a shadow ray to it hits nothing).
+fn shade_local(hit: Hit, ns: vec3<f32>, d: vec3<f32>, m: Material, albedo: vec3<f32>) -> vec3<f32> {
+    var color = globals.ambient * albedo * m.diffuse;
+    let shadow_origin = offset_ray(hit.point, ns, hit.error_scale);
+    for (var i = 0u; i < globals.light_count; i++) {
+        let light = lights[i];
+        let l = normalize(light.position - hit.point);
+        let n_dot_l = dot(ns, l);
+        if n_dot_l <= 0.0 {
+            continue;
+        }
+        let to_light = light.position - shadow_origin;
+        let dist = length(to_light);
+        if occluded(Ray(shadow_origin, to_light / dist), dist) {
+            continue;
+        }
+        var highlight = 0.0;
+        let n_dot_h = dot(ns, normalize(l - d));
+        if m.specular > 0.0 && n_dot_h > 0.0 {
+            highlight = m.specular * pow(n_dot_h, m.shininess);
+        }
+        color += light.radiance * (m.diffuse * albedo * n_dot_l + highlight);
+    }
+    return color;
+}
+
+/// A ray waiting to be traced: the explicit stack replaces the recursion of
+/// the lecture's trace(ray, depth, weight), which WGSL does not allow.
+struct PendingRay {
+    ray: Ray,
+    depth: u32,
+    weight: f32,             // the spec's scalar weight, for the min_weight rule
+    throughput: vec3<f32>,   // what this ray's radiance is multiplied by in the pixel
+}
+
+/// Depth-first, each hit pushes at most its two children and the reflected
+/// one is popped at once, so at most one pending sibling waits per level:
+/// max_depth + 1 = 17 entries suffice.
+const STACK_SIZE: u32 = 17u;
+
+/// Whether the spec allows a child ray of this depth and weight.
+fn worth_tracing(depth: u32, weight: f32) -> bool {
+    return depth <= globals.max_depth && weight > 0.0 && weight >= globals.min_weight;
+}
+
+/// trace = local + wr * trace(reflected) + wt * albedo * trace(refracted),
+/// unrolled: each ray adds throughput * local to the pixel.
+fn trace(primary: Ray) -> vec3<f32> {
+    var stack: array<PendingRay, STACK_SIZE>;
+    var top = 0u;
+    stack[0] = PendingRay(primary, 0u, 1.0, vec3(1.0));
+    top = 1u;
+    var radiance = vec3(0.0);
+    while top > 0u {
+        top -= 1u;
+        let job = stack[top];
+        let ray = job.ray;
+        let hit = hit_scene(ray, T_FAR);
+        if hit.kind == KIND_NONE {
+            radiance += job.throughput * globals.background;
+            continue;
+        }
+        let m = materials[material_of(hit)];
+        let into_surface = dot(ray.dir, hit.normal) < 0.0;
+        let ns = select(-hit.normal, hit.normal, into_surface);
+        let albedo = albedo_at(m, hit.point, hit.normal);
+        radiance += job.throughput * shade_local(hit, ns, ray.dir, m, albedo);
+
+        // Fresnel only where the material has a dielectric part.
+        var f = 0.0;
+        var eta = 1.0;
+        if m.transparency > 0.0 {
+            let cos_i = -dot(ray.dir, ns);
+            if hit.kind == KIND_PLANE || into_surface {
+                f = fresnel(cos_i, 1.0, m.ior);
+                eta = 1.0 / m.ior;
+            } else {
+                f = fresnel(cos_i, m.ior, 1.0);
+                eta = m.ior;
+            }
+        }
+        let wr = m.mirror + m.transparency * f;
+        let wt = m.transparency * (1.0 - f);
+        let child_depth = job.depth + 1u;
+
+        let refracted_weight = job.weight * wt * max(albedo.r, max(albedo.g, albedo.b));
+        if worth_tracing(child_depth, refracted_weight) && top < STACK_SIZE {
+            var dir = ray.dir;             // thin planes pass the ray on unbent
+            if hit.kind != KIND_PLANE {
+                dir = refract_dir(ray.dir, ns, eta);
+            }
+            let origin = offset_ray(hit.point, -ns, hit.error_scale);
+            stack[top] = PendingRay(Ray(origin, dir), child_depth, refracted_weight, job.throughput * wt * albedo);
+            top += 1u;
+        }
+        let reflected_weight = job.weight * wr;
+        if worth_tracing(child_depth, reflected_weight) && top < STACK_SIZE {
+            let origin = offset_ray(hit.point, ns, hit.error_scale);
+            stack[top] = PendingRay(Ray(origin, reflect_dir(ray.dir, ns)), child_depth, reflected_weight, job.throughput * wr);
+            top += 1u;
+        }
+    }
+    return radiance;
+}
+
+fn material_of(hit: Hit) -> u32 {
+    switch hit.kind {
+        case KIND_SPHERE: { return spheres[hit.index].material; }
+        case KIND_PLANE: { return planes[hit.index].material; }
+        default: { return cubes[hit.index].material; }
+    }
+}

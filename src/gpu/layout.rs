@@ -1,0 +1,391 @@
+//! Buffer packing: `#[repr(C)]` twins of the structs in `shaders/scene.wgsl`,
+//! field for field and with the same names, and the code that fills them from
+//! a [`Scene`]. The test at the bottom asks naga for the WGSL layout and checks
+//! every size and offset against these structs.
+
+use bytemuck::{Pod, Zeroable};
+use glam::DVec3;
+
+use crate::scene::{self, Scene};
+
+/// Rounds an f64 vector to the f32 triple the shader reads.
+fn f32x3(v: DVec3) -> [f32; 3] {
+    v.as_vec3().to_array()
+}
+
+#[repr(C)]
+#[derive(Debug, Clone, Copy, PartialEq, Pod, Zeroable)]
+pub struct Globals {
+    pub eye: [f32; 3],
+    pub film_height: f32,
+    pub look_at: [f32; 3],
+    pub aperture: f32,
+    pub up: [f32; 3],
+    pub focus_distance: f32,
+    pub background: [f32; 3],
+    pub min_weight: f32,
+    pub ambient: [f32; 3],
+    pub exposure: f32,
+    pub resolution: [u32; 2],
+    pub sample_start: u32,
+    pub sample_count: u32,
+    pub max_depth: u32,
+    pub sphere_count: u32,
+    pub plane_count: u32,
+    pub cube_count: u32,
+    pub light_count: u32,
+    pub _pad0: u32,
+    pub output_size: [u32; 2],
+}
+
+#[repr(C)]
+#[derive(Debug, Clone, Copy, PartialEq, Pod, Zeroable)]
+pub struct Sphere {
+    pub center: [f32; 3],
+    pub radius: f32,
+    pub material: u32,
+    pub _pad0: u32,
+    pub _pad1: u32,
+    pub _pad2: u32,
+}
+
+#[repr(C)]
+#[derive(Debug, Clone, Copy, PartialEq, Pod, Zeroable)]
+pub struct Plane {
+    pub point: [f32; 3],
+    pub material: u32,
+    pub normal: [f32; 3],
+    pub _pad: u32,
+}
+
+#[repr(C)]
+#[derive(Debug, Clone, Copy, PartialEq, Pod, Zeroable)]
+pub struct Cube {
+    pub center: [f32; 3],
+    pub material: u32,
+    pub half_size: [f32; 3],
+    pub _pad: u32,
+    /// `mat3x3<f32>`: three columns, each padded to 16 bytes.
+    pub rotation: [[f32; 4]; 3],
+}
+
+#[repr(C)]
+#[derive(Debug, Clone, Copy, PartialEq, Pod, Zeroable)]
+pub struct Material {
+    pub color: [f32; 3],
+    pub diffuse: f32,
+    pub checker_color: [f32; 3],
+    pub checker_size: f32,
+    pub specular: f32,
+    pub shininess: f32,
+    pub mirror: f32,
+    pub transparency: f32,
+    pub ior: f32,
+    pub _pad0: u32,
+    pub _pad1: u32,
+    pub _pad2: u32,
+}
+
+#[repr(C)]
+#[derive(Debug, Clone, Copy, PartialEq, Pod, Zeroable)]
+pub struct Light {
+    pub position: [f32; 3],
+    pub _pad: u32,
+    pub radiance: [f32; 3],
+    pub _pad1: u32,
+}
+
+/// A scene packed for the GPU. Arrays hold at least one (zeroed) element,
+/// because a storage buffer may not be empty; the counts in [`Globals`] say
+/// how many are real.
+#[derive(Debug, Clone, PartialEq)]
+pub struct PackedScene {
+    pub globals: Globals,
+    pub spheres: Vec<Sphere>,
+    pub planes: Vec<Plane>,
+    pub cubes: Vec<Cube>,
+    pub materials: Vec<Material>,
+    pub lights: Vec<Light>,
+}
+
+impl PackedScene {
+    /// Packs `scene` for an image of `width` x `height` pixels. The sample
+    /// range in the globals starts empty; the renderer sets it per pass.
+    pub fn new(scene: &Scene, width: u32, height: u32) -> Self {
+        PackedScene {
+            globals: pack_globals(scene, width, height),
+            spheres: non_empty(scene.spheres.iter().map(|s| pack_sphere(scene, s))),
+            planes: non_empty(scene.planes.iter().map(|p| pack_plane(scene, p))),
+            cubes: non_empty(scene.cubes.iter().map(|c| pack_cube(scene, c))),
+            materials: std::iter::once(scene::Material::default())
+                .chain(scene.materials.values().cloned())
+                .map(|m| pack_material(&m))
+                .collect(),
+            lights: non_empty(scene.lights.iter().map(pack_light)),
+        }
+    }
+}
+
+fn non_empty<T: Zeroable>(items: impl Iterator<Item = T>) -> Vec<T> {
+    let mut v: Vec<T> = items.collect();
+    if v.is_empty() {
+        v.push(T::zeroed());
+    }
+    v
+}
+
+fn pack_globals(scene: &Scene, width: u32, height: u32) -> Globals {
+    let cam = &scene.camera;
+    let r = &scene.render;
+    Globals {
+        eye: f32x3(cam.from),
+        film_height: (2.0 * (cam.fov.to_radians() / 2.0).tan()) as f32,
+        look_at: f32x3(cam.to),
+        aperture: cam.aperture as f32,
+        up: f32x3(cam.up),
+        focus_distance: cam.focus_distance() as f32,
+        background: f32x3(r.background),
+        min_weight: r.min_weight as f32,
+        ambient: f32x3(r.ambient),
+        exposure: r.exposure as f32,
+        resolution: [width, height],
+        sample_start: 0,
+        sample_count: 0,
+        max_depth: r.max_depth,
+        sphere_count: scene.spheres.len() as u32,
+        plane_count: scene.planes.len() as u32,
+        cube_count: scene.cubes.len() as u32,
+        light_count: scene.lights.len() as u32,
+        _pad0: 0,
+        output_size: [width, height],
+    }
+}
+
+fn pack_sphere(scene: &Scene, s: &scene::Sphere) -> Sphere {
+    Sphere {
+        center: f32x3(s.center),
+        radius: s.radius as f32,
+        material: scene.material_slot(s.material.as_deref()),
+        ..Zeroable::zeroed()
+    }
+}
+
+fn pack_plane(scene: &Scene, p: &scene::Plane) -> Plane {
+    Plane {
+        point: f32x3(p.point),
+        material: scene.material_slot(p.material.as_deref()),
+        normal: f32x3(p.normal),
+        _pad: 0,
+    }
+}
+
+fn pack_cube(scene: &Scene, c: &scene::Cube) -> Cube {
+    let m = c.rotation_matrix();
+    let column = |v: DVec3| v.as_vec3().extend(0.0).to_array();
+    Cube {
+        center: f32x3(c.center),
+        material: scene.material_slot(c.material.as_deref()),
+        half_size: f32x3(c.size.edges() * 0.5),
+        _pad: 0,
+        rotation: [column(m.x_axis), column(m.y_axis), column(m.z_axis)],
+    }
+}
+
+fn pack_material(m: &scene::Material) -> Material {
+    let (checker_color, checker_size) = match &m.checker {
+        Some(c) => (f32x3(c.color), c.size as f32),
+        None => ([0.0; 3], 0.0),
+    };
+    Material {
+        color: f32x3(m.color),
+        diffuse: m.diffuse as f32,
+        checker_color,
+        checker_size,
+        specular: m.specular as f32,
+        shininess: m.shininess as f32,
+        mirror: m.mirror as f32,
+        transparency: m.transparency as f32,
+        ior: m.ior as f32,
+        ..Zeroable::zeroed()
+    }
+}
+
+fn pack_light(l: &scene::Light) -> Light {
+    Light {
+        position: f32x3(l.position),
+        radiance: f32x3(l.color * l.intensity),
+        ..Zeroable::zeroed()
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use std::mem::{offset_of, size_of};
+
+    /// (field name, offset) of each field, in declaration order.
+    macro_rules! rust_layout {
+        ($t:ident { $($f:ident),* $(,)? }) => {
+            (stringify!($t), size_of::<$t>(), vec![$((stringify!($f), offset_of!($t, $f))),*])
+        };
+    }
+
+    /// The layout naga computes for the struct named `name` in the shader.
+    fn wgsl_layout(module: &naga::Module, name: &str) -> (usize, Vec<(String, usize)>) {
+        let ty = module
+            .types
+            .iter()
+            .find(|(_, t)| t.name.as_deref() == Some(name))
+            .unwrap_or_else(|| panic!("no struct {name} in the shader"))
+            .1;
+        match &ty.inner {
+            naga::TypeInner::Struct { members, span } => (
+                *span as usize,
+                members
+                    .iter()
+                    .map(|m| (m.name.clone().unwrap_or_default(), m.offset as usize))
+                    .collect(),
+            ),
+            other => panic!("{name} is not a struct: {other:?}"),
+        }
+    }
+
+    #[test]
+    fn rust_structs_mirror_the_wgsl_structs() {
+        let source = crate::gpu::shaders::ShaderSource::embedded();
+        let module = source.validate().expect("embedded shader is valid").0;
+        let expected = [
+            rust_layout!(Globals {
+                eye,
+                film_height,
+                look_at,
+                aperture,
+                up,
+                focus_distance,
+                background,
+                min_weight,
+                ambient,
+                exposure,
+                resolution,
+                sample_start,
+                sample_count,
+                max_depth,
+                sphere_count,
+                plane_count,
+                cube_count,
+                light_count,
+                _pad0,
+                output_size
+            }),
+            rust_layout!(Sphere {
+                center,
+                radius,
+                material,
+                _pad0,
+                _pad1,
+                _pad2
+            }),
+            rust_layout!(Plane {
+                point,
+                material,
+                normal,
+                _pad
+            }),
+            rust_layout!(Cube {
+                center,
+                material,
+                half_size,
+                _pad,
+                rotation
+            }),
+            rust_layout!(Material {
+                color,
+                diffuse,
+                checker_color,
+                checker_size,
+                specular,
+                shininess,
+                mirror,
+                transparency,
+                ior,
+                _pad0,
+                _pad1,
+                _pad2
+            }),
+            rust_layout!(Light {
+                position,
+                _pad,
+                radiance,
+                _pad1
+            }),
+        ];
+        for (name, size, fields) in expected {
+            let (wgsl_size, wgsl_fields) = wgsl_layout(&module, name);
+            assert_eq!(size, wgsl_size, "size of {name}");
+            let fields: Vec<(String, usize)> = fields
+                .into_iter()
+                .map(|(f, o)| (f.to_string(), o))
+                .collect();
+            assert_eq!(fields, wgsl_fields, "fields and offsets of {name}");
+        }
+    }
+
+    #[test]
+    fn empty_arrays_get_one_zeroed_element_and_zero_counts() {
+        let scene = Scene::from_toml_str("[camera]\nfrom = [0, 0, 5]\nto = [0, 0, 0]\n", None)
+            .expect("valid scene");
+        let packed = PackedScene::new(&scene, 4, 3);
+        assert_eq!(packed.spheres.len(), 1);
+        assert_eq!(packed.lights.len(), 1);
+        assert_eq!(packed.globals.sphere_count, 0);
+        assert_eq!(packed.globals.light_count, 0);
+        assert_eq!(packed.materials.len(), 1, "the default material only");
+        assert_eq!(packed.globals.resolution, [4, 3]);
+    }
+
+    #[test]
+    fn materials_are_indexed_default_first_then_in_file_order() {
+        let text = r#"
+            [camera]
+            from = [0, 0, 5]
+            to = [0, 0, 0]
+            [materials.b]
+            color = [0, 0, 1]
+            [materials.a]
+            color = [1, 0, 0]
+            [[spheres]]
+            center = [0, 0, 0]
+            radius = 1
+            material = "a"
+            [[spheres]]
+            center = [0, 0, 0]
+            radius = 1
+        "#;
+        let scene = Scene::from_toml_str(text, None).expect("valid scene");
+        let packed = PackedScene::new(&scene, 4, 3);
+        assert_eq!(packed.materials[1].color, [0.0, 0.0, 1.0]);
+        assert_eq!(packed.materials[2].color, [1.0, 0.0, 0.0]);
+        assert_eq!(packed.spheres[0].material, 2);
+        assert_eq!(packed.spheres[1].material, 0);
+        assert_eq!(packed.materials[0].color, [0.8, 0.8, 0.8]);
+    }
+
+    #[test]
+    fn cube_rotation_columns_are_the_rotated_local_axes() {
+        let text = r#"
+            [camera]
+            from = [0, 0, 5]
+            to = [0, 0, 0]
+            [[cubes]]
+            center = [1, 2, 3]
+            size = [2, 4, 6]
+            rotation = [0, 0, 90]
+        "#;
+        let scene = Scene::from_toml_str(text, None).expect("valid scene");
+        let cube = PackedScene::new(&scene, 4, 3).cubes[0];
+        assert_eq!(cube.half_size, [1.0, 2.0, 3.0]);
+        // Rz(90) maps +x to +y: the first column is the image of +x.
+        let x = cube.rotation[0];
+        assert!(x[0].abs() < 1e-7 && (x[1] - 1.0).abs() < 1e-7 && x[2] == 0.0);
+    }
+}

@@ -1,0 +1,15 @@
+//! The GPU side: device, shader source, buffer packing, the tracer's passes
+//! and offscreen rendering with readback. Knows scenes, not windows or UI.
+
+mod context;
+pub mod layout;
+mod offscreen;
+pub mod shaders;
+mod tracer;
+mod viewport;
+
+pub use context::{Gpu, GpuError};
+pub use offscreen::{OffscreenRenderer, render_image};
+pub use shaders::{ShaderError, ShaderSource};
+pub use tracer::{Accumulator, FrameTarget, PipelineError, Pipelines, SceneBuffers, encode_frame};
+pub use viewport::{EXPORT_FORMAT, FrameStatus, Viewport};

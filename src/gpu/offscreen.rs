@@ -1,0 +1,155 @@
+//! Headless rendering: the tracer into an offscreen texture, read back to the CPU.
+
+use std::time::{Duration, Instant};
+
+use super::context::Gpu;
+use super::layout::PackedScene;
+use super::shaders::ShaderSource;
+use super::tracer::{
+    Accumulator, FrameTarget, PipelineError, Pipelines, SceneBuffers, encode_frame,
+};
+use crate::scene::Scene;
+
+/// The offscreen target: 8-bit, and `fs_display` encodes sRGB itself so the
+/// exact formula of spec section 5 is used.
+const OUTPUT_FORMAT: wgpu::TextureFormat = wgpu::TextureFormat::Rgba8Unorm;
+
+/// Samples traced per submission. Long single draws can trip the watchdog of
+/// a desktop GPU driver; a few samples per submission stay well clear of it.
+const SAMPLES_PER_SUBMIT: u32 = 8;
+
+/// Everything needed to render one scene at one size, again and again.
+pub struct OffscreenRenderer {
+    pipelines: Pipelines,
+    scene: SceneBuffers,
+    accum: Accumulator,
+    target: wgpu::Texture,
+}
+
+impl OffscreenRenderer {
+    pub fn new(
+        gpu: &Gpu,
+        source: &ShaderSource,
+        scene: &Scene,
+        width: u32,
+        height: u32,
+    ) -> Result<Self, PipelineError> {
+        let device = &gpu.device;
+        let pipelines = Pipelines::new(device, source, &[OUTPUT_FORMAT])?;
+        let scene = SceneBuffers::new(device, &pipelines, PackedScene::new(scene, width, height));
+        let accum = Accumulator::new(device, &pipelines, width, height);
+        let target = device.create_texture(&wgpu::TextureDescriptor {
+            label: Some("offscreen image"),
+            size: wgpu::Extent3d {
+                width,
+                height,
+                depth_or_array_layers: 1,
+            },
+            mip_level_count: 1,
+            sample_count: 1,
+            dimension: wgpu::TextureDimension::D2,
+            format: OUTPUT_FORMAT,
+            usage: wgpu::TextureUsages::RENDER_ATTACHMENT | wgpu::TextureUsages::COPY_SRC,
+            view_formats: &[],
+        });
+        Ok(OffscreenRenderer {
+            pipelines,
+            scene,
+            accum,
+            target,
+        })
+    }
+
+    /// Traces `spp` samples per pixel from scratch and waits for the GPU.
+    /// Returns the time from the first submission until the GPU finished.
+    pub fn render(&mut self, gpu: &Gpu, spp: u32) -> Duration {
+        let start = Instant::now();
+        self.accum.reset();
+        let view = self.target.create_view(&Default::default());
+        let target = FrameTarget {
+            view: &view,
+            format: OUTPUT_FORMAT,
+            size: self.accum.size(),
+        };
+        let mut remaining = spp.max(1);
+        while remaining > 0 {
+            let batch = remaining.min(SAMPLES_PER_SUBMIT);
+            let mut encoder = gpu.device.create_command_encoder(&Default::default());
+            encode_frame(
+                &gpu.queue,
+                &mut encoder,
+                &self.pipelines,
+                &self.scene,
+                &mut self.accum,
+                batch,
+                &target,
+            );
+            gpu.queue.submit([encoder.finish()]);
+            remaining -= batch;
+        }
+        gpu.device
+            .poll(wgpu::PollType::wait_indefinitely())
+            .expect("waiting for the GPU");
+        start.elapsed()
+    }
+
+    /// Copies the last rendered image back to the CPU.
+    pub fn read_image(&self, gpu: &Gpu) -> image::RgbaImage {
+        read_texture(gpu, &self.target)
+    }
+}
+
+/// Copies an `Rgba8Unorm` texture back to the CPU and waits for it.
+pub(super) fn read_texture(gpu: &Gpu, texture: &wgpu::Texture) -> image::RgbaImage {
+    let (width, height) = (texture.width(), texture.height());
+    let padded_row = (width * 4).next_multiple_of(wgpu::COPY_BYTES_PER_ROW_ALIGNMENT);
+    let readback = gpu.device.create_buffer(&wgpu::BufferDescriptor {
+        label: Some("readback"),
+        size: u64::from(padded_row) * u64::from(height),
+        usage: wgpu::BufferUsages::COPY_DST | wgpu::BufferUsages::MAP_READ,
+        mapped_at_creation: false,
+    });
+    let mut encoder = gpu.device.create_command_encoder(&Default::default());
+    encoder.copy_texture_to_buffer(
+        texture.as_image_copy(),
+        wgpu::TexelCopyBufferInfo {
+            buffer: &readback,
+            layout: wgpu::TexelCopyBufferLayout {
+                offset: 0,
+                bytes_per_row: Some(padded_row),
+                rows_per_image: Some(height),
+            },
+        },
+        texture.size(),
+    );
+    gpu.queue.submit([encoder.finish()]);
+    let slice = readback.slice(..);
+    slice.map_async(wgpu::MapMode::Read, |result| {
+        result.expect("mapping the readback buffer")
+    });
+    gpu.device
+        .poll(wgpu::PollType::wait_indefinitely())
+        .expect("waiting for the GPU");
+    let mut pixels = Vec::with_capacity((width * height * 4) as usize);
+    {
+        let data = slice.get_mapped_range().expect("mapped readback buffer");
+        for row in data.chunks(padded_row as usize) {
+            pixels.extend_from_slice(&row[..(width * 4) as usize]);
+        }
+    }
+    image::RgbaImage::from_raw(width, height, pixels).expect("buffer holds the whole image")
+}
+
+/// Renders `scene` once at `spp` samples per pixel with the embedded shader.
+pub fn render_image(
+    gpu: &Gpu,
+    scene: &Scene,
+    width: u32,
+    height: u32,
+    spp: u32,
+) -> Result<image::RgbaImage, PipelineError> {
+    let mut renderer =
+        OffscreenRenderer::new(gpu, &ShaderSource::embedded(), scene, width, height)?;
+    renderer.render(gpu, spp);
+    Ok(renderer.read_image(gpu))
+}

@@ -1,0 +1,262 @@
+//! The WGSL source: files split by concern, joined into one module, validated
+//! with naga before any pipeline is built, and errors reported at the line of
+//! the file they came from (not of the joined text).
+//!
+//! The binary embeds the files of `shaders/`, so it runs from any directory;
+//! [`ShaderSource::from_dir`] reads the same files from disk for hot reload.
+
+use std::fmt;
+use std::path::{Path, PathBuf};
+
+/// The shader files in the order they are joined. WGSL resolves names at
+/// module scope in any order, so the order only decides line numbering.
+pub const SHADER_FILES: [&str; 5] = [
+    "scene.wgsl",
+    "camera.wgsl",
+    "intersect.wgsl",
+    "shade.wgsl",
+    "main.wgsl",
+];
+
+const EMBEDDED: [&str; 5] = [
+    include_str!("../../shaders/scene.wgsl"),
+    include_str!("../../shaders/camera.wgsl"),
+    include_str!("../../shaders/intersect.wgsl"),
+    include_str!("../../shaders/shade.wgsl"),
+    include_str!("../../shaders/main.wgsl"),
+];
+
+/// One named piece of WGSL: a file of the shader folder.
+#[derive(Debug, Clone, PartialEq)]
+struct Part {
+    /// What error messages call it: the path it was read from, or
+    /// `shaders/NAME` for the embedded copy.
+    name: String,
+    /// Byte offset of this part in the joined source.
+    start: usize,
+}
+
+/// WGSL joined from several files, with a map back to them.
+#[derive(Debug, Clone, PartialEq)]
+pub struct ShaderSource {
+    joined: String,
+    parts: Vec<Part>,
+}
+
+/// A WGSL error located in the file it came from.
+#[derive(Debug, Clone, PartialEq)]
+pub struct ShaderError {
+    /// The file, as given to [`ShaderSource`] (e.g. `shaders/shade.wgsl`).
+    pub file: String,
+    /// 1-based line and column in that file; 0 when naga gave no position.
+    pub line: u32,
+    pub column: u32,
+    /// naga's message, e.g. `expected ';', found 'let'`.
+    pub message: String,
+    /// The offending line of the file and the labels naga attached to it.
+    pub source_line: String,
+    pub label: String,
+}
+
+impl fmt::Display for ShaderError {
+    /// `FILE:LINE:COLUMN: error: MESSAGE`, then the source line with a caret,
+    /// in the style of rustc, so editors and people both recognise it.
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        if self.line == 0 {
+            return write!(f, "{}: error: {}", self.file, self.message);
+        }
+        writeln!(
+            f,
+            "{}:{}:{}: error: {}",
+            self.file, self.line, self.column, self.message
+        )?;
+        let gutter = self.line.to_string().len();
+        writeln!(f, "{:gutter$} |", "")?;
+        writeln!(f, "{} | {}", self.line, self.source_line)?;
+        write!(
+            f,
+            "{:gutter$} | {}^ {}",
+            "",
+            " ".repeat(self.column.saturating_sub(1) as usize),
+            self.label
+        )
+    }
+}
+
+impl std::error::Error for ShaderError {}
+
+impl ShaderSource {
+    /// The shader files compiled into the binary.
+    pub fn embedded() -> Self {
+        Self::join(
+            SHADER_FILES
+                .iter()
+                .zip(EMBEDDED)
+                .map(|(name, text)| (format!("shaders/{name}"), text.to_string())),
+        )
+    }
+
+    /// Reads the shader files from `dir` (for hot reload and `--shaders`).
+    pub fn from_dir(dir: &Path) -> Result<Self, ShaderError> {
+        let mut files = Vec::with_capacity(SHADER_FILES.len());
+        for name in SHADER_FILES {
+            let path: PathBuf = dir.join(name);
+            let text = std::fs::read_to_string(&path).map_err(|e| ShaderError {
+                file: path.display().to_string(),
+                line: 0,
+                column: 0,
+                message: format!("cannot read the file: {e}"),
+                source_line: String::new(),
+                label: String::new(),
+            })?;
+            files.push((path.display().to_string(), text));
+        }
+        Ok(Self::join(files))
+    }
+
+    fn join(files: impl IntoIterator<Item = (String, String)>) -> Self {
+        let mut joined = String::new();
+        let mut parts = Vec::new();
+        for (name, text) in files {
+            parts.push(Part {
+                name,
+                start: joined.len(),
+            });
+            joined.push_str(&text);
+            if !text.ends_with('\n') {
+                joined.push('\n');
+            }
+        }
+        ShaderSource { joined, parts }
+    }
+
+    /// The joined WGSL, as handed to wgpu.
+    pub fn text(&self) -> &str {
+        &self.joined
+    }
+
+    /// Parses and validates the joined source with naga, as wgpu will, so that
+    /// a broken shader is reported with its file and line and never reaches
+    /// pipeline creation.
+    pub fn validate(&self) -> Result<(naga::Module, naga::valid::ModuleInfo), ShaderError> {
+        let module = naga::front::wgsl::parse_str(&self.joined).map_err(|e| {
+            let (span, label) = e
+                .labels()
+                .next()
+                .map(|(s, l)| (s, l.to_string()))
+                .unwrap_or_default();
+            self.locate(span, e.message().to_string(), label)
+        })?;
+        let info = naga::valid::Validator::new(
+            naga::valid::ValidationFlags::all(),
+            naga::valid::Capabilities::default(),
+        )
+        .validate(&module)
+        .map_err(|e| {
+            let (span, label) = e.spans().next().cloned().unwrap_or_default();
+            // The innermost cause says what is wrong; the outer ones say where.
+            let mut message = e.as_inner().to_string();
+            let mut source = std::error::Error::source(e.as_inner());
+            while let Some(cause) = source {
+                message = format!("{message}: {cause}");
+                source = cause.source();
+            }
+            self.locate(span, message, label)
+        })?;
+        Ok((module, info))
+    }
+
+    /// Turns a span of the joined source into file, line and column.
+    fn locate(&self, span: naga::Span, message: String, label: String) -> ShaderError {
+        let Some(range) = span.to_range() else {
+            let file = self
+                .parts
+                .first()
+                .map(|p| p.name.clone())
+                .unwrap_or_default();
+            return ShaderError {
+                file,
+                line: 0,
+                column: 0,
+                message,
+                source_line: String::new(),
+                label,
+            };
+        };
+        let part = self
+            .parts
+            .iter()
+            .rev()
+            .find(|p| p.start <= range.start)
+            .expect("the first part starts at 0");
+        let before = &self.joined[part.start..range.start];
+        let line_start = before
+            .rfind('\n')
+            .map_or(part.start, |i| part.start + i + 1);
+        let line_end = self.joined[line_start..]
+            .find('\n')
+            .map_or(self.joined.len(), |i| line_start + i);
+        ShaderError {
+            file: part.name.clone(),
+            line: before.matches('\n').count() as u32 + 1,
+            column: (range.start - line_start) as u32 + 1,
+            message,
+            source_line: self.joined[line_start..line_end].to_string(),
+            label,
+        }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn embedded_shader_validates() {
+        ShaderSource::embedded()
+            .validate()
+            .unwrap_or_else(|e| panic!("{e}"));
+    }
+
+    #[test]
+    fn parse_error_points_at_the_file_and_line_it_came_from() {
+        let files = [
+            (
+                "a.wgsl".to_string(),
+                "fn one() -> f32 {\n    return 1.0;\n}\n".to_string(),
+            ),
+            (
+                "b.wgsl".to_string(),
+                "// comment\nfn two() -> f32 {\n    return 2.0\n}\n".to_string(),
+            ),
+        ];
+        let err = ShaderSource::join(files).validate().unwrap_err();
+        assert_eq!(err.file, "b.wgsl");
+        // naga reports the token after the missing ';', the `}` on line 4.
+        assert_eq!((err.line, err.column), (4, 1), "{err}");
+        assert_eq!(err.source_line, "}");
+        let shown = err.to_string();
+        assert!(shown.starts_with("b.wgsl:4:1: error: expected"), "{shown}");
+    }
+
+    #[test]
+    fn validation_error_is_located_too() {
+        let files = [(
+            "c.wgsl".to_string(),
+            "fn f() -> f32 {\n    let x: f32 = 1u;\n    return x;\n}\n".to_string(),
+        )];
+        let err = ShaderSource::join(files).validate().unwrap_err();
+        assert_eq!(err.file, "c.wgsl");
+        assert_eq!(err.line, 2, "{err}");
+    }
+
+    #[test]
+    fn missing_file_in_a_folder_is_named() {
+        let dir = std::env::temp_dir().join(format!("raysandbox-empty-{}", std::process::id()));
+        std::fs::create_dir_all(&dir).unwrap();
+        let err = ShaderSource::from_dir(&dir).unwrap_err();
+        assert!(err.file.ends_with("scene.wgsl"), "{err}");
+        assert!(err.message.contains("cannot read"), "{err}");
+        std::fs::remove_dir_all(&dir).unwrap();
+    }
+}

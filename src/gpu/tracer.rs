@@ -1,0 +1,356 @@
+//! The two full-screen passes of `shaders/main.wgsl` and the resources they
+//! read: pipelines, scene buffers and the accumulation textures.
+//!
+//! Per frame: `fs_trace` adds new samples to the running radiance sum
+//! (ping-pong between two `Rgba32Float` textures, so no float blending is
+//! needed), then `fs_display` divides by the sample count and encodes it into
+//! the output target.
+
+use wgpu::util::DeviceExt;
+
+use super::layout::PackedScene;
+use super::shaders::{ShaderError, ShaderSource};
+
+/// Where the radiance sum is kept: full f32 precision, so 1000s of samples
+/// add up without banding.
+const ACCUM_FORMAT: wgpu::TextureFormat = wgpu::TextureFormat::Rgba32Float;
+
+/// Pipelines for one shader source: the trace pass, and a display pass for
+/// each output format asked for (e.g. the window's and PNG export's).
+pub struct Pipelines {
+    trace: wgpu::RenderPipeline,
+    display: Vec<(wgpu::TextureFormat, wgpu::RenderPipeline)>,
+    scene_layout: wgpu::BindGroupLayout,
+    accum_layout: wgpu::BindGroupLayout,
+}
+
+#[derive(Debug, thiserror::Error)]
+pub enum PipelineError {
+    #[error("{0}")]
+    Shader(#[from] ShaderError),
+    #[error("wgpu rejected the shader or pipeline: {0}")]
+    Wgpu(String),
+}
+
+impl Pipelines {
+    /// Validates `source` with naga, then builds the pipelines. On any error
+    /// nothing is built, so a caller can keep its previous pipelines. The
+    /// display pass applies the sRGB transfer function itself unless the
+    /// format is an `*Srgb` one, whose hardware conversion does it.
+    pub fn new(
+        device: &wgpu::Device,
+        source: &ShaderSource,
+        output_formats: &[wgpu::TextureFormat],
+    ) -> Result<Self, PipelineError> {
+        source.validate()?;
+        let scope = device.push_error_scope(wgpu::ErrorFilter::Validation);
+        let pipelines = Self::build(device, source, output_formats);
+        match pollster::block_on(scope.pop()) {
+            Some(error) => Err(PipelineError::Wgpu(error.to_string())),
+            None => Ok(pipelines),
+        }
+    }
+
+    fn build(
+        device: &wgpu::Device,
+        source: &ShaderSource,
+        output_formats: &[wgpu::TextureFormat],
+    ) -> Self {
+        let module = device.create_shader_module(wgpu::ShaderModuleDescriptor {
+            label: Some("raysandbox tracer"),
+            source: wgpu::ShaderSource::Wgsl(source.text().into()),
+        });
+        let scene_layout = device.create_bind_group_layout(&wgpu::BindGroupLayoutDescriptor {
+            label: Some("scene"),
+            entries: &scene_layout_entries(),
+        });
+        let accum_layout = device.create_bind_group_layout(&wgpu::BindGroupLayoutDescriptor {
+            label: Some("accumulated radiance"),
+            entries: &[wgpu::BindGroupLayoutEntry {
+                binding: 0,
+                visibility: wgpu::ShaderStages::FRAGMENT,
+                ty: wgpu::BindingType::Texture {
+                    sample_type: wgpu::TextureSampleType::Float { filterable: false },
+                    view_dimension: wgpu::TextureViewDimension::D2,
+                    multisampled: false,
+                },
+                count: None,
+            }],
+        });
+        let layout = device.create_pipeline_layout(&wgpu::PipelineLayoutDescriptor {
+            label: Some("tracer"),
+            bind_group_layouts: &[Some(&scene_layout), Some(&accum_layout)],
+            immediate_size: 0,
+        });
+        let pass = |entry: &str, format, constants: &[(&str, f64)]| {
+            device.create_render_pipeline(&wgpu::RenderPipelineDescriptor {
+                label: Some(entry),
+                layout: Some(&layout),
+                vertex: wgpu::VertexState {
+                    module: &module,
+                    entry_point: Some("vs_fullscreen"),
+                    compilation_options: Default::default(),
+                    buffers: &[],
+                },
+                primitive: wgpu::PrimitiveState::default(),
+                depth_stencil: None,
+                multisample: wgpu::MultisampleState::default(),
+                fragment: Some(wgpu::FragmentState {
+                    module: &module,
+                    entry_point: Some(entry),
+                    compilation_options: wgpu::PipelineCompilationOptions {
+                        constants,
+                        ..Default::default()
+                    },
+                    targets: &[Some(wgpu::ColorTargetState {
+                        format,
+                        blend: None,
+                        write_mask: wgpu::ColorWrites::ALL,
+                    })],
+                }),
+                multiview_mask: None,
+                cache: None,
+            })
+        };
+        let display = output_formats
+            .iter()
+            .map(|&format| {
+                let encode = if format.is_srgb() { 0.0 } else { 1.0 };
+                (
+                    format,
+                    pass("fs_display", format, &[("ENCODE_SRGB", encode)]),
+                )
+            })
+            .collect();
+        Pipelines {
+            trace: pass("fs_trace", ACCUM_FORMAT, &[]),
+            display,
+            scene_layout,
+            accum_layout,
+        }
+    }
+
+    fn display(&self, format: wgpu::TextureFormat) -> &wgpu::RenderPipeline {
+        self.display
+            .iter()
+            .find(|(f, _)| *f == format)
+            .map(|(_, p)| p)
+            .unwrap_or_else(|| panic!("no display pipeline was built for {format:?}"))
+    }
+}
+
+/// Binding 0: the globals uniform; 1..=5: spheres, planes, cubes, materials,
+/// lights as read-only storage buffers (the order of `scene.wgsl`).
+fn scene_layout_entries() -> [wgpu::BindGroupLayoutEntry; 6] {
+    std::array::from_fn(|i| wgpu::BindGroupLayoutEntry {
+        binding: i as u32,
+        visibility: wgpu::ShaderStages::FRAGMENT,
+        ty: wgpu::BindingType::Buffer {
+            ty: if i == 0 {
+                wgpu::BufferBindingType::Uniform
+            } else {
+                wgpu::BufferBindingType::Storage { read_only: true }
+            },
+            has_dynamic_offset: false,
+            min_binding_size: None,
+        },
+        count: None,
+    })
+}
+
+/// The scene in GPU buffers, with the CPU copy it was made from.
+pub struct SceneBuffers {
+    packed: PackedScene,
+    globals: wgpu::Buffer,
+    bind_group: wgpu::BindGroup,
+}
+
+impl SceneBuffers {
+    pub fn new(device: &wgpu::Device, pipelines: &Pipelines, packed: PackedScene) -> Self {
+        let globals = device.create_buffer_init(&wgpu::util::BufferInitDescriptor {
+            label: Some("globals"),
+            contents: bytemuck::bytes_of(&packed.globals),
+            usage: wgpu::BufferUsages::UNIFORM | wgpu::BufferUsages::COPY_DST,
+        });
+        let storage = |label, contents: &[u8]| {
+            device.create_buffer_init(&wgpu::util::BufferInitDescriptor {
+                label: Some(label),
+                contents,
+                usage: wgpu::BufferUsages::STORAGE,
+            })
+        };
+        let buffers = [
+            storage("spheres", bytemuck::cast_slice(&packed.spheres)),
+            storage("planes", bytemuck::cast_slice(&packed.planes)),
+            storage("cubes", bytemuck::cast_slice(&packed.cubes)),
+            storage("materials", bytemuck::cast_slice(&packed.materials)),
+            storage("lights", bytemuck::cast_slice(&packed.lights)),
+        ];
+        let entries: Vec<wgpu::BindGroupEntry> = std::iter::once(&globals)
+            .chain(&buffers)
+            .enumerate()
+            .map(|(i, b)| wgpu::BindGroupEntry {
+                binding: i as u32,
+                resource: b.as_entire_binding(),
+            })
+            .collect();
+        let bind_group = device.create_bind_group(&wgpu::BindGroupDescriptor {
+            label: Some("scene"),
+            layout: &pipelines.scene_layout,
+            entries: &entries,
+        });
+        SceneBuffers {
+            packed,
+            globals,
+            bind_group,
+        }
+    }
+
+    /// The packed scene currently on the GPU.
+    pub fn packed(&self) -> &PackedScene {
+        &self.packed
+    }
+}
+
+/// Two radiance-sum textures used in turn, and how many samples they hold.
+pub struct Accumulator {
+    views: [wgpu::TextureView; 2],
+    bind_groups: [wgpu::BindGroup; 2],
+    /// Index of the texture that holds the current sum.
+    front: usize,
+    samples: u32,
+    size: (u32, u32),
+}
+
+impl Accumulator {
+    pub fn new(device: &wgpu::Device, pipelines: &Pipelines, width: u32, height: u32) -> Self {
+        let views = std::array::from_fn(|_| {
+            device
+                .create_texture(&wgpu::TextureDescriptor {
+                    label: Some("accumulated radiance"),
+                    size: wgpu::Extent3d {
+                        width,
+                        height,
+                        depth_or_array_layers: 1,
+                    },
+                    mip_level_count: 1,
+                    sample_count: 1,
+                    dimension: wgpu::TextureDimension::D2,
+                    format: ACCUM_FORMAT,
+                    usage: wgpu::TextureUsages::RENDER_ATTACHMENT
+                        | wgpu::TextureUsages::TEXTURE_BINDING,
+                    view_formats: &[],
+                })
+                .create_view(&Default::default())
+        });
+        let bind_groups = std::array::from_fn(|i| {
+            device.create_bind_group(&wgpu::BindGroupDescriptor {
+                label: Some("accumulated radiance"),
+                layout: &pipelines.accum_layout,
+                entries: &[wgpu::BindGroupEntry {
+                    binding: 0,
+                    resource: wgpu::BindingResource::TextureView(&views[i]),
+                }],
+            })
+        });
+        Accumulator {
+            views,
+            bind_groups,
+            front: 0,
+            samples: 0,
+            size: (width, height),
+        }
+    }
+
+    /// Samples per pixel accumulated so far.
+    pub fn samples(&self) -> u32 {
+        self.samples
+    }
+
+    /// Size in pixels.
+    pub fn size(&self) -> (u32, u32) {
+        self.size
+    }
+
+    /// Forgets the accumulated samples (the scene or view changed).
+    pub fn reset(&mut self) {
+        self.samples = 0;
+    }
+}
+
+/// A texture view to display into, with its format and size in pixels.
+pub struct FrameTarget<'a> {
+    pub view: &'a wgpu::TextureView,
+    pub format: wgpu::TextureFormat,
+    pub size: (u32, u32),
+}
+
+/// Encodes one frame: `new_samples` more samples per pixel (none: only
+/// display again) are traced into the accumulator, and the average is shown
+/// in `target`, scaled up if the accumulator is smaller. The globals are
+/// written through `queue`: submit the encoder before encoding another frame.
+pub fn encode_frame(
+    queue: &wgpu::Queue,
+    encoder: &mut wgpu::CommandEncoder,
+    pipelines: &Pipelines,
+    scene: &SceneBuffers,
+    accum: &mut Accumulator,
+    new_samples: u32,
+    target: &FrameTarget,
+) {
+    let mut globals = scene.packed.globals;
+    globals.resolution = [accum.size.0, accum.size.1];
+    globals.output_size = [target.size.0, target.size.1];
+    globals.sample_start = accum.samples;
+    globals.sample_count = new_samples;
+    queue.write_buffer(&scene.globals, 0, bytemuck::bytes_of(&globals));
+
+    if new_samples > 0 {
+        let back = 1 - accum.front;
+        full_screen_pass(
+            encoder,
+            &pipelines.trace,
+            &scene.bind_group,
+            &accum.bind_groups[accum.front],
+            &accum.views[back],
+        );
+        accum.front = back;
+        accum.samples += new_samples;
+    }
+    full_screen_pass(
+        encoder,
+        pipelines.display(target.format),
+        &scene.bind_group,
+        &accum.bind_groups[accum.front],
+        target.view,
+    );
+}
+
+fn full_screen_pass(
+    encoder: &mut wgpu::CommandEncoder,
+    pipeline: &wgpu::RenderPipeline,
+    scene: &wgpu::BindGroup,
+    accumulated: &wgpu::BindGroup,
+    target: &wgpu::TextureView,
+) {
+    let mut pass = encoder.begin_render_pass(&wgpu::RenderPassDescriptor {
+        label: None,
+        color_attachments: &[Some(wgpu::RenderPassColorAttachment {
+            view: target,
+            depth_slice: None,
+            resolve_target: None,
+            ops: wgpu::Operations {
+                load: wgpu::LoadOp::Clear(wgpu::Color::BLACK),
+                store: wgpu::StoreOp::Store,
+            },
+        })],
+        depth_stencil_attachment: None,
+        timestamp_writes: None,
+        occlusion_query_set: None,
+        multiview_mask: None,
+    });
+    pass.set_pipeline(pipeline);
+    pass.set_bind_group(0, scene, &[]);
+    pass.set_bind_group(1, accumulated, &[]);
+    pass.draw(0..3, 0..1);
+}

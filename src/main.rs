@@ -1,0 +1,149 @@
+//! The `raysandbox` command line.
+
+use std::path::{Path, PathBuf};
+use std::process::ExitCode;
+use std::time::Instant;
+
+use clap::{Parser, Subcommand};
+
+use raysandbox::gpu::{Gpu, OffscreenRenderer, ShaderSource};
+use raysandbox::reference;
+use raysandbox::scene::Scene;
+
+#[derive(Parser)]
+#[command(
+    name = "raysandbox",
+    version,
+    about = "Whitted ray tracing for the lecture: a WGSL shader on wgpu and an f64 CPU reference"
+)]
+struct Cli {
+    #[command(subcommand)]
+    command: Command,
+}
+
+#[derive(Subcommand)]
+enum Command {
+    /// Validate a scene file and print a one-line summary.
+    Check {
+        /// The scene file (TOML).
+        scene: PathBuf,
+    },
+    /// Render a scene to a PNG file, on the GPU or with the CPU reference.
+    Render(RenderArgs),
+}
+
+#[derive(clap::Args)]
+struct RenderArgs {
+    /// The scene file (TOML).
+    scene: PathBuf,
+    /// Output PNG file.
+    #[arg(short, long)]
+    output: PathBuf,
+    #[arg(long, default_value_t = 1280, value_parser = clap::value_parser!(u32).range(1..=16384))]
+    width: u32,
+    #[arg(long, default_value_t = 720, value_parser = clap::value_parser!(u32).range(1..=16384))]
+    height: u32,
+    /// Samples per pixel (the R4 sequence, see docs/implementation.md).
+    #[arg(long, default_value_t = 1, value_parser = clap::value_parser!(u32).range(1..=65536))]
+    spp: u32,
+    /// Render with the f64 CPU reference instead of the GPU.
+    #[arg(long)]
+    reference: bool,
+    /// Read the WGSL from this folder instead of the embedded copy.
+    #[arg(long)]
+    shaders: Option<PathBuf>,
+}
+
+/// A failure the user caused (bad file, bad arguments): exit status 2.
+struct InputError(String);
+
+/// A failure of the machine (no GPU, unwritable output): exit status 1.
+struct RuntimeError(String);
+
+enum Failure {
+    Input(InputError),
+    Runtime(RuntimeError),
+}
+
+impl From<InputError> for Failure {
+    fn from(e: InputError) -> Self {
+        Failure::Input(e)
+    }
+}
+
+impl From<RuntimeError> for Failure {
+    fn from(e: RuntimeError) -> Self {
+        Failure::Runtime(e)
+    }
+}
+
+fn main() -> ExitCode {
+    env_logger::Builder::from_env(env_logger::Env::default().default_filter_or("warn")).init();
+    let cli = Cli::parse();
+    let result = match cli.command {
+        Command::Check { scene } => check(&scene),
+        Command::Render(args) => render(&args),
+    };
+    match result {
+        Ok(()) => ExitCode::SUCCESS,
+        Err(Failure::Input(InputError(message))) => {
+            eprintln!("error: {message}");
+            ExitCode::from(2)
+        }
+        Err(Failure::Runtime(RuntimeError(message))) => {
+            eprintln!("error: {message}");
+            ExitCode::FAILURE
+        }
+    }
+}
+
+fn load_scene(path: &Path) -> Result<Scene, InputError> {
+    Scene::load(path).map_err(|e| InputError(e.to_string()))
+}
+
+fn check(path: &Path) -> Result<(), Failure> {
+    let scene = load_scene(path)?;
+    println!("{}: ok: {}", path.display(), scene.summary());
+    Ok(())
+}
+
+fn render(args: &RenderArgs) -> Result<(), Failure> {
+    let scene = load_scene(&args.scene)?;
+    let start = Instant::now();
+    let image = if args.reference {
+        println!(
+            "renderer: f64 CPU reference, {} threads",
+            rayon::current_num_threads()
+        );
+        reference::render_rgba8(&scene, args.width, args.height, args.spp)
+    } else {
+        let source = match &args.shaders {
+            Some(dir) => ShaderSource::from_dir(dir).map_err(|e| InputError(e.to_string()))?,
+            None => ShaderSource::embedded(),
+        };
+        // A broken shader is the user's input: report it before asking for a GPU.
+        source.validate().map_err(|e| InputError(e.to_string()))?;
+        let gpu = Gpu::headless().map_err(|e| RuntimeError(e.to_string()))?;
+        println!("adapter: {}", gpu.describe());
+        let mut renderer = OffscreenRenderer::new(&gpu, &source, &scene, args.width, args.height)
+            .map_err(|e| InputError(e.to_string()))?;
+        let gpu_time = renderer.render(&gpu, args.spp);
+        println!(
+            "GPU time (submit to finish): {:.1} ms",
+            gpu_time.as_secs_f64() * 1e3
+        );
+        renderer.read_image(&gpu)
+    };
+    println!(
+        "rendered {}x{} at {} spp in {:.1} ms",
+        args.width,
+        args.height,
+        args.spp,
+        start.elapsed().as_secs_f64() * 1e3
+    );
+    image
+        .save(&args.output)
+        .map_err(|e| RuntimeError(format!("{}: {e}", args.output.display())))?;
+    println!("wrote {}", args.output.display());
+    Ok(())
+}

@@ -1,0 +1,125 @@
+//! From the parsed document to a [`Scene`] struct, with serde: types, unknown
+//! keys and missing keys. serde's errors are given a key path and a line, and
+//! reworded where serde's words are about Rust rather than the scene file.
+
+use serde::Deserialize;
+use toml::de::{DeValue, ValueDeserializer};
+
+use super::document::{Document, Node};
+use super::key_path::KeyPath;
+use super::validate::MAX_DEPTH;
+use super::{Scene, SceneError};
+
+/// The scene the document describes, not yet checked against the ranges of
+/// the spec (that is [`super::validate`]'s job).
+pub(super) fn deserialize(doc: &Document<'_>) -> Result<Scene, SceneError> {
+    let scene = Scene::deserialize(ValueDeserializer::from(doc.root().clone()))
+        .map_err(|e| serde_error(doc, &e))?;
+    check_vector_lengths(doc)?;
+    Ok(scene)
+}
+
+/// glam reads the first three numbers of an array and ignores the rest, so
+/// `to = [0, 1, 0, 5]` would load without a word. Every array of numbers in
+/// a scene is a vector, and a vector has three.
+fn check_vector_lengths(doc: &Document<'_>) -> Result<(), SceneError> {
+    let wrong_length = |node: &Node<'_>| match node.get_ref() {
+        DeValue::Array(items) => items.len() != 3 && !items.iter().all(|v| v.get_ref().is_table()),
+        _ => false,
+    };
+    match doc.find(wrong_length) {
+        Some((path, node)) => {
+            let got = doc.quote(node);
+            Err(doc.error(&path, format!("must be an array of 3 numbers, got {got}")))
+        }
+        None => Ok(()),
+    }
+}
+
+/// serde's error, with the key it is about, placed where serde points (for an
+/// unknown key that is the key, not its value). An empty span is how toml
+/// points at the root table, which has no place in the text.
+fn serde_error(doc: &Document<'_>, e: &toml::de::Error) -> SceneError {
+    let span = e.span().filter(|span| !span.is_empty());
+    let path = span
+        .as_ref()
+        .map(|span| doc.path_at(span))
+        .unwrap_or_default();
+    let (path, message) = explain(doc, path, e.message());
+    let error = doc.error(&path, message);
+    match span {
+        Some(span) => error.at(doc.position(span.start)),
+        None => error,
+    }
+}
+
+/// The key and message to show for serde's `message` about `path`.
+fn explain(doc: &Document<'_>, path: KeyPath, message: &str) -> (KeyPath, String) {
+    if let Some(field) = missing_field(message) {
+        let message = missing_message(doc, &path, field);
+        return (path.key(field), message);
+    }
+    if let Some(rest) = message.strip_prefix("unknown field") {
+        return (path, format!("unknown key{rest}"));
+    }
+    let node = doc.get(&path);
+    if path == KeyPath::default().key("render").key("max_depth") {
+        return (path, max_depth_message(doc, node));
+    }
+    if message.contains("untagged enum CubeSize") {
+        let got = node.map(|node| doc.quote(node)).unwrap_or_default();
+        return (
+            path,
+            format!("must be a number or an array of 3 numbers, got {got}"),
+        );
+    }
+    (path, in_plain_words(message))
+}
+
+/// The field of serde's "missing field `radius`".
+fn missing_field(message: &str) -> Option<&str> {
+    message.strip_prefix("missing field `")?.strip_suffix('`')
+}
+
+fn missing_message(doc: &Document<'_>, table: &KeyPath, field: &str) -> String {
+    if !table.is_root() {
+        return "required key is missing".to_owned();
+    }
+    let is_empty = matches!(doc.root().get_ref(), DeValue::Table(t) if t.is_empty());
+    let why = if is_empty {
+        " (the scene is empty)"
+    } else {
+        ""
+    };
+    format!("required table [{field}] is missing{why}")
+}
+
+/// serde says "expected u32"; students write `max_depth = 5.0` and need to be
+/// told that the decimal point is what is wrong.
+fn max_depth_message(doc: &Document<'_>, node: Option<&Node<'_>>) -> String {
+    let got = node.map(|node| doc.quote(node)).unwrap_or_default();
+    let is_float = node.is_some_and(|node| node.get_ref().is_float());
+    let hint = if is_float { " (no decimal point)" } else { "" };
+    format!("must be an integer in 0..={MAX_DEPTH}{hint}, got {got}")
+}
+
+/// serde's words for Rust types, replaced by the scene file's words.
+fn in_plain_words(message: &str) -> String {
+    const WORDS: [(&str, &str); 6] = [
+        ("a sequence of 3 f64 values", "an array of 3 numbers"),
+        ("expected f64", "expected a number"),
+        ("expected a sequence", "expected an array"),
+        ("invalid type: sequence", "invalid type: array"),
+        ("invalid type: map", "invalid type: table"),
+        (" as i128", " (beyond the 64-bit range of TOML integers)"),
+    ];
+    let mut message = WORDS
+        .iter()
+        .fold(message.to_owned(), |m, (rust, toml)| m.replace(rust, toml));
+    // "expected struct Camera": the struct is a table in the file.
+    if let Some(at) = message.find("expected struct ") {
+        message.truncate(at);
+        message.push_str("expected a table");
+    }
+    message
+}

@@ -1,0 +1,1095 @@
+//! Tests of loading, validation and saving scenes: one or more per rule of
+//! the spec, the defaults, the error format, and round trips.
+
+use std::path::{Path, PathBuf};
+
+use glam::DVec3;
+
+use super::{CubeSize, Material, RenderSettings, Scene, SceneError};
+
+/// A valid camera, for tests about other sections. Three lines long.
+const CAMERA: &str = "[camera]\nfrom = [0, 1, 5]\nto = [0, 0, 0]\n";
+
+/// A scene that uses every feature of the format, with materials out of
+/// alphabetical order and both forms of cube size.
+const FULL: &str = r#"
+[render]
+max_depth = 7
+min_weight = 0.01
+background = [0.1, 0.2, 0.3]
+ambient = [0.05, 0.05, 0.05]
+exposure = 1.5
+
+[camera]
+from = [0, 1.5, 6]
+to = [0, 1, 0]
+up = [0, 1, 0]
+fov = 40
+aperture = 0.05
+focus_distance = 6.0
+
+[[lights]]
+position = [5, 8, 5]
+color = [1, 0.9, 0.8]
+intensity = 0.8
+
+[[lights]]
+position = [-5, 8, 5]
+
+[materials.glass]
+color = [1, 1, 1]
+diffuse = 0.0
+specular = 0.6
+shininess = 200
+transparency = 0.95
+ior = 1.5
+
+[materials.floor]
+color = [0.9, 0.9, 0.9]
+checker = { color = [0.15, 0.15, 0.15], size = 1.0 }
+
+[materials."brushed steel"]
+mirror = 0.7
+
+[[spheres]]
+center = [0, 1, 0]
+radius = 1
+material = "glass"
+
+[[spheres]]
+center = [-2, 0.5, 1]
+radius = 0.5
+
+[[planes]]
+point = [0, 0, 0]
+normal = [0, 2, 0]
+material = "floor"
+
+[[cubes]]
+center = [2.2, 0.5, 0]
+size = 1
+rotation = [0, 30, 0]
+material = "brushed steel"
+
+[[cubes]]
+center = [-2.2, 1, -1]
+size = [1, 2, 3]
+"#;
+
+/// Loads `text` as `test.toml`, with [`CAMERA`] after it unless `text` has
+/// its own camera. (After, so that lines keep their numbers and top-level
+/// keys stay at the top level.)
+fn load(text: &str) -> Result<Scene, SceneError> {
+    let text = if text.contains("[camera]") {
+        text.to_owned()
+    } else {
+        format!("{text}{CAMERA}")
+    };
+    Scene::from_toml_str(&text, Some(Path::new("test.toml")))
+}
+
+#[track_caller]
+fn loads(text: &str) -> Scene {
+    load(text).unwrap_or_else(|e| panic!("should load, but: {e}\n{text}"))
+}
+
+/// Asserts that `text` fails with exactly `message` about `key`, at a line.
+#[track_caller]
+fn rejects(text: &str, key: &str, message: &str) -> SceneError {
+    let e = rejects_with(text, key, message);
+    assert_eq!(e.message, message, "{e}");
+    e
+}
+
+/// Asserts that `text` fails with a message containing `part` about `key`,
+/// at a line.
+#[track_caller]
+fn rejects_with(text: &str, key: &str, part: &str) -> SceneError {
+    let e = load(text).expect_err(&format!("should fail:\n{text}"));
+    assert_eq!(e.key.as_deref(), Some(key), "{e}");
+    assert!(e.message.contains(part), "{e:?} lacks {part:?}");
+    assert!(e.line.is_some(), "no line in {e}");
+    assert_eq!(e.file.as_deref(), Some(Path::new("test.toml")));
+    e
+}
+
+/// Numbers that are a single value, as (table text without the key, key,
+/// key path): every such field of the format.
+const SCALARS: &[(&str, &str, &str)] = &[
+    ("[render]\n", "min_weight", "render.min_weight"),
+    ("[render]\n", "exposure", "render.exposure"),
+    (
+        "[camera]\nfrom = [0, 1, 5]\nto = [0, 0, 0]\n",
+        "fov",
+        "camera.fov",
+    ),
+    (
+        "[camera]\nfrom = [0, 1, 5]\nto = [0, 0, 0]\n",
+        "aperture",
+        "camera.aperture",
+    ),
+    (
+        "[camera]\nfrom = [0, 1, 5]\nto = [0, 0, 0]\n",
+        "focus_distance",
+        "camera.focus_distance",
+    ),
+    (
+        "[[lights]]\nposition = [0, 5, 0]\n",
+        "intensity",
+        "lights[0].intensity",
+    ),
+    ("[materials.m]\n", "diffuse", "materials.m.diffuse"),
+    ("[materials.m]\n", "specular", "materials.m.specular"),
+    ("[materials.m]\n", "shininess", "materials.m.shininess"),
+    ("[materials.m]\n", "mirror", "materials.m.mirror"),
+    (
+        "[materials.m]\n",
+        "transparency",
+        "materials.m.transparency",
+    ),
+    ("[materials.m]\n", "ior", "materials.m.ior"),
+    (
+        "[materials.m.checker]\ncolor = [0, 0, 0]\n",
+        "size",
+        "materials.m.checker.size",
+    ),
+    (
+        "[[spheres]]\ncenter = [0, 0, 0]\n",
+        "radius",
+        "spheres[0].radius",
+    ),
+    ("[[cubes]]\ncenter = [0, 0, 0]\n", "size", "cubes[0].size"),
+];
+
+/// Numbers that are vectors, like [`SCALARS`].
+const VECTORS: &[(&str, &str, &str)] = &[
+    ("[render]\n", "background", "render.background"),
+    ("[render]\n", "ambient", "render.ambient"),
+    ("[camera]\nto = [0, 0, 0]\n", "from", "camera.from"),
+    ("[camera]\nfrom = [0, 1, 5]\n", "to", "camera.to"),
+    (
+        "[camera]\nfrom = [0, 1, 5]\nto = [0, 0, 0]\n",
+        "up",
+        "camera.up",
+    ),
+    ("[[lights]]\n", "position", "lights[0].position"),
+    (
+        "[[lights]]\nposition = [0, 5, 0]\n",
+        "color",
+        "lights[0].color",
+    ),
+    ("[materials.m]\n", "color", "materials.m.color"),
+    (
+        "[materials.m.checker]\nsize = 1\n",
+        "color",
+        "materials.m.checker.color",
+    ),
+    ("[[spheres]]\nradius = 1\n", "center", "spheres[0].center"),
+    (
+        "[[planes]]\nnormal = [0, 1, 0]\n",
+        "point",
+        "planes[0].point",
+    ),
+    (
+        "[[planes]]\npoint = [0, 0, 0]\n",
+        "normal",
+        "planes[0].normal",
+    ),
+    ("[[cubes]]\nsize = 1\n", "center", "cubes[0].center"),
+    ("[[cubes]]\ncenter = [0, 0, 0]\n", "size", "cubes[0].size"),
+    (
+        "[[cubes]]\ncenter = [0, 0, 0]\nsize = 1\n",
+        "rotation",
+        "cubes[0].rotation",
+    ),
+];
+
+/// The entry of `table` for `key`.
+fn case<'a>(table: &'a [(&'a str, &'a str, &'a str)], key: &str) -> (&'a str, &'a str) {
+    let (text, field, _) = table
+        .iter()
+        .find(|(_, _, path)| *path == key)
+        .unwrap_or_else(|| panic!("no case for {key}"));
+    (text, field)
+}
+
+/// `key = value` written into the table of the case for `key`.
+fn scalar(key: &str, value: &str) -> String {
+    let (text, field) = case(SCALARS, key);
+    format!("{text}{field} = {value}\n")
+}
+
+fn vector(key: &str, value: &str) -> String {
+    let (text, field) = case(VECTORS, key);
+    format!("{text}{field} = {value}\n")
+}
+
+// ---------------------------------------------------------------- numbers
+
+#[test]
+fn every_scalar_must_be_finite() {
+    for (_, _, key) in SCALARS {
+        for value in ["nan", "inf", "-inf", "+nan"] {
+            let got = value.trim_start_matches('+');
+            rejects(
+                &scalar(key, value),
+                key,
+                &format!("must be finite, got {got}"),
+            );
+        }
+    }
+}
+
+#[test]
+fn every_vector_component_must_be_finite() {
+    for (_, _, key) in VECTORS {
+        rejects(
+            &vector(key, "[1, nan, 1]"),
+            &format!("{key}[1]"),
+            "must be finite, got nan",
+        );
+        rejects(
+            &vector(key, "[1, 1, inf]"),
+            &format!("{key}[2]"),
+            "must be finite, got inf",
+        );
+        rejects(
+            &vector(key, "[-inf, 1, 1]"),
+            &format!("{key}[0]"),
+            "must be finite, got -inf",
+        );
+    }
+}
+
+#[test]
+fn numbers_may_be_written_as_integers() {
+    let scene = loads(
+        "[render]\nmin_weight = 0\nexposure = 2\nbackground = [0, 1, 0]\n\
+         [[spheres]]\ncenter = [1, 2, 3]\nradius = 1\n\
+         [[cubes]]\ncenter = [0, 0, 0]\nsize = 2\nrotation = [0, 90, 0]\n\
+         [materials.m]\nshininess = 10\nior = 2\nchecker = { color = [0, 0, 0], size = 3 }\n",
+    );
+    assert_eq!(scene.spheres[0].radius, 1.0);
+    assert_eq!(scene.spheres[0].center, DVec3::new(1.0, 2.0, 3.0));
+    assert_eq!(scene.cubes[0].size, CubeSize::Uniform(2.0));
+    assert_eq!(scene.render.exposure, 2.0);
+    assert_eq!(
+        scene.materials["m"].checker.as_ref().map(|c| c.size),
+        Some(3.0)
+    );
+    assert_eq!(scene.camera.from, DVec3::new(0.0, 1.0, 5.0));
+}
+
+#[test]
+fn numbers_must_be_numbers() {
+    rejects_with(
+        &scalar("camera.fov", "\"45\""),
+        "camera.fov",
+        "expected a number",
+    );
+    rejects_with(
+        &vector("camera.up", "[0, \"1\", 0]"),
+        "camera.up[1]",
+        "expected a number",
+    );
+    rejects_with(
+        &vector("camera.up", "true"),
+        "camera.up",
+        "expected an array of 3 numbers",
+    );
+}
+
+#[test]
+fn vectors_must_have_three_numbers() {
+    rejects(
+        &vector("camera.up", "[0, 1, 0, 0]"),
+        "camera.up",
+        "must be an array of 3 numbers, got [0, 1, 0, 0]",
+    );
+    rejects_with(
+        &vector("lights[0].color", "[1, 1]"),
+        "lights[0].color",
+        "invalid length 2",
+    );
+    rejects(
+        &vector("render.ambient", "[0.1, 0.1, 0.1, 0.1]"),
+        "render.ambient",
+        "must be an array of 3 numbers, got [0.1, 0.1, 0.1, 0.1]",
+    );
+}
+
+#[test]
+fn integers_beyond_64_bits_are_rejected() {
+    rejects_with(
+        &scalar("spheres[0].radius", "99999999999999999999"),
+        "spheres[0].radius",
+        "beyond the 64-bit range",
+    );
+}
+
+#[test]
+fn floats_beyond_f64_are_rejected() {
+    rejects_with(&scalar("camera.fov", "1e999"), "camera.fov", "overflow");
+}
+
+// ---------------------------------------------------------------- ranges
+
+#[test]
+fn colours_must_not_be_negative() {
+    for key in [
+        "render.background",
+        "render.ambient",
+        "lights[0].color",
+        "materials.m.color",
+        "materials.m.checker.color",
+    ] {
+        let text = vector(key, "[0.5, 0.5, -0.5]");
+        rejects(&text, &format!("{key}[2]"), "must be >= 0, got -0.5");
+        loads(&vector(key, "[0, 0, 0]"));
+    }
+}
+
+#[test]
+fn weights_must_not_be_negative() {
+    for key in [
+        "render.min_weight",
+        "camera.aperture",
+        "lights[0].intensity",
+        "materials.m.diffuse",
+        "materials.m.specular",
+        "materials.m.mirror",
+        "materials.m.transparency",
+    ] {
+        rejects(&scalar(key, "-1"), key, "must be >= 0, got -1");
+        rejects(&scalar(key, "-0.25"), key, "must be >= 0, got -0.25");
+        loads(&scalar(key, "0"));
+    }
+}
+
+#[test]
+fn sizes_and_radii_must_be_positive() {
+    for key in [
+        "render.exposure",
+        "camera.focus_distance",
+        "materials.m.shininess",
+        "materials.m.ior",
+        "materials.m.checker.size",
+        "spheres[0].radius",
+        "cubes[0].size",
+    ] {
+        rejects(&scalar(key, "0"), key, "must be > 0, got 0");
+        rejects(&scalar(key, "-1"), key, "must be > 0, got -1");
+        rejects(&scalar(key, "-0.0"), key, "must be > 0, got -0");
+        loads(&scalar(key, "1e-9"));
+    }
+}
+
+#[test]
+fn each_edge_of_a_box_must_be_positive() {
+    let text = vector("cubes[0].size", "[1, 2, 0]");
+    rejects(&text, "cubes[0].size[2]", "must be > 0, got 0");
+    let text = vector("cubes[0].size", "[-1, 2, 3]");
+    rejects(&text, "cubes[0].size[0]", "must be > 0, got -1");
+}
+
+#[test]
+fn cube_size_must_be_a_number_or_three() {
+    let want = "must be a number or an array of 3 numbers, got ";
+    rejects(
+        &scalar("cubes[0].size", "[1, 2]"),
+        "cubes[0].size",
+        &format!("{want}[1, 2]"),
+    );
+    rejects(
+        &scalar("cubes[0].size", "\"big\""),
+        "cubes[0].size",
+        &format!("{want}\"big\""),
+    );
+    rejects(
+        &scalar("cubes[0].size", "[1, 2, 3, 4]"),
+        "cubes[0].size",
+        &format!("{want}[1, 2, 3, 4]"),
+    );
+}
+
+#[test]
+fn max_depth_must_be_0_to_16() {
+    let max_depth = |value: &str| format!("[render]\nmax_depth = {value}\n");
+    assert_eq!(loads(&max_depth("0")).render.max_depth, 0);
+    assert_eq!(loads(&max_depth("16")).render.max_depth, 16);
+    let key = "render.max_depth";
+    rejects(
+        &max_depth("17"),
+        key,
+        "must be an integer in 0..=16, got 17",
+    );
+    rejects(
+        &max_depth("-1"),
+        key,
+        "must be an integer in 0..=16, got -1",
+    );
+    rejects(
+        &max_depth("4294967296"),
+        key,
+        "must be an integer in 0..=16, got 4294967296",
+    );
+    rejects(
+        &max_depth("true"),
+        key,
+        "must be an integer in 0..=16, got true",
+    );
+}
+
+#[test]
+fn max_depth_must_not_be_a_float() {
+    let e = rejects(
+        "[render]\nmax_depth = 5.0\n",
+        "render.max_depth",
+        "must be an integer in 0..=16 (no decimal point), got 5.0",
+    );
+    assert_eq!(e.line, Some(2));
+}
+
+// ---------------------------------------------------------------- camera
+
+#[test]
+fn camera_from_and_to_must_differ() {
+    rejects(
+        "[camera]\nfrom = [0, 1, 0]\nto = [0, 1.0, 0]\n",
+        "camera.to",
+        "must differ from camera.from, both are [0, 1, 0]",
+    );
+}
+
+#[test]
+fn camera_from_and_to_must_give_a_direction_f64_can_compute() {
+    rejects_with(
+        "[camera]\nfrom = [0, 0, 1e-300]\nto = [0, 0, 0]\n",
+        "camera.to",
+        "too close to or too far from camera.from",
+    );
+    rejects_with(
+        "[camera]\nfrom = [0, 0, 1e300]\nto = [0, 0, -1e300]\n",
+        "camera.to",
+        "|from - to| = inf",
+    );
+}
+
+#[test]
+fn camera_up_must_be_non_zero() {
+    rejects(
+        &vector("camera.up", "[0, 0, 0]"),
+        "camera.up",
+        "must be non-zero, got [0, 0, 0]",
+    );
+    rejects_with(
+        &vector("camera.up", "[0, 1e-200, 0]"),
+        "camera.up",
+        "too short",
+    );
+}
+
+#[test]
+fn camera_up_may_be_parallel_to_the_view() {
+    let scene = loads("[camera]\nfrom = [0, 5, 0]\nto = [0, 0, 0]\nup = [0, 1, 0]\n");
+    assert_eq!(scene.camera.up, DVec3::Y);
+}
+
+#[test]
+fn camera_fov_must_be_between_0_and_180() {
+    for bad in ["0", "180", "-5", "360"] {
+        let got = bad.to_owned();
+        rejects(
+            &scalar("camera.fov", bad),
+            "camera.fov",
+            &format!("must be > 0 and < 180, got {got}"),
+        );
+    }
+    for good in ["0.1", "179.9", "90"] {
+        loads(&scalar("camera.fov", good));
+    }
+}
+
+// ---------------------------------------------------------------- shapes
+
+#[test]
+fn plane_normal_must_be_non_zero() {
+    rejects(
+        &vector("planes[0].normal", "[0, 0, 0]"),
+        "planes[0].normal",
+        "must be non-zero, got [0, 0, 0]",
+    );
+}
+
+#[test]
+fn plane_normal_is_normalised_on_load() {
+    let scene = loads(&vector("planes[0].normal", "[3, 0, -4]"));
+    let error = scene.planes[0].normal - DVec3::new(0.6, 0.0, -0.8);
+    assert!(
+        error.abs().max_element() < 1e-15,
+        "{}",
+        scene.planes[0].normal
+    );
+    let scene = loads(&vector("planes[0].normal", "[0, 1e-100, 0]"));
+    assert_eq!(scene.planes[0].normal, DVec3::Y);
+}
+
+#[test]
+fn normalising_a_unit_normal_keeps_it_bit_for_bit() {
+    let text = vector("planes[0].normal", "[1, 1, 1]");
+    let once = loads(&text);
+    let twice = loads(&once.to_toml_string());
+    assert_eq!(once.planes[0].normal, twice.planes[0].normal);
+    assert!((once.planes[0].normal.length() - 1.0).abs() < 1e-15);
+}
+
+#[test]
+fn shape_materials_must_exist() {
+    let materials = "[materials.glass]\n[materials.floor]\n";
+    let shapes = [
+        (
+            "[[spheres]]\ncenter = [0, 0, 0]\nradius = 1\n",
+            "spheres[0].material",
+        ),
+        (
+            "[[planes]]\npoint = [0, 0, 0]\nnormal = [0, 1, 0]\n",
+            "planes[0].material",
+        ),
+        (
+            "[[cubes]]\ncenter = [0, 0, 0]\nsize = 1\n",
+            "cubes[0].material",
+        ),
+    ];
+    for (shape, key) in shapes {
+        let text = format!("{materials}{shape}material = \"glas\"\n");
+        rejects(
+            &text,
+            key,
+            r#"no material named "glas" (defined: glass, floor)"#,
+        );
+        let text = format!("{shape}material = \"glass\"\n");
+        rejects(
+            &text,
+            key,
+            r#"no material named "glass" (no materials defined)"#,
+        );
+        loads(&format!("{materials}{shape}material = \"floor\"\n"));
+    }
+}
+
+#[test]
+fn errors_name_the_right_array_element() {
+    let text = "[[spheres]]\ncenter = [0, 0, 0]\nradius = 1\n\
+                [[spheres]]\ncenter = [0, 0, 0]\nradius = 1\n\
+                [[spheres]]\ncenter = [0, 0, 0]\nradius = -1\n";
+    let e = rejects(text, "spheres[2].radius", "must be > 0, got -1");
+    assert_eq!(e.line, Some(9));
+    assert_eq!(
+        e.to_string(),
+        "test.toml:9: spheres[2].radius: must be > 0, got -1"
+    );
+}
+
+#[test]
+fn quoted_material_names_are_quoted_in_key_paths() {
+    rejects(
+        "[materials.\"my glass\"]\nior = 0\n",
+        "materials.\"my glass\".ior",
+        "must be > 0, got 0",
+    );
+}
+
+#[test]
+fn inline_tables_and_arrays_of_tables_are_located() {
+    let text =
+        "spheres = [{ center = [0, 0, 0], radius = 1 },\n{ center = [0, 0, 0], radius = 0 }]\n";
+    let e = rejects(text, "spheres[1].radius", "must be > 0, got 0");
+    assert_eq!(e.line, Some(2));
+    let text = "[materials]\nm = { checker = { color = [0, 0, 0], size = -2 } }\n";
+    let e = rejects(text, "materials.m.checker.size", "must be > 0, got -2");
+    assert_eq!(e.line, Some(2));
+}
+
+// ---------------------------------------------------------------- keys
+
+#[test]
+fn unknown_top_level_key_is_named_with_its_line() {
+    let e = rejects_with(
+        "\nbackground = [1, 1, 1]\n",
+        "background",
+        "unknown key `background`",
+    );
+    assert_eq!(e.line, Some(2));
+    assert!(
+        e.message.contains("expected one of `render`, `camera`"),
+        "{e}"
+    );
+}
+
+#[test]
+fn unknown_nested_keys_are_named_with_their_line() {
+    let e = rejects_with(
+        "[camera]\nfrom = [0, 1, 5]\nto = [0, 0, 0]\nfocus = 3\n",
+        "camera.focus",
+        "unknown key `focus`",
+    );
+    assert_eq!(e.line, Some(4));
+    let text = "[[spheres]]\ncenter = [0, 0, 0]\nradius = 1\n\
+                [[spheres]]\ncenter = [0, 0, 0]\nradus = 1\n";
+    let e = rejects_with(text, "spheres[1].radus", "unknown key `radus`");
+    assert_eq!(e.line, Some(6));
+    let text = "[materials.m]\nchecker = { color = [0, 0, 0], size = 1, offset = 2 }\n";
+    let e = rejects_with(text, "materials.m.checker.offset", "unknown key `offset`");
+    assert_eq!((e.line, e.column), (Some(2), Some(42)));
+    rejects_with(
+        "[render]\ngamma = 2.2\n",
+        "render.gamma",
+        "unknown key `gamma`",
+    );
+    rejects_with("[camera.lens]\n", "camera.lens", "unknown key `lens`");
+}
+
+#[test]
+fn missing_camera_is_named() {
+    for text in ["", "# only a comment\n", "[render]\nmax_depth = 3\n"] {
+        let e = Scene::from_toml_str(text, None).expect_err(text);
+        assert_eq!(e.key.as_deref(), Some("camera"), "{e}");
+        assert!(e.message.contains("[camera] is missing"), "{e}");
+        assert_eq!(e.line, None);
+    }
+    let e = Scene::from_toml_str("", None).expect_err("empty");
+    assert_eq!(
+        e.to_string(),
+        "camera: required table [camera] is missing (the scene is empty)"
+    );
+}
+
+#[test]
+fn missing_required_keys_are_named() {
+    rejects(
+        "[camera]\nfrom = [0, 1, 5]\n",
+        "camera.to",
+        "required key is missing",
+    );
+    let text = "[[spheres]]\ncenter = [0, 0, 0]\n";
+    let e = rejects(text, "spheres[0].radius", "required key is missing");
+    assert_eq!(e.line, Some(1));
+    rejects(
+        "[[planes]]\npoint = [0, 0, 0]\n",
+        "planes[0].normal",
+        "required key is missing",
+    );
+    rejects(
+        "[[cubes]]\ncenter = [0, 0, 0]\n",
+        "cubes[0].size",
+        "required key is missing",
+    );
+    rejects(
+        "[[lights]]\ncolor = [1, 1, 1]\n",
+        "lights[0].position",
+        "required key is missing",
+    );
+    rejects(
+        "[materials.m]\nchecker = { color = [0, 0, 0] }\n",
+        "materials.m.checker.size",
+        "required key is missing",
+    );
+}
+
+#[test]
+fn wrong_table_types_are_reported_in_toml_words() {
+    rejects_with("lights = 3\n", "lights", "expected an array");
+    rejects_with("[materials]\nm = 3\n", "materials.m", "expected a table");
+}
+
+// ---------------------------------------------------------------- syntax
+
+#[test]
+fn syntax_errors_have_line_and_column() {
+    let e = Scene::from_toml_str("[camera]\nfrom = [0, 1, 5]\nto = [0, 0 0]\n", None)
+        .expect_err("syntax");
+    assert_eq!(
+        (e.line, e.column, e.key.as_deref()),
+        (Some(3), Some(10), None),
+        "{e}"
+    );
+    assert!(e.to_string().starts_with("<scene>:3:10: "), "{e}");
+}
+
+#[test]
+fn duplicate_keys_are_named() {
+    let e = load("[camera]\nfrom = [0, 1, 5]\nto = [0, 0, 0]\nfov = 40\nfov = 50\n")
+        .expect_err("duplicate");
+    assert_eq!(e.line, Some(5));
+    assert_eq!(e.message, "duplicate key `fov`");
+}
+
+#[test]
+fn columns_count_characters_not_bytes() {
+    let e = load("[materials.\"grün\"]\nior = \"é\" 1\n").expect_err("syntax");
+    assert_eq!((e.line, e.column), (Some(2), Some(11)), "{e}");
+}
+
+#[test]
+fn no_input_makes_the_loader_panic() {
+    // Every prefix of a valid scene: unfinished tables, arrays and strings.
+    for end in 0..=FULL.len() {
+        let _ = Scene::from_toml_str(&FULL[..end], None);
+    }
+    for text in [
+        "\u{feff}",
+        "\0",
+        "[",
+        "[[",
+        "a.b.c.d = 1",
+        "cubes = [[]]",
+        "[camera]\nfrom = {}",
+    ] {
+        let _ = Scene::from_toml_str(text, None);
+    }
+}
+
+// ---------------------------------------------------------------- defaults
+
+#[test]
+fn render_defaults_follow_the_spec() {
+    let scene = loads("");
+    assert_eq!(
+        scene.render,
+        RenderSettings {
+            max_depth: 5,
+            min_weight: 0.0,
+            background: DVec3::ZERO,
+            ambient: DVec3::splat(0.1),
+            exposure: 1.0,
+        }
+    );
+    assert_eq!(loads("[render]\nexposure = 2\n").render.max_depth, 5);
+}
+
+#[test]
+fn camera_defaults_follow_the_spec() {
+    let camera = loads("[camera]\nfrom = [0, 3, 4]\nto = [0, 0, 0]\n").camera;
+    assert_eq!(camera.up, DVec3::Y);
+    assert_eq!(camera.fov, 45.0);
+    assert_eq!(camera.aperture, 0.0);
+    assert_eq!(camera.focus_distance, None);
+    assert_eq!(camera.focus_distance(), 5.0);
+    let camera = loads(&scalar("camera.focus_distance", "2")).camera;
+    assert_eq!(camera.focus_distance(), 2.0);
+}
+
+#[test]
+fn light_defaults_follow_the_spec() {
+    let light = &loads("[[lights]]\nposition = [1, 2, 3]\n").lights[0];
+    assert_eq!(light.color, DVec3::ONE);
+    assert_eq!(light.intensity, 1.0);
+}
+
+#[test]
+fn material_defaults_follow_the_spec() {
+    let scene = loads("[materials.m]\n");
+    let want = Material {
+        color: DVec3::splat(0.8),
+        diffuse: 1.0,
+        specular: 0.0,
+        shininess: 32.0,
+        mirror: 0.0,
+        transparency: 0.0,
+        ior: 1.5,
+        checker: None,
+    };
+    assert_eq!(scene.materials["m"], want);
+    assert_eq!(Material::default(), want);
+    let scene = loads("[[spheres]]\ncenter = [0, 0, 0]\nradius = 1\n");
+    assert_eq!(scene.spheres[0].material, None);
+    assert_eq!(scene.material(None), &want);
+}
+
+#[test]
+fn cube_rotation_defaults_to_none() {
+    let cube = &loads("[[cubes]]\ncenter = [0, 0, 0]\nsize = [1, 2, 3]\n").cubes[0];
+    assert_eq!(cube.rotation, DVec3::ZERO);
+    assert_eq!(cube.size, CubeSize::PerAxis(DVec3::new(1.0, 2.0, 3.0)));
+}
+
+#[test]
+fn optional_sections_may_be_missing() {
+    let scene = loads("");
+    assert_eq!(scene.shape_count(), 0);
+    assert!(scene.lights.is_empty() && scene.materials.is_empty());
+}
+
+// ---------------------------------------------------------------- order
+
+#[test]
+fn materials_keep_file_order() {
+    let scene = loads(FULL);
+    let names: Vec<&str> = scene.materials.keys().map(String::as_str).collect();
+    assert_eq!(names, ["glass", "floor", "brushed steel"]);
+    assert_eq!(scene.material_slot(Some("floor")), 2);
+    let scene = loads("[materials]\nz = {}\na = {}\nm.ior = 2\n");
+    let names: Vec<&str> = scene.materials.keys().map(String::as_str).collect();
+    assert_eq!(names, ["z", "a", "m"]);
+}
+
+// ---------------------------------------------------------------- messages
+
+#[test]
+fn display_leaves_out_what_is_unknown() {
+    let e = rejects(
+        "[render]\nexposure = 0\n",
+        "render.exposure",
+        "must be > 0, got 0",
+    );
+    assert_eq!(
+        e.to_string(),
+        "test.toml:2: render.exposure: must be > 0, got 0"
+    );
+    let e = Scene::from_toml_str("[render]\nexposure = 0\n", None).expect_err("camera");
+    assert_eq!(e.to_string(), "camera: required table [camera] is missing");
+    let text = format!("{CAMERA}[render]\nexposure = -0.5\n");
+    let e = Scene::from_toml_str(&text, None).expect_err("exposure");
+    assert_eq!(
+        e.to_string(),
+        "<scene>:5: render.exposure: must be > 0, got -0.5"
+    );
+}
+
+#[test]
+fn values_are_printed_plainly() {
+    rejects(
+        &scalar("spheres[0].radius", "-1e300"),
+        "spheres[0].radius",
+        "must be > 0, got -1e300",
+    );
+    rejects(
+        &scalar("spheres[0].radius", "-1e-9"),
+        "spheres[0].radius",
+        "must be > 0, got -1e-9",
+    );
+    rejects(
+        &scalar("spheres[0].radius", "-12.5"),
+        "spheres[0].radius",
+        "must be > 0, got -12.5",
+    );
+}
+
+#[test]
+fn io_errors_name_the_file() {
+    let path = Path::new("no/such/scene.toml");
+    let e = Scene::load(path).expect_err("missing file");
+    assert_eq!(e.file.as_deref(), Some(path));
+    assert!(
+        e.to_string()
+            .starts_with("no/such/scene.toml: cannot read the file: "),
+        "{e}"
+    );
+}
+
+// ---------------------------------------------------------------- round trip
+
+#[track_caller]
+fn assert_round_trip(scene: &Scene) {
+    let text = scene.to_toml_string();
+    let back = Scene::from_toml_str(&text, None).unwrap_or_else(|e| panic!("{e}\n{text}"));
+    assert_eq!(&back, scene, "{text}");
+}
+
+#[test]
+fn every_feature_round_trips() {
+    let scene = loads(FULL);
+    assert_eq!(scene.cubes[0].size, CubeSize::Uniform(1.0));
+    assert_eq!(
+        scene.cubes[1].size,
+        CubeSize::PerAxis(DVec3::new(1.0, 2.0, 3.0))
+    );
+    assert!(scene.materials["floor"].checker.is_some());
+    assert_eq!(scene.camera.focus_distance, Some(6.0));
+    assert_round_trip(&scene);
+}
+
+/// Every `*.toml` under `dir`, at any depth; none if `dir` does not exist.
+fn toml_files(dir: &Path) -> Vec<PathBuf> {
+    let Ok(entries) = std::fs::read_dir(dir) else {
+        return Vec::new();
+    };
+    let mut files = Vec::new();
+    for path in entries.map(|entry| entry.expect("readable directory").path()) {
+        if path.is_dir() {
+            files.extend(toml_files(&path));
+        } else if path.extension().is_some_and(|ext| ext == "toml") {
+            files.push(path);
+        }
+    }
+    files
+}
+
+#[test]
+fn every_asset_scene_loads_and_round_trips() {
+    let dir = Path::new(env!("CARGO_MANIFEST_DIR")).join("assets/scenes");
+    for path in toml_files(&dir) {
+        let scene = Scene::load(&path).unwrap_or_else(|e| panic!("{e}"));
+        assert_round_trip(&scene);
+    }
+}
+
+mod properties {
+    //! Round trips and robustness over generated scenes and texts.
+
+    use glam::DVec3;
+    use indexmap::IndexMap;
+    use proptest::num::f64::{NEGATIVE, NORMAL, POSITIVE, SUBNORMAL, ZERO};
+    use proptest::prelude::*;
+    use proptest::sample::Index;
+
+    use super::super::{
+        Camera, Checker, Cube, CubeSize, Light, Material, Plane, RenderSettings, Scene, Sphere,
+    };
+    use super::FULL;
+
+    fn finite() -> impl Strategy<Value = f64> + Clone {
+        POSITIVE | NEGATIVE | NORMAL | SUBNORMAL | ZERO
+    }
+
+    fn non_negative() -> impl Strategy<Value = f64> + Clone {
+        POSITIVE | NORMAL | SUBNORMAL | ZERO
+    }
+
+    fn positive() -> impl Strategy<Value = f64> + Clone {
+        POSITIVE | NORMAL | SUBNORMAL
+    }
+
+    fn vec3(s: impl Strategy<Value = f64> + Clone) -> impl Strategy<Value = DVec3> {
+        (s.clone(), s.clone(), s).prop_map(|(x, y, z)| DVec3::new(x, y, z))
+    }
+
+    /// Directions of moderate length, which the loader accepts.
+    fn direction() -> impl Strategy<Value = DVec3> {
+        vec3(-1e3..1e3).prop_filter("normalisable", |v| v.try_normalize().is_some())
+    }
+
+    prop_compose! {
+        fn render()(
+            max_depth in 0..=16u32,
+            min_weight in non_negative(),
+            background in vec3(non_negative()),
+            ambient in vec3(non_negative()),
+            exposure in positive(),
+        ) -> RenderSettings {
+            RenderSettings { max_depth, min_weight, background, ambient, exposure }
+        }
+    }
+
+    prop_compose! {
+        fn camera()(
+            (from, to) in (vec3(-1e6..1e6), vec3(-1e6..1e6))
+                .prop_filter("distinct", |(from, to)| (*from - *to).try_normalize().is_some()),
+            up in direction(),
+            fov in 1e-6..180.0,
+            aperture in non_negative(),
+            focus_distance in proptest::option::of(positive()),
+        ) -> Camera {
+            Camera { from, to, up, fov, aperture, focus_distance }
+        }
+    }
+
+    prop_compose! {
+        fn light()(
+            position in vec3(finite()),
+            color in vec3(non_negative()),
+            intensity in non_negative(),
+        ) -> Light {
+            Light { position, color, intensity }
+        }
+    }
+
+    prop_compose! {
+        fn material()(
+            color in vec3(non_negative()),
+            (diffuse, specular, mirror, transparency) in
+                (non_negative(), non_negative(), non_negative(), non_negative()),
+            (shininess, ior) in (positive(), positive()),
+            checker in proptest::option::of((vec3(non_negative()), positive())),
+        ) -> Material {
+            let checker = checker.map(|(color, size)| Checker { color, size });
+            Material { color, diffuse, specular, shininess, mirror, transparency, ior, checker }
+        }
+    }
+
+    fn cube_size() -> impl Strategy<Value = CubeSize> {
+        prop_oneof![
+            positive().prop_map(CubeSize::Uniform),
+            vec3(positive()).prop_map(CubeSize::PerAxis),
+        ]
+    }
+
+    /// The name of material `index`, or none.
+    fn pick(names: &[String], index: Option<Index>) -> Option<String> {
+        let index = index.filter(|_| !names.is_empty())?;
+        Some(index.get(names).clone())
+    }
+
+    prop_compose! {
+        fn scene()(
+            render in render(),
+            camera in camera(),
+            lights in proptest::collection::vec(light(), 0..3),
+            materials in proptest::collection::vec(("\\PC{0,8}", material()), 0..4),
+            spheres in proptest::collection::vec(
+                (vec3(finite()), positive(), any::<Option<Index>>()), 0..3),
+            planes in proptest::collection::vec(
+                (vec3(finite()), direction(), any::<Option<Index>>()), 0..3),
+            cubes in proptest::collection::vec(
+                (vec3(finite()), cube_size(), vec3(finite()), any::<Option<Index>>()), 0..3),
+        ) -> Scene {
+            let materials: IndexMap<String, Material> = materials.into_iter().collect();
+            let names: Vec<String> = materials.keys().cloned().collect();
+            let spheres = spheres.into_iter().map(|(center, radius, m)| {
+                Sphere { center, radius, material: pick(&names, m) }
+            }).collect();
+            let planes = planes.into_iter().map(|(point, normal, m)| {
+                Plane { point, normal, material: pick(&names, m) }
+            }).collect();
+            let cubes = cubes.into_iter().map(|(center, size, rotation, m)| {
+                Cube { center, size, rotation, material: pick(&names, m) }
+            }).collect();
+            Scene { render, camera, lights, materials, spheres, planes, cubes }
+        }
+    }
+
+    proptest! {
+        #[test]
+        fn saved_scenes_load_back_equal(scene in scene()) {
+            let text = scene.to_toml_string();
+            let loaded = Scene::from_toml_str(&text, None)
+                .map_err(|e| TestCaseError::fail(format!("{e}\n{text}")))?;
+            // Loading only normalises plane normals.
+            let mut want = scene.clone();
+            for (plane, got) in want.planes.iter_mut().zip(&loaded.planes) {
+                prop_assert!((got.normal.length() - 1.0).abs() < 1e-15);
+                prop_assert!(got.normal.dot(plane.normal) > 0.0);
+                plane.normal = got.normal;
+            }
+            prop_assert_eq!(&loaded, &want);
+            let again = Scene::from_toml_str(&loaded.to_toml_string(), None);
+            prop_assert_eq!(again.as_ref(), Ok(&loaded));
+        }
+
+        #[test]
+        fn any_text_loads_or_fails_without_panic(text in "\\PC*") {
+            let _ = Scene::from_toml_str(&text, None);
+        }
+
+        #[test]
+        fn edited_scenes_load_or_fail_without_panic(
+            start in 0..FULL.len(),
+            len in 0..20usize,
+            insert in "[\\[\\]{}=,.\"'#a-z0-9 \n-]{0,6}",
+        ) {
+            let end = (start + len).min(FULL.len());
+            let text = format!("{}{insert}{}", &FULL[..start], &FULL[end..]);
+            let _ = Scene::from_toml_str(&text, None);
+        }
+    }
+}

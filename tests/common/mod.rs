@@ -1,0 +1,42 @@
+//! Shared by the integration tests: the GPU, and where the scenes are.
+
+use std::path::{Path, PathBuf};
+
+use raysandbox::gpu::Gpu;
+
+/// The GPU device, or `None` (with a loud message) on a developer machine
+/// without one. In CI (`CI=true`) a missing adapter fails the test instead:
+/// the GPU tests must run there, on lavapipe.
+pub fn gpu() -> Option<Gpu> {
+    match Gpu::headless() {
+        Ok(gpu) => {
+            eprintln!("adapter: {}", gpu.describe());
+            Some(gpu)
+        }
+        Err(e) if std::env::var("CI").is_ok_and(|v| v == "true") => {
+            panic!("CI=true and no GPU adapter: {e}")
+        }
+        Err(e) => {
+            eprintln!(
+                "!!! SKIPPING GPU TEST: no adapter ({e}). Run scripts/test to install lavapipe."
+            );
+            None
+        }
+    }
+}
+
+/// The project's folder of bundled scenes.
+pub fn scenes_dir() -> PathBuf {
+    Path::new(env!("CARGO_MANIFEST_DIR")).join("assets/scenes")
+}
+
+/// Every `*.toml` directly in `dir`, sorted by name.
+pub fn toml_files(dir: &Path) -> Vec<PathBuf> {
+    let mut files: Vec<PathBuf> = std::fs::read_dir(dir)
+        .unwrap_or_else(|e| panic!("{}: {e}", dir.display()))
+        .map(|entry| entry.expect("directory entry").path())
+        .filter(|p| p.extension().is_some_and(|e| e == "toml"))
+        .collect();
+    files.sort();
+    files
+}
