@@ -11,6 +11,10 @@ const T_FAR: f32 = 1e30;
 /// error bound of three f32 operations, used to widen the far slab bound.
 const GAMMA3: f32 = 1.7881396e-7;
 
+/// true: the robust routines below; false: the lecture's textbook versions
+/// (naive quadratic, plain slab test, fixed offset), to show the difference.
+override ROBUST: bool = true;
+
 const KIND_NONE: u32 = 0u;
 const KIND_SPHERE: u32 = 1u;
 const KIND_PLANE: u32 = 2u;

@@ -6,7 +6,7 @@ use std::time::Instant;
 
 use clap::{Parser, Subcommand};
 
-use raysandbox::gpu::{Gpu, OffscreenRenderer, ShaderSource};
+use raysandbox::gpu::{Gpu, OffscreenRenderer, ShaderOptions, ShaderSource};
 use raysandbox::reference;
 use raysandbox::scene::Scene;
 
@@ -125,8 +125,10 @@ fn render(args: &RenderArgs) -> Result<(), Failure> {
         source.validate().map_err(|e| InputError(e.to_string()))?;
         let gpu = Gpu::headless().map_err(|e| RuntimeError(e.to_string()))?;
         println!("adapter: {}", gpu.describe());
-        let mut renderer = OffscreenRenderer::new(&gpu, &source, &scene, args.width, args.height)
-            .map_err(|e| InputError(e.to_string()))?;
+        let options = ShaderOptions::default();
+        let mut renderer =
+            OffscreenRenderer::new(&gpu, &source, &options, &scene, args.width, args.height)
+                .map_err(|e| InputError(e.to_string()))?;
         let gpu_time = renderer.render(&gpu, args.spp);
         println!(
             "GPU time (submit to finish): {:.1} ms",

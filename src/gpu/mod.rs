@@ -11,5 +11,7 @@ mod viewport;
 pub use context::{Gpu, GpuError};
 pub use offscreen::{OffscreenRenderer, render_image};
 pub use shaders::{ShaderError, ShaderSource};
-pub use tracer::{Accumulator, FrameTarget, PipelineError, Pipelines, SceneBuffers, encode_frame};
+pub use tracer::{
+    Accumulator, FrameTarget, PipelineError, Pipelines, SceneBuffers, ShaderOptions, encode_frame,
+};
 pub use viewport::{EXPORT_FORMAT, FrameStatus, Viewport};

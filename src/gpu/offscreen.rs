@@ -6,7 +6,7 @@ use super::context::Gpu;
 use super::layout::PackedScene;
 use super::shaders::ShaderSource;
 use super::tracer::{
-    Accumulator, FrameTarget, PipelineError, Pipelines, SceneBuffers, encode_frame,
+    Accumulator, FrameTarget, PipelineError, Pipelines, SceneBuffers, ShaderOptions, encode_frame,
 };
 use crate::scene::Scene;
 
@@ -30,12 +30,13 @@ impl OffscreenRenderer {
     pub fn new(
         gpu: &Gpu,
         source: &ShaderSource,
+        options: &ShaderOptions,
         scene: &Scene,
         width: u32,
         height: u32,
     ) -> Result<Self, PipelineError> {
         let device = &gpu.device;
-        let pipelines = Pipelines::new(device, source, &[OUTPUT_FORMAT])?;
+        let pipelines = Pipelines::new(device, source, &[OUTPUT_FORMAT], options)?;
         let scene = SceneBuffers::new(device, &pipelines, PackedScene::new(scene, width, height));
         let accum = Accumulator::new(device, &pipelines, width, height);
         let target = device.create_texture(&wgpu::TextureDescriptor {
@@ -148,8 +149,14 @@ pub fn render_image(
     height: u32,
     spp: u32,
 ) -> Result<image::RgbaImage, PipelineError> {
-    let mut renderer =
-        OffscreenRenderer::new(gpu, &ShaderSource::embedded(), scene, width, height)?;
+    let mut renderer = OffscreenRenderer::new(
+        gpu,
+        &ShaderSource::embedded(),
+        &ShaderOptions::default(),
+        scene,
+        width,
+        height,
+    )?;
     renderer.render(gpu, spp);
     Ok(renderer.read_image(gpu))
 }

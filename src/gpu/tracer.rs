@@ -15,6 +15,28 @@ use super::shaders::{ShaderError, ShaderSource};
 /// add up without banding.
 const ACCUM_FORMAT: wgpu::TextureFormat = wgpu::TextureFormat::Rgba32Float;
 
+/// Values for the shader's pipeline-overridable constants (`override` in
+/// WGSL): variants of one source, compiled without the code they switch off.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
+pub struct ShaderOptions {
+    /// The robust intersection and offset routines (true) or the lecture's
+    /// textbook versions (false), to show what the robust ones fix.
+    pub robust: bool,
+}
+
+impl Default for ShaderOptions {
+    fn default() -> Self {
+        ShaderOptions { robust: true }
+    }
+}
+
+impl ShaderOptions {
+    /// The `(name, value)` pairs for `PipelineCompilationOptions::constants`.
+    fn constants(&self) -> Vec<(&'static str, f64)> {
+        vec![("ROBUST", f64::from(u8::from(self.robust)))]
+    }
+}
+
 /// Pipelines for one shader source: the trace pass, and a display pass for
 /// each output format asked for (e.g. the window's and PNG export's).
 pub struct Pipelines {
@@ -41,10 +63,11 @@ impl Pipelines {
         device: &wgpu::Device,
         source: &ShaderSource,
         output_formats: &[wgpu::TextureFormat],
+        options: &ShaderOptions,
     ) -> Result<Self, PipelineError> {
         source.validate()?;
         let scope = device.push_error_scope(wgpu::ErrorFilter::Validation);
-        let pipelines = Self::build(device, source, output_formats);
+        let pipelines = Self::build(device, source, output_formats, options);
         match pollster::block_on(scope.pop()) {
             Some(error) => Err(PipelineError::Wgpu(error.to_string())),
             None => Ok(pipelines),
@@ -55,6 +78,7 @@ impl Pipelines {
         device: &wgpu::Device,
         source: &ShaderSource,
         output_formats: &[wgpu::TextureFormat],
+        options: &ShaderOptions,
     ) -> Self {
         let module = device.create_shader_module(wgpu::ShaderModuleDescriptor {
             label: Some("raysandbox tracer"),
@@ -123,7 +147,7 @@ impl Pipelines {
             })
             .collect();
         Pipelines {
-            trace: pass("fs_trace", ACCUM_FORMAT, &[]),
+            trace: pass("fs_trace", ACCUM_FORMAT, &options.constants()),
             display,
             scene_layout,
             accum_layout,
