@@ -1,6 +1,7 @@
 //! raysandbox: a Whitted ray tracer for teaching, as a WGSL shader on wgpu and
 //! as an f64 CPU reference that measures how far the GPU is from exact.
 
+pub mod app;
 pub mod compare;
 pub mod gpu;
 pub mod reference;

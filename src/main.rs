@@ -17,12 +17,15 @@ use raysandbox::scene::Scene;
     about = "Whitted ray tracing for the lecture: a WGSL shader on wgpu and an f64 CPU reference"
 )]
 struct Cli {
+    /// Without a command: the viewer on the built-in Whitted scene.
     #[command(subcommand)]
-    command: Command,
+    command: Option<Command>,
 }
 
 #[derive(Subcommand)]
 enum Command {
+    /// Open the interactive viewer (the default without a command).
+    View(ViewArgs),
     /// Validate a scene file and print a one-line summary.
     Check {
         /// The scene file (TOML).
@@ -30,6 +33,41 @@ enum Command {
     },
     /// Render a scene to a PNG file, on the GPU or with the CPU reference.
     Render(RenderArgs),
+}
+
+#[derive(clap::Args, Default)]
+struct ViewArgs {
+    /// The scene file (TOML); without it, the built-in Whitted scene.
+    scene: Option<PathBuf>,
+    /// The WGSL folder to use and watch (default: ./shaders if it exists,
+    /// else the shaders built into the binary).
+    #[arg(long)]
+    shaders: Option<PathBuf>,
+    /// Initial window size in pixels, e.g. 1280x720.
+    #[arg(long, value_parser = parse_size)]
+    size: Option<(u32, u32)>,
+    /// Progressive refinement limit in samples per pixel.
+    #[arg(long, value_parser = clap::value_parser!(u32).range(1..=65536))]
+    max_samples: Option<u32>,
+    /// Print one line per event (ready, saved, shader-error, ...) on stdout,
+    /// for scripts and tests that drive the window.
+    #[arg(long, hide = true)]
+    print_events: bool,
+}
+
+/// Parses `WIDTHxHEIGHT`.
+fn parse_size(text: &str) -> Result<(u32, u32), String> {
+    let (w, h) = text
+        .split_once(['x', 'X'])
+        .ok_or_else(|| format!("expected WIDTHxHEIGHT, got {text:?}"))?;
+    let parse = |s: &str| {
+        s.trim()
+            .parse::<u32>()
+            .ok()
+            .filter(|n| (1..=16384).contains(n))
+            .ok_or_else(|| format!("expected a size from 1 to 16384, got {s:?}"))
+    };
+    Ok((parse(w)?, parse(h)?))
 }
 
 #[derive(clap::Args)]
@@ -80,7 +118,8 @@ impl From<RuntimeError> for Failure {
 fn main() -> ExitCode {
     env_logger::Builder::from_env(env_logger::Env::default().default_filter_or("warn")).init();
     let cli = Cli::parse();
-    let result = match cli.command {
+    let result = match cli.command.unwrap_or(Command::View(ViewArgs::default())) {
+        Command::View(args) => view(args),
         Command::Check { scene } => check(&scene),
         Command::Render(args) => render(&args),
     };
@@ -99,6 +138,21 @@ fn main() -> ExitCode {
 
 fn load_scene(path: &Path) -> Result<Scene, InputError> {
     Scene::load(path).map_err(|e| InputError(e.to_string()))
+}
+
+fn view(args: ViewArgs) -> Result<(), Failure> {
+    use raysandbox::app::{ViewerError, ViewerOptions, run};
+    let options = ViewerOptions {
+        scene: args.scene,
+        shaders: args.shaders,
+        size: args.size,
+        max_samples: args.max_samples,
+        print_events: args.print_events,
+    };
+    run(options).map_err(|e| match e {
+        ViewerError::Scene(_) | ViewerError::Shader(_) => InputError(e.to_string()).into(),
+        ViewerError::NoDisplay(_) | ViewerError::NoGpu(_) => RuntimeError(e.to_string()).into(),
+    })
 }
 
 fn check(path: &Path) -> Result<(), Failure> {

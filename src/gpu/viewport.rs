@@ -31,7 +31,8 @@ pub struct Viewport {
     accum: Accumulator,
     /// Fraction of the window resolution that is traced (0.25..=1).
     scale: f32,
-    /// Wall time of the last frame's GPU work, submit to completion.
+    /// Wall time of the GPU work of the last frame that traced samples,
+    /// submit to completion.
     last_frame_time: Option<Duration>,
 }
 
@@ -134,7 +135,7 @@ impl Viewport {
         self.accum.size()
     }
 
-    /// Wall time of the last presented frame's GPU work.
+    /// Wall time of the GPU work of the last frame that traced samples.
     pub fn last_frame_time(&self) -> Option<Duration> {
         self.last_frame_time
     }
@@ -191,7 +192,9 @@ impl Viewport {
         // Waiting here keeps the frame time honest and input latency low;
         // frames are only drawn on demand, so nothing else is waiting for us.
         let _ = gpu.device.poll(wgpu::PollType::wait_indefinitely());
-        self.last_frame_time = Some(start.elapsed());
+        if new_samples > 0 {
+            self.last_frame_time = Some(start.elapsed());
+        }
         gpu.queue.present(frame);
         FrameStatus::Presented
     }
@@ -234,9 +237,10 @@ impl Viewport {
     }
 }
 
-/// Surface settings: an sRGB format when there is one (the display pass then
-/// leaves encoding to the hardware), FIFO presentation (no tearing, and
-/// supported everywhere).
+/// Surface settings: a plain (non-sRGB) 8-bit format when there is one, so
+/// the display pass encodes with the exact formula of the spec, as in PNG
+/// output, and egui's colours (already sRGB) are written unchanged; FIFO
+/// presentation (no tearing, and supported everywhere).
 fn surface_config(
     gpu: &Gpu,
     surface: &wgpu::Surface,
@@ -247,7 +251,12 @@ fn surface_config(
         .formats
         .iter()
         .copied()
-        .find(|f| f.is_srgb())
+        .find(|f| {
+            matches!(
+                f,
+                wgpu::TextureFormat::Bgra8Unorm | wgpu::TextureFormat::Rgba8Unorm
+            )
+        })
         .unwrap_or(caps.formats[0]);
     wgpu::SurfaceConfiguration {
         usage: wgpu::TextureUsages::RENDER_ATTACHMENT,

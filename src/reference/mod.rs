@@ -189,8 +189,8 @@ pub fn render_rgba8(scene: &Scene, width: u32, height: u32, spp: u32) -> image::
 }
 
 /// The shape that the ray through pixel coordinates `(x, y)` of a
-/// `width x height` image hits first, and at which distance `t`; `None` when
-/// it hits nothing (or the image is empty).
+/// `width x height` image hits first, and the point where it hits; `None`
+/// when it hits nothing (or the image is empty).
 ///
 /// `(x, y)` may be fractional: pixel `(i, j)` covers `[i, i + 1) x [j, j + 1)`
 /// and its centre is `(i + 0.5, j + 0.5)`. The ray goes through the lens
@@ -201,12 +201,12 @@ pub fn pick(
     height: u32,
     x: f64,
     y: f64,
-) -> Option<(ShapeId, f64)> {
+) -> Option<(ShapeId, DVec3)> {
     if width == 0 || height == 0 {
         return None;
     }
     let ray = camera_ray(&scene.camera, width, height, x, y, DVec2::ZERO);
-    nearest_hit(scene, &ray).map(|(shape, hit)| (shape, hit.t))
+    nearest_hit(scene, &ray).map(|(shape, hit)| (shape, hit.p))
 }
 
 #[cfg(test)]
@@ -457,9 +457,12 @@ mod tests {
             "#,
         );
         let p = PreparedScene::new(&s);
-        let (shape, t) = pick(&p, 100, 50, 50.0, 25.0).unwrap();
+        let (shape, point) = pick(&p, 100, 50, 50.0, 25.0).unwrap();
         assert_eq!(shape, ShapeId::Cube(0));
-        assert!((t - 2.75).abs() < 1e-12);
+        assert!(
+            (point - DVec3::new(0.0, 0.0, 2.25)).length() < 1e-12,
+            "{point}"
+        );
         // At the left edge: beside the cube and the sphere, on the back plane.
         assert_eq!(pick(&p, 100, 50, 0.0, 25.0).unwrap().0, ShapeId::Plane(0));
         assert_eq!(pick(&p, 0, 50, 0.0, 25.0), None);

@@ -1,4 +1,6 @@
 //! Shared by the integration tests: the GPU, and where the scenes are.
+//! Each test binary compiles this module and uses only part of it.
+#![allow(dead_code)]
 
 use std::path::{Path, PathBuf};
 

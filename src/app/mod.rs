@@ -1,0 +1,665 @@
+//! The interactive viewer: a winit window showing the ray-traced scene, the
+//! egui scene editor on top, the orbit camera, and hot reload of shaders and
+//! scene file. The app owns the [`Document`] and tells the GPU viewport what
+//! changed; drawing is done by `gpu` (the image) and egui-wgpu (the UI).
+
+mod document;
+mod orbit;
+mod panel;
+mod ui;
+mod watch;
+
+use std::path::{Path, PathBuf};
+use std::sync::Arc;
+use std::time::{Duration, Instant};
+
+use winit::application::ApplicationHandler;
+use winit::event::WindowEvent;
+use winit::event_loop::{ActiveEventLoop, ControlFlow, EventLoop, EventLoopProxy};
+use winit::window::{Fullscreen, Window, WindowId};
+
+use crate::gpu::{FrameStatus, Gpu, Pipelines, ShaderOptions, ShaderSource, Viewport};
+use crate::reference;
+use crate::scene::bundled;
+use document::Document;
+use panel::PanelAction;
+use ui::{Command, Editor, Status, ViewInput};
+
+pub use document::write_atomically;
+
+/// How the viewer was started (the `view` subcommand's options).
+#[derive(Debug, Clone, Default)]
+pub struct ViewerOptions {
+    /// Scene file to open; `None` opens the built-in Whitted scene.
+    pub scene: Option<PathBuf>,
+    /// Shader folder to use and watch; `None`: `./shaders` if it exists, else
+    /// the shaders embedded in the binary (not watched).
+    pub shaders: Option<PathBuf>,
+    /// Initial inner size of the window in physical pixels.
+    pub size: Option<(u32, u32)>,
+    /// Progressive refinement limit (samples per pixel).
+    pub max_samples: Option<u32>,
+    /// Print one line per event on stdout (ready, saved, shader error, ...),
+    /// for scripts and tests that drive the window.
+    pub print_events: bool,
+}
+
+#[derive(Debug, thiserror::Error)]
+pub enum ViewerError {
+    #[error(
+        "cannot open a window: {0}\n\
+         The viewer needs a display (X11 or Wayland: is DISPLAY or WAYLAND_DISPLAY set?).\n\
+         Without one, render headless: raysandbox render SCENE.toml -o image.png"
+    )]
+    NoDisplay(String),
+    #[error(
+        "{0}\nWithout a GPU you can still render with the CPU: raysandbox render SCENE.toml -o image.png --reference"
+    )]
+    NoGpu(String),
+    #[error("{0}")]
+    Scene(String),
+    #[error("{0}")]
+    Shader(String),
+}
+
+/// Things other threads tell the event loop.
+pub enum UserEvent {
+    FileChanged(watch::Change),
+    /// Pipelines built in the background from reloaded shaders.
+    PipelinesBuilt(Box<Result<Pipelines, String>>),
+}
+
+/// Opens the viewer and runs until the window closes.
+pub fn run(options: ViewerOptions) -> Result<(), ViewerError> {
+    let doc = match &options.scene {
+        Some(path) => Document::open(path),
+        None => Document::bundled(bundled::names()[0]),
+    }
+    .map_err(|e| ViewerError::Scene(e.to_string()))?;
+    let shader_dir = options.shaders.clone().or_else(|| {
+        let default = PathBuf::from("shaders");
+        default.join("main.wgsl").is_file().then_some(default)
+    });
+    let shaders = match &shader_dir {
+        Some(dir) => ShaderSource::from_dir(dir),
+        None => Ok(ShaderSource::embedded()),
+    }
+    .and_then(|s| s.validate().map(|_| s))
+    .map_err(|e| ViewerError::Shader(e.to_string()))?;
+
+    let event_loop = EventLoop::<UserEvent>::with_user_event()
+        .build()
+        .map_err(|e| ViewerError::NoDisplay(e.to_string()))?;
+    event_loop.set_control_flow(ControlFlow::Wait);
+    let mut app = App {
+        proxy: event_loop.create_proxy(),
+        options,
+        doc,
+        editor: Editor::default(),
+        shader_dir,
+        shaders,
+        gfx: None,
+        watch: None,
+        fatal: None,
+        drag_start_distance: None,
+        was_dragging: false,
+        repaint_at: None,
+        title: String::new(),
+    };
+    if let Some(n) = app.options.max_samples {
+        app.editor.view.max_samples = n.max(1);
+    }
+    event_loop
+        .run_app(&mut app)
+        .map_err(|e| ViewerError::NoDisplay(e.to_string()))?;
+    match app.fatal {
+        Some(error) => Err(error),
+        None => Ok(()),
+    }
+}
+
+/// The window and everything that draws into it.
+struct Graphics {
+    window: Arc<Window>,
+    gpu: Gpu,
+    viewport: Viewport,
+    egui: EguiLayer,
+}
+
+/// egui's context, its winit input state and its wgpu renderer.
+struct EguiLayer {
+    ctx: egui::Context,
+    state: egui_winit::State,
+    renderer: egui_wgpu::Renderer,
+}
+
+struct App {
+    proxy: EventLoopProxy<UserEvent>,
+    options: ViewerOptions,
+    doc: Document,
+    editor: Editor,
+    shader_dir: Option<PathBuf>,
+    /// The shader source of the pipelines in use (the last good one).
+    shaders: ShaderSource,
+    gfx: Option<Graphics>,
+    watch: Option<watch::Watch>,
+    /// Why the viewer had to stop, reported after the loop ends.
+    fatal: Option<ViewerError>,
+    /// Eye-target distance when the current drag or zoom started.
+    drag_start_distance: Option<f64>,
+    was_dragging: bool,
+    /// When egui asked to be drawn again (animations, tooltips).
+    repaint_at: Option<Instant>,
+    title: String,
+}
+
+impl ApplicationHandler<UserEvent> for App {
+    fn resumed(&mut self, event_loop: &ActiveEventLoop) {
+        if self.gfx.is_some() {
+            return;
+        }
+        match self.create_graphics(event_loop) {
+            Ok(gfx) => {
+                self.gfx = Some(gfx);
+                self.restart_watch();
+            }
+            Err(e) => {
+                self.fatal = Some(e);
+                event_loop.exit();
+            }
+        }
+    }
+
+    fn user_event(&mut self, _: &ActiveEventLoop, event: UserEvent) {
+        match event {
+            UserEvent::FileChanged(watch::Change::Shaders) => self.reload_shaders(),
+            UserEvent::FileChanged(watch::Change::SceneFile) => self.reload_scene_file(),
+            UserEvent::PipelinesBuilt(result) => self.pipelines_built(*result),
+        }
+        self.request_redraw();
+    }
+
+    fn window_event(&mut self, event_loop: &ActiveEventLoop, _: WindowId, event: WindowEvent) {
+        let Some(gfx) = &mut self.gfx else { return };
+        let response = gfx.egui.state.on_window_event(&gfx.window, &event);
+        match event {
+            WindowEvent::CloseRequested => self.quit(event_loop, false),
+            WindowEvent::Resized(size) => {
+                gfx.viewport.resize(&gfx.gpu, (size.width, size.height));
+                gfx.window.request_redraw();
+            }
+            WindowEvent::RedrawRequested => self.redraw(event_loop),
+            _ => {
+                if response.repaint {
+                    gfx.window.request_redraw();
+                }
+            }
+        }
+    }
+
+    fn about_to_wait(&mut self, event_loop: &ActiveEventLoop) {
+        match self.repaint_at {
+            Some(at) if at <= Instant::now() => {
+                self.repaint_at = None;
+                self.request_redraw();
+                event_loop.set_control_flow(ControlFlow::Wait);
+            }
+            Some(at) => event_loop.set_control_flow(ControlFlow::WaitUntil(at)),
+            None => event_loop.set_control_flow(ControlFlow::Wait),
+        }
+    }
+}
+
+impl App {
+    fn create_graphics(&mut self, event_loop: &ActiveEventLoop) -> Result<Graphics, ViewerError> {
+        let mut attributes = Window::default_attributes().with_title("raysandbox");
+        if let Some((w, h)) = self.options.size {
+            attributes = attributes.with_inner_size(winit::dpi::PhysicalSize::new(w, h));
+        } else {
+            attributes = attributes.with_inner_size(winit::dpi::LogicalSize::new(1280.0, 760.0));
+        }
+        let window = Arc::new(
+            event_loop
+                .create_window(attributes)
+                .map_err(|e| ViewerError::NoDisplay(e.to_string()))?,
+        );
+        let instance =
+            wgpu::Instance::new(wgpu::InstanceDescriptor::new_without_display_handle_from_env());
+        let surface = instance
+            .create_surface(window.clone())
+            .map_err(|e| ViewerError::NoGpu(format!("cannot draw into the window: {e}")))?;
+        let gpu = Gpu::with_adapter(
+            instance,
+            &wgpu::RequestAdapterOptions {
+                power_preference: wgpu::PowerPreference::HighPerformance,
+                force_fallback_adapter: false,
+                compatible_surface: Some(&surface),
+                apply_limit_buckets: false,
+            },
+        )
+        .map_err(|e| ViewerError::NoGpu(e.to_string()))?;
+        let formats = Viewport::output_formats(&gpu, &surface);
+        let pipelines = Pipelines::new(
+            &gpu.device,
+            &self.shaders,
+            &formats,
+            &ShaderOptions::default(),
+        )
+        .map_err(|e| ViewerError::Shader(e.to_string()))?;
+        let size = window.inner_size();
+        let viewport = Viewport::new(
+            &gpu,
+            surface,
+            (size.width, size.height),
+            pipelines,
+            &self.doc.scene,
+        );
+        let ctx = egui::Context::default();
+        let state = egui_winit::State::new(
+            ctx.clone(),
+            egui::ViewportId::ROOT,
+            &window,
+            Some(window.scale_factor() as f32),
+            window.theme(),
+            Some(gpu.device.limits().max_texture_dimension_2d as usize),
+        );
+        let renderer = egui_wgpu::Renderer::new(
+            &gpu.device,
+            viewport.surface_format(),
+            egui_wgpu::RendererOptions::default(),
+        );
+        log::info!("adapter: {}", gpu.describe());
+        Ok(Graphics {
+            window,
+            gpu,
+            viewport,
+            egui: EguiLayer {
+                ctx,
+                state,
+                renderer,
+            },
+        })
+    }
+
+    fn request_redraw(&self) {
+        if let Some(gfx) = &self.gfx {
+            gfx.window.request_redraw();
+        }
+    }
+
+    fn event(&self, line: &str) {
+        log::info!("{line}");
+        if self.options.print_events {
+            use std::io::Write;
+            let mut out = std::io::stdout().lock();
+            let _ = writeln!(out, "event: {line}");
+            let _ = out.flush();
+        }
+    }
+
+    /// (Re)starts watching the shader folder and the scene file.
+    fn restart_watch(&mut self) {
+        let proxy = self.proxy.clone();
+        self.watch = None;
+        if self.shader_dir.is_none() && self.doc.path().is_none() {
+            return;
+        }
+        match watch::watch(self.shader_dir.as_deref(), self.doc.path(), move |change| {
+            let _ = proxy.send_event(UserEvent::FileChanged(change));
+        }) {
+            Ok(w) => self.watch = Some(w),
+            Err(e) => {
+                log::warn!("{e}");
+                self.editor.message = Some(e);
+            }
+        }
+    }
+
+    /// Reads the shader folder again. naga validates it here, at once; only
+    /// a valid source goes on to the (slow) pipeline build, on another thread,
+    /// while the last good pipelines keep drawing.
+    fn reload_shaders(&mut self) {
+        let (Some(dir), Some(gfx)) = (&self.shader_dir, &self.gfx) else {
+            return;
+        };
+        let source = match ShaderSource::from_dir(dir).and_then(|s| s.validate().map(|_| s)) {
+            Ok(source) => source,
+            Err(e) => {
+                self.event(&format!("shader-error {}:{}:{}", e.file, e.line, e.column));
+                log::error!("{e}");
+                self.editor.shader_error = Some(e.to_string());
+                return;
+            }
+        };
+        let device = gfx.gpu.device.clone();
+        let formats = [gfx.viewport.surface_format(), crate::gpu::EXPORT_FORMAT];
+        let proxy = self.proxy.clone();
+        self.shaders = source.clone();
+        std::thread::spawn(move || {
+            let result = Pipelines::new(&device, &source, &formats, &ShaderOptions::default())
+                .map_err(|e| e.to_string());
+            let _ = proxy.send_event(UserEvent::PipelinesBuilt(Box::new(result)));
+        });
+    }
+
+    fn pipelines_built(&mut self, result: Result<Pipelines, String>) {
+        let Some(gfx) = &mut self.gfx else { return };
+        match result {
+            Ok(pipelines) => {
+                gfx.viewport.set_pipelines(&gfx.gpu, pipelines);
+                self.editor.shader_error = None;
+                self.event("shaders-reloaded");
+            }
+            Err(e) => {
+                log::error!("{e}");
+                self.editor.shader_error = Some(e);
+                self.event("shader-error");
+            }
+        }
+    }
+
+    /// An external edit of the scene file: an invalid file is reported and
+    /// the current scene kept; unsaved edits are not replaced without asking.
+    fn reload_scene_file(&mut self) {
+        match self.doc.read_external_change() {
+            Ok(None) => {}
+            Ok(Some((scene, text))) => {
+                self.editor.scene_error = None;
+                if self.doc.is_dirty() {
+                    self.editor.pending_reload = Some((scene, text));
+                    self.event("scene-changed-on-disk");
+                } else {
+                    self.doc.accept_external(scene, text);
+                    self.scene_changed();
+                    self.event("scene-reloaded");
+                }
+            }
+            Err(e) => {
+                log::error!("{e}");
+                self.editor.scene_error = Some(e.to_string());
+                self.event("scene-error");
+            }
+        }
+    }
+
+    fn scene_changed(&mut self) {
+        if let Some(gfx) = &mut self.gfx {
+            gfx.viewport.set_scene(&gfx.gpu, &self.doc.scene);
+        }
+    }
+
+    fn quit(&mut self, event_loop: &ActiveEventLoop, force: bool) {
+        if force || !self.doc.is_dirty() {
+            event_loop.exit();
+        } else {
+            self.editor.confirm_quit = true;
+            self.request_redraw();
+        }
+    }
+
+    fn redraw(&mut self, event_loop: &ActiveEventLoop) {
+        let before = self.doc.scene.clone();
+        let (commands, input, egui_output) = self.run_ui();
+        for command in commands {
+            self.execute(command, event_loop);
+        }
+        self.apply_view_input(&input);
+        if self.doc.scene != before {
+            self.scene_changed();
+        }
+        self.update_title();
+        self.paint(egui_output, input.dragging);
+    }
+
+    /// Runs the egui frame: returns what to do and what to paint.
+    fn run_ui(&mut self) -> (Vec<Command>, ViewInput, egui::FullOutput) {
+        let gfx = self.gfx.as_mut().expect("drawing needs graphics");
+        let raw = gfx.egui.state.take_egui_input(&gfx.window);
+        let status = Status {
+            frame_time: gfx.viewport.last_frame_time(),
+            timing: "submit to done",
+            samples: gfx.viewport.samples(),
+            resolution: gfx.viewport.traced_resolution(),
+            adapter: gfx.gpu.adapter.get_info().name,
+        };
+        let names = bundled::names();
+        let mut result = (Vec::new(), ViewInput::default());
+        let output = gfx.egui.ctx.run_ui(raw, |ui| {
+            result = ui::draw(ui, &mut self.doc, &mut self.editor, &status, &names);
+        });
+        gfx.egui
+            .state
+            .handle_platform_output(&gfx.window, output.platform_output.clone());
+        (result.0, result.1, output)
+    }
+
+    fn execute(&mut self, command: Command, event_loop: &ActiveEventLoop) {
+        match command {
+            Command::Panel(action) => self.panel_action(action),
+            Command::ToggleFullscreen => {
+                if let Some(gfx) = &self.gfx {
+                    let full = gfx.window.fullscreen().is_some();
+                    gfx.window
+                        .set_fullscreen((!full).then_some(Fullscreen::Borderless(None)));
+                }
+            }
+            Command::LeaveFullscreen => {
+                if let Some(gfx) = &self.gfx {
+                    gfx.window.set_fullscreen(None);
+                }
+            }
+            Command::Quit => self.quit(event_loop, false),
+            Command::QuitNow => self.quit(event_loop, true),
+            Command::SaveAndQuit => {
+                self.editor.confirm_quit = false;
+                if self.save(None) {
+                    self.quit(event_loop, true);
+                }
+            }
+            Command::KeepEdits => {
+                if let Some((_, text)) = self.editor.pending_reload.take() {
+                    self.doc.ignore_external(text);
+                }
+            }
+            Command::AcceptReload => {
+                if let Some((scene, text)) = self.editor.pending_reload.take() {
+                    self.doc.accept_external(scene, text);
+                    self.scene_changed();
+                    self.event("scene-reloaded");
+                }
+            }
+        }
+    }
+
+    fn panel_action(&mut self, action: PanelAction) {
+        match action {
+            PanelAction::Save => {
+                self.save(None);
+            }
+            PanelAction::SaveAs(path) => {
+                self.save(Some(&path));
+            }
+            PanelAction::Open(path) => self.open(Document::open(&path)),
+            PanelAction::OpenBundled(name) => self.open(Document::bundled(name)),
+            PanelAction::ResetCamera => self.doc.scene.camera = self.doc.saved_camera().clone(),
+            PanelAction::Screenshot => self.screenshot(),
+        }
+    }
+
+    /// Saves to the document's file, or to `path`. Reports the outcome in the
+    /// status line; returns whether it worked.
+    fn save(&mut self, path: Option<&Path>) -> bool {
+        let had_path = self.doc.path().map(Path::to_path_buf);
+        let result = match path {
+            Some(p) => self.doc.save_as(p),
+            None => self.doc.save(),
+        };
+        match result {
+            Ok(saved) => {
+                self.editor.message = Some(format!("saved {}", saved.display()));
+                self.event(&format!("saved {}", saved.display()));
+                if had_path.as_deref() != Some(saved.as_path()) {
+                    self.restart_watch();
+                }
+                true
+            }
+            Err(e) => {
+                self.editor.message = Some(format!("not saved: {e}"));
+                log::error!("{e}");
+                false
+            }
+        }
+    }
+
+    fn open(&mut self, doc: Result<Document, crate::scene::SceneError>) {
+        if self.doc.is_dirty() {
+            self.editor.message =
+                Some("unsaved edits: save them (Ctrl+S) before opening another scene".into());
+            return;
+        }
+        match doc {
+            Ok(doc) => {
+                self.doc = doc;
+                self.editor.panel.selection = None;
+                self.editor.scene_error = None;
+                self.scene_changed();
+                self.restart_watch();
+                self.editor.message = Some(format!("opened {}", self.doc.label()));
+            }
+            Err(e) => self.editor.message = Some(e.to_string()),
+        }
+    }
+
+    fn screenshot(&mut self) {
+        let Some(gfx) = &mut self.gfx else { return };
+        let image = gfx.viewport.capture(&gfx.gpu);
+        let path = self.doc.screenshot_path();
+        match image.save(&path) {
+            Ok(()) => {
+                self.editor.message = Some(format!("screenshot saved to {}", path.display()));
+                self.event(&format!("screenshot {}", path.display()));
+            }
+            Err(e) => self.editor.message = Some(format!("{}: {e}", path.display())),
+        }
+    }
+
+    /// Mouse input over the image moves the camera or picks an object.
+    fn apply_view_input(&mut self, input: &ViewInput) {
+        let Some(gfx) = &self.gfx else { return };
+        let size = gfx.window.inner_size();
+        let camera = &mut self.doc.scene.camera;
+        if input.dragging || input.zoom != 0.0 {
+            let start = *self
+                .drag_start_distance
+                .get_or_insert((camera.from - camera.to).length());
+            orbit::orbit(camera, input.orbit.0, input.orbit.1);
+            orbit::pan(camera, input.pan.0, input.pan.1, f64::from(size.height));
+            orbit::zoom(camera, input.zoom, start);
+        } else {
+            self.drag_start_distance = None;
+        }
+        let click = input.click.or(input.double_click);
+        if let Some((x, y)) = click {
+            let scene = reference::PreparedScene::new(&self.doc.scene);
+            let hit = reference::pick(&scene, size.width, size.height, x, y);
+            self.editor.panel.selection = hit.map(|(id, _)| id);
+            self.event(&format!("selected {:?}", self.editor.panel.selection));
+            if let (Some((_, point)), Some(_)) = (hit, input.double_click) {
+                orbit::recenter(&mut self.doc.scene.camera, point);
+            }
+        }
+    }
+
+    fn update_title(&mut self) {
+        let title = format!("raysandbox: {}", self.doc.label());
+        if title != self.title {
+            if let Some(gfx) = &self.gfx {
+                gfx.window.set_title(&title);
+            }
+            self.title = title;
+        }
+    }
+
+    /// Draws the image and the UI; keeps refining while samples are missing.
+    fn paint(&mut self, output: egui::FullOutput, dragging: bool) {
+        let Some(gfx) = &mut self.gfx else { return };
+        let scale = if dragging {
+            self.editor.view.interaction_scale
+        } else {
+            1.0
+        };
+        if dragging != self.was_dragging {
+            gfx.viewport.set_scale(&gfx.gpu, scale);
+            self.was_dragging = dragging;
+        }
+        let max_samples = if dragging {
+            1
+        } else {
+            self.editor.view.max_samples
+        };
+        let new_samples = u32::from(gfx.viewport.samples() < max_samples);
+
+        let ppp = output.pixels_per_point;
+        let jobs = gfx.egui.ctx.tessellate(output.shapes, ppp);
+        for (id, deltas) in &output.textures_delta.set {
+            for delta in deltas {
+                gfx.egui
+                    .renderer
+                    .update_texture(&gfx.gpu.device, &gfx.gpu.queue, *id, delta);
+            }
+        }
+        let size = gfx.window.inner_size();
+        let screen = egui_wgpu::ScreenDescriptor {
+            size_in_pixels: [size.width, size.height],
+            pixels_per_point: ppp,
+        };
+        let egui_renderer = &mut gfx.egui.renderer;
+        let gpu = &gfx.gpu;
+        gfx.window.pre_present_notify();
+        let status = gfx.viewport.frame(gpu, new_samples, |encoder, view| {
+            let buffers =
+                egui_renderer.update_buffers(&gpu.device, &gpu.queue, encoder, &jobs, &screen);
+            let mut pass = encoder
+                .begin_render_pass(&wgpu::RenderPassDescriptor {
+                    label: Some("egui"),
+                    color_attachments: &[Some(wgpu::RenderPassColorAttachment {
+                        view,
+                        depth_slice: None,
+                        resolve_target: None,
+                        ops: wgpu::Operations {
+                            load: wgpu::LoadOp::Load,
+                            store: wgpu::StoreOp::Store,
+                        },
+                    })],
+                    depth_stencil_attachment: None,
+                    timestamp_writes: None,
+                    occlusion_query_set: None,
+                    multiview_mask: None,
+                })
+                .forget_lifetime();
+            egui_renderer.render(&mut pass, &jobs, &screen);
+            buffers
+        });
+        for id in &output.textures_delta.free {
+            gfx.egui.renderer.free_texture(id);
+        }
+        // After a frame that added samples, draw once more: either the next
+        // sample, or (refinement done) only the display pass, so the status
+        // line shows the final count. Then nothing is drawn until something
+        // changes, and an idle window costs no CPU.
+        let samples = gfx.viewport.samples();
+        if status == FrameStatus::Skipped || new_samples > 0 {
+            gfx.window.request_redraw();
+        }
+        if new_samples > 0 && samples >= max_samples && !dragging {
+            self.event(&format!("ready samples={samples}"));
+        }
+        let delay = output
+            .viewport_output
+            .get(&egui::ViewportId::ROOT)
+            .map_or(Duration::MAX, |v| v.repaint_delay);
+        if delay < Duration::from_secs(5) {
+            self.repaint_at = Some(Instant::now() + delay);
+        }
+    }
+}

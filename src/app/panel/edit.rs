@@ -1,0 +1,583 @@
+//! The scene edits behind the panel's buttons, as plain functions on a
+//! [`Scene`], so that their rules are tested without a UI: material names stay
+//! unique and in order, no shape ever names a missing material, the selection
+//! never points past the end of a list, and a plane normal is never zero.
+
+use glam::DVec3;
+
+use crate::reference::ShapeId;
+use crate::scene::{Camera, Checker, Cube, CubeSize, Light, Material, Plane, Scene, Sphere};
+
+/// Smallest value the panel writes into a field that must be > 0 (radius,
+/// exposure, ior...): the spec only asks for > 0, and a drag must not stop at 0.
+pub(super) const MIN_POSITIVE: f64 = 1e-6;
+
+/// How far from 1 the squared length of a normal may be for it to count as
+/// unit length already (as the scene loader does): normalising it again could
+/// move its last bit, and the app would then see a change that is none.
+const UNIT_TOLERANCE: f64 = 8.0 * f64::EPSILON;
+
+/// The typical length of the scene, the distance from the eye to the target:
+/// drag speeds and the sizes of new shapes scale with it, so the panel feels
+/// the same for a scene in millimetres and one in kilometres.
+pub(super) fn scene_scale(scene: &Scene) -> f64 {
+    let distance = (scene.camera.from - scene.camera.to).length();
+    if distance.is_finite() {
+        distance.clamp(1e-3, 1e6)
+    } else {
+        1.0
+    }
+}
+
+/// Unit vectors to the right of the view and up (the camera's `up`), the
+/// frame in which new shapes and lights are placed so that they appear beside
+/// and above the target. Falls back to world axes for a degenerate camera.
+fn camera_frame(camera: &Camera) -> (DVec3, DVec3) {
+    let back = (camera.from - camera.to)
+        .try_normalize()
+        .unwrap_or(DVec3::Z);
+    let up = camera.up.try_normalize().unwrap_or(DVec3::Y);
+    let right = up
+        .cross(back)
+        .try_normalize()
+        .unwrap_or_else(|| back.any_orthonormal_vector());
+    (right, up)
+}
+
+/// A power of ten near a fifth of the scene scale: a round size for new
+/// checker cells (1 for the bundled scenes).
+fn round_size(scale: f64) -> f64 {
+    10f64.powi((scale / 5.0).log10().round() as i32)
+}
+
+/// The checker a material gets when the checkbox is ticked: dark cells of a
+/// round size, so the effect is obvious at once.
+pub(super) fn default_checker(scene_scale: f64) -> Checker {
+    Checker {
+        color: DVec3::splat(0.15),
+        size: round_size(scene_scale),
+    }
+}
+
+/// Every shape's material name, whatever its kind.
+fn material_slots_mut(scene: &mut Scene) -> impl Iterator<Item = &mut Option<String>> {
+    let spheres = scene.spheres.iter_mut().map(|s| &mut s.material);
+    let planes = scene.planes.iter_mut().map(|p| &mut p.material);
+    let cubes = scene.cubes.iter_mut().map(|c| &mut c.material);
+    spheres.chain(planes).chain(cubes)
+}
+
+/// How many shapes name the material `name` (shown before removing it).
+pub(super) fn material_users(scene: &Scene, name: &str) -> usize {
+    shape_ids(scene)
+        .filter(|&id| shape_material(scene, id) == Some(name))
+        .count()
+}
+
+/// The first of "material", "material 2", "material 3"... not yet taken.
+pub(super) fn unique_material_name(scene: &Scene) -> String {
+    let mut name = "material".to_owned();
+    let mut n = 1;
+    while scene.materials.contains_key(&name) {
+        n += 1;
+        name = format!("material {n}");
+    }
+    name
+}
+
+/// Appends a default material under a fresh name and returns the name.
+pub(super) fn add_material(scene: &mut Scene) -> String {
+    let name = unique_material_name(scene);
+    scene.materials.insert(name.clone(), Material::default());
+    name
+}
+
+/// Removes a material, keeping the order of the others (it fixes the GPU
+/// slots and the order in the saved file); its shapes fall back to the
+/// default material.
+pub(super) fn remove_material(scene: &mut Scene, name: &str) {
+    if scene.materials.shift_remove(name).is_none() {
+        return;
+    }
+    for slot in material_slots_mut(scene) {
+        if slot.as_deref() == Some(name) {
+            *slot = None;
+        }
+    }
+}
+
+/// Renames a material in place (same position in the list) and every shape
+/// that uses it. `new` is trimmed; an empty or taken name is refused with a
+/// message for the user.
+pub(super) fn rename_material(scene: &mut Scene, old: &str, new: &str) -> Result<(), String> {
+    let new = new.trim();
+    if new.is_empty() {
+        return Err("A material needs a name.".to_owned());
+    }
+    if !scene.materials.contains_key(old) {
+        return Err(format!("There is no material named {old:?}."));
+    }
+    if new == old {
+        return Ok(());
+    }
+    if scene.materials.contains_key(new) {
+        return Err(format!("{new:?} is taken: material names must be unique."));
+    }
+    scene.materials = std::mem::take(&mut scene.materials)
+        .into_iter()
+        .map(|(name, material)| {
+            let name = if name == old { new.to_owned() } else { name };
+            (name, material)
+        })
+        .collect();
+    for slot in material_slots_mut(scene) {
+        if slot.as_deref() == Some(old) {
+            *slot = Some(new.to_owned());
+        }
+    }
+    Ok(())
+}
+
+/// Appends a white light of intensity 1 above the target, one scene scale up.
+pub(super) fn add_light(scene: &mut Scene) {
+    let (_, up) = camera_frame(&scene.camera);
+    scene.lights.push(Light {
+        position: scene.camera.to + up * scene_scale(scene),
+        color: DVec3::ONE,
+        intensity: 1.0,
+    });
+}
+
+/// Every shape, spheres first, then planes, then cubes (the order of the
+/// scene file).
+pub(super) fn shape_ids(scene: &Scene) -> impl Iterator<Item = ShapeId> + use<> {
+    let spheres = (0..scene.spheres.len()).map(ShapeId::Sphere);
+    let planes = (0..scene.planes.len()).map(ShapeId::Plane);
+    let cubes = (0..scene.cubes.len()).map(ShapeId::Cube);
+    spheres.chain(planes).chain(cubes)
+}
+
+/// The material a shape names, `None` for the default material or a shape
+/// that does not exist.
+pub(super) fn shape_material(scene: &Scene, id: ShapeId) -> Option<&str> {
+    let slot = match id {
+        ShapeId::Sphere(i) => scene.spheres.get(i).map(|s| &s.material),
+        ShapeId::Plane(i) => scene.planes.get(i).map(|p| &p.material),
+        ShapeId::Cube(i) => scene.cubes.get(i).map(|c| &c.material),
+    };
+    slot.and_then(|name| name.as_deref())
+}
+
+/// The material slot of a shape, if the shape exists.
+pub(super) fn shape_material_mut(scene: &mut Scene, id: ShapeId) -> Option<&mut Option<String>> {
+    match id {
+        ShapeId::Sphere(i) => scene.spheres.get_mut(i).map(|s| &mut s.material),
+        ShapeId::Plane(i) => scene.planes.get_mut(i).map(|p| &mut p.material),
+        ShapeId::Cube(i) => scene.cubes.get_mut(i).map(|c| &mut c.material),
+    }
+}
+
+/// The name of a shape in lists and headers: "Sphere 0 (glass)".
+pub(super) fn shape_label(scene: &Scene, id: ShapeId) -> String {
+    let (kind, index) = match id {
+        ShapeId::Sphere(i) => ("Sphere", i),
+        ShapeId::Plane(i) => ("Plane", i),
+        ShapeId::Cube(i) => ("Cube", i),
+    };
+    let material = shape_material(scene, id).unwrap_or("default");
+    format!("{kind} {index} ({material})")
+}
+
+/// The selection if it names an existing shape, else `None`: the app may swap
+/// the scene (open a file) or pick a shape without knowing the lists.
+pub(super) fn checked_selection(scene: &Scene, selection: Option<ShapeId>) -> Option<ShapeId> {
+    selection.filter(|&id| shape_exists(scene, id))
+}
+
+/// Whether `id` indexes an element of its list.
+fn shape_exists(scene: &Scene, id: ShapeId) -> bool {
+    match id {
+        ShapeId::Sphere(i) => i < scene.spheres.len(),
+        ShapeId::Plane(i) => i < scene.planes.len(),
+        ShapeId::Cube(i) => i < scene.cubes.len(),
+    }
+}
+
+/// Appends a sphere beside the target, a tenth of the scene scale in radius.
+pub(super) fn add_sphere(scene: &mut Scene) -> ShapeId {
+    let scale = scene_scale(scene);
+    let (right, _) = camera_frame(&scene.camera);
+    scene.spheres.push(Sphere {
+        center: scene.camera.to + right * (0.25 * scale),
+        radius: 0.1 * scale,
+        material: None,
+    });
+    ShapeId::Sphere(scene.spheres.len() - 1)
+}
+
+/// Appends a floor: a plane facing the camera's up, a little below the target.
+pub(super) fn add_plane(scene: &mut Scene) -> ShapeId {
+    let scale = scene_scale(scene);
+    let (_, up) = camera_frame(&scene.camera);
+    scene.planes.push(Plane {
+        point: scene.camera.to - up * (0.2 * scale),
+        normal: up,
+        material: None,
+    });
+    ShapeId::Plane(scene.planes.len() - 1)
+}
+
+/// Appends an unrotated cube beside the target (left of it, where a new
+/// sphere does not go).
+pub(super) fn add_cube(scene: &mut Scene) -> ShapeId {
+    let scale = scene_scale(scene);
+    let (right, _) = camera_frame(&scene.camera);
+    scene.cubes.push(Cube {
+        center: scene.camera.to - right * (0.25 * scale),
+        size: CubeSize::Uniform(0.15 * scale),
+        rotation: DVec3::ZERO,
+        material: None,
+    });
+    ShapeId::Cube(scene.cubes.len() - 1)
+}
+
+/// Copies the selected shape to the end of its list, moved to the right of
+/// the view by its own size (a plane: along its normal) so that both stay
+/// visible, and selects the copy.
+pub(super) fn duplicate_selected(scene: &mut Scene, selection: &mut Option<ShapeId>) {
+    let (right, _) = camera_frame(&scene.camera);
+    let scale = scene_scale(scene);
+    let copy = match checked_selection(scene, *selection) {
+        Some(ShapeId::Sphere(i)) => {
+            let mut sphere = scene.spheres[i].clone();
+            sphere.center += right * (2.0 * sphere.radius);
+            scene.spheres.push(sphere);
+            ShapeId::Sphere(scene.spheres.len() - 1)
+        }
+        Some(ShapeId::Plane(i)) => {
+            let mut plane = scene.planes[i].clone();
+            plane.point += plane.normal * (0.1 * scale);
+            scene.planes.push(plane);
+            ShapeId::Plane(scene.planes.len() - 1)
+        }
+        Some(ShapeId::Cube(i)) => {
+            let mut cube = scene.cubes[i].clone();
+            cube.center += right * cube.size.edges().max_element();
+            scene.cubes.push(cube);
+            ShapeId::Cube(scene.cubes.len() - 1)
+        }
+        None => return,
+    };
+    *selection = Some(copy);
+}
+
+/// Removes a shape. The selection follows the shape it named (the indices
+/// after the removed one shift down by one) and is cleared if that shape was
+/// the one removed. A shape that does not exist is ignored.
+pub(super) fn remove_shape(scene: &mut Scene, id: ShapeId, selection: &mut Option<ShapeId>) {
+    if !shape_exists(scene, id) {
+        return;
+    }
+    match id {
+        ShapeId::Sphere(i) => drop(scene.spheres.remove(i)),
+        ShapeId::Plane(i) => drop(scene.planes.remove(i)),
+        ShapeId::Cube(i) => drop(scene.cubes.remove(i)),
+    }
+    *selection = selection.and_then(|selected| selection_after_removal(selected, id));
+}
+
+fn selection_after_removal(selected: ShapeId, removed: ShapeId) -> Option<ShapeId> {
+    use ShapeId::{Cube, Plane, Sphere};
+    match (selected, removed) {
+        _ if selected == removed => None,
+        (Sphere(s), Sphere(r)) if s > r => Some(Sphere(s - 1)),
+        (Plane(s), Plane(r)) if s > r => Some(Plane(s - 1)),
+        (Cube(s), Cube(r)) if s > r => Some(Cube(s - 1)),
+        _ => Some(selected),
+    }
+}
+
+/// Switches a cube between one edge length and three. Going back to one keeps
+/// the longest edge, so the cube encloses the box it was.
+pub(super) fn toggle_per_axis(size: CubeSize) -> CubeSize {
+    match size {
+        CubeSize::Uniform(s) => CubeSize::PerAxis(DVec3::splat(s)),
+        CubeSize::PerAxis(v) => CubeSize::Uniform(v.max_element()),
+    }
+}
+
+/// A direction the renderers can use as a plane normal: unit length, and
+/// kept bit for bit if it is already. `None` for a zero (or unnormalisable)
+/// vector, which the panel never writes.
+pub(super) fn unit_normal(n: DVec3) -> Option<DVec3> {
+    if (n.length_squared() - 1.0).abs() <= UNIT_TOLERANCE {
+        Some(n)
+    } else {
+        n.try_normalize()
+    }
+}
+
+/// Makes every plane normal unit length again, except the one being edited
+/// (`editing`): while the user drags or types a component the raw numbers
+/// stay, so the field does not jump under the cursor; once the edit is done
+/// (or the editor closes) the normal is normalised, as the renderers expect.
+pub(super) fn normalize_planes(scene: &mut Scene, editing: Option<usize>) {
+    for (i, plane) in scene.planes.iter_mut().enumerate() {
+        if Some(i) == editing {
+            continue;
+        }
+        if let Some(n) = unit_normal(plane.normal) {
+            plane.normal = n;
+        }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn scene() -> Scene {
+        let text = r#"
+            [camera]
+            from = [0, 1.5, 6]
+            to = [0, 1, 0]
+
+            [materials.glass]
+            transparency = 0.9
+            [materials.floor]
+            diffuse = 0.5
+            [materials.metal]
+            mirror = 0.8
+
+            [[spheres]]
+            center = [0, 1, 0]
+            radius = 1
+            material = "glass"
+            [[spheres]]
+            center = [2, 1, 0]
+            radius = 0.5
+            material = "metal"
+            [[spheres]]
+            center = [-2, 1, 0]
+            radius = 0.5
+
+            [[planes]]
+            point = [0, 0, 0]
+            normal = [0, 1, 0]
+            material = "floor"
+
+            [[cubes]]
+            center = [0, 0.5, -2]
+            size = [1, 2, 1]
+            material = "glass"
+        "#;
+        Scene::from_toml_str(text, None).unwrap()
+    }
+
+    fn names(scene: &Scene) -> Vec<&str> {
+        scene.materials.keys().map(String::as_str).collect()
+    }
+
+    #[test]
+    fn rename_updates_every_user_and_keeps_order() {
+        let mut s = scene();
+        let glass = s.materials["glass"].clone();
+        rename_material(&mut s, "glass", "  crystal ").unwrap();
+        assert_eq!(names(&s), ["crystal", "floor", "metal"]);
+        assert_eq!(s.materials["crystal"], glass);
+        assert_eq!(s.spheres[0].material.as_deref(), Some("crystal"));
+        assert_eq!(s.cubes[0].material.as_deref(), Some("crystal"));
+        assert_eq!(s.spheres[1].material.as_deref(), Some("metal"));
+        assert_eq!(s.spheres[2].material, None);
+        assert_eq!(s.planes[0].material.as_deref(), Some("floor"));
+        assert_eq!(s.material_slot(Some("crystal")), 1);
+    }
+
+    #[test]
+    fn rename_refuses_empty_duplicate_and_unknown_names() {
+        let mut s = scene();
+        let before = s.clone();
+        assert!(rename_material(&mut s, "glass", "   ").is_err());
+        assert!(rename_material(&mut s, "glass", "floor").is_err());
+        assert!(rename_material(&mut s, "nothing", "new").is_err());
+        assert_eq!(s, before);
+        rename_material(&mut s, "glass", "glass").unwrap();
+        assert_eq!(s, before);
+    }
+
+    #[test]
+    fn removing_a_material_resets_its_users_and_keeps_order() {
+        let mut s = scene();
+        assert_eq!(material_users(&s, "glass"), 2);
+        remove_material(&mut s, "glass");
+        assert_eq!(names(&s), ["floor", "metal"]);
+        assert_eq!(s.spheres[0].material, None);
+        assert_eq!(s.cubes[0].material, None);
+        assert_eq!(s.spheres[1].material.as_deref(), Some("metal"));
+        assert_eq!(s.planes[0].material.as_deref(), Some("floor"));
+        // Every name a shape uses still exists.
+        for id in shape_ids(&s) {
+            if let Some(name) = shape_material(&s, id) {
+                assert!(s.materials.contains_key(name), "{name}");
+            }
+        }
+        remove_material(&mut s, "glass");
+        assert_eq!(names(&s), ["floor", "metal"]);
+    }
+
+    #[test]
+    fn new_material_names_are_unique() {
+        let mut s = scene();
+        assert_eq!(add_material(&mut s), "material");
+        assert_eq!(add_material(&mut s), "material 2");
+        assert_eq!(add_material(&mut s), "material 3");
+        remove_material(&mut s, "material 2");
+        assert_eq!(unique_material_name(&s), "material 2");
+        assert_eq!(
+            names(&s),
+            ["glass", "floor", "metal", "material", "material 3"]
+        );
+        assert_eq!(s.materials["material"], Material::default());
+    }
+
+    #[test]
+    fn removing_a_shape_fixes_the_selection() {
+        let mut s = scene();
+        // A later sphere: its index shifts down with the list.
+        let mut selection = Some(ShapeId::Sphere(2));
+        remove_shape(&mut s, ShapeId::Sphere(0), &mut selection);
+        assert_eq!(selection, Some(ShapeId::Sphere(1)));
+        assert_eq!(s.spheres[1].center, DVec3::new(-2.0, 1.0, 0.0));
+        // Another kind, or an earlier index: unchanged.
+        let mut selection = Some(ShapeId::Plane(0));
+        remove_shape(&mut s, ShapeId::Sphere(1), &mut selection);
+        assert_eq!(selection, Some(ShapeId::Plane(0)));
+        let mut selection = Some(ShapeId::Sphere(0));
+        remove_shape(&mut s, ShapeId::Cube(0), &mut selection);
+        assert_eq!(selection, Some(ShapeId::Sphere(0)));
+        // The selected shape itself, the last of its list: cleared.
+        remove_shape(&mut s, ShapeId::Sphere(0), &mut selection);
+        assert_eq!(selection, None);
+        assert!(s.spheres.is_empty() && s.cubes.is_empty());
+        // Removing what is not there changes nothing.
+        let mut selection = Some(ShapeId::Plane(0));
+        let before = s.clone();
+        remove_shape(&mut s, ShapeId::Sphere(0), &mut selection);
+        remove_shape(&mut s, ShapeId::Plane(7), &mut selection);
+        assert_eq!((s, selection), (before, Some(ShapeId::Plane(0))));
+    }
+
+    #[test]
+    fn a_selection_past_the_end_is_dropped() {
+        let s = scene();
+        assert_eq!(
+            checked_selection(&s, Some(ShapeId::Sphere(2))),
+            Some(ShapeId::Sphere(2))
+        );
+        assert_eq!(checked_selection(&s, Some(ShapeId::Sphere(3))), None);
+        assert_eq!(checked_selection(&s, Some(ShapeId::Cube(1))), None);
+        assert_eq!(checked_selection(&s, None), None);
+    }
+
+    #[test]
+    fn duplicate_offsets_the_copy_and_selects_it() {
+        let mut s = scene();
+        let mut selection = Some(ShapeId::Sphere(0));
+        duplicate_selected(&mut s, &mut selection);
+        assert_eq!(selection, Some(ShapeId::Sphere(3)));
+        let (original, copy) = (&s.spheres[0], &s.spheres[3]);
+        assert_eq!(
+            (copy.radius, &copy.material),
+            (original.radius, &original.material)
+        );
+        // Camera looks down -z with y up: right is +x. Touching, not overlapping.
+        let offset = copy.center - original.center;
+        assert!(
+            (offset - DVec3::new(2.0, 0.0, 0.0)).length() < 1e-12,
+            "{offset}"
+        );
+
+        let mut selection = Some(ShapeId::Cube(0));
+        duplicate_selected(&mut s, &mut selection);
+        assert_eq!(selection, Some(ShapeId::Cube(1)));
+        let offset = s.cubes[1].center - s.cubes[0].center;
+        assert!(
+            (offset - DVec3::new(2.0, 0.0, 0.0)).length() < 1e-12,
+            "{offset}"
+        );
+
+        let mut selection = Some(ShapeId::Plane(0));
+        duplicate_selected(&mut s, &mut selection);
+        assert_eq!(selection, Some(ShapeId::Plane(1)));
+        assert_eq!(s.planes[1].normal, s.planes[0].normal);
+        assert!(s.planes[1].point.y > s.planes[0].point.y);
+
+        let before = s.clone();
+        let mut selection = None;
+        duplicate_selected(&mut s, &mut selection);
+        assert_eq!((s, selection), (before, None));
+    }
+
+    #[test]
+    fn new_shapes_are_valid_and_near_the_target() {
+        let mut s = scene();
+        let ids = [add_sphere(&mut s), add_plane(&mut s), add_cube(&mut s)];
+        assert_eq!(
+            ids,
+            [ShapeId::Sphere(3), ShapeId::Plane(1), ShapeId::Cube(1)]
+        );
+        let scale = scene_scale(&s);
+        assert!(s.spheres[3].radius > 0.0);
+        assert!((s.spheres[3].center - s.camera.to).length() < scale);
+        assert_eq!(s.planes[1].normal, DVec3::Y);
+        assert!((s.cubes[1].center - s.camera.to).length() < scale);
+        add_light(&mut s);
+        let light = s.lights.last().unwrap();
+        assert!(light.position.y > s.camera.to.y);
+        assert_eq!((light.color, light.intensity), (DVec3::ONE, 1.0));
+        // The result is a scene the loader accepts.
+        assert_eq!(Scene::from_toml_str(&s.to_toml_string(), None).unwrap(), s);
+    }
+
+    #[test]
+    fn new_shapes_survive_a_degenerate_camera_up() {
+        let mut s = scene();
+        s.camera.up = DVec3::new(0.0, -1.5, -6.0); // parallel to the view
+        add_sphere(&mut s);
+        add_light(&mut s);
+        assert!(s.spheres.last().unwrap().center.is_finite());
+        assert!(s.lights.last().unwrap().position.is_finite());
+    }
+
+    #[test]
+    fn normals_are_normalised_except_while_edited() {
+        let mut s = scene();
+        s.planes.push(s.planes[0].clone());
+        s.planes[0].normal = DVec3::new(0.0, 2.0, 0.0);
+        s.planes[1].normal = DVec3::new(3.0, 0.0, 4.0);
+        normalize_planes(&mut s, Some(0));
+        assert_eq!(s.planes[0].normal, DVec3::new(0.0, 2.0, 0.0));
+        assert!((s.planes[1].normal - DVec3::new(0.6, 0.0, 0.8)).length() < 1e-15);
+        normalize_planes(&mut s, None);
+        assert_eq!(s.planes[0].normal, DVec3::Y);
+        assert_eq!(unit_normal(DVec3::ZERO), None);
+        assert_eq!(unit_normal(DVec3::splat(1e-300)), None);
+    }
+
+    #[test]
+    fn cube_size_toggles_keep_positive_edges() {
+        let uniform = CubeSize::Uniform(2.0);
+        let per_axis = toggle_per_axis(uniform);
+        assert_eq!(per_axis, CubeSize::PerAxis(DVec3::splat(2.0)));
+        assert_eq!(toggle_per_axis(per_axis), uniform);
+        let boxed = CubeSize::PerAxis(DVec3::new(1.0, 3.0, 2.0));
+        assert_eq!(toggle_per_axis(boxed), CubeSize::Uniform(3.0));
+    }
+
+    #[test]
+    fn checker_cells_have_a_round_size() {
+        assert_eq!(default_checker(6.0).size, 1.0);
+        assert_eq!(default_checker(0.05).size, 0.01);
+        assert_eq!(default_checker(1e6).size, 1e5);
+    }
+}

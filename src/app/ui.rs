@@ -1,0 +1,325 @@
+//! The egui frame: side panel, status line, overlays, dialogs, shortcuts, and
+//! the mouse over the image. It edits the scene and reports what the app must
+//! do; it never touches the GPU, the window or files itself.
+
+use std::time::Duration;
+
+use egui::{Key, KeyboardShortcut, Modifiers, PointerButton, Sense};
+
+use super::document::Document;
+use super::panel::{self, PanelAction, PanelState, ViewSettings};
+use crate::scene::Scene;
+
+/// UI state that is not part of the scene.
+pub struct Editor {
+    pub panel: PanelState,
+    pub view: ViewSettings,
+    pub show_panel: bool,
+    pub show_help: bool,
+    /// The last shader error (file:line:column and source line); cleared
+    /// when the shaders compile again.
+    pub shader_error: Option<String>,
+    /// The last error reading the scene file after an external edit.
+    pub scene_error: Option<String>,
+    /// An external edit of the file, waiting for the user's decision because
+    /// the panel holds unsaved edits.
+    pub pending_reload: Option<(Scene, String)>,
+    /// The quit dialog is open (unsaved changes).
+    pub confirm_quit: bool,
+    /// A short message for the status line ("Saved to ...").
+    pub message: Option<String>,
+}
+
+impl Default for Editor {
+    fn default() -> Self {
+        Editor {
+            panel: PanelState::default(),
+            view: ViewSettings::default(),
+            show_panel: true,
+            show_help: false,
+            shader_error: None,
+            scene_error: None,
+            pending_reload: None,
+            confirm_quit: false,
+            message: None,
+        }
+    }
+}
+
+/// Figures for the status line.
+pub struct Status {
+    pub frame_time: Option<Duration>,
+    /// How the frame time was measured, e.g. "GPU timestamps".
+    pub timing: &'static str,
+    pub samples: u32,
+    pub resolution: (u32, u32),
+    pub adapter: String,
+}
+
+/// What the app must do after this frame.
+#[derive(Debug)]
+pub enum Command {
+    Panel(PanelAction),
+    ToggleFullscreen,
+    LeaveFullscreen,
+    /// Quit, asking first if there are unsaved changes.
+    Quit,
+    /// Quit now, unsaved changes or not.
+    QuitNow,
+    SaveAndQuit,
+    /// Take the pending external version of the scene file.
+    AcceptReload,
+    /// Keep the unsaved edits over the pending external version.
+    KeepEdits,
+}
+
+/// Mouse input over the image (not over the panel or a window), in physical
+/// pixels of the window.
+#[derive(Debug, Default, Clone, Copy)]
+pub struct ViewInput {
+    pub orbit: (f64, f64),
+    pub pan: (f64, f64),
+    /// Wheel notches, positive = towards the target.
+    pub zoom: f64,
+    pub click: Option<(f64, f64)>,
+    pub double_click: Option<(f64, f64)>,
+    /// A camera drag is in progress (render at the interaction scale).
+    pub dragging: bool,
+}
+
+/// The keyboard shortcuts, for the help window and the README.
+pub const SHORTCUTS: [(&str, &str); 9] = [
+    ("Left drag", "orbit around the target"),
+    ("Right / middle drag", "pan"),
+    ("Wheel", "zoom (dolly towards the target)"),
+    ("Click / double-click", "select an object / orbit around it"),
+    ("H", "show or hide the panel"),
+    ("R / P", "reset camera / screenshot"),
+    ("Ctrl+S", "save the scene"),
+    ("F11 / Esc", "fullscreen / leave fullscreen"),
+    ("F1 / Ctrl+Q", "this help / quit"),
+];
+
+/// Builds the whole UI for one frame.
+pub fn draw(
+    ui: &mut egui::Ui,
+    doc: &mut Document,
+    editor: &mut Editor,
+    status: &Status,
+    bundled: &[&'static str],
+) -> (Vec<Command>, ViewInput) {
+    let mut commands = shortcuts(ui, editor);
+    if editor.show_panel {
+        let label = doc.label();
+        egui::Panel::left("scene panel")
+            .resizable(true)
+            .default_size(330.0)
+            .show(ui, |ui| {
+                egui::ScrollArea::vertical().show(ui, |ui| {
+                    let actions = panel::show(
+                        ui,
+                        &mut doc.scene,
+                        &mut editor.view,
+                        &mut editor.panel,
+                        bundled,
+                        &label,
+                    );
+                    commands.extend(actions.into_iter().map(Command::Panel));
+                });
+            });
+    }
+    egui::Panel::bottom("status").show(ui, |ui| status_line(ui, status, editor));
+    let input = egui::CentralPanel::no_frame().show(ui, view_input).inner;
+    overlays(ui.ctx(), editor, &mut commands);
+    (commands, input)
+}
+
+/// Keys work only while no text field has the keyboard.
+fn shortcuts(ui: &mut egui::Ui, editor: &mut Editor) -> Vec<Command> {
+    let mut commands = Vec::new();
+    if ui.ctx().egui_wants_keyboard_input() {
+        return commands;
+    }
+    ui.input_mut(|i| {
+        if i.consume_shortcut(&KeyboardShortcut::new(Modifiers::COMMAND, Key::S)) {
+            commands.push(Command::Panel(PanelAction::Save));
+        }
+        if i.consume_shortcut(&KeyboardShortcut::new(Modifiers::COMMAND, Key::Q)) {
+            commands.push(Command::Quit);
+        }
+        let plain = |i: &mut egui::InputState, key| i.consume_key(Modifiers::NONE, key);
+        if plain(i, Key::H) {
+            editor.show_panel = !editor.show_panel;
+        }
+        if plain(i, Key::F1) {
+            editor.show_help = !editor.show_help;
+        }
+        if plain(i, Key::R) {
+            commands.push(Command::Panel(PanelAction::ResetCamera));
+        }
+        if plain(i, Key::P) {
+            commands.push(Command::Panel(PanelAction::Screenshot));
+        }
+        if plain(i, Key::F11) {
+            commands.push(Command::ToggleFullscreen);
+        }
+        if plain(i, Key::Escape) {
+            commands.push(Command::LeaveFullscreen);
+        }
+    });
+    commands
+}
+
+fn status_line(ui: &mut egui::Ui, status: &Status, editor: &Editor) {
+    ui.horizontal(|ui| {
+        let time = status.frame_time.map_or("-".to_string(), |t| {
+            format!("{:.1} ms", t.as_secs_f64() * 1e3)
+        });
+        ui.label(format!("frame {time} ({})", status.timing));
+        ui.separator();
+        ui.label(format!(
+            "{} / {} spp",
+            status.samples, editor.view.max_samples
+        ));
+        ui.separator();
+        ui.label(format!("{} x {}", status.resolution.0, status.resolution.1));
+        ui.separator();
+        ui.label(&status.adapter)
+            .on_hover_text("the GPU adapter in use");
+        if let Some(message) = &editor.message {
+            ui.separator();
+            ui.label(message);
+        }
+        ui.with_layout(egui::Layout::right_to_left(egui::Align::Center), |ui| {
+            ui.label("F1: help");
+        });
+    });
+}
+
+/// The mouse over the image: egui gives the panel and windows priority, so a
+/// drag that starts on a slider never reaches the camera.
+fn view_input(ui: &mut egui::Ui) -> ViewInput {
+    let response = ui.allocate_rect(ui.max_rect(), Sense::click_and_drag());
+    let ppp = f64::from(ui.ctx().pixels_per_point());
+    let physical = |p: egui::Pos2| (f64::from(p.x) * ppp, f64::from(p.y) * ppp);
+    let mut input = ViewInput::default();
+    let delta = response.drag_delta();
+    let delta = (f64::from(delta.x) * ppp, f64::from(delta.y) * ppp);
+    if response.dragged_by(PointerButton::Primary) {
+        input.orbit = delta;
+        input.dragging = true;
+    } else if response.dragged_by(PointerButton::Secondary)
+        || response.dragged_by(PointerButton::Middle)
+    {
+        input.pan = delta;
+        input.dragging = true;
+    }
+    if response.hovered() {
+        let scroll = ui.input(|i| i.smooth_scroll_delta.y);
+        input.zoom = f64::from(scroll) / 50.0;
+    }
+    let pointer = response.interact_pointer_pos().map(physical);
+    if response.double_clicked() {
+        input.double_click = pointer;
+    } else if response.clicked() {
+        input.click = pointer;
+    }
+    input
+}
+
+fn overlays(ctx: &egui::Context, editor: &mut Editor, commands: &mut Vec<Command>) {
+    if let Some(error) = &editor.shader_error {
+        error_window(
+            ctx,
+            "Shader error: the last good shader keeps running",
+            error,
+            egui::Color32::from_rgb(255, 120, 100),
+        );
+    }
+    if let Some(error) = &editor.scene_error {
+        let mut open = true;
+        egui::Window::new("Scene file error: the current scene is kept")
+            .open(&mut open)
+            .anchor(egui::Align2::CENTER_BOTTOM, [0.0, -40.0])
+            .show(ctx, |ui| {
+                ui.label(
+                    egui::RichText::new(error)
+                        .monospace()
+                        .color(egui::Color32::LIGHT_RED),
+                );
+            });
+        if !open {
+            editor.scene_error = None;
+        }
+    }
+    if editor.pending_reload.is_some() {
+        egui::Modal::new(egui::Id::unique("reload dialog")).show(ctx, |ui| {
+            ui.heading("The scene file changed on disk");
+            ui.label("You have unsaved edits. Replace them with the file's new content?");
+            ui.horizontal(|ui| {
+                if ui.button("Reload from disk").clicked() {
+                    commands.push(Command::AcceptReload);
+                }
+                if ui.button("Keep my edits").clicked() {
+                    commands.push(Command::KeepEdits);
+                }
+            });
+        });
+    }
+    if editor.confirm_quit {
+        egui::Modal::new(egui::Id::unique("quit dialog")).show(ctx, |ui| {
+            ui.heading("Unsaved changes");
+            ui.label("Save the scene before quitting?");
+            ui.horizontal(|ui| {
+                if ui.button("Save and quit").clicked() {
+                    commands.push(Command::SaveAndQuit);
+                }
+                if ui.button("Quit without saving").clicked() {
+                    commands.push(Command::QuitNow);
+                }
+                if ui.button("Cancel").clicked() {
+                    editor.confirm_quit = false;
+                }
+            });
+        });
+    }
+    if editor.show_help {
+        egui::Window::new("Help")
+            .open(&mut editor.show_help)
+            .collapsible(false)
+            .show(ctx, |ui| {
+                egui::Grid::new("shortcuts").striped(true).show(ui, |ui| {
+                    for (keys, what) in SHORTCUTS {
+                        ui.strong(keys);
+                        ui.label(what);
+                        ui.end_row();
+                    }
+                });
+                ui.separator();
+                ui.label("Edit the WGSL files in shaders/ (or --shaders DIR) in any editor: they reload on save.");
+                ui.label("Edit the scene file in any editor: it reloads on save.");
+            });
+    }
+}
+
+/// A copyable error message in a monospace font, anchored at the top.
+fn error_window(ctx: &egui::Context, title: &str, text: &str, color: egui::Color32) {
+    egui::Window::new(title)
+        .anchor(egui::Align2::CENTER_TOP, [0.0, 10.0])
+        .collapsible(false)
+        .resizable(true)
+        .default_width(640.0)
+        .show(ctx, |ui| {
+            let mut copy = text.to_string();
+            ui.add(
+                egui::TextEdit::multiline(&mut copy)
+                    .font(egui::TextStyle::Monospace)
+                    .text_color(color)
+                    .desired_width(f32::INFINITY)
+                    .desired_rows(4),
+            );
+            if ui.button("Copy").clicked() {
+                ui.ctx().copy_text(text.to_string());
+            }
+        });
+}
