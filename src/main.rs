@@ -185,7 +185,8 @@ fn render(args: &RenderArgs) -> Result<(), Failure> {
                 .map_err(|e| InputError(e.to_string()))?;
         let gpu_time = renderer.render(&gpu, args.spp);
         println!(
-            "GPU time (submit to finish): {:.1} ms",
+            "GPU time ({}): {:.1} ms",
+            renderer.timing().describe(),
             gpu_time.as_secs_f64() * 1e3
         );
         renderer.read_image(&gpu)

@@ -417,7 +417,7 @@ impl App {
         let raw = gfx.egui.state.take_egui_input(&gfx.window);
         let status = Status {
             frame_time: gfx.viewport.last_frame_time(),
-            timing: "submit to done",
+            timing: gfx.viewport.timing().describe(),
             samples: gfx.viewport.samples(),
             resolution: gfx.viewport.traced_resolution(),
             adapter: gfx.gpu.adapter.get_info().name,

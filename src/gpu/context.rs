@@ -55,7 +55,8 @@ impl Gpu {
             .map_err(|e| GpuError::NoAdapter(e.to_string()))?;
         let (device, queue) = pollster::block_on(adapter.request_device(&wgpu::DeviceDescriptor {
             label: Some("raysandbox"),
-            required_features: wgpu::Features::empty(),
+            // Timestamp queries time frames where the adapter has them.
+            required_features: adapter.features() & super::timer::TIMER_FEATURES,
             required_limits: wgpu::Limits::default(),
             ..Default::default()
         }))

@@ -5,12 +5,14 @@ mod context;
 pub mod layout;
 mod offscreen;
 pub mod shaders;
+mod timer;
 mod tracer;
 mod viewport;
 
 pub use context::{Gpu, GpuError};
 pub use offscreen::{OffscreenRenderer, render_image};
 pub use shaders::{ShaderError, ShaderSource};
+pub use timer::{GpuTimer, Timing};
 pub use tracer::{
     Accumulator, FrameTarget, PipelineError, Pipelines, SceneBuffers, ShaderOptions, encode_frame,
 };

@@ -5,6 +5,7 @@ use std::time::{Duration, Instant};
 use super::context::Gpu;
 use super::layout::PackedScene;
 use super::shaders::ShaderSource;
+use super::timer::{GpuTimer, Timing};
 use super::tracer::{
     Accumulator, FrameTarget, PipelineError, Pipelines, SceneBuffers, ShaderOptions, encode_frame,
 };
@@ -24,6 +25,7 @@ pub struct OffscreenRenderer {
     scene: SceneBuffers,
     accum: Accumulator,
     target: wgpu::Texture,
+    timer: Option<GpuTimer>,
 }
 
 impl OffscreenRenderer {
@@ -58,13 +60,24 @@ impl OffscreenRenderer {
             scene,
             accum,
             target,
+            timer: GpuTimer::new(gpu),
         })
     }
 
+    /// How [`Self::render`] measures time.
+    pub fn timing(&self) -> Timing {
+        match self.timer {
+            Some(_) => Timing::GpuTimestamps,
+            None => Timing::SubmitToDone,
+        }
+    }
+
     /// Traces `spp` samples per pixel from scratch and waits for the GPU.
-    /// Returns the time from the first submission until the GPU finished.
+    /// Returns the GPU time of the work (see [`Self::timing`]: timestamps
+    /// where the adapter has them, else submission to completion).
     pub fn render(&mut self, gpu: &Gpu, spp: u32) -> Duration {
         let start = Instant::now();
+        let mut gpu_time = Duration::ZERO;
         self.accum.reset();
         let view = self.target.create_view(&Default::default());
         let target = FrameTarget {
@@ -76,6 +89,9 @@ impl OffscreenRenderer {
         while remaining > 0 {
             let batch = remaining.min(SAMPLES_PER_SUBMIT);
             let mut encoder = gpu.device.create_command_encoder(&Default::default());
+            if let Some(timer) = &self.timer {
+                timer.begin(&mut encoder);
+            }
             encode_frame(
                 &gpu.queue,
                 &mut encoder,
@@ -85,13 +101,22 @@ impl OffscreenRenderer {
                 batch,
                 &target,
             );
+            if let Some(timer) = &self.timer {
+                timer.end(&mut encoder);
+            }
             gpu.queue.submit([encoder.finish()]);
+            if let Some(time) = self.timer.as_ref().and_then(|t| t.read(gpu)) {
+                gpu_time += time;
+            }
             remaining -= batch;
         }
         gpu.device
             .poll(wgpu::PollType::wait_indefinitely())
             .expect("waiting for the GPU");
-        start.elapsed()
+        match self.timer {
+            Some(_) => gpu_time,
+            None => start.elapsed(),
+        }
     }
 
     /// Copies the last rendered image back to the CPU.

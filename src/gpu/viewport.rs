@@ -6,6 +6,7 @@ use std::time::{Duration, Instant};
 
 use super::context::Gpu;
 use super::layout::PackedScene;
+use super::timer::{GpuTimer, Timing};
 use super::tracer::{Accumulator, FrameTarget, Pipelines, SceneBuffers, encode_frame};
 use crate::scene::Scene;
 
@@ -31,9 +32,9 @@ pub struct Viewport {
     accum: Accumulator,
     /// Fraction of the window resolution that is traced (0.25..=1).
     scale: f32,
-    /// Wall time of the GPU work of the last frame that traced samples,
-    /// submit to completion.
+    /// GPU time of the last frame that traced samples (see [`Self::timing`]).
     last_frame_time: Option<Duration>,
+    timer: Option<GpuTimer>,
 }
 
 impl Viewport {
@@ -59,6 +60,7 @@ impl Viewport {
             accum,
             scale: 1.0,
             last_frame_time: None,
+            timer: GpuTimer::new(gpu),
         }
     }
 
@@ -135,7 +137,15 @@ impl Viewport {
         self.accum.size()
     }
 
-    /// Wall time of the GPU work of the last frame that traced samples.
+    /// How frame times are measured: timestamps where the adapter has them.
+    pub fn timing(&self) -> Timing {
+        match self.timer {
+            Some(_) => Timing::GpuTimestamps,
+            None => Timing::SubmitToDone,
+        }
+    }
+
+    /// GPU time of the last frame that traced samples.
     pub fn last_frame_time(&self) -> Option<Duration> {
         self.last_frame_time
     }
@@ -172,6 +182,10 @@ impl Viewport {
             .texture
             .create_view(&wgpu::TextureViewDescriptor::default());
         let mut encoder = gpu.device.create_command_encoder(&Default::default());
+        let timer = self.timer.as_ref().filter(|_| new_samples > 0);
+        if let Some(timer) = timer {
+            timer.begin(&mut encoder);
+        }
         encode_frame(
             &gpu.queue,
             &mut encoder,
@@ -185,6 +199,9 @@ impl Viewport {
                 size: (self.config.width, self.config.height),
             },
         );
+        if let Some(timer) = timer {
+            timer.end(&mut encoder);
+        }
         let mut buffers = overlay(&mut encoder, &view);
         buffers.push(encoder.finish());
         let start = Instant::now();
@@ -193,7 +210,10 @@ impl Viewport {
         // frames are only drawn on demand, so nothing else is waiting for us.
         let _ = gpu.device.poll(wgpu::PollType::wait_indefinitely());
         if new_samples > 0 {
-            self.last_frame_time = Some(start.elapsed());
+            self.last_frame_time = match timer {
+                Some(timer) => timer.read(gpu),
+                None => Some(start.elapsed()),
+            };
         }
         gpu.queue.present(frame);
         FrameStatus::Presented

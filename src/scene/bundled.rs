@@ -2,7 +2,7 @@
 //! viewer runs from any directory.
 
 /// (name, TOML text) of each bundled scene; the first is the default.
-const SCENES: [(&str, &str); 5] = [
+const SCENES: [(&str, &str); 6] = [
     ("whitted", include_str!("../../assets/scenes/whitted.toml")),
     ("cornell", include_str!("../../assets/scenes/cornell.toml")),
     (
@@ -16,6 +16,10 @@ const SCENES: [(&str, &str); 5] = [
     (
         "rotated_cubes",
         include_str!("../../assets/scenes/rotated_cubes.toml"),
+    ),
+    (
+        "many_spheres",
+        include_str!("../../assets/scenes/many_spheres.toml"),
     ),
 ];
 

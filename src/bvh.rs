@@ -1,0 +1,476 @@
+//! A bounding volume hierarchy over the bounded shapes of a scene (spheres
+//! and boxes; planes are infinite and stay outside), so that a ray meets a
+//! few dozen boxes instead of every shape. Built on the CPU whenever the
+//! scene changes, traversed by the reference here and by the shader in
+//! `shaders/intersect.wgsl` (the same tree, packed by `gpu::layout`).
+//!
+//! Construction is top-down with the surface area heuristic over binned
+//! centroids (Wald 2007, "On fast Construction of SAH-based Bounding Volume
+//! Hierarchies"): it costs O(n log n) and gives trees close to a full SAH sweep.
+
+use glam::DVec3;
+
+use crate::scene::Scene;
+
+/// An axis-aligned box.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Aabb {
+    pub min: DVec3,
+    pub max: DVec3,
+}
+
+impl Aabb {
+    const EMPTY: Aabb = Aabb {
+        min: DVec3::INFINITY,
+        max: DVec3::NEG_INFINITY,
+    };
+
+    fn union(self, other: Aabb) -> Aabb {
+        Aabb {
+            min: self.min.min(other.min),
+            max: self.max.max(other.max),
+        }
+    }
+
+    fn centroid(&self) -> DVec3 {
+        0.5 * (self.min + self.max)
+    }
+
+    /// Half the surface area (the SAH only needs ratios).
+    fn half_area(&self) -> f64 {
+        let e = (self.max - self.min).max(DVec3::ZERO);
+        e.x * e.y + e.y * e.z + e.z * e.x
+    }
+
+    /// Whether the ray `o + t d` meets the box for some `0 <= t < t_max`
+    /// (`inv_d` = [`safe_inverse`]`(d)`). An axis the ray runs parallel to is
+    /// decided by a branch, inside the slab or not, so a ray lying in a face
+    /// plane still counts as touching the box, and nothing forms 0 * inf.
+    /// The far bound is widened by `1 + 2 gamma(3)` as in pbrt-v4, so
+    /// rounding never makes a ray miss a box that holds its hit.
+    pub fn hit(&self, o: DVec3, d: DVec3, inv_d: DVec3, t_max: f64) -> bool {
+        let (mut near, mut far) = (0.0f64, t_max);
+        for i in 0..3 {
+            if d[i].abs() < PARALLEL {
+                if o[i] < self.min[i] || o[i] > self.max[i] {
+                    return false;
+                }
+                continue;
+            }
+            let t0 = (self.min[i] - o[i]) * inv_d[i];
+            let t1 = (self.max[i] - o[i]) * inv_d[i];
+            near = near.max(t0.min(t1));
+            far = far.min(t0.max(t1) * (1.0 + 2.0 * GAMMA_3));
+        }
+        near <= far
+    }
+}
+
+/// Direction components below this count as zero: the ray is parallel to
+/// that axis's slabs for any distance a scene can have.
+const PARALLEL: f64 = 1e-20;
+
+/// pbrt-v4's gamma(3) for f64.
+const GAMMA_3: f64 = 3.0 * (f64::EPSILON / 2.0) / (1.0 - 3.0 * (f64::EPSILON / 2.0));
+
+/// 1 / d per component, 0 where the ray is parallel to an axis (those
+/// components are never used, see [`Aabb::hit`]), so no inf is formed.
+pub fn safe_inverse(d: DVec3) -> DVec3 {
+    let inv = |x: f64| if x.abs() < PARALLEL { 0.0 } else { 1.0 / x };
+    DVec3::new(inv(d.x), inv(d.y), inv(d.z))
+}
+
+/// A bounded shape: an index into the scene's `spheres` or `cubes`.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
+pub enum Prim {
+    Sphere(u32),
+    Cube(u32),
+}
+
+/// A node: an inner node (`count == 0`) has its two children at `first` and
+/// `first + 1`; a leaf holds `prims[first .. first + count]`.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Node {
+    pub bounds: Aabb,
+    pub first: u32,
+    pub count: u32,
+}
+
+/// The hierarchy: `nodes[0]` is the root (absent when there are no bounded
+/// shapes).
+#[derive(Debug, Clone, PartialEq, Default)]
+pub struct Bvh {
+    pub nodes: Vec<Node>,
+    pub prims: Vec<Prim>,
+}
+
+/// Leaves hold at most this many shapes unless the tree is too deep.
+const MAX_LEAF: usize = 4;
+/// Deepest level; the shader's traversal stack holds `MAX_DEPTH + 1` nodes.
+pub const MAX_DEPTH: usize = 30;
+const BINS: usize = 16;
+/// Cost of visiting a node relative to intersecting one shape.
+const TRAVERSAL_COST: f64 = 1.0;
+
+/// The bounding box of each bounded shape of `scene`.
+pub fn prim_bounds(scene: &Scene) -> Vec<(Prim, Aabb)> {
+    let spheres = scene.spheres.iter().enumerate().map(|(i, s)| {
+        let r = DVec3::splat(s.radius);
+        (
+            Prim::Sphere(i as u32),
+            Aabb {
+                min: s.center - r,
+                max: s.center + r,
+            },
+        )
+    });
+    let cubes = scene.cubes.iter().enumerate().map(|(i, c)| {
+        // The box's extent along each world axis: |R| times the half size.
+        let m = c.rotation_matrix();
+        let h = c.size.edges() * 0.5;
+        let abs = glam::DMat3::from_cols(m.x_axis.abs(), m.y_axis.abs(), m.z_axis.abs());
+        let e = abs * h;
+        (
+            Prim::Cube(i as u32),
+            Aabb {
+                min: c.center - e,
+                max: c.center + e,
+            },
+        )
+    });
+    spheres.chain(cubes).collect()
+}
+
+impl Bvh {
+    /// Builds the hierarchy over the spheres and boxes of `scene`.
+    pub fn build(scene: &Scene) -> Bvh {
+        let mut items = prim_bounds(scene);
+        let mut bvh = Bvh::default();
+        if items.is_empty() {
+            return bvh;
+        }
+        bvh.nodes.push(Node {
+            bounds: Aabb::EMPTY,
+            first: 0,
+            count: 0,
+        });
+        bvh.split(0, &mut items, 0, 0);
+        bvh.prims = items.into_iter().map(|(p, _)| p).collect();
+        bvh
+    }
+
+    /// Fills node `node` with `items` (which start at `offset` in the final
+    /// prim list), splitting it where the SAH says it pays.
+    fn split(&mut self, node: usize, items: &mut [(Prim, Aabb)], offset: usize, depth: usize) {
+        let bounds = items.iter().fold(Aabb::EMPTY, |b, (_, a)| b.union(*a));
+        let leaf = Node {
+            bounds,
+            first: offset as u32,
+            count: items.len() as u32,
+        };
+        self.nodes[node] = leaf;
+        if items.len() <= 1 || depth >= MAX_DEPTH {
+            return;
+        }
+        let Some(mid) = sah_split(items, bounds)
+            .or_else(|| (items.len() > MAX_LEAF).then(|| median_split(items)))
+        else {
+            return;
+        };
+        let left = self.nodes.len();
+        self.nodes.push(leaf);
+        self.nodes.push(leaf);
+        self.nodes[node] = Node {
+            bounds,
+            first: left as u32,
+            count: 0,
+        };
+        let (a, b) = items.split_at_mut(mid);
+        self.split(left, a, offset, depth + 1);
+        self.split(left + 1, b, offset + mid, depth + 1);
+    }
+
+    /// Calls `visit(prim, t_max)` for every shape in a leaf whose box the ray
+    /// meets before `t_max`, nearest-first, where `visit` returns the new
+    /// `t_max` (smaller after a hit) or `None` to stop (any-hit queries).
+    pub fn traverse(
+        &self,
+        o: DVec3,
+        d: DVec3,
+        mut t_max: f64,
+        mut visit: impl FnMut(Prim, f64) -> Option<f64>,
+    ) {
+        if self.nodes.is_empty() {
+            return;
+        }
+        let inv_d = safe_inverse(d);
+        let mut stack = Vec::with_capacity(MAX_DEPTH + 1);
+        stack.push(0usize);
+        while let Some(index) = stack.pop() {
+            let node = &self.nodes[index];
+            if !node.bounds.hit(o, d, inv_d, t_max) {
+                continue;
+            }
+            if node.count > 0 {
+                for &prim in &self.prims[node.first as usize..(node.first + node.count) as usize] {
+                    match visit(prim, t_max) {
+                        Some(t) => t_max = t,
+                        None => return,
+                    }
+                }
+                continue;
+            }
+            // Visit the nearer child first: push it last.
+            let (a, b) = (node.first as usize, node.first as usize + 1);
+            let axis = longest_axis(node.bounds);
+            if d[axis] >= 0.0 {
+                stack.extend([b, a]);
+            } else {
+                stack.extend([a, b]);
+            }
+        }
+    }
+}
+
+fn longest_axis(b: Aabb) -> usize {
+    let e = b.max - b.min;
+    if e.x >= e.y && e.x >= e.z {
+        0
+    } else if e.y >= e.z {
+        1
+    } else {
+        2
+    }
+}
+
+/// The binned SAH split: sorts `items` into two groups along the longest
+/// axis of the centroids and returns the size of the first, or `None` when
+/// keeping them in one leaf is cheaper (or they cannot be told apart).
+fn sah_split(items: &mut [(Prim, Aabb)], bounds: Aabb) -> Option<usize> {
+    let centroids = items.iter().fold(Aabb::EMPTY, |b, (_, a)| {
+        let c = a.centroid();
+        b.union(Aabb { min: c, max: c })
+    });
+    let axis = longest_axis(centroids);
+    let (lo, hi) = (centroids.min[axis], centroids.max[axis]);
+    if hi <= lo {
+        return None;
+    }
+    let bin_of =
+        |a: &Aabb| (((a.centroid()[axis] - lo) / (hi - lo) * BINS as f64) as usize).min(BINS - 1);
+    let mut bins = [(Aabb::EMPTY, 0usize); BINS];
+    for (_, a) in items.iter() {
+        let bin = &mut bins[bin_of(a)];
+        *bin = (bin.0.union(*a), bin.1 + 1);
+    }
+    // Cost of splitting after bin i: sweep from the left and from the right.
+    let mut right = [(0.0, 0usize); BINS];
+    let mut acc = (Aabb::EMPTY, 0usize);
+    for i in (1..BINS).rev() {
+        acc = (acc.0.union(bins[i].0), acc.1 + bins[i].1);
+        right[i] = (acc.0.half_area(), acc.1);
+    }
+    let mut best = (f64::INFINITY, 0usize);
+    let mut left = (Aabb::EMPTY, 0usize);
+    for i in 0..BINS - 1 {
+        left = (left.0.union(bins[i].0), left.1 + bins[i].1);
+        let (right_area, right_count) = right[i + 1];
+        if left.1 == 0 || right_count == 0 {
+            continue;
+        }
+        let cost = left.0.half_area() * left.1 as f64 + right_area * right_count as f64;
+        if cost < best.0 {
+            best = (cost, i);
+        }
+    }
+    let split_cost = TRAVERSAL_COST + best.0 / bounds.half_area().max(f64::MIN_POSITIVE);
+    if !best.0.is_finite() || (split_cost >= items.len() as f64 && items.len() <= MAX_LEAF) {
+        return None;
+    }
+    let mid = partition(items, |a| bin_of(a) <= best.1);
+    (mid > 0 && mid < items.len()).then_some(mid)
+}
+
+/// Splits at the median centroid along the longest axis (for shapes the
+/// bins cannot separate, e.g. many at the same place).
+fn median_split(items: &mut [(Prim, Aabb)]) -> usize {
+    let bounds = items.iter().fold(Aabb::EMPTY, |b, (_, a)| b.union(*a));
+    let axis = longest_axis(bounds);
+    let mid = items.len() / 2;
+    items.select_nth_unstable_by(mid, |a, b| {
+        a.1.centroid()[axis].total_cmp(&b.1.centroid()[axis])
+    });
+    mid
+}
+
+/// Moves the items for which `left` holds to the front; returns their count.
+fn partition(items: &mut [(Prim, Aabb)], left: impl Fn(&Aabb) -> bool) -> usize {
+    let mut mid = 0;
+    for i in 0..items.len() {
+        if left(&items[i].1) {
+            items.swap(i, mid);
+            mid += 1;
+        }
+    }
+    mid
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn spheres_scene(n: usize, seed: u64) -> Scene {
+        let mut text = String::from("[camera]\nfrom = [0, 0, 50]\nto = [0, 0, 0]\n");
+        let mut x = seed;
+        let mut rand = || {
+            // xorshift: deterministic positions without a crate.
+            x ^= x << 13;
+            x ^= x >> 7;
+            x ^= x << 17;
+            (x % 10_000) as f64 / 100.0 - 50.0
+        };
+        for _ in 0..n {
+            text += &format!(
+                "[[spheres]]\ncenter = [{}, {}, {}]\nradius = {}\n",
+                rand(),
+                rand(),
+                rand(),
+                0.2 + rand().abs() / 100.0
+            );
+        }
+        for i in 0..n / 4 {
+            text += &format!(
+                "[[cubes]]\ncenter = [{}, {}, {}]\nsize = [1, 2, 0.5]\nrotation = [{i}, {}, 10]\n",
+                rand(),
+                rand(),
+                rand(),
+                i * 7
+            );
+        }
+        Scene::from_toml_str(&text, None).expect("valid scene")
+    }
+
+    #[test]
+    fn every_shape_is_in_exactly_one_leaf_inside_its_node_bounds() {
+        let scene = spheres_scene(500, 7);
+        let bvh = Bvh::build(&scene);
+        let bounds: std::collections::HashMap<Prim, Aabb> =
+            prim_bounds(&scene).into_iter().collect();
+        let mut seen = std::collections::HashSet::new();
+        let mut stack = vec![(0usize, 0usize)];
+        while let Some((index, depth)) = stack.pop() {
+            let node = bvh.nodes[index];
+            assert!(depth <= MAX_DEPTH);
+            if node.count == 0 {
+                for child in [node.first as usize, node.first as usize + 1] {
+                    let c = bvh.nodes[child].bounds;
+                    assert!(
+                        c.min.cmpge(node.bounds.min).all() && c.max.cmple(node.bounds.max).all()
+                    );
+                    stack.push((child, depth + 1));
+                }
+            } else {
+                for prim in &bvh.prims[node.first as usize..(node.first + node.count) as usize] {
+                    let b = bounds[prim];
+                    assert!(
+                        b.min.cmpge(node.bounds.min).all() && b.max.cmple(node.bounds.max).all()
+                    );
+                    assert!(seen.insert(*prim), "{prim:?} in two leaves");
+                }
+            }
+        }
+        assert_eq!(seen.len(), scene.spheres.len() + scene.cubes.len());
+    }
+
+    #[test]
+    fn rotated_box_bounds_contain_its_corners() {
+        let scene = spheres_scene(8, 3);
+        for (prim, b) in prim_bounds(&scene) {
+            if let Prim::Cube(i) = prim {
+                let c = &scene.cubes[i as usize];
+                let m = c.rotation_matrix();
+                let h = c.size.edges() * 0.5;
+                for corner in 0..8 {
+                    let s = DVec3::new(
+                        if corner & 1 == 0 { -1.0 } else { 1.0 },
+                        if corner & 2 == 0 { -1.0 } else { 1.0 },
+                        if corner & 4 == 0 { -1.0 } else { 1.0 },
+                    );
+                    let p = c.center + m * (s * h);
+                    assert!(p.cmpge(b.min - 1e-12).all() && p.cmple(b.max + 1e-12).all());
+                }
+            }
+        }
+    }
+
+    #[test]
+    fn traversal_visits_every_shape_a_ray_can_hit() {
+        // Brute force: every shape whose box the ray meets must be visited.
+        let scene = spheres_scene(300, 11);
+        let bvh = Bvh::build(&scene);
+        let bounds = prim_bounds(&scene);
+        for k in 0..200 {
+            let a = k as f64 * 0.731;
+            let o = DVec3::new(a.sin() * 60.0, a.cos() * 40.0, 60.0);
+            let d =
+                (DVec3::new((a * 3.1).sin() * 20.0, (a * 1.7).cos() * 20.0, 0.0) - o).normalize();
+            let inv = safe_inverse(d);
+            let mut visited = std::collections::HashSet::new();
+            bvh.traverse(o, d, f64::MAX, |p, t| {
+                visited.insert(p);
+                Some(t)
+            });
+            for (p, b) in &bounds {
+                if b.hit(o, d, inv, f64::MAX) {
+                    assert!(visited.contains(p), "ray {k} missed {p:?}");
+                }
+            }
+        }
+    }
+
+    #[test]
+    fn axis_parallel_rays_and_origins_on_slab_planes_give_no_nan() {
+        let b = Aabb {
+            min: DVec3::splat(-1.0),
+            max: DVec3::splat(1.0),
+        };
+        let (d, inv) = (DVec3::X, safe_inverse(DVec3::X));
+        assert!(b.hit(DVec3::new(-5.0, 0.0, 0.0), d, inv, f64::MAX));
+        assert!(
+            b.hit(DVec3::new(-5.0, 1.0, 1.0), d, inv, f64::MAX),
+            "along an edge"
+        );
+        assert!(!b.hit(DVec3::new(-5.0, 1.5, 0.0), d, inv, f64::MAX));
+        assert!(
+            !b.hit(DVec3::new(-5.0, 0.0, 0.0), d, inv, 3.0),
+            "beyond t_max"
+        );
+        assert!(b.hit(DVec3::ZERO, -d, safe_inverse(-d), 0.5), "from inside");
+    }
+
+    #[test]
+    fn shapes_at_one_place_still_build_a_shallow_tree() {
+        let mut text = String::from("[camera]\nfrom = [0, 0, 5]\nto = [0, 0, 0]\n");
+        for _ in 0..1000 {
+            text += "[[spheres]]\ncenter = [1, 2, 3]\nradius = 1\n";
+        }
+        let bvh = Bvh::build(&Scene::from_toml_str(&text, None).unwrap());
+        assert_eq!(bvh.prims.len(), 1000);
+        assert!(
+            bvh.nodes.len() < 1000,
+            "median splits keep it a tree: {}",
+            bvh.nodes.len()
+        );
+    }
+
+    #[test]
+    fn empty_scene_has_no_nodes() {
+        let scene =
+            Scene::from_toml_str("[camera]\nfrom = [0, 0, 5]\nto = [0, 0, 0]\n", None).unwrap();
+        let bvh = Bvh::build(&scene);
+        assert!(bvh.nodes.is_empty());
+        bvh.traverse(DVec3::ZERO, DVec3::Z, 1.0, |_, _| {
+            panic!("nothing to visit")
+        });
+    }
+}
