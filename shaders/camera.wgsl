@@ -12,13 +12,31 @@ struct Basis {
     w: vec3<f32>,
 }
 
+/// v / |v| without overflow or underflow: v is first divided by its largest
+/// component, so that the squares inside length() are between 1 and 3 even for
+/// |v| ~ 1e-30 or 1e30 (where the plain normalize() would make 0 / 0 or
+/// inf / inf). The zero vector, and one whose every component is flushed to
+/// zero, gives `fallback`.
+fn normalize_or(v: vec3<f32>, fallback: vec3<f32>) -> vec3<f32> {
+    let m = max3(abs(v));
+    if !(m > 0.0) {
+        return fallback;
+    }
+    return normalize(v / m);
+}
+
 /// w points backwards (away from what we look at), u to the right, v up.
-/// When `up` is (nearly) parallel to w, cross(up, w) vanishes: replace up by
-/// the world axis along which w is smallest (x, y, z first on a tie).
+/// When `up` is (nearly) parallel to w (|cross(up, w)| < 1e-6 |up|, spec
+/// section 1), cross(up, w) vanishes: replace up by the world axis along which
+/// w is smallest (x, y, z first on a tie). Looking straight up or down, as at
+/// the poles of an orbit, w = -+y and the axis is x. `up` is normalised first,
+/// so the test reads |cross(up, w)| < 1e-6 and holds for any length of up;
+/// eye = look_at (which validation forbids, but two points closer than an f32
+/// ulp round to the same value) gives w = +z. No input makes a NaN.
 fn camera_basis(eye: vec3<f32>, look_at: vec3<f32>, up_in: vec3<f32>) -> Basis {
-    let w = normalize(eye - look_at);
-    var up = up_in;
-    if length(cross(up, w)) < 1e-6 * length(up) {
+    let w = normalize_or(eye - look_at, vec3(0.0, 0.0, 1.0));
+    var up = normalize_or(up_in, vec3(0.0));
+    if length(cross(up, w)) < 1e-6 {
         let a = abs(w);
         if a.x <= a.y && a.x <= a.z {
             up = vec3(1.0, 0.0, 0.0);
@@ -71,7 +89,9 @@ fn camera_ray(pixel: vec2<f32>, lens: vec2<f32>) -> Ray {
         // Thin lens: aim from the lens point at P = e + focus_distance * to_film.
         let lens_offset = globals.aperture * (lens.x * b.u + lens.y * b.v);
         let dir = globals.focus_distance * to_film - lens_offset;
-        return Ray(globals.eye + lens_offset, normalize(dir));
+        // Its -w component is -focus_distance, so dir is never zero; the
+        // scaled normalisation keeps a tiny focus distance finite too.
+        return Ray(globals.eye + lens_offset, normalize_or(dir, -b.w));
     }
     return Ray(globals.eye, normalize(to_film));
 }

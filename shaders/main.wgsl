@@ -67,3 +67,15 @@ fn fs_display(@builtin(position) frag: vec4<f32>) -> @location(0) vec4<f32> {
     // target is exact whatever rounding the hardware uses.
     return vec4(round(srgb_encode(c) * 255.0) / 255.0, 1.0);
 }
+
+/// The id/depth pass (accuracy measurements, `raysandbox stress`): for the
+/// ray through the pixel centre and the lens centre, what it hits first:
+/// (kind, index, bits of t, 1), kind = KIND_NONE where it hits nothing.
+/// Rendered into an Rgba32Uint target; the reference computes the same with
+/// `reference::pick`, and the two are compared pixel by pixel.
+@fragment
+fn fs_id(@builtin(position) frag: vec4<f32>) -> @location(0) vec4<u32> {
+    let pixel = vec2<f32>(floor(frag.xy)) + vec2(0.5);
+    let hit = hit_scene(camera_ray(pixel, vec2(0.0)), T_FAR);
+    return vec4(hit.kind, hit.index, bitcast<u32>(hit.t), 1u);
+}

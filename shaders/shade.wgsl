@@ -1,6 +1,6 @@
 // shade.wgsl: Whitted shading (spec sections 3 and 4).
 
-/// Moves p off the surface along n by 128 units in the last place of the
+/// Moves p off the surface along n by 8 units in the last place of the
 /// scale of the numbers involved: max(|p|_max, the shape's error_scale, 1/32).
 /// A computed hit point is off the surface by a few rounding errors of that
 /// scale, and so is the next ray's test against the same surface; starting
@@ -9,27 +9,59 @@
 /// Binder's (Ray Tracing Gems ch. 6: a fixed number of ulps, a floor near the
 /// origin), with the ulps measured at the shape's scale rather than at each
 /// coordinate of p: on a huge ground sphere the error near y = 0 comes from
-/// the centre's magnitude, not from p.y. docs/implementation.md has the f64 twin.
+/// the centre's magnitude, not from p.y. 8: the property tests find 2 the
+/// smallest that never self-intersects (tests/intersect_props.rs), and 8
+/// leaves room for GPU division and square roots a few ulps off
+/// (docs/accuracy.md). docs/implementation.md has the f64 twin.
 fn offset_ray(p: vec3<f32>, n: vec3<f32>, error_scale: f32) -> vec3<f32> {
-    const OFFSET_ULPS: f32 = 128.0 * 1.1920929e-7;   // 128 * 2^-23
+    if !ROBUST {
+        return p + NAIVE_OFFSET * n;
+    }
+    const OFFSET_ULPS: f32 = 8.0 * 1.1920929e-7;   // 8 * 2^-23
     const MIN_SCALE: f32 = 1.0 / 32.0;
     let scale = max(max3(abs(p)), max(error_scale, MIN_SCALE));
     return p + (OFFSET_ULPS * scale) * n;
 }
 
+/// The textbook offset of secondary and shadow rays (ROBUST = false): a
+/// fixed distance, too large for a scene a thousand times smaller and too
+/// small for one a thousand times larger.
+const NAIVE_OFFSET: f32 = 1e-3;
+
 /// Albedo at p: the material colour, or the checker's second colour on odd
-/// cells. q steps 0.001 s into the surface so a plane lying on a cell
-/// boundary does not flicker between two cells.
+/// cells. The spec looks the cell up at q = p - 0.001 s n, a small step into
+/// the surface, so that a plane lying on a cell boundary does not flicker
+/// between two cells. Far from the origin that step is smaller than the f32
+/// spacing of p (at 1e5 it is 0.0005 against an ulp of 0.008), p - 0.001 s n
+/// rounds back to p, and a floor on a boundary takes the cell on the wrong
+/// side everywhere. `checker_cell` evaluates floor(p / s - 0.001 n) exactly
+/// from p / s instead.
 fn albedo_at(m: Material, p: vec3<f32>, n: vec3<f32>) -> vec3<f32> {
     if m.checker_size <= 0.0 {
         return m.color;
     }
     let s = m.checker_size;
-    let cell = vec3<i32>(floor((p - 0.001 * s * n) / s));
+    var cell: vec3<i32>;
+    if ROBUST {
+        cell = checker_cell(p / s, 0.001 * n);
+    } else {
+        cell = vec3<i32>(floor((p - 0.001 * s * n) / s));
+    }
     if ((cell.x + cell.y + cell.z) & 1) == 0 {
         return m.color;
     }
     return m.checker_color;
+}
+
+/// floor(x - step) for |step| < 1, without forming x - step: with
+/// k = floor(x) and f = x - k (exact: x and k are close, Sterbenz), it is k,
+/// minus 1 when f < step (step > 0), plus 1 when f >= 1 + step (step < 0).
+fn checker_cell(x: vec3<f32>, step: vec3<f32>) -> vec3<i32> {
+    let k = floor(x);
+    let f = x - k;
+    let down = (step > vec3(0.0)) & (f < step);
+    let up = (step < vec3(0.0)) & (f >= vec3(1.0) + step);
+    return vec3<i32>(k) - select(vec3(0), vec3(1), down) + select(vec3(0), vec3(1), up);
 }
 
 /// The exact unpolarised Fresnel reflectance of a dielectric interface from
@@ -70,14 +102,21 @@ fn shade_local(hit: Hit, ns: vec3<f32>, d: vec3<f32>, m: Material, albedo: vec3<
     let shadow_origin = offset_ray(hit.point, ns, hit.error_scale);
     for (var i = 0u; i < globals.light_count; i++) {
         let light = lights[i];
-        let l = normalize(light.position - hit.point);
+        // A light at p (or nearer than length() can resolve) has no
+        // direction and lights nothing: never divide by a zero length.
+        let from_p = light.position - hit.point;
+        let len = length(from_p);
+        if len <= 0.0 {
+            continue;
+        }
+        let l = from_p / len;
         let n_dot_l = dot(ns, l);
         if n_dot_l <= 0.0 {
             continue;
         }
         let to_light = light.position - shadow_origin;
         let dist = length(to_light);
-        if occluded(Ray(shadow_origin, to_light / dist), dist) {
+        if dist <= 0.0 || occluded(Ray(shadow_origin, to_light / dist), dist) {
             continue;
         }
         var highlight = 0.0;

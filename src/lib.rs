@@ -7,3 +7,4 @@ pub mod compare;
 pub mod gpu;
 pub mod reference;
 pub mod scene;
+pub mod stress;

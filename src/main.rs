@@ -33,6 +33,8 @@ enum Command {
     },
     /// Render a scene to a PNG file, on the GPU or with the CPU reference.
     Render(RenderArgs),
+    /// Numerical stress suite: GPU (robust and naive) against the reference.
+    Stress(raysandbox::stress::StressArgs),
 }
 
 #[derive(clap::Args, Default)]
@@ -122,6 +124,10 @@ fn main() -> ExitCode {
         Command::View(args) => view(args),
         Command::Check { scene } => check(&scene),
         Command::Render(args) => render(&args),
+        Command::Stress(args) => raysandbox::stress::run(&args).map_err(|e| match e {
+            raysandbox::stress::StressError::Input(m) => Failure::Input(InputError(m)),
+            raysandbox::stress::StressError::Runtime(m) => Failure::Runtime(RuntimeError(m)),
+        }),
     };
     match result {
         Ok(()) => ExitCode::SUCCESS,

@@ -2,6 +2,7 @@
 //! and offscreen rendering with readback. Knows scenes, not windows or UI.
 
 mod context;
+mod id_pass;
 pub mod layout;
 mod offscreen;
 pub mod shaders;
@@ -10,7 +11,8 @@ mod tracer;
 mod viewport;
 
 pub use context::{Gpu, GpuError};
-pub use offscreen::{OffscreenRenderer, render_image};
+pub use id_pass::{FirstHit, IdRenderer};
+pub use offscreen::{OffscreenRenderer, read_texture, render_image};
 pub use shaders::{ShaderError, ShaderSource};
 pub use timer::{GpuTimer, Timing};
 pub use tracer::{

@@ -126,7 +126,7 @@ impl OffscreenRenderer {
 }
 
 /// Copies an `Rgba8Unorm` texture back to the CPU and waits for it.
-pub(super) fn read_texture(gpu: &Gpu, texture: &wgpu::Texture) -> image::RgbaImage {
+pub fn read_texture(gpu: &Gpu, texture: &wgpu::Texture) -> image::RgbaImage {
     let (width, height) = (texture.width(), texture.height());
     let padded_row = (width * 4).next_multiple_of(wgpu::COPY_BYTES_PER_ROW_ALIGNMENT);
     let readback = gpu.device.create_buffer(&wgpu::BufferDescriptor {

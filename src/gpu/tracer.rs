@@ -32,7 +32,7 @@ impl Default for ShaderOptions {
 
 impl ShaderOptions {
     /// The `(name, value)` pairs for `PipelineCompilationOptions::constants`.
-    fn constants(&self) -> Vec<(&'static str, f64)> {
+    pub(super) fn constants(&self) -> Vec<(&'static str, f64)> {
         vec![("ROBUST", f64::from(u8::from(self.robust)))]
     }
 }
@@ -165,7 +165,7 @@ impl Pipelines {
 
 /// Binding 0: the globals uniform; 1..=5: spheres, planes, cubes, materials,
 /// lights as read-only storage buffers (the order of `scene.wgsl`).
-fn scene_layout_entries() -> [wgpu::BindGroupLayoutEntry; 6] {
+pub(super) fn scene_layout_entries() -> [wgpu::BindGroupLayoutEntry; 6] {
     std::array::from_fn(|i| wgpu::BindGroupLayoutEntry {
         binding: i as u32,
         visibility: wgpu::ShaderStages::FRAGMENT,

@@ -49,13 +49,16 @@ impl Camera {
 /// tie), the axis most perpendicular to `w`. Looking straight down or up, `w`
 /// is ±y and the replacement is x.
 ///
+/// As in the shader (`camera_basis` in `shaders/camera.wgsl`), `up` is
+/// normalised first, so the spec's test `|cross(up, w)| < 1e-6 |up|` reads
+/// `|cross(up, w)| < 1e-6`, and both normalisations divide by the largest
+/// component first ([`normalize_or`]), so that no length over- or underflows.
 /// Validation rejects `from == to` and `up == 0`; they still give a basis
 /// here (`w = +z`, resp. the replaced `up`) so that no NaN can ever arise.
 pub fn camera_basis(from: DVec3, to: DVec3, up: DVec3) -> (DVec3, DVec3, DVec3) {
-    let w = (from - to).try_normalize().unwrap_or(DVec3::Z);
-    let cross_len = up.cross(w).length();
-    // The second test only matters for up = 0, where the first reads 0 < 0.
-    let up = if cross_len < 1e-6 * up.length() || cross_len == 0.0 {
+    let w = normalize_or(from - to, DVec3::Z);
+    let up = normalize_or(up, DVec3::ZERO);
+    let up = if up.cross(w).length() < 1e-6 {
         smallest_axis(w)
     } else {
         up
@@ -63,6 +66,19 @@ pub fn camera_basis(from: DVec3, to: DVec3, up: DVec3) -> (DVec3, DVec3, DVec3) 
     let u = up.cross(w).normalize();
     let v = w.cross(u);
     (u, v, w)
+}
+
+/// `v / |v|`, computed as `(v / m) / |v / m|` with `m` the largest `|v_i|`,
+/// so that the squares inside the length neither overflow (`|v| ~ 1e200`)
+/// nor underflow (`|v| ~ 1e-200`); `fallback` for the zero vector (the
+/// shader's `normalize_or`).
+pub fn normalize_or(v: DVec3, fallback: DVec3) -> DVec3 {
+    let m = v.abs().max_element();
+    if m > 0.0 && m.is_finite() {
+        (v / m).normalize()
+    } else {
+        fallback
+    }
 }
 
 /// The unit axis of the smallest `|w_i|`, the first in x, y, z order on a tie.
@@ -98,11 +114,14 @@ pub fn camera_ray(cam: &Camera, width: u32, height: u32, px: f64, py: f64, lens:
     let x = (h * w_px / h_px) * (px / w_px - 0.5);
     let y = h * (0.5 - py / h_px);
     let film = x * cam.u + y * cam.v - cam.w;
+    if cam.aperture <= 0.0 {
+        // The pinhole, as the shader's branch: never scaled by the focus
+        // distance, which is 0 when eye and target coincide after rounding.
+        return Ray::new(cam.eye, film);
+    }
     let lens_offset = cam.aperture * (lens.x * cam.u + lens.y * cam.v);
-    Ray::new(
-        cam.eye + lens_offset,
-        cam.focus_distance * film - lens_offset,
-    )
+    let dir = cam.focus_distance * film - lens_offset;
+    Ray::new(cam.eye + lens_offset, normalize_or(dir, -cam.w))
 }
 
 #[cfg(test)]
@@ -200,6 +219,40 @@ mod tests {
                 "{from} {to} {up}"
             );
         }
+    }
+
+    #[test]
+    fn basis_survives_tiny_and_huge_distances() {
+        // Eye and target 1e-200 or 1e200 apart: |from - to|^2 under- or
+        // overflows, the scaled normalisation does not.
+        for scale in [1e-200, 1e-30, 1.0, 1e30, 1e200] {
+            let from = DVec3::new(0.3, -0.4, 1.2) * scale;
+            let (u, v, w) = camera_basis(from, DVec3::ZERO, DVec3::Y);
+            assert!(
+                close(w, DVec3::new(0.3, -0.4, 1.2).normalize()),
+                "{scale}: {w}"
+            );
+            assert!((u.length() - 1.0).abs() < 1e-15 && (v.length() - 1.0).abs() < 1e-15);
+            assert!(u.dot(w).abs() < 1e-15);
+        }
+        // A tiny up is as good as a unit one.
+        let (u, _, _) = camera_basis(DVec3::Z, DVec3::ZERO, DVec3::Y * 1e-300);
+        assert!(close(u, DVec3::X));
+        assert_eq!(normalize_or(DVec3::ZERO, DVec3::X), DVec3::X);
+        assert_eq!(
+            normalize_or(DVec3::new(0.0, 5e-324, 0.0), DVec3::X),
+            DVec3::Y
+        );
+    }
+
+    #[test]
+    fn pinhole_ray_does_not_need_a_focus_distance() {
+        // Eye and target equal (as after rounding to f32): focus distance 0,
+        // the pinhole ray still points along -w = -z.
+        let mut cam = camera(45.0);
+        cam.focus_distance = 0.0;
+        let ray = camera_ray(&cam, 3, 3, 1.5, 1.5, DVec2::ZERO);
+        assert!(close(ray.dir, -DVec3::Z), "{}", ray.dir);
     }
 
     fn camera(fov: f64) -> Camera {

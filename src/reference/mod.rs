@@ -16,9 +16,9 @@
 //! Here: the scene prepared for tracing, and the renderers over it.
 
 mod camera;
-mod intersect;
+pub mod intersect;
 mod output;
-mod ray;
+pub mod ray;
 mod sampling;
 mod shade;
 
@@ -27,7 +27,7 @@ use rayon::prelude::*;
 
 use crate::scene::{Material, Scene};
 
-pub use camera::camera_basis;
+pub use camera::{camera_basis, normalize_or};
 pub use intersect::ShapeId;
 pub use output::encode_srgb8;
 
@@ -61,6 +61,24 @@ pub struct PreparedScene {
     max_depth: u32,
     min_weight: f64,
     exposure: f64,
+    /// The robust intersection routines and scale-aware offsets (true), or
+    /// the lecture's textbook versions ([`ReferenceOptions::robust`]).
+    robust: bool,
+}
+
+/// Variants of the reference, the twin of the shader's `gpu::ShaderOptions`.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
+pub struct ReferenceOptions {
+    /// true: the robust routines (docs/implementation.md); false: the naive
+    /// quadratic, the plain slab test, the plane without re-projection and a
+    /// fixed offset of 1e-3, as the shader with `ROBUST = false`.
+    pub robust: bool,
+}
+
+impl Default for ReferenceOptions {
+    fn default() -> Self {
+        ReferenceOptions { robust: true }
+    }
 }
 
 impl PreparedScene {
@@ -68,6 +86,11 @@ impl PreparedScene {
     /// have rejected falls back to the default material instead of
     /// panicking.)
     pub fn new(scene: &Scene) -> Self {
+        Self::with_options(scene, &ReferenceOptions::default())
+    }
+
+    /// Prepares a validated scene for the variant `options` chooses.
+    pub fn with_options(scene: &Scene, options: &ReferenceOptions) -> Self {
         let materials = std::iter::once(Material::default())
             .chain(scene.materials.values().cloned())
             .collect();
@@ -108,6 +131,7 @@ impl PreparedScene {
             max_depth: scene.render.max_depth,
             min_weight: scene.render.min_weight,
             exposure: scene.render.exposure,
+            robust: options.robust,
         }
     }
 
@@ -186,6 +210,37 @@ pub fn render_rgba8(scene: &Scene, width: u32, height: u32, spp: u32) -> image::
     let prepared = PreparedScene::new(scene);
     let linear = render_linear(&prepared, width, height, spp);
     output::to_rgba8(&linear, width, height, prepared.exposure)
+}
+
+/// Renders a prepared scene to 8-bit sRGB, as [`render_rgba8`] does.
+pub fn render_prepared_rgba8(
+    scene: &PreparedScene,
+    width: u32,
+    height: u32,
+    spp: u32,
+) -> image::RgbaImage {
+    let linear = render_linear(scene, width, height, spp);
+    output::to_rgba8(&linear, width, height, scene.exposure)
+}
+
+/// The id/depth image: for the ray through the centre of every pixel (and
+/// the lens centre) the shape it hits first and the distance `t`, row-major
+/// with the top row first; the twin of the shader's `fs_id` pass.
+pub fn first_hits(scene: &PreparedScene, width: u32, height: u32) -> Vec<Option<(ShapeId, f64)>> {
+    let mut hits = vec![None; width as usize * height as usize];
+    if hits.is_empty() {
+        return hits;
+    }
+    hits.par_chunks_mut(width as usize)
+        .enumerate()
+        .for_each(|(j, row)| {
+            for (i, hit) in row.iter_mut().enumerate() {
+                let (x, y) = (i as f64 + 0.5, j as f64 + 0.5);
+                let ray = camera_ray(&scene.camera, width, height, x, y, DVec2::ZERO);
+                *hit = nearest_hit(scene, &ray).map(|(shape, h)| (shape, h.t));
+            }
+        });
+    hits
 }
 
 /// The shape that the ray through pixel coordinates `(x, y)` of a
@@ -466,6 +521,87 @@ mod tests {
         // At the left edge: beside the cube and the sphere, on the back plane.
         assert_eq!(pick(&p, 100, 50, 0.0, 25.0).unwrap().0, ShapeId::Plane(0));
         assert_eq!(pick(&p, 0, 50, 0.0, 25.0), None);
+    }
+
+    #[test]
+    fn first_hits_are_the_picks_of_the_pixel_centres() {
+        let s = scene(
+            r#"
+            [[spheres]]
+            center = [0, 0, 0]
+            radius = 1
+            [[cubes]]
+            center = [0, 0, 2]
+            size = 0.5
+            "#,
+        );
+        let p = PreparedScene::new(&s);
+        let hits = first_hits(&p, 9, 7);
+        assert_eq!(hits.len(), 63);
+        for j in 0..7 {
+            for i in 0..9 {
+                let picked = pick(&p, 9, 7, f64::from(i) + 0.5, f64::from(j) + 0.5);
+                assert_eq!(
+                    hits[j as usize * 9 + i as usize].map(|h| h.0),
+                    picked.map(|p| p.0)
+                );
+            }
+        }
+        assert_eq!(hits[3 * 9 + 4].unwrap().0, ShapeId::Cube(0));
+        assert_eq!(hits[3 * 9 + 4].unwrap().1, 2.75);
+        assert!(first_hits(&p, 0, 7).is_empty());
+    }
+
+    #[test]
+    fn naive_variant_breaks_where_the_robust_one_does_not() {
+        // A glass ball of radius 2e-4 under a light: the fixed offset of
+        // 1e-3 starts the refracted ray beyond the ball's far side, so the
+        // naive image differs; the robust one is the image of the same
+        // scene 1000 times larger.
+        let text = |k: f64| {
+            format!(
+                "camera = {{ from = [0, 0, {}], to = [0, 0, 0], fov = 30 }}
+                render = {{ background = [0.2, 0.4, 0.8] }}
+                lights = [{{ position = [{}, {}, {}] }}]
+                materials.glass = {{ color = [1, 1, 1], diffuse = 0.2, transparency = 0.8 }}
+                [[spheres]]
+                center = [0, 0, 0]
+                radius = {}
+                material = \"glass\"
+                [[planes]]
+                point = [0, {}, 0]
+                normal = [0, 1, 0]",
+                1e-3 * k,
+                k,
+                k,
+                k,
+                2e-4 * k,
+                -3e-4 * k
+            )
+        };
+        let small: Scene = toml::from_str(&text(1.0)).unwrap();
+        let big: Scene = toml::from_str(&text(1000.0)).unwrap();
+        let robust = |s: &Scene| render_linear(&PreparedScene::new(s), 24, 16, 1);
+        let naive = |s: &Scene| {
+            let options = ReferenceOptions { robust: false };
+            render_linear(&PreparedScene::with_options(s, &options), 24, 16, 1)
+        };
+        // Mean over the pixels of the largest channel difference.
+        let diff = |a: &[DVec3], b: &[DVec3]| {
+            a.iter()
+                .zip(b)
+                .map(|(x, y)| (*x - *y).abs().max_element())
+                .sum::<f64>()
+                / a.len() as f64
+        };
+        let (same, naive_big, naive_small) = (
+            diff(&robust(&small), &robust(&big)),
+            diff(&naive(&big), &robust(&big)),
+            diff(&naive(&small), &robust(&small)),
+        );
+        assert!(same < 1e-9, "{same}");
+        assert!(naive_big < 0.001, "1e-3 is small against 0.2: {naive_big}");
+        assert!(naive_small > 0.01, "{naive_small}");
     }
 
     #[test]

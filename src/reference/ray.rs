@@ -63,6 +63,13 @@ pub fn offset_ray(p: DVec3, n: DVec3, error_scale: f64) -> DVec3 {
     p + (OFFSET_ULPS * scale) * n
 }
 
+/// The textbook offset (the naive variant, `ReferenceOptions::robust =
+/// false`, the shader's `NAIVE_OFFSET`): a fixed `1e-3` along `n`, whatever
+/// the size of the scene.
+pub fn offset_ray_naive(p: DVec3, n: DVec3) -> DVec3 {
+    p + 1e-3 * n
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;

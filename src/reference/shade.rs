@@ -6,7 +6,7 @@ use glam::DVec3;
 
 use super::PreparedScene;
 use super::intersect::{Hit, ShapeId, any_hit, nearest_hit};
-use super::ray::{Ray, offset_ray};
+use super::ray::{Ray, offset_ray, offset_ray_naive};
 use crate::scene::Material;
 
 /// The radiance arriving along `ray`: the background on a miss, else the
@@ -45,7 +45,7 @@ fn shade(
     let entering = d.dot(hit.n) < 0.0;
     // The shading normal faces the ray, whichever side was hit.
     let ns = if entering { hit.n } else { -hit.n };
-    let albedo = albedo(m, hit.p, hit.n);
+    let albedo = albedo(m, hit.p, hit.n, scene.robust);
     let mut radiance = local(scene, m, albedo, hit, ns, d);
 
     if depth >= scene.max_depth {
@@ -57,13 +57,13 @@ fn shade(
 
     let reflected_weight = weight * split.wr;
     if traced(reflected_weight) {
-        let child = Ray::new(offset_ray(hit.p, ns, hit.error_scale), reflect(d, ns));
+        let child = Ray::new(offset(scene, hit, ns), reflect(d, ns));
         radiance += split.wr * trace(scene, &child, depth + 1, reflected_weight);
     }
     if let Some(dir) = split.transmitted {
         let refracted_weight = weight * split.wt * albedo.max_element();
         if traced(refracted_weight) {
-            let child = Ray::new(offset_ray(hit.p, -ns, hit.error_scale), dir);
+            let child = Ray::new(offset(scene, hit, -ns), dir);
             radiance += split.wt * albedo * trace(scene, &child, depth + 1, refracted_weight);
         }
     }
@@ -112,10 +112,21 @@ fn local(
 /// starts at `p` offset to the lit side `ns` and is blocked by any hit with
 /// `0 < t < |L - o|` (classic Whitted shadows: glass blocks fully too).
 fn in_shadow(scene: &PreparedScene, hit: &Hit, ns: DVec3, light: DVec3) -> bool {
-    let origin = offset_ray(hit.p, ns, hit.error_scale);
+    let origin = offset(scene, hit, ns);
     let distance = (light - origin).length();
     // Nothing fits strictly between a light and itself.
     distance > 0.0 && any_hit(scene, &Ray::new(origin, light - origin), distance)
+}
+
+/// The origin of a secondary or shadow ray leaving `hit` to the side `n`:
+/// the scale-aware [`offset_ray`], or the fixed textbook offset in the naive
+/// variant.
+fn offset(scene: &PreparedScene, hit: &Hit, n: DVec3) -> DVec3 {
+    if scene.robust {
+        offset_ray(hit.p, n, hit.error_scale)
+    } else {
+        offset_ray_naive(hit.p, n)
+    }
 }
 
 /// The albedo at `p`: the material colour, or the checker's second colour on
@@ -126,17 +137,45 @@ fn in_shadow(scene: &PreparedScene, hit: &Hit, ns: DVec3, light: DVec3) -> bool 
 /// cell boundary (the floor y = 0 with cells of size 1) does not flicker
 /// between the cells above and below it. Both sides of a plane step the same
 /// way and show the same pattern.
-pub fn albedo(m: &Material, p: DVec3, n: DVec3) -> DVec3 {
+///
+/// As in the shader, `floor(p / s - 0.001 n)` is evaluated by [`checker_cell`]
+/// without forming the sum, whose step is lost in the rounding of `p / s`
+/// far from the origin; the naive variant forms it as the spec writes it.
+pub fn albedo(m: &Material, p: DVec3, n: DVec3, robust: bool) -> DVec3 {
     let Some(checker) = &m.checker else {
         return m.color;
     };
     let s = checker.size;
-    let cell = ((p - 0.001 * s * n) / s).floor();
+    let cell = if robust {
+        checker_cell(p / s, 0.001 * n)
+    } else {
+        ((p - 0.001 * s * n) / s)
+            .floor()
+            .to_array()
+            .map(|c| c as i64)
+    };
     // Integer sum as the shader does; wrapping only matters beyond 2^62 cells.
-    let sum = (cell.x as i64)
-        .wrapping_add(cell.y as i64)
-        .wrapping_add(cell.z as i64);
+    let sum = cell[0].wrapping_add(cell[1]).wrapping_add(cell[2]);
     if sum & 1 == 0 { m.color } else { checker.color }
+}
+
+/// `floor(x - step)` per component for `|step| < 1`, exactly: with
+/// `k = floor(x)` and `f = x - k` (exact), `k - 1` where `f < step`
+/// (`step > 0`), `k + 1` where `f >= 1 + step` (`step < 0`), else `k`.
+pub fn checker_cell(x: DVec3, step: DVec3) -> [i64; 3] {
+    let k = x.floor();
+    let f = x - k;
+    std::array::from_fn(|i| {
+        // In integers: k - 1 may not be representable next to a huge k.
+        let k_i = k[i] as i64;
+        if step[i] > 0.0 && f[i] < step[i] {
+            k_i - 1
+        } else if step[i] < 0.0 && f[i] >= 1.0 + step[i] {
+            k_i + 1
+        } else {
+            k_i
+        }
+    })
 }
 
 /// How a hit divides its light between the mirror and the dielectric parts.
@@ -373,23 +412,70 @@ mod tests {
             ..Material::default()
         };
         // Cells of size 2: (0.5, 0.5, 0.5) is cell (0, 0, 0), even.
-        assert_eq!(albedo(&m, DVec3::splat(0.5), DVec3::Y), DVec3::ONE);
-        assert_eq!(albedo(&m, DVec3::new(2.5, 0.5, 0.5), DVec3::Y), DVec3::ZERO);
-        // Negative coordinates: floor(-0.25) = -1, odd.
+        assert_eq!(albedo(&m, DVec3::splat(0.5), DVec3::Y, true), DVec3::ONE);
         assert_eq!(
-            albedo(&m, DVec3::new(-0.5, 0.5, 0.5), DVec3::Y),
+            albedo(&m, DVec3::new(2.5, 0.5, 0.5), DVec3::Y, true),
             DVec3::ZERO
         );
-        assert_eq!(albedo(&m, DVec3::new(-2.5, 0.5, 0.5), DVec3::Y), DVec3::ONE);
+        // Negative coordinates: floor(-0.25) = -1, odd.
+        assert_eq!(
+            albedo(&m, DVec3::new(-0.5, 0.5, 0.5), DVec3::Y, true),
+            DVec3::ZERO
+        );
+        assert_eq!(
+            albedo(&m, DVec3::new(-2.5, 0.5, 0.5), DVec3::Y, true),
+            DVec3::ONE
+        );
         // On the cell boundary y = 0 with outward normal +y, q lies below:
         // cell y = -1. With normal -y, above: cell y = 0.
-        assert_eq!(albedo(&m, DVec3::new(0.5, 0.0, 0.5), DVec3::Y), DVec3::ZERO);
-        assert_eq!(albedo(&m, DVec3::new(0.5, 0.0, 0.5), -DVec3::Y), DVec3::ONE);
+        assert_eq!(
+            albedo(&m, DVec3::new(0.5, 0.0, 0.5), DVec3::Y, true),
+            DVec3::ZERO
+        );
+        assert_eq!(
+            albedo(&m, DVec3::new(0.5, 0.0, 0.5), -DVec3::Y, true),
+            DVec3::ONE
+        );
         // Without a checker: the colour.
         assert_eq!(
-            albedo(&Material::default(), DVec3::splat(-7.3), DVec3::Y),
+            albedo(&Material::default(), DVec3::splat(-7.3), DVec3::Y, true),
             DVec3::splat(0.8)
         );
+        // Far from the origin the step of 0.001 s is below the spacing of
+        // p (1e17 has an ulp of 16): the spec's q = p - 0.001 s n rounds back
+        // to p and the naive formula lands in the cell above the boundary;
+        // checker_cell still steps into the floor.
+        let far = DVec3::new(0.5, 1e17, 0.5);
+        let m1 = Material {
+            checker: Some(Checker {
+                color: DVec3::ZERO,
+                size: 1.0,
+            }),
+            ..m.clone()
+        };
+        assert_eq!(
+            albedo(&m1, far, DVec3::Y, true),
+            DVec3::ZERO,
+            "cell 1e17 - 1: odd"
+        );
+        assert_eq!(
+            albedo(&m1, far, DVec3::Y, false),
+            DVec3::ONE,
+            "cell 1e17: even"
+        );
+    }
+
+    #[test]
+    fn checker_cell_is_floor_of_x_minus_step() {
+        for x in [
+            -2.0, -1.9995, -0.5, 0.0, 0.0004, 0.001, 0.3, 0.9995, 0.99999, 1.0, 7.0,
+        ] {
+            for step in [-0.001f64, 0.0, 0.001] {
+                let expected = (x - step).floor() as i64;
+                let cell = checker_cell(DVec3::splat(x), DVec3::splat(step));
+                assert_eq!(cell, [expected; 3], "x {x} step {step}");
+            }
+        }
     }
 
     /// Over a 320 x 180 image of a scene with one convex shape and one

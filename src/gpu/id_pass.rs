@@ -1,0 +1,225 @@
+//! The id/depth pass: which shape the ray through each pixel centre hits
+//! first, and at which distance. `fs_id` of `shaders/main.wgsl` writes
+//! `(kind, index, bits of t, 1)` into an `Rgba32Uint` target that is read
+//! back here. The accuracy measurements (`raysandbox stress`) compare it with
+//! the reference's `first_hits`, to tell a shape that is wrongly hit from a
+//! colour that is merely a little off.
+
+use wgpu::util::DeviceExt;
+
+use super::context::Gpu;
+use super::layout::PackedScene;
+use super::shaders::ShaderSource;
+use super::tracer::{PipelineError, ShaderOptions, scene_layout_entries};
+use crate::scene::Scene;
+
+const ID_FORMAT: wgpu::TextureFormat = wgpu::TextureFormat::Rgba32Uint;
+
+/// What the ray through one pixel centre hits first.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct FirstHit {
+    /// The shader's `KIND_*`: 0 nothing, 1 sphere, 2 plane, 3 cube.
+    pub kind: u32,
+    /// Index into the scene's spheres, planes or cubes.
+    pub index: u32,
+    /// Distance along the (unit) ray; the shader's `T_FAR` on a miss.
+    pub t: f32,
+}
+
+impl FirstHit {
+    pub const NONE: u32 = 0;
+    pub const SPHERE: u32 = 1;
+    pub const PLANE: u32 = 2;
+    pub const CUBE: u32 = 3;
+}
+
+/// The `fs_id` pipeline, built once and run on any scene at any size.
+pub struct IdRenderer {
+    pipeline: wgpu::RenderPipeline,
+    layout: wgpu::BindGroupLayout,
+}
+
+impl IdRenderer {
+    /// Validates `source` and builds the pass. `options` sets the pipeline
+    /// constants (robust or naive intersection).
+    pub fn new(
+        gpu: &Gpu,
+        source: &ShaderSource,
+        options: &ShaderOptions,
+    ) -> Result<Self, PipelineError> {
+        source.validate()?;
+        let device = &gpu.device;
+        let scope = device.push_error_scope(wgpu::ErrorFilter::Validation);
+        let renderer = Self::build(device, source, options);
+        match pollster::block_on(scope.pop()) {
+            Some(error) => Err(PipelineError::Wgpu(error.to_string())),
+            None => Ok(renderer),
+        }
+    }
+
+    fn build(device: &wgpu::Device, source: &ShaderSource, options: &ShaderOptions) -> Self {
+        let module = device.create_shader_module(wgpu::ShaderModuleDescriptor {
+            label: Some("raysandbox id pass"),
+            source: wgpu::ShaderSource::Wgsl(source.text().into()),
+        });
+        let layout = device.create_bind_group_layout(&wgpu::BindGroupLayoutDescriptor {
+            label: Some("scene (id pass)"),
+            entries: &scene_layout_entries(),
+        });
+        let pipeline_layout = device.create_pipeline_layout(&wgpu::PipelineLayoutDescriptor {
+            label: Some("id pass"),
+            bind_group_layouts: &[Some(&layout)],
+            immediate_size: 0,
+        });
+        let constants = options.constants();
+        let pipeline = device.create_render_pipeline(&wgpu::RenderPipelineDescriptor {
+            label: Some("fs_id"),
+            layout: Some(&pipeline_layout),
+            vertex: wgpu::VertexState {
+                module: &module,
+                entry_point: Some("vs_fullscreen"),
+                compilation_options: Default::default(),
+                buffers: &[],
+            },
+            primitive: wgpu::PrimitiveState::default(),
+            depth_stencil: None,
+            multisample: wgpu::MultisampleState::default(),
+            fragment: Some(wgpu::FragmentState {
+                module: &module,
+                entry_point: Some("fs_id"),
+                compilation_options: wgpu::PipelineCompilationOptions {
+                    constants: &constants,
+                    ..Default::default()
+                },
+                targets: &[Some(wgpu::ColorTargetState {
+                    format: ID_FORMAT,
+                    blend: None,
+                    write_mask: wgpu::ColorWrites::ALL,
+                })],
+            }),
+            multiview_mask: None,
+            cache: None,
+        });
+        IdRenderer { pipeline, layout }
+    }
+
+    /// Runs the pass on `scene` at `width x height` and reads the result
+    /// back: one [`FirstHit`] per pixel, row-major, the top row first.
+    pub fn render(&self, gpu: &Gpu, scene: &Scene, width: u32, height: u32) -> Vec<FirstHit> {
+        let device = &gpu.device;
+        let packed = PackedScene::new(scene, width, height);
+        let buffer = |label, contents: &[u8], usage| {
+            device.create_buffer_init(&wgpu::util::BufferInitDescriptor {
+                label: Some(label),
+                contents,
+                usage,
+            })
+        };
+        let storage = wgpu::BufferUsages::STORAGE;
+        let buffers = [
+            buffer(
+                "globals",
+                bytemuck::bytes_of(&packed.globals),
+                wgpu::BufferUsages::UNIFORM,
+            ),
+            buffer("spheres", bytemuck::cast_slice(&packed.spheres), storage),
+            buffer("planes", bytemuck::cast_slice(&packed.planes), storage),
+            buffer("cubes", bytemuck::cast_slice(&packed.cubes), storage),
+            buffer(
+                "materials",
+                bytemuck::cast_slice(&packed.materials),
+                storage,
+            ),
+            buffer("lights", bytemuck::cast_slice(&packed.lights), storage),
+        ];
+        let entries: Vec<wgpu::BindGroupEntry> = buffers
+            .iter()
+            .enumerate()
+            .map(|(i, b)| wgpu::BindGroupEntry {
+                binding: i as u32,
+                resource: b.as_entire_binding(),
+            })
+            .collect();
+        let bind_group = device.create_bind_group(&wgpu::BindGroupDescriptor {
+            label: Some("scene (id pass)"),
+            layout: &self.layout,
+            entries: &entries,
+        });
+        let target = device.create_texture(&wgpu::TextureDescriptor {
+            label: Some("first hits"),
+            size: wgpu::Extent3d {
+                width,
+                height,
+                depth_or_array_layers: 1,
+            },
+            mip_level_count: 1,
+            sample_count: 1,
+            dimension: wgpu::TextureDimension::D2,
+            format: ID_FORMAT,
+            usage: wgpu::TextureUsages::RENDER_ATTACHMENT | wgpu::TextureUsages::COPY_SRC,
+            view_formats: &[],
+        });
+        let view = target.create_view(&Default::default());
+        let mut encoder = device.create_command_encoder(&Default::default());
+        {
+            let mut pass = encoder.begin_render_pass(&wgpu::RenderPassDescriptor {
+                label: Some("id pass"),
+                color_attachments: &[Some(wgpu::RenderPassColorAttachment {
+                    view: &view,
+                    depth_slice: None,
+                    resolve_target: None,
+                    ops: wgpu::Operations {
+                        load: wgpu::LoadOp::Clear(wgpu::Color::TRANSPARENT),
+                        store: wgpu::StoreOp::Store,
+                    },
+                })],
+                depth_stencil_attachment: None,
+                timestamp_writes: None,
+                occlusion_query_set: None,
+                multiview_mask: None,
+            });
+            pass.set_pipeline(&self.pipeline);
+            pass.set_bind_group(0, &bind_group, &[]);
+            pass.draw(0..3, 0..1);
+        }
+        let row_bytes = width * 16;
+        let padded_row = row_bytes.next_multiple_of(wgpu::COPY_BYTES_PER_ROW_ALIGNMENT);
+        let readback = device.create_buffer(&wgpu::BufferDescriptor {
+            label: Some("first hits readback"),
+            size: u64::from(padded_row) * u64::from(height),
+            usage: wgpu::BufferUsages::COPY_DST | wgpu::BufferUsages::MAP_READ,
+            mapped_at_creation: false,
+        });
+        encoder.copy_texture_to_buffer(
+            target.as_image_copy(),
+            wgpu::TexelCopyBufferInfo {
+                buffer: &readback,
+                layout: wgpu::TexelCopyBufferLayout {
+                    offset: 0,
+                    bytes_per_row: Some(padded_row),
+                    rows_per_image: Some(height),
+                },
+            },
+            target.size(),
+        );
+        gpu.queue.submit([encoder.finish()]);
+        let slice = readback.slice(..);
+        slice.map_async(wgpu::MapMode::Read, |result| {
+            result.expect("mapping the readback buffer")
+        });
+        device
+            .poll(wgpu::PollType::wait_indefinitely())
+            .expect("waiting for the GPU");
+        let data = slice.get_mapped_range().expect("mapped readback buffer");
+        let mut hits = Vec::with_capacity(width as usize * height as usize);
+        for row in data.chunks(padded_row as usize) {
+            let texels: &[[u32; 4]] = bytemuck::cast_slice(&row[..row_bytes as usize]);
+            hits.extend(texels.iter().map(|&[kind, index, t, _]| FirstHit {
+                kind,
+                index,
+                t: f32::from_bits(t),
+            }));
+        }
+        hits
+    }
+}

@@ -1,0 +1,286 @@
+//! The stress scenes of `assets/scenes/stress/` (embedded, so the command
+//! runs from any directory), their series, and the scene transformations the
+//! measurements need: rounding to f32, translating and scaling.
+
+use glam::DVec3;
+
+use crate::scene::{CubeSize, Scene};
+
+/// Declares the embedded scene files: `(name, TOML text)`.
+macro_rules! stress_scenes {
+    ($($name:literal),* $(,)?) => {
+        /// Every stress scene: `(file stem, TOML text)`, in report order.
+        pub const SCENES: &[(&str, &str)] = &[
+            $(($name, include_str!(concat!("../../assets/scenes/stress/", $name, ".toml")))),*
+        ];
+    };
+}
+
+stress_scenes!(
+    "small_sphere_1e2",
+    "small_sphere_1e3",
+    "small_sphere_1e4",
+    "small_sphere_1e5",
+    "small_sphere_1e6",
+    "small_sphere_oblique_1e2",
+    "small_sphere_oblique_1e3",
+    "small_sphere_oblique_1e4",
+    "small_sphere_oblique_1e5",
+    "small_sphere_oblique_1e6",
+    "ground_sphere_1e4",
+    "ground_sphere_1e5",
+    "grazing_light_1deg",
+    "grazing_light_0.1deg",
+    "grazing_light_0.01deg",
+    "contact_gaps",
+    "far_box_1e4",
+    "facing_mirrors",
+    "glass_critical_angle",
+    "box_axis_rays",
+    "camera_straight_down",
+    "camera_straight_up",
+    "camera_target_1e-6",
+    "camera_target_1e-8",
+    "translate_1e0",
+    "translate_1e1",
+    "translate_1e2",
+    "translate_1e3",
+    "translate_1e4",
+    "translate_1e5",
+    "translate_1e6",
+    "scale_1e-3",
+    "scale_1e-2",
+    "scale_1e-1",
+    "scale_1e0",
+    "scale_1e1",
+    "scale_1e2",
+    "scale_1e3",
+);
+
+/// The TOML text of a stress scene.
+pub fn text(name: &str) -> Option<&'static str> {
+    SCENES.iter().find(|(n, _)| *n == name).map(|(_, t)| *t)
+}
+
+/// The stress scene `name`, parsed and validated.
+pub fn load(name: &str) -> Scene {
+    let text = text(name).unwrap_or_else(|| panic!("no stress scene {name}"));
+    Scene::from_toml_str(text, None).unwrap_or_else(|e| panic!("{name}: {e}"))
+}
+
+/// A scene that is one member of a series: `series_1e<k>` (e.g.
+/// `translate_1e4`: series `translate`, k = 4).
+pub fn series_member(name: &str) -> Option<(&str, i32)> {
+    let (series, power) = name.rsplit_once("_1e")?;
+    Some((series, power.parse().ok()?))
+}
+
+/// The series of the stress scenes, with what the exponent k means.
+pub const SERIES: &[(&str, &str)] = &[
+    (
+        "small_sphere",
+        "sphere r = 0.1 seen from D = 10^k, camera on an axis",
+    ),
+    (
+        "small_sphere_oblique",
+        "sphere r = 0.1 seen from D = 10^k, oblique camera",
+    ),
+    ("translate", "whole scene translated by 10^k (1, 1, 1)"),
+    ("scale", "whole scene scaled by 10^k"),
+];
+
+/// Rounds every number of the scene to the nearest f32, as the GPU buffers
+/// receive them, so that a reference render of the result measures the
+/// shader's arithmetic and not the rounding of its input. Plane normals are
+/// rounded as given (unit length in f64); the reference normalises them
+/// again, which moves them by less than an f32 ulp.
+pub fn round_to_f32(scene: &Scene) -> Scene {
+    let r = |x: f64| x as f32 as f64;
+    let v = |x: DVec3| x.as_vec3().as_dvec3();
+    let mut s = scene.clone();
+    let render = &mut s.render;
+    render.min_weight = r(render.min_weight);
+    render.background = v(render.background);
+    render.ambient = v(render.ambient);
+    render.exposure = r(render.exposure);
+    let cam = &mut s.camera;
+    cam.from = v(cam.from);
+    cam.to = v(cam.to);
+    cam.up = v(cam.up);
+    cam.fov = r(cam.fov);
+    cam.aperture = r(cam.aperture);
+    cam.focus_distance = cam.focus_distance.map(r);
+    for light in &mut s.lights {
+        light.position = v(light.position);
+        light.color = v(light.color);
+        light.intensity = r(light.intensity);
+    }
+    for m in s.materials.values_mut() {
+        m.color = v(m.color);
+        m.diffuse = r(m.diffuse);
+        m.specular = r(m.specular);
+        m.shininess = r(m.shininess);
+        m.mirror = r(m.mirror);
+        m.transparency = r(m.transparency);
+        m.ior = r(m.ior);
+        if let Some(c) = &mut m.checker {
+            c.color = v(c.color);
+            c.size = r(c.size);
+        }
+    }
+    for sphere in &mut s.spheres {
+        sphere.center = v(sphere.center);
+        sphere.radius = r(sphere.radius);
+    }
+    for plane in &mut s.planes {
+        plane.point = v(plane.point);
+        plane.normal = v(plane.normal);
+    }
+    for cube in &mut s.cubes {
+        cube.center = v(cube.center);
+        cube.size = CubeSize::PerAxis(v(cube.size.edges()));
+        cube.rotation = v(cube.rotation);
+    }
+    s
+}
+
+/// The scene moved by `offset`: camera, lights and shapes (in f64).
+pub fn translated(scene: &Scene, offset: DVec3) -> Scene {
+    let mut s = scene.clone();
+    s.camera.from += offset;
+    s.camera.to += offset;
+    for light in &mut s.lights {
+        light.position += offset;
+    }
+    for sphere in &mut s.spheres {
+        sphere.center += offset;
+    }
+    for plane in &mut s.planes {
+        plane.point += offset;
+    }
+    for cube in &mut s.cubes {
+        cube.center += offset;
+    }
+    s
+}
+
+/// The scene scaled by `factor` about the origin: every position and length,
+/// the checker cells and the lens included, so that the image stays the same
+/// (lights do not fall off with distance).
+pub fn scaled(scene: &Scene, factor: f64) -> Scene {
+    let mut s = scene.clone();
+    s.camera.from *= factor;
+    s.camera.to *= factor;
+    s.camera.aperture *= factor;
+    s.camera.focus_distance = s.camera.focus_distance.map(|d| d * factor);
+    for light in &mut s.lights {
+        light.position *= factor;
+    }
+    for m in s.materials.values_mut() {
+        if let Some(c) = &mut m.checker {
+            c.size *= factor;
+        }
+    }
+    for sphere in &mut s.spheres {
+        sphere.center *= factor;
+        sphere.radius *= factor;
+    }
+    for plane in &mut s.planes {
+        plane.point *= factor;
+    }
+    for cube in &mut s.cubes {
+        cube.center *= factor;
+        cube.size = match cube.size {
+            CubeSize::Uniform(e) => CubeSize::Uniform(e * factor),
+            CubeSize::PerAxis(e) => CubeSize::PerAxis(e * factor),
+        };
+    }
+    s
+}
+
+/// `10^k` as the literal `1e<k>` reads, exactly as in the scene files.
+pub fn power_of_ten(k: i32) -> f64 {
+    format!("1e{k}").parse().expect("a float literal")
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn every_stress_file_is_embedded_and_valid() {
+        let dir = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("assets/scenes/stress");
+        let mut on_disk: Vec<String> = std::fs::read_dir(dir)
+            .unwrap()
+            .filter_map(|e| {
+                let path = e.unwrap().path();
+                (path.extension()? == "toml")
+                    .then(|| path.file_stem().unwrap().to_string_lossy().into_owned())
+            })
+            .collect();
+        on_disk.sort();
+        let mut embedded: Vec<String> = SCENES.iter().map(|(n, _)| n.to_string()).collect();
+        embedded.sort();
+        assert_eq!(
+            embedded, on_disk,
+            "embed every file of assets/scenes/stress"
+        );
+        for (name, text) in SCENES {
+            let first = text.lines().next().unwrap_or_default();
+            assert!(first.starts_with('#'), "{name}: say what it provokes");
+            load(name);
+        }
+    }
+
+    /// The translated and scaled files are the base scene moved by exactly
+    /// 10^k (the same f64 arithmetic), so that the series measures nothing
+    /// but the size of the numbers.
+    #[test]
+    fn series_files_are_the_base_transformed() {
+        let base = load("scale_1e0");
+        for (name, _) in SCENES {
+            let Some((series, k)) = series_member(name) else {
+                continue;
+            };
+            let expected = match series {
+                "translate" => translated(&base, DVec3::splat(power_of_ten(k))),
+                "scale" => scaled(&base, power_of_ten(k)),
+                _ => continue,
+            };
+            let mut actual = load(name);
+            // The files spell a cube size as a number or a list; compare edges.
+            for (a, e) in actual.cubes.iter_mut().zip(&expected.cubes) {
+                if a.size.edges() == e.size.edges() {
+                    a.size = e.size;
+                }
+            }
+            assert_eq!(actual, expected, "{name}");
+        }
+    }
+
+    #[test]
+    fn series_names() {
+        assert_eq!(series_member("translate_1e4"), Some(("translate", 4)));
+        assert_eq!(series_member("scale_1e-3"), Some(("scale", -3)));
+        assert_eq!(
+            series_member("small_sphere_oblique_1e5"),
+            Some(("small_sphere_oblique", 5))
+        );
+        assert_eq!(series_member("contact_gaps"), None);
+        assert_eq!(
+            series_member("camera_target_1e-6"),
+            Some(("camera_target", -6))
+        );
+    }
+
+    #[test]
+    fn rounding_to_f32_is_idempotent_and_close() {
+        let s = load("translate_1e6");
+        let r = round_to_f32(&s);
+        assert_eq!(round_to_f32(&r), r);
+        let moved = (r.spheres[0].center - s.spheres[0].center)
+            .abs()
+            .max_element();
+        assert!(moved > 0.0 && moved <= 0.0625 / 2.0, "{moved}");
+    }
+}
