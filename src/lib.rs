@@ -6,5 +6,6 @@ pub mod bvh;
 pub mod compare;
 pub mod gpu;
 pub mod reference;
+pub mod sandbox;
 pub mod scene;
 pub mod stress;

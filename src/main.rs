@@ -35,6 +35,10 @@ enum Command {
     Render(RenderArgs),
     /// Numerical stress suite: GPU (robust and naive) against the reference.
     Stress(raysandbox::stress::StressArgs),
+    /// Run your own fragment shader file (WGSL, GLSL Sandbox or Shadertoy
+    /// style), reloaded on save, with sliders from its annotations; or
+    /// render it headless (--render, --frames). See docs/sandbox.md.
+    Shader(raysandbox::sandbox::ShaderArgs),
 }
 
 #[derive(clap::Args, Default)]
@@ -127,6 +131,10 @@ fn main() -> ExitCode {
         Command::Stress(args) => raysandbox::stress::run(&args).map_err(|e| match e {
             raysandbox::stress::StressError::Input(m) => Failure::Input(InputError(m)),
             raysandbox::stress::StressError::Runtime(m) => Failure::Runtime(RuntimeError(m)),
+        }),
+        Command::Shader(args) => raysandbox::sandbox::run(&args).map_err(|e| match e {
+            raysandbox::sandbox::SandboxError::Input(m) => Failure::Input(InputError(m)),
+            raysandbox::sandbox::SandboxError::Runtime(m) => Failure::Runtime(RuntimeError(m)),
         }),
     };
     match result {

@@ -3,9 +3,13 @@
 //! scene file. The app owns the [`Document`] and tells the GPU viewport what
 //! changed; drawing is done by `gpu` (the image) and egui-wgpu (the UI).
 
+mod controls;
 mod document;
 mod orbit;
+mod overlay;
 mod panel;
+mod sandbox_window;
+mod shell;
 mod ui;
 mod watch;
 
@@ -16,16 +20,19 @@ use std::time::{Duration, Instant};
 use winit::application::ApplicationHandler;
 use winit::event::WindowEvent;
 use winit::event_loop::{ActiveEventLoop, ControlFlow, EventLoop, EventLoopProxy};
-use winit::window::{Fullscreen, Window, WindowId};
+use winit::window::WindowId;
 
 use crate::gpu::{FrameStatus, Gpu, Pipelines, ShaderOptions, ShaderSource, Viewport};
 use crate::reference;
+use crate::sandbox::SourceParams;
 use crate::scene::bundled;
 use document::Document;
 use panel::PanelAction;
+use shell::{EguiLayer, EventLog};
 use ui::{Command, Editor, Status, ViewInput};
 
 pub use document::write_atomically;
+pub use sandbox_window::{SandboxOptions, run_sandbox};
 
 /// How the viewer was started (the `view` subcommand's options).
 #[derive(Debug, Clone, Default)]
@@ -65,8 +72,9 @@ pub enum ViewerError {
 /// Things other threads tell the event loop.
 pub enum UserEvent {
     FileChanged(watch::Change),
-    /// Pipelines built in the background from reloaded shaders.
-    PipelinesBuilt(Box<Result<Pipelines, String>>),
+    /// Pipelines built in the background from reloaded shaders (or changed
+    /// shader parameters); the number tells builds apart.
+    PipelinesBuilt(u64, Box<Result<Pipelines, String>>),
 }
 
 /// Opens the viewer and runs until the window closes.
@@ -86,6 +94,8 @@ pub fn run(options: ViewerOptions) -> Result<(), ViewerError> {
     }
     .and_then(|s| s.validate().map(|_| s))
     .map_err(|e| ViewerError::Shader(e.to_string()))?;
+    let shader_params =
+        SourceParams::read(&shaders).map_err(|e| ViewerError::Shader(e.to_string()))?;
 
     let event_loop = EventLoop::<UserEvent>::with_user_event()
         .build()
@@ -98,6 +108,8 @@ pub fn run(options: ViewerOptions) -> Result<(), ViewerError> {
         editor: Editor::default(),
         shader_dir,
         shaders,
+        shader_params,
+        builds: Builds::default(),
         gfx: None,
         watch: None,
         fatal: None,
@@ -118,19 +130,21 @@ pub fn run(options: ViewerOptions) -> Result<(), ViewerError> {
     }
 }
 
+/// Pipeline builds on other threads: only the newest one is used, and a
+/// parameter change during a build starts one more when it is done.
+#[derive(Debug, Default)]
+struct Builds {
+    started: u64,
+    running: bool,
+    again: bool,
+}
+
 /// The window and everything that draws into it.
 struct Graphics {
-    window: Arc<Window>,
+    window: Arc<winit::window::Window>,
     gpu: Gpu,
     viewport: Viewport,
     egui: EguiLayer,
-}
-
-/// egui's context, its winit input state and its wgpu renderer.
-struct EguiLayer {
-    ctx: egui::Context,
-    state: egui_winit::State,
-    renderer: egui_wgpu::Renderer,
 }
 
 struct App {
@@ -139,8 +153,13 @@ struct App {
     doc: Document,
     editor: Editor,
     shader_dir: Option<PathBuf>,
-    /// The shader source of the pipelines in use (the last good one).
+    /// The shader source of the pipelines in use (the last good one), as
+    /// read from the files.
     shaders: ShaderSource,
+    /// Its annotated constants: the "Shader parameters" of the panel, whose
+    /// values are written into the source the pipelines are built from.
+    shader_params: SourceParams,
+    builds: Builds,
     gfx: Option<Graphics>,
     watch: Option<watch::Watch>,
     /// Why the viewer had to stop, reported after the loop ends.
@@ -174,7 +193,7 @@ impl ApplicationHandler<UserEvent> for App {
         match event {
             UserEvent::FileChanged(watch::Change::Shaders) => self.reload_shaders(),
             UserEvent::FileChanged(watch::Change::SceneFile) => self.reload_scene_file(),
-            UserEvent::PipelinesBuilt(result) => self.pipelines_built(*result),
+            UserEvent::PipelinesBuilt(build, result) => self.pipelines_built(build, *result),
         }
         self.request_redraw();
     }
@@ -212,36 +231,12 @@ impl ApplicationHandler<UserEvent> for App {
 
 impl App {
     fn create_graphics(&mut self, event_loop: &ActiveEventLoop) -> Result<Graphics, ViewerError> {
-        let mut attributes = Window::default_attributes().with_title("raysandbox");
-        if let Some((w, h)) = self.options.size {
-            attributes = attributes.with_inner_size(winit::dpi::PhysicalSize::new(w, h));
-        } else {
-            attributes = attributes.with_inner_size(winit::dpi::LogicalSize::new(1280.0, 760.0));
-        }
-        let window = Arc::new(
-            event_loop
-                .create_window(attributes)
-                .map_err(|e| ViewerError::NoDisplay(e.to_string()))?,
-        );
-        let instance =
-            wgpu::Instance::new(wgpu::InstanceDescriptor::new_without_display_handle_from_env());
-        let surface = instance
-            .create_surface(window.clone())
-            .map_err(|e| ViewerError::NoGpu(format!("cannot draw into the window: {e}")))?;
-        let gpu = Gpu::with_adapter(
-            instance,
-            &wgpu::RequestAdapterOptions {
-                power_preference: wgpu::PowerPreference::HighPerformance,
-                force_fallback_adapter: false,
-                compatible_surface: Some(&surface),
-                apply_limit_buckets: false,
-            },
-        )
-        .map_err(|e| ViewerError::NoGpu(e.to_string()))?;
+        let (window, gpu, surface) =
+            shell::open_window(event_loop, "raysandbox", self.options.size, (1280.0, 760.0))?;
         let formats = Viewport::output_formats(&gpu, &surface);
         let pipelines = Pipelines::new(
             &gpu.device,
-            &self.shaders,
+            &self.shader_params.apply(&self.shaders),
             &formats,
             &ShaderOptions::default(),
         )
@@ -254,30 +249,12 @@ impl App {
             pipelines,
             &self.doc.scene,
         );
-        let ctx = egui::Context::default();
-        let state = egui_winit::State::new(
-            ctx.clone(),
-            egui::ViewportId::ROOT,
-            &window,
-            Some(window.scale_factor() as f32),
-            window.theme(),
-            Some(gpu.device.limits().max_texture_dimension_2d as usize),
-        );
-        let renderer = egui_wgpu::Renderer::new(
-            &gpu.device,
-            viewport.surface_format(),
-            egui_wgpu::RendererOptions::default(),
-        );
-        log::info!("adapter: {}", gpu.describe());
+        let egui = EguiLayer::new(&window, &gpu, viewport.surface_format());
         Ok(Graphics {
             window,
             gpu,
             viewport,
-            egui: EguiLayer {
-                ctx,
-                state,
-                renderer,
-            },
+            egui,
         })
     }
 
@@ -288,13 +265,10 @@ impl App {
     }
 
     fn event(&self, line: &str) {
-        log::info!("{line}");
-        if self.options.print_events {
-            use std::io::Write;
-            let mut out = std::io::stdout().lock();
-            let _ = writeln!(out, "event: {line}");
-            let _ = out.flush();
+        EventLog {
+            print: self.options.print_events,
         }
+        .event(line);
     }
 
     /// (Re)starts watching the shader folder and the scene file.
@@ -317,32 +291,56 @@ impl App {
 
     /// Reads the shader folder again. naga validates it here, at once; only
     /// a valid source goes on to the (slow) pipeline build, on another thread,
-    /// while the last good pipelines keep drawing.
+    /// while the last good pipelines keep drawing. Shader parameter values
+    /// are kept by name.
     fn reload_shaders(&mut self) {
-        let (Some(dir), Some(gfx)) = (&self.shader_dir, &self.gfx) else {
-            return;
-        };
-        let source = match ShaderSource::from_dir(dir).and_then(|s| s.validate().map(|_| s)) {
-            Ok(source) => source,
+        let Some(dir) = &self.shader_dir else { return };
+        let read = ShaderSource::from_dir(dir).and_then(|source| {
+            let mut params = SourceParams::read(&source)?;
+            params.params.keep_values_from(&self.shader_params.params);
+            params.apply(&source).validate()?;
+            Ok((source, params))
+        });
+        match read {
+            Ok((source, params)) => {
+                self.shaders = source;
+                self.shader_params = params;
+                self.build_pipelines();
+            }
             Err(e) => {
                 self.event(&format!("shader-error {}:{}:{}", e.file, e.line, e.column));
                 log::error!("{e}");
                 self.editor.shader_error = Some(e.to_string());
-                return;
             }
-        };
+        }
+    }
+
+    /// Builds pipelines from the current source and parameter values on
+    /// another thread, or after the build that is running.
+    fn build_pipelines(&mut self) {
+        let Some(gfx) = &self.gfx else { return };
+        if self.builds.running {
+            self.builds.again = true;
+            return;
+        }
+        let source = self.shader_params.apply(&self.shaders);
         let device = gfx.gpu.device.clone();
         let formats = [gfx.viewport.surface_format(), crate::gpu::EXPORT_FORMAT];
         let proxy = self.proxy.clone();
-        self.shaders = source.clone();
+        self.builds.started += 1;
+        self.builds.running = true;
+        let build = self.builds.started;
         std::thread::spawn(move || {
             let result = Pipelines::new(&device, &source, &formats, &ShaderOptions::default())
                 .map_err(|e| e.to_string());
-            let _ = proxy.send_event(UserEvent::PipelinesBuilt(Box::new(result)));
+            let _ = proxy.send_event(UserEvent::PipelinesBuilt(build, Box::new(result)));
         });
     }
 
-    fn pipelines_built(&mut self, result: Result<Pipelines, String>) {
+    fn pipelines_built(&mut self, build: u64, result: Result<Pipelines, String>) {
+        if build == self.builds.started {
+            self.builds.running = false;
+        }
         let Some(gfx) = &mut self.gfx else { return };
         match result {
             Ok(pipelines) => {
@@ -355,6 +353,9 @@ impl App {
                 self.editor.shader_error = Some(e);
                 self.event("shader-error");
             }
+        }
+        if std::mem::take(&mut self.builds.again) {
+            self.build_pipelines();
         }
     }
 
@@ -414,7 +415,6 @@ impl App {
     /// Runs the egui frame: returns what to do and what to paint.
     fn run_ui(&mut self) -> (Vec<Command>, ViewInput, egui::FullOutput) {
         let gfx = self.gfx.as_mut().expect("drawing needs graphics");
-        let raw = gfx.egui.state.take_egui_input(&gfx.window);
         let status = Status {
             frame_time: gfx.viewport.last_frame_time(),
             timing: gfx.viewport.timing().describe(),
@@ -424,23 +424,26 @@ impl App {
         };
         let names = bundled::names();
         let mut result = (Vec::new(), ViewInput::default());
-        let output = gfx.egui.ctx.run_ui(raw, |ui| {
-            result = ui::draw(ui, &mut self.doc, &mut self.editor, &status, &names);
+        let output = gfx.egui.run(&gfx.window, |ui| {
+            result = ui::draw(
+                ui,
+                &mut self.doc,
+                &mut self.editor,
+                &mut self.shader_params.params,
+                &status,
+                &names,
+            );
         });
-        gfx.egui
-            .state
-            .handle_platform_output(&gfx.window, output.platform_output.clone());
         (result.0, result.1, output)
     }
 
     fn execute(&mut self, command: Command, event_loop: &ActiveEventLoop) {
         match command {
             Command::Panel(action) => self.panel_action(action),
+            Command::ShaderParamsChanged => self.build_pipelines(),
             Command::ToggleFullscreen => {
                 if let Some(gfx) = &self.gfx {
-                    let full = gfx.window.fullscreen().is_some();
-                    gfx.window
-                        .set_fullscreen((!full).then_some(Fullscreen::Borderless(None)));
+                    shell::toggle_fullscreen(&gfx.window);
                 }
             }
             Command::LeaveFullscreen => {
@@ -599,50 +602,14 @@ impl App {
         };
         let new_samples = u32::from(gfx.viewport.samples() < max_samples);
 
-        let ppp = output.pixels_per_point;
-        let jobs = gfx.egui.ctx.tessellate(output.shapes, ppp);
-        for (id, deltas) in &output.textures_delta.set {
-            for delta in deltas {
-                gfx.egui
-                    .renderer
-                    .update_texture(&gfx.gpu.device, &gfx.gpu.queue, *id, delta);
-            }
-        }
-        let size = gfx.window.inner_size();
-        let screen = egui_wgpu::ScreenDescriptor {
-            size_in_pixels: [size.width, size.height],
-            pixels_per_point: ppp,
-        };
-        let egui_renderer = &mut gfx.egui.renderer;
+        let painting = gfx.egui.prepare(&gfx.gpu, &gfx.window, output);
+        let egui = &mut gfx.egui;
         let gpu = &gfx.gpu;
         gfx.window.pre_present_notify();
         let status = gfx.viewport.frame(gpu, new_samples, |encoder, view| {
-            let buffers =
-                egui_renderer.update_buffers(&gpu.device, &gpu.queue, encoder, &jobs, &screen);
-            let mut pass = encoder
-                .begin_render_pass(&wgpu::RenderPassDescriptor {
-                    label: Some("egui"),
-                    color_attachments: &[Some(wgpu::RenderPassColorAttachment {
-                        view,
-                        depth_slice: None,
-                        resolve_target: None,
-                        ops: wgpu::Operations {
-                            load: wgpu::LoadOp::Load,
-                            store: wgpu::StoreOp::Store,
-                        },
-                    })],
-                    depth_stencil_attachment: None,
-                    timestamp_writes: None,
-                    occlusion_query_set: None,
-                    multiview_mask: None,
-                })
-                .forget_lifetime();
-            egui_renderer.render(&mut pass, &jobs, &screen);
-            buffers
+            egui.paint(gpu, encoder, view, &painting)
         });
-        for id in &output.textures_delta.free {
-            gfx.egui.renderer.free_texture(id);
-        }
+        let delay = gfx.egui.finish(painting);
         // After a frame that added samples, draw once more: either the next
         // sample, or (refinement done) only the display pass, so the status
         // line shows the final count. Then nothing is drawn until something
@@ -654,10 +621,6 @@ impl App {
         if new_samples > 0 && samples >= max_samples && !dragging {
             self.event(&format!("ready samples={samples}"));
         }
-        let delay = output
-            .viewport_output
-            .get(&egui::ViewportId::ROOT)
-            .map_or(Duration::MAX, |v| v.repaint_delay);
         if delay < Duration::from_secs(5) {
             self.repaint_at = Some(Instant::now() + delay);
         }

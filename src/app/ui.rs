@@ -8,6 +8,8 @@ use egui::{Key, KeyboardShortcut, Modifiers, PointerButton, Sense};
 
 use super::document::Document;
 use super::panel::{self, PanelAction, PanelState, ViewSettings};
+use super::{controls, overlay};
+use crate::sandbox::ParamSet;
 use crate::scene::Scene;
 
 /// UI state that is not part of the scene.
@@ -71,6 +73,8 @@ pub enum Command {
     AcceptReload,
     /// Keep the unsaved edits over the pending external version.
     KeepEdits,
+    /// A value in "Shader parameters" changed: rebuild the pipelines.
+    ShaderParamsChanged,
 }
 
 /// Mouse input over the image (not over the panel or a window), in physical
@@ -105,6 +109,7 @@ pub fn draw(
     ui: &mut egui::Ui,
     doc: &mut Document,
     editor: &mut Editor,
+    shader_params: &mut ParamSet,
     status: &Status,
     bundled: &[&'static str],
 ) -> (Vec<Command>, ViewInput) {
@@ -125,6 +130,9 @@ pub fn draw(
                         &label,
                     );
                     commands.extend(actions.into_iter().map(Command::Panel));
+                    if !shader_params.is_empty() {
+                        shader_params_section(ui, shader_params, &mut commands);
+                    }
                 });
             });
     }
@@ -132,6 +140,28 @@ pub fn draw(
     let input = egui::CentralPanel::no_frame().show(ui, view_input).inner;
     overlays(ui.ctx(), editor, &mut commands);
     (commands, input)
+}
+
+/// The annotated constants of the shader folder, with the sandbox's
+/// controls. A change rebuilds the pipelines (a new shader variant).
+fn shader_params_section(ui: &mut egui::Ui, params: &mut ParamSet, commands: &mut Vec<Command>) {
+    egui::CollapsingHeader::new(egui::RichText::new("Shader parameters").strong())
+        .default_open(true)
+        .show(ui, |ui| {
+            ui.weak("annotated constants of the shader files (docs/sandbox.md)");
+            let mut changed = controls::params_ui(ui, params);
+            if ui
+                .button("Reset")
+                .on_hover_text("the values in the files")
+                .clicked()
+            {
+                params.reset();
+                changed = true;
+            }
+            if changed {
+                commands.push(Command::ShaderParamsChanged);
+            }
+        });
 }
 
 /// Keys work only while no text field has the keyboard.
@@ -229,11 +259,11 @@ fn view_input(ui: &mut egui::Ui) -> ViewInput {
 
 fn overlays(ctx: &egui::Context, editor: &mut Editor, commands: &mut Vec<Command>) {
     if let Some(error) = &editor.shader_error {
-        error_window(
+        overlay::error_window(
             ctx,
             "Shader error: the last good shader keeps running",
             error,
-            egui::Color32::from_rgb(255, 120, 100),
+            egui::Align2::CENTER_TOP,
         );
     }
     if let Some(error) = &editor.scene_error {
@@ -298,28 +328,7 @@ fn overlays(ctx: &egui::Context, editor: &mut Editor, commands: &mut Vec<Command
                 ui.separator();
                 ui.label("Edit the WGSL files in shaders/ (or --shaders DIR) in any editor: they reload on save.");
                 ui.label("Edit the scene file in any editor: it reloads on save.");
+                ui.label("Annotated constants in the shader files get controls under \"Shader parameters\" (docs/sandbox.md).");
             });
     }
-}
-
-/// A copyable error message in a monospace font, anchored at the top.
-fn error_window(ctx: &egui::Context, title: &str, text: &str, color: egui::Color32) {
-    egui::Window::new(title)
-        .anchor(egui::Align2::CENTER_TOP, [0.0, 10.0])
-        .collapsible(false)
-        .resizable(true)
-        .default_width(640.0)
-        .show(ctx, |ui| {
-            let mut copy = text.to_string();
-            ui.add(
-                egui::TextEdit::multiline(&mut copy)
-                    .font(egui::TextStyle::Monospace)
-                    .text_color(color)
-                    .desired_width(f32::INFINITY)
-                    .desired_rows(4),
-            );
-            if ui.button("Copy").clicked() {
-                ui.ctx().copy_text(text.to_string());
-            }
-        });
 }

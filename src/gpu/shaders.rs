@@ -166,6 +166,60 @@ impl ShaderSource {
         Ok((module, info))
     }
 
+    /// Joins named parts in order: for example a prelude the program
+    /// provides, the user's own file and an epilogue. Errors are reported in
+    /// the part they fall in, at that part's own line and column, so a
+    /// prelude never shifts the user's line numbers.
+    pub fn from_parts(parts: impl IntoIterator<Item = (String, String)>) -> Self {
+        Self::join(parts)
+    }
+
+    /// The parts as `(name, text)`, in the order they are joined.
+    pub fn parts(&self) -> impl Iterator<Item = (&str, &str)> + '_ {
+        self.parts.iter().enumerate().map(|(i, part)| {
+            let end = self.parts.get(i + 1).map_or(self.joined.len(), |p| p.start);
+            (part.name.as_str(), &self.joined[part.start..end])
+        })
+    }
+
+    /// Parses the joined source as a GLSL fragment shader (naga's GLSL front
+    /// end: `#version 450`, Vulkan-style resources) and validates it. Errors
+    /// are located like WGSL errors: naga's spans are byte offsets of the
+    /// joined text, mapped back to the part they fall in.
+    pub fn validate_glsl_fragment(
+        &self,
+    ) -> Result<(naga::Module, naga::valid::ModuleInfo), ShaderError> {
+        let options = naga::front::glsl::Options::from(naga::ShaderStage::Fragment);
+        let module = naga::front::glsl::Frontend::default()
+            .parse(&options, &self.joined)
+            .map_err(|errors| match errors.errors.first() {
+                Some(e) => self.locate(e.meta, e.kind.to_string(), String::new()),
+                None => self.locate(naga::Span::default(), errors.to_string(), String::new()),
+            })?;
+        let info = naga::valid::Validator::new(
+            naga::valid::ValidationFlags::all(),
+            naga::valid::Capabilities::default(),
+        )
+        .validate(&module)
+        .map_err(|e| {
+            let (span, label) = e.spans().next().cloned().unwrap_or_default();
+            let mut message = e.as_inner().to_string();
+            let mut source = std::error::Error::source(e.as_inner());
+            while let Some(cause) = source {
+                message = format!("{message}: {cause}");
+                source = cause.source();
+            }
+            self.locate(span, message, label)
+        })?;
+        Ok((module, info))
+    }
+
+    /// The file, line and column of a span of the joined source (for errors
+    /// found outside naga, e.g. by a check of the source's own).
+    pub fn error_at(&self, span: naga::Span, message: String) -> ShaderError {
+        self.locate(span, message, String::new())
+    }
+
     /// Turns a span of the joined source into file, line and column.
     fn locate(&self, span: naga::Span, message: String, label: String) -> ShaderError {
         let Some(range) = span.to_range() else {

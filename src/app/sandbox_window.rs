@@ -1,0 +1,906 @@
+//! The sandbox window (`raysandbox shader FILE`): the user's shader fills the
+//! window, the panel holds the clock, the render scale and the generated
+//! parameter controls, and the file reloads on every save. A file that does
+//! not compile keeps the last good shader running under the error overlay.
+//!
+//! Window, GPU and egui setup, the error overlay and the controls are the
+//! viewer's (`shell`, `overlay`, `controls`); the reload logic is
+//! [`Session`]'s, which tests and headless renders use too.
+
+use std::path::{Path, PathBuf};
+use std::sync::Arc;
+use std::time::{Duration, Instant};
+
+use egui::{Key, KeyboardShortcut, Modifiers, RichText, Sense};
+use winit::application::ApplicationHandler;
+use winit::event::WindowEvent;
+use winit::event_loop::{ActiveEventLoop, ControlFlow, EventLoop, EventLoopProxy};
+use winit::window::{Window, WindowId};
+
+use super::ViewerError;
+use super::controls::{self, ClockAction};
+use super::overlay;
+use super::shell::{self, EguiLayer, EventLog};
+use super::watch;
+use crate::gpu::{Gpu, GpuTimer, Timing, Viewport};
+use crate::sandbox::clock::{Clock, Tick};
+use crate::sandbox::render::{Canvas, EXPORT_FORMAT, PipelineBuilder, SandboxGpu, ShaderPipeline};
+use crate::sandbox::{Compiled, FrameUniforms, ReloadError, Session, uniforms};
+
+/// How `raysandbox shader` opens its window.
+#[derive(Debug, Clone)]
+pub struct SandboxOptions {
+    pub file: PathBuf,
+    /// Initial inner size in physical pixels.
+    pub size: Option<(u32, u32)>,
+    pub start_paused: bool,
+    /// Render resolution scale, 0.25..=1.
+    pub scale: f32,
+    pub print_events: bool,
+}
+
+/// The sandbox window's keyboard shortcuts, for the help window.
+pub const SHORTCUTS: [(&str, &str); 9] = [
+    ("Space", "pause / resume the clock"),
+    ("R", "restart: time and frame back to 0"),
+    ("Right arrow", "step one frame (1/60 s), paused"),
+    (
+        "Mouse over the image",
+        "iMouse / u.mouse (drag), mouse (hover)",
+    ),
+    ("P", "screenshot of the image next to the shader file"),
+    ("Ctrl+S", "save the parameters to FILE.params.toml"),
+    ("H", "show or hide the panel"),
+    ("F11 / Esc", "fullscreen / leave fullscreen"),
+    ("F1 / Ctrl+Q", "this help / quit"),
+];
+
+/// Things other threads tell the event loop.
+enum SandboxEvent {
+    FileChanged,
+    Built {
+        generation: u64,
+        compiled: Box<Compiled>,
+        result: Result<ShaderPipeline, String>,
+    },
+}
+
+/// Opens the window and runs until it closes.
+pub fn run_sandbox(options: SandboxOptions) -> Result<(), ViewerError> {
+    let event_loop = EventLoop::<SandboxEvent>::with_user_event()
+        .build()
+        .map_err(|e| ViewerError::NoDisplay(e.to_string()))?;
+    event_loop.set_control_flow(ControlFlow::Wait);
+    let now = Instant::now();
+    let mut app = SandboxApp {
+        proxy: event_loop.create_proxy(),
+        events: EventLog {
+            print: options.print_events,
+        },
+        session: Session::new(&options.file),
+        clock: Clock::new(options.start_paused, now),
+        scale: options.scale.clamp(0.25, 1.0),
+        options,
+        gfx: None,
+        watch: None,
+        fatal: None,
+        panel: PanelState {
+            show: true,
+            help: false,
+            message: None,
+        },
+        mouse: Mouse::default(),
+        generation: 0,
+        draw_next: true,
+        check_next: true,
+        last_check: now,
+        warning: None,
+        gpu_time: None,
+        last_tick: None,
+        after_present: Vec::new(),
+        ready: false,
+        repaint_at: None,
+    };
+    event_loop
+        .run_app(&mut app)
+        .map_err(|e| ViewerError::NoDisplay(e.to_string()))?;
+    match app.fatal {
+        Some(error) => Err(error),
+        None => Ok(()),
+    }
+}
+
+/// The window, its surface and what draws into it.
+struct Graphics {
+    window: Arc<Window>,
+    gpu: Gpu,
+    surface: wgpu::Surface<'static>,
+    config: wgpu::SurfaceConfiguration,
+    sandbox: SandboxGpu,
+    builder: PipelineBuilder,
+    canvas: Canvas,
+    egui: EguiLayer,
+    /// Timestamps around the shader's pass, where the adapter has them.
+    timer: Option<GpuTimer>,
+}
+
+struct PanelState {
+    show: bool,
+    help: bool,
+    /// A short message ("screenshot saved to ...").
+    message: Option<String>,
+}
+
+/// The mouse as Shadertoy reports it, in canvas pixels with y up.
+#[derive(Debug, Default, Clone, Copy, PartialEq)]
+struct Mouse {
+    /// Position while a button is held (kept after release).
+    position: [f32; 2],
+    /// Where the button went down.
+    click: [f32; 2],
+    down: bool,
+    /// The button went down since the last drawn frame.
+    just_clicked: bool,
+    /// The pointer over the image, in [0, 1]², y up (no click needed).
+    uv: [f32; 2],
+}
+
+impl Mouse {
+    /// Shadertoy's `iMouse`: z > 0 while down, w > 0 only in the click's frame.
+    fn shadertoy(&self) -> [f32; 4] {
+        let z = if self.down {
+            self.click[0]
+        } else {
+            -self.click[0]
+        };
+        let w = if self.just_clicked {
+            self.click[1]
+        } else {
+            -self.click[1]
+        };
+        [self.position[0], self.position[1], z, w]
+    }
+}
+
+/// What the UI asks for in one frame.
+#[derive(Debug, Default)]
+struct Actions {
+    clock: Option<ClockAction>,
+    scale: Option<f32>,
+    params_changed: bool,
+    mouse_changed: bool,
+    reset_params: bool,
+    save_params: bool,
+    load_params: bool,
+    screenshot: bool,
+    toggle_fullscreen: bool,
+    leave_fullscreen: bool,
+    quit: bool,
+}
+
+struct SandboxApp {
+    proxy: EventLoopProxy<SandboxEvent>,
+    options: SandboxOptions,
+    events: EventLog,
+    session: Session,
+    clock: Clock,
+    scale: f32,
+    gfx: Option<Graphics>,
+    watch: Option<watch::Watch>,
+    fatal: Option<ViewerError>,
+    panel: PanelState,
+    mouse: Mouse,
+    /// Counts reloads, so a slow build finishing after a newer one is dropped.
+    generation: u64,
+    /// The shader must draw the next frame even with the clock paused.
+    draw_next: bool,
+    /// Check the next drawn frame for NaN and empty output.
+    check_next: bool,
+    last_check: Instant,
+    /// What the last check found.
+    warning: Option<String>,
+    /// GPU time of the last drawn frame, submit to done.
+    gpu_time: Option<Duration>,
+    last_tick: Option<Tick>,
+    /// Event lines to print once the next frame is on screen.
+    after_present: Vec<String>,
+    ready: bool,
+    repaint_at: Option<Instant>,
+}
+
+impl ApplicationHandler<SandboxEvent> for SandboxApp {
+    fn resumed(&mut self, event_loop: &ActiveEventLoop) {
+        if self.gfx.is_some() {
+            return;
+        }
+        match self.create_graphics(event_loop) {
+            Ok(gfx) => {
+                self.gfx = Some(gfx);
+                self.first_load();
+                let proxy = self.proxy.clone();
+                match watch::watch_file(&self.options.file, move || {
+                    let _ = proxy.send_event(SandboxEvent::FileChanged);
+                }) {
+                    Ok(w) => self.watch = Some(w),
+                    Err(e) => self.panel.message = Some(e),
+                }
+            }
+            Err(e) => {
+                self.fatal = Some(e);
+                event_loop.exit();
+            }
+        }
+    }
+
+    fn user_event(&mut self, _: &ActiveEventLoop, event: SandboxEvent) {
+        match event {
+            SandboxEvent::FileChanged => self.reload(),
+            SandboxEvent::Built {
+                generation,
+                compiled,
+                result,
+            } => {
+                if generation == self.generation {
+                    self.built(*compiled, result);
+                }
+            }
+        }
+        self.request_redraw();
+    }
+
+    fn window_event(&mut self, event_loop: &ActiveEventLoop, _: WindowId, event: WindowEvent) {
+        let Some(gfx) = &mut self.gfx else { return };
+        let response = gfx.egui.state.on_window_event(&gfx.window, &event);
+        match event {
+            WindowEvent::CloseRequested => event_loop.exit(),
+            WindowEvent::Resized(size) => {
+                gfx.config.width = size.width;
+                gfx.config.height = size.height;
+                if size.width > 0 && size.height > 0 {
+                    gfx.surface.configure(&gfx.gpu.device, &gfx.config);
+                }
+                self.resize_canvas();
+                self.request_redraw();
+            }
+            WindowEvent::RedrawRequested => self.redraw(event_loop),
+            _ => {
+                if response.repaint {
+                    gfx.window.request_redraw();
+                }
+            }
+        }
+    }
+
+    fn about_to_wait(&mut self, event_loop: &ActiveEventLoop) {
+        match self.repaint_at {
+            Some(at) if at <= Instant::now() => {
+                self.repaint_at = None;
+                self.request_redraw();
+                event_loop.set_control_flow(ControlFlow::Wait);
+            }
+            Some(at) => event_loop.set_control_flow(ControlFlow::WaitUntil(at)),
+            None => event_loop.set_control_flow(ControlFlow::Wait),
+        }
+    }
+}
+
+impl SandboxApp {
+    fn create_graphics(&mut self, event_loop: &ActiveEventLoop) -> Result<Graphics, ViewerError> {
+        let title = format!("raysandbox: {}", self.options.file.display());
+        let (window, gpu, surface) =
+            shell::open_window(event_loop, &title, self.options.size, (1280.0, 720.0))?;
+        let format = Viewport::output_formats(&gpu, &surface)[0];
+        let size = window.inner_size();
+        let config = wgpu::SurfaceConfiguration {
+            usage: wgpu::TextureUsages::RENDER_ATTACHMENT,
+            format,
+            color_space: wgpu::SurfaceColorSpace::Auto,
+            width: size.width,
+            height: size.height,
+            present_mode: wgpu::PresentMode::Fifo,
+            desired_maximum_frame_latency: 2,
+            alpha_mode: wgpu::CompositeAlphaMode::Auto,
+            view_formats: vec![],
+        };
+        if size.width > 0 && size.height > 0 {
+            surface.configure(&gpu.device, &config);
+        }
+        let sandbox = SandboxGpu::new(&gpu.device, &[format, EXPORT_FORMAT]);
+        let builder = sandbox.builder(&gpu.device);
+        let canvas = Canvas::new(
+            &gpu,
+            &sandbox,
+            scaled((size.width, size.height), self.scale),
+        );
+        let egui = EguiLayer::new(&window, &gpu, format);
+        let timer = GpuTimer::new(&gpu);
+        Ok(Graphics {
+            timer,
+            window,
+            gpu,
+            surface,
+            config,
+            sandbox,
+            builder,
+            canvas,
+            egui,
+        })
+    }
+
+    fn request_redraw(&self) {
+        if let Some(gfx) = &self.gfx {
+            gfx.window.request_redraw();
+        }
+    }
+
+    /// The first compile and build, on this thread: the window shows the
+    /// first frame of the shader (or its error) from the start.
+    fn first_load(&mut self) {
+        let Some(gfx) = &self.gfx else { return };
+        match self.session.reload(&gfx.builder) {
+            Ok(warnings) => self.loaded(warnings, false),
+            Err(e) => self.failed(&e),
+        }
+    }
+
+    /// The file changed: compile now (naga, quick), build the pipeline on
+    /// another thread while the last good one keeps drawing.
+    fn reload(&mut self) {
+        if self.gfx.is_none() {
+            return;
+        }
+        let compiled = match self.session.compile() {
+            Ok(Some(c)) => c,
+            Ok(None) => return,
+            Err(e) => {
+                // A build still running is for older text: drop its result.
+                self.generation += 1;
+                return self.failed(&e);
+            }
+        };
+        self.generation += 1;
+        let Some(gfx) = &self.gfx else { return };
+        let builder = gfx.builder.clone();
+        let proxy = self.proxy.clone();
+        let generation = self.generation;
+        std::thread::spawn(move || {
+            let result = builder.build(&compiled);
+            let _ = proxy.send_event(SandboxEvent::Built {
+                generation,
+                compiled: Box::new(compiled),
+                result,
+            });
+        });
+    }
+
+    fn built(&mut self, compiled: Compiled, result: Result<ShaderPipeline, String>) {
+        match result {
+            Ok(pipeline) => {
+                let warnings = self.session.install(compiled, pipeline);
+                self.loaded(warnings, true);
+            }
+            Err(e) => {
+                let e = ReloadError::Gpu(e);
+                self.session.fail(e.clone());
+                self.failed(&e);
+            }
+        }
+    }
+
+    fn loaded(&mut self, warnings: Vec<String>, reloaded: bool) {
+        for w in &warnings {
+            log::warn!("{w}");
+        }
+        self.panel.message = warnings.into_iter().next();
+        self.draw_next = true;
+        self.check_next = true;
+        self.warning = None;
+        if reloaded {
+            self.after_present.push("shader-reloaded".into());
+        }
+    }
+
+    fn failed(&mut self, error: &ReloadError) {
+        log::error!("{error}");
+        self.after_present
+            .push(format!("shader-error {}", error.location()));
+    }
+
+    fn resize_canvas(&mut self) {
+        let Some(gfx) = &mut self.gfx else { return };
+        let size = scaled((gfx.config.width, gfx.config.height), self.scale);
+        if size != gfx.canvas.size() {
+            gfx.canvas.resize(&gfx.gpu, &gfx.sandbox, size);
+            self.draw_next = true;
+            self.check_next = true;
+        }
+    }
+
+    fn redraw(&mut self, event_loop: &ActiveEventLoop) {
+        let (actions, output) = self.run_ui();
+        self.apply(&actions, event_loop);
+        self.paint(output);
+    }
+
+    /// Runs the egui frame.
+    fn run_ui(&mut self) -> (Actions, egui::FullOutput) {
+        let gfx = self.gfx.as_mut().expect("drawing needs graphics");
+        let mut actions = Actions::default();
+        let window_size = (gfx.config.width, gfx.config.height);
+        let canvas_size = gfx.canvas.size();
+        let now = Instant::now();
+        let tick = self.last_tick.unwrap_or(Tick {
+            time: self.clock.time(now),
+            delta: 0.0,
+            frame: 0,
+            rate: 0.0,
+        });
+        let timing = match gfx.timer {
+            Some(_) => Timing::GpuTimestamps,
+            None => Timing::SubmitToDone,
+        };
+        let status = format!(
+            "{} x {}   {}   {}",
+            canvas_size.0,
+            canvas_size.1,
+            self.gpu_time.map_or("-".to_string(), |t| format!(
+                "{:.1} ms GPU",
+                t.as_secs_f64() * 1e3
+            )),
+            if self.clock.is_paused() {
+                String::new()
+            } else {
+                format!("{:.0} fps", tick.rate)
+            },
+        );
+        let adapter = gfx.gpu.adapter.get_info().name;
+        let paused = self.clock.is_paused();
+        let session = &mut self.session;
+        let panel = &mut self.panel;
+        let mouse = &mut self.mouse;
+        let scale = self.scale;
+        let warning = self.warning.clone();
+        let file = self.options.file.file_name().map_or_else(
+            || self.options.file.display().to_string(),
+            |n| n.to_string_lossy().into_owned(),
+        );
+        let output = gfx.egui.run(&gfx.window, |ui| {
+            shortcuts(ui, panel, &mut actions);
+            if panel.show {
+                egui::Window::new(format!("raysandbox: {file}"))
+                    .id(egui::Id::unique("sandbox panel"))
+                    .default_pos([10.0, 10.0])
+                    .default_width(280.0)
+                    .resizable(true)
+                    .show(ui.ctx(), |ui| {
+                        let style = session.style().map_or("not compiled yet", |s| s.describe());
+                        ui.weak(style);
+                        ui.separator();
+                        if let Some(a) = controls::clock_controls(ui, paused, &tick) {
+                            actions.clock = Some(a);
+                        }
+                        ui.horizontal(|ui| {
+                            let mut s = scale;
+                            ui.label("render scale");
+                            if ui
+                                .add(egui::Slider::new(&mut s, 0.25..=1.0).step_by(0.05))
+                                .on_hover_text(
+                                    "fraction of the window resolution the shader renders at",
+                                )
+                                .changed()
+                            {
+                                actions.scale = Some(s);
+                            }
+                        });
+                        ui.label(RichText::new(&status).monospace())
+                            .on_hover_text(format!(
+                                "time of the shader's pass, {}\nadapter: {adapter}",
+                                timing.describe()
+                            ));
+                        if !session.params.is_empty() {
+                            ui.separator();
+                            ui.strong("Parameters");
+                            egui::ScrollArea::vertical()
+                                .max_height(ui.ctx().content_rect().height() * 0.6)
+                                .show(ui, |ui| {
+                                    actions.params_changed |=
+                                        controls::params_ui(ui, &mut session.params);
+                                });
+                            ui.horizontal(|ui| {
+                                let sidecar = session.sidecar().display().to_string();
+                                if ui
+                                    .button("Reset")
+                                    .on_hover_text("the defaults of the source")
+                                    .clicked()
+                                {
+                                    actions.reset_params = true;
+                                }
+                                if ui
+                                    .button("Save")
+                                    .on_hover_text(format!("to {sidecar} (Ctrl+S)"))
+                                    .clicked()
+                                {
+                                    actions.save_params = true;
+                                }
+                                if ui
+                                    .button("Load")
+                                    .on_hover_text(format!("from {sidecar}"))
+                                    .clicked()
+                                {
+                                    actions.load_params = true;
+                                }
+                            });
+                        }
+                        if let Some(message) = &panel.message {
+                            ui.separator();
+                            ui.label(message);
+                        }
+                        ui.weak("F1: help   H: hide this panel");
+                    });
+            }
+            egui::CentralPanel::no_frame().show(ui, |ui| {
+                actions.mouse_changed = view_input(ui, mouse, window_size, canvas_size);
+            });
+            if let Some(error) = &session.error {
+                overlay::error_window(
+                    ui.ctx(),
+                    "Shader error: the last good shader keeps running",
+                    &error.to_string(),
+                    egui::Align2::CENTER_BOTTOM,
+                );
+            }
+            if let Some(warning) = &warning {
+                overlay::warning(ui.ctx(), warning, egui::Align2::CENTER_TOP);
+            }
+            if panel.help {
+                help_window(ui.ctx(), &mut panel.help);
+            }
+        });
+        (actions, output)
+    }
+
+    fn apply(&mut self, actions: &Actions, event_loop: &ActiveEventLoop) {
+        let now = Instant::now();
+        match actions.clock {
+            Some(ClockAction::Toggle) => self.clock.toggle(now),
+            Some(ClockAction::Restart) => {
+                self.clock.restart(now);
+                self.draw_next = true;
+            }
+            Some(ClockAction::Step) => {
+                self.clock.step(now);
+                self.draw_next = true;
+            }
+            None => {}
+        }
+        if let Some(scale) = actions.scale {
+            self.scale = scale.clamp(0.25, 1.0);
+            self.resize_canvas();
+        }
+        if actions.params_changed || actions.mouse_changed {
+            self.draw_next = true;
+        }
+        if actions.reset_params {
+            self.session.params.reset();
+            self.draw_next = true;
+        }
+        if actions.save_params {
+            self.panel.message = Some(match self.session.save_params() {
+                Ok(path) => {
+                    self.events
+                        .event(&format!("params-saved {}", path.display()));
+                    format!("parameters saved to {}", path.display())
+                }
+                Err(e) => format!("not saved: {e}"),
+            });
+        }
+        if actions.load_params {
+            self.panel.message = Some(match self.session.load_params() {
+                Ok(warnings) if warnings.is_empty() => "parameters loaded".to_string(),
+                Ok(warnings) => warnings.join("\n"),
+                Err(e) => e,
+            });
+            self.draw_next = true;
+        }
+        if actions.screenshot {
+            self.screenshot();
+        }
+        if let Some(gfx) = &self.gfx {
+            if actions.toggle_fullscreen {
+                shell::toggle_fullscreen(&gfx.window);
+            }
+            if actions.leave_fullscreen {
+                gfx.window.set_fullscreen(None);
+            }
+        }
+        if actions.quit {
+            event_loop.exit();
+        }
+    }
+
+    fn screenshot(&mut self) {
+        let Some(gfx) = &self.gfx else { return };
+        let image = gfx.canvas.capture(&gfx.gpu, &gfx.sandbox);
+        let path = screenshot_path(&self.options.file);
+        self.panel.message = Some(match image.save(&path) {
+            Ok(()) => {
+                self.events.event(&format!("screenshot {}", path.display()));
+                format!("screenshot saved to {}", path.display())
+            }
+            Err(e) => format!("{}: {e}", path.display()),
+        });
+    }
+
+    /// Draws the shader (when the clock runs or something changed), shows
+    /// the canvas, paints the UI over it and presents.
+    fn paint(&mut self, output: egui::FullOutput) {
+        let Some(gfx) = &mut self.gfx else { return };
+        let painting = gfx.egui.prepare(&gfx.gpu, &gfx.window, output);
+        let now = Instant::now();
+        let draw = self.session.pipeline().is_some() && (!self.clock.is_paused() || self.draw_next);
+        let frame = if gfx.config.width == 0 || gfx.config.height == 0 {
+            None
+        } else {
+            match gfx.surface.get_current_texture() {
+                wgpu::CurrentSurfaceTexture::Success(frame) => Some(frame),
+                wgpu::CurrentSurfaceTexture::Suboptimal(frame) => {
+                    gfx.surface.configure(&gfx.gpu.device, &gfx.config);
+                    Some(frame)
+                }
+                wgpu::CurrentSurfaceTexture::Outdated | wgpu::CurrentSurfaceTexture::Lost => {
+                    gfx.surface.configure(&gfx.gpu.device, &gfx.config);
+                    None
+                }
+                other => {
+                    log::debug!("surface not ready: {other:?}");
+                    None
+                }
+            }
+        };
+        let Some(frame) = frame else {
+            let delay = gfx.egui.finish(painting);
+            self.schedule(delay, true);
+            return;
+        };
+        let view = frame
+            .texture
+            .create_view(&wgpu::TextureViewDescriptor::default());
+        let mut encoder = gfx.gpu.device.create_command_encoder(&Default::default());
+        if draw {
+            let tick = self.clock.tick(now);
+            self.last_tick = Some(tick);
+            let size = gfx.canvas.size();
+            let uniforms = FrameUniforms {
+                resolution: [size.0 as f32, size.1 as f32],
+                pixel_aspect: 1.0,
+                time: tick.time as f32,
+                mouse: self.mouse.shadertoy(),
+                date: uniforms::date_now(),
+                time_delta: tick.delta as f32,
+                frame: tick.frame,
+                frame_rate: tick.rate as f32,
+                _pad0: 0.0,
+                mouse_uv: self.mouse.uv,
+                _pad1: [0.0; 2],
+            };
+            let pipeline = self.session.pipeline().expect("checked above");
+            let timer = gfx.timer.as_ref();
+            if let Some(timer) = timer {
+                timer.begin(&mut encoder);
+            }
+            gfx.canvas.draw(
+                &gfx.gpu,
+                &gfx.sandbox,
+                &mut encoder,
+                pipeline,
+                &uniforms,
+                &self.session.params,
+            );
+            if let Some(timer) = timer {
+                timer.end(&mut encoder);
+            }
+            self.mouse.just_clicked = false;
+            self.draw_next = false;
+        }
+        gfx.canvas
+            .show(&gfx.sandbox, &mut encoder, &view, gfx.config.format);
+        let mut buffers = gfx.egui.paint(&gfx.gpu, &mut encoder, &view, &painting);
+        buffers.push(encoder.finish());
+        let start = Instant::now();
+        gfx.gpu.queue.submit(buffers);
+        // Waiting keeps the frame time honest and the input latency low.
+        let _ = gfx.gpu.device.poll(wgpu::PollType::wait_indefinitely());
+        if draw {
+            self.gpu_time = match &gfx.timer {
+                Some(timer) => timer.read(&gfx.gpu),
+                None => Some(start.elapsed()),
+            };
+        }
+        gfx.window.pre_present_notify();
+        gfx.gpu.queue.present(frame);
+        let delay = gfx.egui.finish(painting);
+
+        // The output checks: after a reload or resize, and about once a
+        // second while the clock runs.
+        if draw && (self.check_next || self.last_check.elapsed() > Duration::from_secs(1)) {
+            let stats = gfx.canvas.stats(&gfx.gpu);
+            let warning = stats.warning();
+            if warning.is_some() && warning != self.warning {
+                self.events.event("output-warning");
+            }
+            if warning != self.warning {
+                gfx.window.request_redraw();
+            }
+            self.warning = warning;
+            self.check_next = false;
+            self.last_check = Instant::now();
+        }
+        if !self.ready {
+            self.ready = true;
+            self.events.event("ready");
+        }
+        for line in self.after_present.drain(..) {
+            self.events.event(&line);
+        }
+        let running = !self.clock.is_paused() && self.session.pipeline().is_some();
+        self.schedule(delay, running || self.draw_next);
+    }
+
+    fn schedule(&mut self, egui_delay: Duration, again: bool) {
+        if again {
+            self.request_redraw();
+        } else if egui_delay < Duration::from_secs(5) {
+            self.repaint_at = Some(Instant::now() + egui_delay);
+        }
+    }
+}
+
+/// The render resolution for a window size and scale.
+fn scaled(size: (u32, u32), scale: f32) -> (u32, u32) {
+    let s = |n: u32| ((n as f32 * scale).round() as u32).clamp(1, n.max(1));
+    (s(size.0), s(size.1))
+}
+
+/// A screenshot path next to the shader that does not overwrite an earlier one.
+fn screenshot_path(shader: &Path) -> PathBuf {
+    let dir = shader.parent().map(Path::to_path_buf).unwrap_or_default();
+    let stem = shader
+        .file_stem()
+        .map_or("shader".into(), |s| s.to_string_lossy().into_owned());
+    (1..)
+        .map(|n| dir.join(format!("{stem}-screenshot-{n}.png")))
+        .find(|p| !p.exists())
+        .expect("some screenshot number is free")
+}
+
+/// Keys work only while no text field has the keyboard.
+fn shortcuts(ui: &mut egui::Ui, panel: &mut PanelState, actions: &mut Actions) {
+    if ui.ctx().egui_wants_keyboard_input() {
+        return;
+    }
+    ui.input_mut(|i| {
+        if i.consume_shortcut(&KeyboardShortcut::new(Modifiers::COMMAND, Key::S)) {
+            actions.save_params = true;
+        }
+        if i.consume_shortcut(&KeyboardShortcut::new(Modifiers::COMMAND, Key::Q)) {
+            actions.quit = true;
+        }
+        let mut plain = |key| i.consume_key(Modifiers::NONE, key);
+        if plain(Key::Space) {
+            actions.clock = Some(ClockAction::Toggle);
+        }
+        if plain(Key::R) {
+            actions.clock = Some(ClockAction::Restart);
+        }
+        if plain(Key::ArrowRight) {
+            actions.clock = Some(ClockAction::Step);
+        }
+        if plain(Key::P) {
+            actions.screenshot = true;
+        }
+        if plain(Key::H) {
+            panel.show = !panel.show;
+        }
+        if plain(Key::F1) {
+            panel.help = !panel.help;
+        }
+        if plain(Key::F11) {
+            actions.toggle_fullscreen = true;
+        }
+        if plain(Key::Escape) {
+            actions.leave_fullscreen = true;
+        }
+    });
+}
+
+/// The pointer over the image (not over the panel or an overlay), as
+/// Shadertoy's and GLSL Sandbox's mouse uniforms. True when they changed.
+fn view_input(
+    ui: &mut egui::Ui,
+    mouse: &mut Mouse,
+    window: (u32, u32),
+    canvas: (u32, u32),
+) -> bool {
+    let before = *mouse;
+    let response = ui.allocate_rect(ui.max_rect(), Sense::click_and_drag());
+    let ppp = ui.ctx().pixels_per_point();
+    let to_canvas = |p: egui::Pos2| {
+        let x = p.x * ppp * canvas.0 as f32 / window.0.max(1) as f32;
+        let y = (window.1 as f32 - p.y * ppp) * canvas.1 as f32 / window.1.max(1) as f32;
+        [x, y]
+    };
+    if let Some(p) = response.hover_pos() {
+        let [x, y] = to_canvas(p);
+        let uv = [x / canvas.0.max(1) as f32, y / canvas.1.max(1) as f32];
+        mouse.uv = uv;
+    }
+    let down = response.is_pointer_button_down_on();
+    if let Some(p) = response.interact_pointer_pos().filter(|_| down) {
+        let position = to_canvas(p);
+        if !mouse.down {
+            mouse.click = position;
+            mouse.just_clicked = true;
+        }
+        mouse.position = position;
+    }
+    mouse.down = down;
+    *mouse != before
+}
+
+fn help_window(ctx: &egui::Context, open: &mut bool) {
+    egui::Window::new("Help")
+        .open(open)
+        .collapsible(false)
+        .show(ctx, |ui| {
+            egui::Grid::new("sandbox shortcuts")
+                .striped(true)
+                .show(ui, |ui| {
+                    for (keys, what) in SHORTCUTS {
+                        ui.strong(keys);
+                        ui.label(what);
+                        ui.end_row();
+                    }
+                });
+            ui.separator();
+            ui.label("Edit the shader file in any editor: it reloads on every save.");
+            ui.label("Annotate parameters in a comment: // @slider(0, 1), @color, @checkbox, @select(a, b), @log(1e-3, 1).");
+            ui.label("docs/sandbox.md lists the uniforms and the preludes.");
+        });
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn mouse_follows_the_shadertoy_convention() {
+        let mut mouse = Mouse {
+            position: [10.0, 20.0],
+            click: [10.0, 20.0],
+            down: true,
+            just_clicked: true,
+            uv: [0.0; 2],
+        };
+        assert_eq!(
+            mouse.shadertoy(),
+            [10.0, 20.0, 10.0, 20.0],
+            "the click's frame"
+        );
+        mouse.just_clicked = false;
+        mouse.position = [30.0, 40.0];
+        assert_eq!(
+            mouse.shadertoy(),
+            [30.0, 40.0, 10.0, -20.0],
+            "held: z > 0, w < 0"
+        );
+        mouse.down = false;
+        assert_eq!(mouse.shadertoy(), [30.0, 40.0, -10.0, -20.0], "released");
+    }
+
+    #[test]
+    fn render_size_follows_the_scale() {
+        assert_eq!(scaled((800, 450), 0.25), (200, 113));
+        assert_eq!(scaled((800, 450), 1.0), (800, 450));
+        assert_eq!(scaled((1, 1), 0.25), (1, 1));
+    }
+}

@@ -1,0 +1,272 @@
+//! Sandbox mode: the user's own fragment shader file (WGSL, or GLSL in the
+//! GLSL Sandbox or Shadertoy style) run full screen, reloaded on every save,
+//! with controls generated from annotated parameters; or rendered headless to
+//! PNG files. docs/sandbox.md is the user's documentation.
+//!
+//! | module | what |
+//! | --- | --- |
+//! | `compose` | language and style, the preludes, the GLSL rewrite, validation |
+//! | `params` | annotations, values, the bytes the GPU reads, the sidecar file |
+//! | `uniforms` | the per-frame values (time, mouse, resolution, date) |
+//! | `clock` | pause, resume, restart, step |
+//! | `render` | the GPU passes: the user's shader into a canvas, the canvas shown |
+//! | `session` | one file: the last good pipeline, reloads, parameter values |
+//! | `constants` | the same parameters for the ray tracer's shader folder (annotated `const`s) |
+//!
+//! The window is `app::sandbox_window`; it shares the viewer's window setup,
+//! error overlay and controls.
+
+pub mod clock;
+pub mod compose;
+pub mod constants;
+pub mod params;
+pub mod render;
+mod scan;
+pub mod session;
+pub mod uniforms;
+
+use std::path::{Path, PathBuf};
+use std::time::Instant;
+
+pub use compose::{Compiled, Style, compile, compile_file};
+pub use constants::SourceParams;
+pub use params::{Control, ParamSet, ParamSpec};
+pub use render::{CanvasStats, Offscreen, render_once};
+pub use session::{ReloadError, Session};
+pub use uniforms::FrameUniforms;
+
+use crate::gpu::Gpu;
+
+/// Arguments of `raysandbox shader`.
+#[derive(Debug, Clone, clap::Args)]
+pub struct ShaderArgs {
+    /// The shader file: WGSL (`.wgsl`, with `fn main_image`) or GLSL (`.glsl`,
+    /// `.frag`) in the GLSL Sandbox (`void main`) or Shadertoy (`mainImage`)
+    /// style. See docs/sandbox.md.
+    pub file: PathBuf,
+    /// Render one frame to this PNG file instead of opening a window.
+    #[arg(long, value_name = "OUT.png", conflicts_with = "frames")]
+    pub render: Option<PathBuf>,
+    /// Render N frames to a numbered PNG sequence in --out DIR.
+    #[arg(long, value_name = "N", requires = "out", value_parser = clap::value_parser!(u32).range(1..=100_000))]
+    pub frames: Option<u32>,
+    /// The folder of the PNG sequence (frame-00000.png, ...).
+    #[arg(long, value_name = "DIR", requires = "frames")]
+    pub out: Option<PathBuf>,
+    /// Clock time in seconds of the (first) headless frame.
+    #[arg(long, default_value_t = 0.0, value_name = "SECONDS")]
+    pub time: f64,
+    /// Frames per second of a PNG sequence.
+    #[arg(long, default_value_t = 60.0, value_parser = parse_fps)]
+    pub fps: f64,
+    /// Image size of headless renders (default 1280x720), or the window's
+    /// initial inner size.
+    #[arg(long, value_parser = parse_size, value_name = "WxH")]
+    pub size: Option<(u32, u32)>,
+    /// Open the window with the clock paused at 0 (Space resumes).
+    #[arg(long)]
+    pub start_paused: bool,
+    /// Render resolution as a fraction of the window's (0.25..1), for heavy
+    /// shaders on weak GPUs.
+    #[arg(long, default_value_t = 1.0, value_parser = parse_scale)]
+    pub scale: f32,
+    /// Print one line per event (ready, shader-reloaded, shader-error, ...)
+    /// on stdout, for scripts and tests that drive the window.
+    #[arg(long, hide = true)]
+    pub print_events: bool,
+}
+
+/// Parses `WIDTHxHEIGHT`.
+pub fn parse_size(text: &str) -> Result<(u32, u32), String> {
+    let (w, h) = text
+        .split_once(['x', 'X'])
+        .ok_or_else(|| format!("expected WIDTHxHEIGHT, got {text:?}"))?;
+    let parse = |s: &str| {
+        s.trim()
+            .parse::<u32>()
+            .ok()
+            .filter(|n| (1..=16384).contains(n))
+            .ok_or_else(|| format!("expected a size from 1 to 16384, got {s:?}"))
+    };
+    Ok((parse(w)?, parse(h)?))
+}
+
+fn parse_scale(text: &str) -> Result<f32, String> {
+    text.parse::<f32>()
+        .ok()
+        .filter(|s| (0.25..=1.0).contains(s))
+        .ok_or_else(|| format!("expected a scale from 0.25 to 1, got {text:?}"))
+}
+
+fn parse_fps(text: &str) -> Result<f64, String> {
+    text.parse::<f64>()
+        .ok()
+        .filter(|s| *s > 0.0 && s.is_finite())
+        .ok_or_else(|| format!("expected frames per second > 0, got {text:?}"))
+}
+
+/// A failure of `raysandbox shader`: the user's input (exit status 2) or the
+/// machine (exit status 1).
+#[derive(Debug)]
+pub enum SandboxError {
+    Input(String),
+    Runtime(String),
+}
+
+/// Runs `raysandbox shader`: headless with `--render` or `--frames`, else
+/// the window.
+pub fn run(args: &ShaderArgs) -> Result<(), SandboxError> {
+    if !args.file.is_file() {
+        return Err(SandboxError::Input(format!(
+            "{}: no such file",
+            args.file.display()
+        )));
+    }
+    if args.render.is_some() || args.frames.is_some() {
+        return headless(args);
+    }
+    let options = crate::app::SandboxOptions {
+        file: args.file.clone(),
+        size: args.size,
+        start_paused: args.start_paused,
+        scale: args.scale,
+        print_events: args.print_events,
+    };
+    use crate::app::ViewerError;
+    crate::app::run_sandbox(options).map_err(|e| match e {
+        ViewerError::Shader(m) | ViewerError::Scene(m) => SandboxError::Input(m),
+        ViewerError::NoDisplay(m) => SandboxError::Runtime(format!(
+            "cannot open a window: {m}\n\
+             The window needs a display (X11 or Wayland: is DISPLAY or WAYLAND_DISPLAY set?).\n\
+             Without one, render headless: raysandbox shader {} --render out.png",
+            args.file.display()
+        )),
+        ViewerError::NoGpu(m) => SandboxError::Runtime(m),
+    })
+}
+
+/// `--render OUT.png` or `--frames N --out DIR`.
+fn headless(args: &ShaderArgs) -> Result<(), SandboxError> {
+    let compiled = compile_file(&args.file).map_err(|e| SandboxError::Input(e.to_string()))?;
+    let mut params = compiled.params.clone();
+    let sidecar = params::sidecar_path(&args.file);
+    if let Ok(text) = std::fs::read_to_string(&sidecar) {
+        let warnings = params
+            .apply_toml(&text)
+            .map_err(|e| SandboxError::Input(format!("{}: {e}", sidecar.display())))?;
+        for w in warnings {
+            eprintln!("warning: {}: {w}", sidecar.display());
+        }
+        println!("parameters from {}", sidecar.display());
+    }
+    let gpu = Gpu::headless().map_err(|e| SandboxError::Runtime(e.to_string()))?;
+    println!("adapter: {}", gpu.describe());
+    let size = args.size.unwrap_or((1280, 720));
+    let (count, out_dir) = match (&args.render, args.frames, &args.out) {
+        (Some(_), _, _) => (1, None),
+        (None, Some(n), Some(dir)) => {
+            std::fs::create_dir_all(dir)
+                .map_err(|e| SandboxError::Runtime(format!("{}: {e}", dir.display())))?;
+            (n, Some(dir.as_path()))
+        }
+        _ => unreachable!("clap requires --out with --frames"),
+    };
+    let start = Instant::now();
+    let mut warned = false;
+    render_sequence(
+        &gpu,
+        &compiled,
+        &params,
+        size,
+        args.time,
+        args.fps,
+        count,
+        |k, image, stats| {
+            let path = match (out_dir, &args.render) {
+                (Some(dir), _) => dir.join(format!("frame-{k:05}.png")),
+                (None, Some(path)) => path.clone(),
+                (None, None) => unreachable!(),
+            };
+            if let Some(warning) = stats.warning().filter(|_| !warned) {
+                eprintln!("warning: {}: {warning}", args.file.display());
+                warned = true;
+            }
+            image
+                .save(&path)
+                .map_err(|e| SandboxError::Runtime(format!("{}: {e}", path.display())))?;
+            if out_dir.is_none() {
+                println!("wrote {}", path.display());
+            }
+            Ok(())
+        },
+    )
+    .map_err(|e| match e {
+        RenderError::Gpu(m) => SandboxError::Input(m),
+        RenderError::Output(e) => e,
+    })?;
+    if let Some(dir) = out_dir {
+        println!(
+            "wrote {count} frames to {} (frame-00000.png ...)",
+            dir.display()
+        );
+    }
+    println!(
+        "rendered {count} frame(s) of {}x{} in {:.1} ms",
+        size.0,
+        size.1,
+        start.elapsed().as_secs_f64() * 1e3
+    );
+    Ok(())
+}
+
+enum RenderError<E> {
+    Gpu(String),
+    Output(E),
+}
+
+/// Renders `count` frames at `fps` from `time`, handing each to `each`
+/// with its index. One pipeline and canvas serve all frames.
+#[allow(clippy::too_many_arguments)]
+fn render_sequence<E>(
+    gpu: &Gpu,
+    compiled: &Compiled,
+    params: &ParamSet,
+    size: (u32, u32),
+    time: f64,
+    fps: f64,
+    count: u32,
+    mut each: impl FnMut(u32, image::RgbaImage, CanvasStats) -> Result<(), E>,
+) -> Result<(), RenderError<E>> {
+    let mut offscreen = Offscreen::new(gpu);
+    let pipeline = offscreen
+        .builder(gpu)
+        .build(compiled)
+        .map_err(RenderError::Gpu)?;
+    for k in 0..count {
+        let mut frame = FrameUniforms::at(time + f64::from(k) / fps, k, size);
+        frame.time_delta = (1.0 / fps) as f32;
+        frame.frame_rate = fps as f32;
+        offscreen.draw(gpu, &pipeline, params, &frame);
+        let stats = if k == 0 {
+            offscreen.stats(gpu)
+        } else {
+            CanvasStats::default()
+        };
+        each(k, offscreen.image(gpu), stats).map_err(RenderError::Output)?;
+    }
+    Ok(())
+}
+
+/// Compiles `path` and renders one frame at `time` seconds (frame 0) with
+/// the default parameters, or `params` if given.
+pub fn render_file(
+    gpu: &Gpu,
+    path: &Path,
+    size: (u32, u32),
+    time: f64,
+    params: Option<&ParamSet>,
+) -> Result<(image::RgbaImage, CanvasStats), String> {
+    let compiled = compile_file(path).map_err(|e| e.to_string())?;
+    let params = params.unwrap_or(&compiled.params);
+    render_once(gpu, &compiled, params, &FrameUniforms::at(time, 0, size))
+}

@@ -1,0 +1,602 @@
+//! The sandbox on the GPU: the user's fragment shader draws into a canvas
+//! (an `Rgba32Float` texture at the render resolution, so NaN and values
+//! above 1 survive for the checks), and a display pass scales the canvas to
+//! the window or the PNG, showing NaN and infinities as magenta.
+
+use std::borrow::Cow;
+
+use super::compose::Compiled;
+use super::params::ParamSet;
+use super::uniforms::{FRAME_UNIFORMS_SIZE, FrameUniforms};
+use crate::gpu::Gpu;
+
+/// What the user's shader draws into.
+pub const CANVAS_FORMAT: wgpu::TextureFormat = wgpu::TextureFormat::Rgba32Float;
+
+/// The format of headless renders and screenshots.
+pub const EXPORT_FORMAT: wgpu::TextureFormat = wgpu::TextureFormat::Rgba8Unorm;
+
+const VERTEX_WGSL: &str = "\
+/// One triangle that covers the whole viewport; no vertex buffer needed.
+@vertex
+fn vs_fullscreen(@builtin(vertex_index) i: u32) -> @builtin(position) vec4<f32> {
+    let uv = vec2(f32((i << 1u) & 2u), f32(i & 2u));
+    return vec4(uv * 2.0 - 1.0, 0.0, 1.0);
+}
+";
+
+const DISPLAY_WGSL: &str = "\
+struct VertexOut {
+    @builtin(position) position: vec4<f32>,
+    @location(0) uv: vec2<f32>,
+}
+
+@vertex
+fn vs_display(@builtin(vertex_index) i: u32) -> VertexOut {
+    let uv = vec2(f32((i << 1u) & 2u), f32(i & 2u));
+    return VertexOut(vec4(uv * 2.0 - 1.0, 0.0, 1.0), uv);
+}
+
+@group(0) @binding(0) var canvas: texture_2d<f32>;
+
+/// True for an *Srgb target, which encodes by itself: the shader's values
+/// are display values (as on Shadertoy), so they are decoded first.
+override DECODE_SRGB: bool = false;
+
+fn is_finite(x: vec3<f32>) -> vec3<bool> {
+    return (bitcast<vec3<u32>>(x) & vec3(0x7f800000u)) != vec3(0x7f800000u);
+}
+
+fn srgb_decode(c: vec3<f32>) -> vec3<f32> {
+    return select(pow((c + 0.055) / 1.055, vec3(2.4)), c / 12.92, c <= vec3(0.04045));
+}
+
+@fragment
+fn fs_display(in: VertexOut) -> @location(0) vec4<f32> {
+    // Nearest texel: each output pixel shows the canvas pixel under it.
+    let size = textureDimensions(canvas);
+    let at = vec2(in.uv.x, 1.0 - in.uv.y) * vec2<f32>(size);
+    let texel = min(vec2<u32>(at), size - 1u);
+    let c = textureLoad(canvas, texel, 0).rgb;
+    if any(!is_finite(c)) {
+        return vec4(1.0, 0.0, 1.0, 1.0);
+    }
+    var rgb = clamp(c, vec3(0.0), vec3(1.0));
+    if DECODE_SRGB {
+        rgb = srgb_decode(rgb);
+    }
+    return vec4(rgb, 1.0);
+}
+";
+
+/// Layouts and passes shared by every sandbox shader on one device.
+pub struct SandboxGpu {
+    bind_layout: wgpu::BindGroupLayout,
+    pipeline_layout: wgpu::PipelineLayout,
+    vertex: wgpu::ShaderModule,
+    display_layout: wgpu::BindGroupLayout,
+    display: Vec<(wgpu::TextureFormat, wgpu::RenderPipeline)>,
+}
+
+/// The user's shader as a pipeline.
+pub struct ShaderPipeline {
+    pipeline: wgpu::RenderPipeline,
+}
+
+/// What can build a [`ShaderPipeline`] on another thread.
+#[derive(Clone)]
+pub struct PipelineBuilder {
+    device: wgpu::Device,
+    pipeline_layout: wgpu::PipelineLayout,
+    vertex: wgpu::ShaderModule,
+}
+
+impl SandboxGpu {
+    /// Builds the shared parts, with a display pass for each of `formats`.
+    pub fn new(device: &wgpu::Device, formats: &[wgpu::TextureFormat]) -> Self {
+        let uniform = |binding| wgpu::BindGroupLayoutEntry {
+            binding,
+            visibility: wgpu::ShaderStages::FRAGMENT,
+            ty: wgpu::BindingType::Buffer {
+                ty: wgpu::BufferBindingType::Uniform,
+                has_dynamic_offset: false,
+                min_binding_size: None,
+            },
+            count: None,
+        };
+        let bind_layout = device.create_bind_group_layout(&wgpu::BindGroupLayoutDescriptor {
+            label: Some("sandbox uniforms"),
+            entries: &[uniform(0), uniform(1)],
+        });
+        let pipeline_layout = device.create_pipeline_layout(&wgpu::PipelineLayoutDescriptor {
+            label: Some("sandbox"),
+            bind_group_layouts: &[Some(&bind_layout)],
+            immediate_size: 0,
+        });
+        let vertex = device.create_shader_module(wgpu::ShaderModuleDescriptor {
+            label: Some("sandbox vertex"),
+            source: wgpu::ShaderSource::Wgsl(VERTEX_WGSL.into()),
+        });
+        let display_layout = device.create_bind_group_layout(&wgpu::BindGroupLayoutDescriptor {
+            label: Some("sandbox canvas"),
+            entries: &[wgpu::BindGroupLayoutEntry {
+                binding: 0,
+                visibility: wgpu::ShaderStages::FRAGMENT,
+                ty: wgpu::BindingType::Texture {
+                    sample_type: wgpu::TextureSampleType::Float { filterable: false },
+                    view_dimension: wgpu::TextureViewDimension::D2,
+                    multisampled: false,
+                },
+                count: None,
+            }],
+        });
+        let display_module = device.create_shader_module(wgpu::ShaderModuleDescriptor {
+            label: Some("sandbox display"),
+            source: wgpu::ShaderSource::Wgsl(DISPLAY_WGSL.into()),
+        });
+        let layout = device.create_pipeline_layout(&wgpu::PipelineLayoutDescriptor {
+            label: Some("sandbox display"),
+            bind_group_layouts: &[Some(&display_layout)],
+            immediate_size: 0,
+        });
+        let display = formats
+            .iter()
+            .map(|&format| {
+                let decode = if format.is_srgb() { 1.0 } else { 0.0 };
+                let pipeline = device.create_render_pipeline(&wgpu::RenderPipelineDescriptor {
+                    label: Some("sandbox display"),
+                    layout: Some(&layout),
+                    vertex: wgpu::VertexState {
+                        module: &display_module,
+                        entry_point: Some("vs_display"),
+                        compilation_options: Default::default(),
+                        buffers: &[],
+                    },
+                    primitive: wgpu::PrimitiveState::default(),
+                    depth_stencil: None,
+                    multisample: wgpu::MultisampleState::default(),
+                    fragment: Some(wgpu::FragmentState {
+                        module: &display_module,
+                        entry_point: Some("fs_display"),
+                        compilation_options: wgpu::PipelineCompilationOptions {
+                            constants: &[("DECODE_SRGB", decode)],
+                            ..Default::default()
+                        },
+                        targets: &[Some(format.into())],
+                    }),
+                    multiview_mask: None,
+                    cache: None,
+                });
+                (format, pipeline)
+            })
+            .collect();
+        SandboxGpu {
+            bind_layout,
+            pipeline_layout,
+            vertex,
+            display_layout,
+            display,
+        }
+    }
+
+    /// What a thread needs to build pipelines for this device.
+    pub fn builder(&self, device: &wgpu::Device) -> PipelineBuilder {
+        PipelineBuilder {
+            device: device.clone(),
+            pipeline_layout: self.pipeline_layout.clone(),
+            vertex: self.vertex.clone(),
+        }
+    }
+
+    fn display(&self, format: wgpu::TextureFormat) -> &wgpu::RenderPipeline {
+        self.display
+            .iter()
+            .find(|(f, _)| *f == format)
+            .map(|(_, p)| p)
+            .unwrap_or_else(|| panic!("no sandbox display pipeline for {format:?}"))
+    }
+}
+
+impl PipelineBuilder {
+    /// Hands the validated module to wgpu. naga has checked it already, so an
+    /// error here is rare (a limit of the adapter); it is returned, never
+    /// panicked on, so the last good pipeline can keep running.
+    pub fn build(&self, compiled: &Compiled) -> Result<ShaderPipeline, String> {
+        let device = &self.device;
+        let scope = device.push_error_scope(wgpu::ErrorFilter::Validation);
+        let module = device.create_shader_module(wgpu::ShaderModuleDescriptor {
+            label: Some(&compiled.file),
+            source: wgpu::ShaderSource::Naga(Cow::Owned(compiled.module.clone())),
+        });
+        let pipeline = device.create_render_pipeline(&wgpu::RenderPipelineDescriptor {
+            label: Some(&compiled.file),
+            layout: Some(&self.pipeline_layout),
+            vertex: wgpu::VertexState {
+                module: &self.vertex,
+                entry_point: Some("vs_fullscreen"),
+                compilation_options: Default::default(),
+                buffers: &[],
+            },
+            primitive: wgpu::PrimitiveState::default(),
+            depth_stencil: None,
+            multisample: wgpu::MultisampleState::default(),
+            fragment: Some(wgpu::FragmentState {
+                module: &module,
+                entry_point: Some(compiled.entry_point),
+                compilation_options: Default::default(),
+                targets: &[Some(CANVAS_FORMAT.into())],
+            }),
+            multiview_mask: None,
+            cache: None,
+        });
+        match pollster::block_on(scope.pop()) {
+            Some(error) => Err(format!(
+                "{}: wgpu rejected the shader: {error}",
+                compiled.file
+            )),
+            None => Ok(ShaderPipeline { pipeline }),
+        }
+    }
+}
+
+/// What the last frame's pixels say about the shader's output.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
+pub struct CanvasStats {
+    pub pixels: u64,
+    /// Pixels with a NaN or infinite colour component.
+    pub non_finite: u64,
+    /// Pixels that are exactly (0, 0, 0, 0): nothing written.
+    pub empty: u64,
+}
+
+impl CanvasStats {
+    /// A warning for the user when the output looks like no output at all.
+    pub fn warning(&self) -> Option<String> {
+        if self.pixels == 0 {
+            return None;
+        }
+        if self.non_finite == self.pixels {
+            return Some(
+                "every pixel is NaN or infinite (shown magenta): check divisions by zero, \
+                 sqrt/log/pow of negative numbers and normalize(vec(0))"
+                    .into(),
+            );
+        }
+        if self.non_finite > 0 {
+            return Some(format!(
+                "{:.1}% of the pixels are NaN or infinite (shown magenta)",
+                100.0 * self.non_finite as f64 / self.pixels as f64
+            ));
+        }
+        if self.empty == self.pixels {
+            return Some(
+                "every pixel is (0, 0, 0, 0): does the shader write its output \
+                 (gl_FragColor, fragColor, or main_image's return value)?"
+                    .into(),
+            );
+        }
+        None
+    }
+}
+
+/// The image the user's shader draws into, and the buffers it reads.
+pub struct Canvas {
+    texture: wgpu::Texture,
+    view: wgpu::TextureView,
+    frame: wgpu::Buffer,
+    params: wgpu::Buffer,
+    bind_group: wgpu::BindGroup,
+    display_bind_group: wgpu::BindGroup,
+}
+
+impl Canvas {
+    pub fn new(gpu: &Gpu, sandbox: &SandboxGpu, size: (u32, u32)) -> Self {
+        let device = &gpu.device;
+        let frame = device.create_buffer(&wgpu::BufferDescriptor {
+            label: Some("sandbox frame uniforms"),
+            size: FRAME_UNIFORMS_SIZE,
+            usage: wgpu::BufferUsages::UNIFORM | wgpu::BufferUsages::COPY_DST,
+            mapped_at_creation: false,
+        });
+        let params = Self::params_buffer(device, 16);
+        let texture = Self::texture(device, size);
+        let view = texture.create_view(&Default::default());
+        let bind_group = Self::bind_group(device, sandbox, &frame, &params);
+        let display_bind_group = Self::display_bind_group(device, sandbox, &view);
+        Canvas {
+            texture,
+            view,
+            frame,
+            params,
+            bind_group,
+            display_bind_group,
+        }
+    }
+
+    fn texture(device: &wgpu::Device, size: (u32, u32)) -> wgpu::Texture {
+        device.create_texture(&wgpu::TextureDescriptor {
+            label: Some("sandbox canvas"),
+            size: wgpu::Extent3d {
+                width: size.0.max(1),
+                height: size.1.max(1),
+                depth_or_array_layers: 1,
+            },
+            mip_level_count: 1,
+            sample_count: 1,
+            dimension: wgpu::TextureDimension::D2,
+            format: CANVAS_FORMAT,
+            usage: wgpu::TextureUsages::RENDER_ATTACHMENT
+                | wgpu::TextureUsages::TEXTURE_BINDING
+                | wgpu::TextureUsages::COPY_SRC,
+            view_formats: &[],
+        })
+    }
+
+    fn params_buffer(device: &wgpu::Device, size: u64) -> wgpu::Buffer {
+        device.create_buffer(&wgpu::BufferDescriptor {
+            label: Some("sandbox parameters"),
+            size,
+            usage: wgpu::BufferUsages::UNIFORM | wgpu::BufferUsages::COPY_DST,
+            mapped_at_creation: false,
+        })
+    }
+
+    fn bind_group(
+        device: &wgpu::Device,
+        sandbox: &SandboxGpu,
+        frame: &wgpu::Buffer,
+        params: &wgpu::Buffer,
+    ) -> wgpu::BindGroup {
+        device.create_bind_group(&wgpu::BindGroupDescriptor {
+            label: Some("sandbox uniforms"),
+            layout: &sandbox.bind_layout,
+            entries: &[
+                wgpu::BindGroupEntry {
+                    binding: 0,
+                    resource: frame.as_entire_binding(),
+                },
+                wgpu::BindGroupEntry {
+                    binding: 1,
+                    resource: params.as_entire_binding(),
+                },
+            ],
+        })
+    }
+
+    fn display_bind_group(
+        device: &wgpu::Device,
+        sandbox: &SandboxGpu,
+        view: &wgpu::TextureView,
+    ) -> wgpu::BindGroup {
+        device.create_bind_group(&wgpu::BindGroupDescriptor {
+            label: Some("sandbox canvas"),
+            layout: &sandbox.display_layout,
+            entries: &[wgpu::BindGroupEntry {
+                binding: 0,
+                resource: wgpu::BindingResource::TextureView(view),
+            }],
+        })
+    }
+
+    /// Size in pixels.
+    pub fn size(&self) -> (u32, u32) {
+        (self.texture.width(), self.texture.height())
+    }
+
+    /// Changes the render resolution (the content is lost).
+    pub fn resize(&mut self, gpu: &Gpu, sandbox: &SandboxGpu, size: (u32, u32)) {
+        let size = (size.0.max(1), size.1.max(1));
+        if size != self.size() {
+            self.texture = Self::texture(&gpu.device, size);
+            self.view = self.texture.create_view(&Default::default());
+            self.display_bind_group = Self::display_bind_group(&gpu.device, sandbox, &self.view);
+        }
+    }
+
+    /// Encodes the user's shader drawing one frame into the canvas. The
+    /// uniforms are written through `queue`: submit before the next frame.
+    pub fn draw(
+        &mut self,
+        gpu: &Gpu,
+        sandbox: &SandboxGpu,
+        encoder: &mut wgpu::CommandEncoder,
+        pipeline: &ShaderPipeline,
+        frame: &FrameUniforms,
+        params: &ParamSet,
+    ) {
+        let bytes = params.bytes();
+        if bytes.len() as u64 > self.params.size() {
+            self.params = Self::params_buffer(&gpu.device, bytes.len() as u64);
+            self.bind_group = Self::bind_group(&gpu.device, sandbox, &self.frame, &self.params);
+        }
+        gpu.queue.write_buffer(&self.params, 0, &bytes);
+        gpu.queue
+            .write_buffer(&self.frame, 0, bytemuck::bytes_of(frame));
+        let mut pass = encoder.begin_render_pass(&wgpu::RenderPassDescriptor {
+            label: Some("sandbox shader"),
+            color_attachments: &[Some(wgpu::RenderPassColorAttachment {
+                view: &self.view,
+                depth_slice: None,
+                resolve_target: None,
+                ops: wgpu::Operations {
+                    load: wgpu::LoadOp::Clear(wgpu::Color::TRANSPARENT),
+                    store: wgpu::StoreOp::Store,
+                },
+            })],
+            depth_stencil_attachment: None,
+            timestamp_writes: None,
+            occlusion_query_set: None,
+            multiview_mask: None,
+        });
+        pass.set_pipeline(&pipeline.pipeline);
+        pass.set_bind_group(0, &self.bind_group, &[]);
+        pass.draw(0..3, 0..1);
+    }
+
+    /// Encodes the display pass: the canvas scaled onto `target`.
+    pub fn show(
+        &self,
+        sandbox: &SandboxGpu,
+        encoder: &mut wgpu::CommandEncoder,
+        target: &wgpu::TextureView,
+        format: wgpu::TextureFormat,
+    ) {
+        let mut pass = encoder.begin_render_pass(&wgpu::RenderPassDescriptor {
+            label: Some("sandbox display"),
+            color_attachments: &[Some(wgpu::RenderPassColorAttachment {
+                view: target,
+                depth_slice: None,
+                resolve_target: None,
+                ops: wgpu::Operations {
+                    load: wgpu::LoadOp::Clear(wgpu::Color::BLACK),
+                    store: wgpu::StoreOp::Store,
+                },
+            })],
+            depth_stencil_attachment: None,
+            timestamp_writes: None,
+            occlusion_query_set: None,
+            multiview_mask: None,
+        });
+        pass.set_pipeline(sandbox.display(format));
+        pass.set_bind_group(0, &self.display_bind_group, &[]);
+        pass.draw(0..3, 0..1);
+    }
+
+    /// The canvas as 8-bit RGBA (what the display pass shows at 1:1), for
+    /// screenshots, headless renders and tests.
+    pub fn capture(&self, gpu: &Gpu, sandbox: &SandboxGpu) -> image::RgbaImage {
+        let (width, height) = self.size();
+        let texture = gpu.device.create_texture(&wgpu::TextureDescriptor {
+            label: Some("sandbox export"),
+            size: wgpu::Extent3d {
+                width,
+                height,
+                depth_or_array_layers: 1,
+            },
+            mip_level_count: 1,
+            sample_count: 1,
+            dimension: wgpu::TextureDimension::D2,
+            format: EXPORT_FORMAT,
+            usage: wgpu::TextureUsages::RENDER_ATTACHMENT | wgpu::TextureUsages::COPY_SRC,
+            view_formats: &[],
+        });
+        let view = texture.create_view(&Default::default());
+        let mut encoder = gpu.device.create_command_encoder(&Default::default());
+        self.show(sandbox, &mut encoder, &view, EXPORT_FORMAT);
+        gpu.queue.submit([encoder.finish()]);
+        crate::gpu::read_texture(gpu, &texture)
+    }
+
+    /// Reads the canvas back and counts NaN, infinite and empty pixels.
+    pub fn stats(&self, gpu: &Gpu) -> CanvasStats {
+        let (width, height) = self.size();
+        let row = u64::from(width) * 16;
+        let padded = row.next_multiple_of(u64::from(wgpu::COPY_BYTES_PER_ROW_ALIGNMENT));
+        let readback = gpu.device.create_buffer(&wgpu::BufferDescriptor {
+            label: Some("sandbox stats readback"),
+            size: padded * u64::from(height),
+            usage: wgpu::BufferUsages::COPY_DST | wgpu::BufferUsages::MAP_READ,
+            mapped_at_creation: false,
+        });
+        let mut encoder = gpu.device.create_command_encoder(&Default::default());
+        encoder.copy_texture_to_buffer(
+            self.texture.as_image_copy(),
+            wgpu::TexelCopyBufferInfo {
+                buffer: &readback,
+                layout: wgpu::TexelCopyBufferLayout {
+                    offset: 0,
+                    bytes_per_row: Some(padded as u32),
+                    rows_per_image: Some(height),
+                },
+            },
+            self.texture.size(),
+        );
+        gpu.queue.submit([encoder.finish()]);
+        let slice = readback.slice(..);
+        slice.map_async(wgpu::MapMode::Read, |r| r.expect("mapping the readback"));
+        gpu.device
+            .poll(wgpu::PollType::wait_indefinitely())
+            .expect("waiting for the GPU");
+        let data = slice.get_mapped_range().expect("mapped readback");
+        let mut stats = CanvasStats {
+            pixels: u64::from(width) * u64::from(height),
+            ..Default::default()
+        };
+        for line in data.chunks(padded as usize) {
+            for px in line[..row as usize].chunks_exact(16) {
+                let c: [f32; 4] = bytemuck::pod_read_unaligned(px);
+                if c[..3].iter().any(|v| !v.is_finite()) {
+                    stats.non_finite += 1;
+                } else if c == [0.0; 4] {
+                    stats.empty += 1;
+                }
+            }
+        }
+        stats
+    }
+}
+
+/// Drawing without a window (headless renders, tests): the shared passes
+/// and a canvas that follows the size of the frames drawn.
+pub struct Offscreen {
+    sandbox: SandboxGpu,
+    canvas: Option<Canvas>,
+}
+
+impl Offscreen {
+    pub fn new(gpu: &Gpu) -> Self {
+        Offscreen {
+            sandbox: SandboxGpu::new(&gpu.device, &[EXPORT_FORMAT]),
+            canvas: None,
+        }
+    }
+
+    /// Builds pipelines that this can draw with.
+    pub fn builder(&self, gpu: &Gpu) -> PipelineBuilder {
+        self.sandbox.builder(&gpu.device)
+    }
+
+    /// Draws one frame at the size of `frame.resolution`.
+    pub fn draw(
+        &mut self,
+        gpu: &Gpu,
+        pipeline: &ShaderPipeline,
+        params: &ParamSet,
+        frame: &FrameUniforms,
+    ) {
+        let size = (frame.resolution[0] as u32, frame.resolution[1] as u32);
+        let sandbox = &self.sandbox;
+        let canvas = self
+            .canvas
+            .get_or_insert_with(|| Canvas::new(gpu, sandbox, size));
+        canvas.resize(gpu, sandbox, size);
+        let mut encoder = gpu.device.create_command_encoder(&Default::default());
+        canvas.draw(gpu, sandbox, &mut encoder, pipeline, frame, params);
+        gpu.queue.submit([encoder.finish()]);
+    }
+
+    /// The last frame as 8-bit RGBA.
+    pub fn image(&self, gpu: &Gpu) -> image::RgbaImage {
+        let canvas = self.canvas.as_ref().expect("draw before reading");
+        canvas.capture(gpu, &self.sandbox)
+    }
+
+    /// NaN, infinite and empty pixels of the last frame.
+    pub fn stats(&self, gpu: &Gpu) -> CanvasStats {
+        let canvas = self.canvas.as_ref().expect("draw before reading");
+        canvas.stats(gpu)
+    }
+}
+
+/// Renders one frame of a compiled shader without a window.
+pub fn render_once(
+    gpu: &Gpu,
+    compiled: &Compiled,
+    params: &ParamSet,
+    frame: &FrameUniforms,
+) -> Result<(image::RgbaImage, CanvasStats), String> {
+    let mut offscreen = Offscreen::new(gpu);
+    let pipeline = offscreen.builder(gpu).build(compiled)?;
+    offscreen.draw(gpu, &pipeline, params, frame);
+    Ok((offscreen.image(gpu), offscreen.stats(gpu)))
+}

@@ -1,0 +1,292 @@
+//! A small lexer shared by the WGSL and GLSL paths: tokens with their byte
+//! offsets, comments kept aside (parameter annotations live in them), and
+//! preprocessor lines as single tokens. It only needs to be good enough to
+//! find declarations at the top level; naga does the real parsing.
+
+/// What a token is.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum Kind {
+    Ident,
+    Number,
+    /// One punctuation character (`{`, `;`, `(`, ...); `@` too.
+    Punct,
+    /// A whole preprocessor line (`#version 450`), from `#` to the end of
+    /// the line (continuation lines included).
+    Directive,
+}
+
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub struct Token<'a> {
+    pub kind: Kind,
+    pub text: &'a str,
+    /// Byte offset in the scanned text.
+    pub start: usize,
+}
+
+impl Token<'_> {
+    pub fn end(&self) -> usize {
+        self.start + self.text.len()
+    }
+
+    pub fn is(&self, text: &str) -> bool {
+        self.text == text
+    }
+}
+
+/// A `//` or `/* */` comment.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub struct Comment<'a> {
+    /// The text without the comment markers.
+    pub body: &'a str,
+    /// Byte offsets of the body in the scanned text.
+    pub body_start: usize,
+    /// 1-based line of the comment's first character.
+    pub line: u32,
+    /// Nothing but white space precedes it on its line.
+    pub own_line: bool,
+}
+
+/// The scanned text.
+#[derive(Debug)]
+pub struct Scan<'a> {
+    pub text: &'a str,
+    pub tokens: Vec<Token<'a>>,
+    pub comments: Vec<Comment<'a>>,
+    /// Byte offset of the start of each line.
+    line_starts: Vec<usize>,
+}
+
+impl<'a> Scan<'a> {
+    pub fn new(text: &'a str) -> Self {
+        let bytes = text.as_bytes();
+        let line_starts: Vec<usize> = std::iter::once(0)
+            .chain(
+                bytes
+                    .iter()
+                    .enumerate()
+                    .filter(|(_, b)| **b == b'\n')
+                    .map(|(i, _)| i + 1),
+            )
+            .collect();
+        let mut scan = Scan {
+            text,
+            tokens: Vec::new(),
+            comments: Vec::new(),
+            line_starts,
+        };
+        let mut i = 0;
+        while i < bytes.len() {
+            let c = bytes[i];
+            if c.is_ascii_whitespace() {
+                i += 1;
+            } else if bytes[i..].starts_with(b"//") {
+                let end = text[i..].find('\n').map_or(text.len(), |n| i + n);
+                scan.push_comment(i, i + 2, end);
+                i = end;
+            } else if bytes[i..].starts_with(b"/*") {
+                let end = text[i + 2..].find("*/").map_or(text.len(), |n| i + 2 + n);
+                scan.push_comment(i, i + 2, end);
+                i = (end + 2).min(text.len());
+            } else if c == b'#' && scan.at_line_start(i) {
+                let mut end = i;
+                loop {
+                    end = text[end..].find('\n').map_or(text.len(), |n| end + n);
+                    // A backslash before the newline continues the directive.
+                    if end < text.len() && text[..end].trim_end_matches('\r').ends_with('\\') {
+                        end += 1;
+                        continue;
+                    }
+                    break;
+                }
+                scan.push(Kind::Directive, i, end);
+                i = end;
+            } else if c.is_ascii_alphabetic() || c == b'_' {
+                let end = i + text[i..]
+                    .find(|ch: char| !(ch.is_ascii_alphanumeric() || ch == '_'))
+                    .unwrap_or(text.len() - i);
+                scan.push(Kind::Ident, i, end);
+                i = end;
+            } else if c.is_ascii_digit()
+                || (c == b'.' && bytes.get(i + 1).is_some_and(u8::is_ascii_digit))
+            {
+                let mut end = i + 1;
+                while end < bytes.len() {
+                    let b = bytes[end];
+                    let exponent_sign = (b == b'-' || b == b'+')
+                        && matches!(bytes[end - 1], b'e' | b'E')
+                        && !text[i..end].starts_with("0x");
+                    if b.is_ascii_alphanumeric() || b == b'.' || b == b'_' || exponent_sign {
+                        end += 1;
+                    } else {
+                        break;
+                    }
+                }
+                scan.push(Kind::Number, i, end);
+                i = end;
+            } else {
+                let len = text[i..].chars().next().map_or(1, char::len_utf8);
+                scan.push(Kind::Punct, i, i + len);
+                i += len;
+            }
+        }
+        scan
+    }
+
+    fn at_line_start(&self, offset: usize) -> bool {
+        let start = self.line_starts[self.line_index(offset)];
+        self.text[start..offset].trim().is_empty()
+    }
+
+    fn push(&mut self, kind: Kind, start: usize, end: usize) {
+        self.tokens.push(Token {
+            kind,
+            text: &self.text[start..end],
+            start,
+        });
+    }
+
+    fn push_comment(&mut self, start: usize, body_start: usize, body_end: usize) {
+        let own_line = self.at_line_start(start);
+        self.comments.push(Comment {
+            body: &self.text[body_start..body_end],
+            body_start,
+            line: self.line_of(start),
+            own_line,
+        });
+    }
+
+    fn line_index(&self, offset: usize) -> usize {
+        self.line_starts.partition_point(|&s| s <= offset) - 1
+    }
+
+    /// 1-based line of a byte offset.
+    pub fn line_of(&self, offset: usize) -> u32 {
+        self.line_index(offset) as u32 + 1
+    }
+
+    /// 1-based column (in bytes, as naga counts) of a byte offset.
+    pub fn column_of(&self, offset: usize) -> u32 {
+        (offset - self.line_starts[self.line_index(offset)]) as u32 + 1
+    }
+
+    /// The byte offset of a 1-based line and column, if it is in the text.
+    pub fn offset_of(&self, line: u32, column: u32) -> Option<usize> {
+        let start = *self.line_starts.get(line.checked_sub(1)? as usize)?;
+        let offset = start + column.checked_sub(1)? as usize;
+        (offset <= self.text.len()).then_some(offset)
+    }
+
+    /// The text of a 1-based line, without its newline.
+    pub fn line_text(&self, line: u32) -> &'a str {
+        let Some(&start) = self.line_starts.get(line.saturating_sub(1) as usize) else {
+            return "";
+        };
+        let end = self.text[start..]
+            .find('\n')
+            .map_or(self.text.len(), |n| start + n);
+        self.text[start..end].trim_end_matches('\r')
+    }
+
+    /// The comments that annotate a declaration on `line`: a comment on the
+    /// same line, else the comment-only lines right above it.
+    pub fn comments_for_line(&self, line: u32) -> Vec<Comment<'a>> {
+        let same: Vec<Comment> = self
+            .comments
+            .iter()
+            .filter(|c| c.line == line && !c.own_line)
+            .copied()
+            .collect();
+        if !same.is_empty() {
+            return same;
+        }
+        let mut above = Vec::new();
+        let mut want = line.saturating_sub(1);
+        for c in self.comments.iter().rev() {
+            if c.line > want {
+                continue;
+            }
+            if c.line == want && c.own_line && !self.has_token_on_line(want) {
+                above.push(*c);
+                want = want.saturating_sub(1);
+            } else {
+                break;
+            }
+        }
+        above.reverse();
+        above
+    }
+
+    fn has_token_on_line(&self, line: u32) -> bool {
+        self.tokens.iter().any(|t| self.line_of(t.start) == line)
+    }
+}
+
+/// Replaces `text[range]` with spaces, keeping newlines, so that every byte
+/// offset (and so every line and column) of the rest of the text is unchanged.
+pub fn blank(text: &mut String, range: std::ops::Range<usize>) {
+    let blanked: String = text[range.clone()]
+        .chars()
+        .map(|c| {
+            if c == '\n' || c == '\r' {
+                c.to_string()
+            } else {
+                " ".repeat(c.len_utf8())
+            }
+        })
+        .collect();
+    text.replace_range(range, &blanked);
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn tokens_comments_and_directives() {
+        let text =
+            "#version 300 es\nuniform float t; // @slider(0, 1e-3)\n/* a\n b */ x = .5e+2;\n";
+        let scan = Scan::new(text);
+        let kinds: Vec<(Kind, &str)> = scan.tokens.iter().map(|t| (t.kind, t.text)).collect();
+        assert_eq!(
+            kinds,
+            [
+                (Kind::Directive, "#version 300 es"),
+                (Kind::Ident, "uniform"),
+                (Kind::Ident, "float"),
+                (Kind::Ident, "t"),
+                (Kind::Punct, ";"),
+                (Kind::Ident, "x"),
+                (Kind::Punct, "="),
+                (Kind::Number, ".5e+2"),
+                (Kind::Punct, ";"),
+            ]
+        );
+        assert_eq!(scan.comments.len(), 2);
+        assert_eq!(scan.comments[0].body, " @slider(0, 1e-3)");
+        assert_eq!(scan.comments[0].line, 2);
+        assert!(!scan.comments[0].own_line);
+        assert!(scan.comments[1].own_line);
+        assert_eq!(scan.line_of(scan.tokens[5].start), 4);
+        assert_eq!(scan.line_text(2), "uniform float t; // @slider(0, 1e-3)");
+    }
+
+    #[test]
+    fn comments_above_a_declaration_belong_to_it() {
+        let text = "// unrelated\n\n// @color\n// the tint\nvec3 tint;\nfloat a; // @checkbox\n";
+        let scan = Scan::new(text);
+        let above: Vec<&str> = scan.comments_for_line(5).iter().map(|c| c.body).collect();
+        assert_eq!(above, [" @color", " the tint"]);
+        let same: Vec<&str> = scan.comments_for_line(6).iter().map(|c| c.body).collect();
+        assert_eq!(same, [" @checkbox"]);
+    }
+
+    #[test]
+    fn blanking_keeps_offsets() {
+        let mut text = "a\nuniform float é;\nb".to_string();
+        let len = text.len();
+        let end = text.find('b').unwrap();
+        blank(&mut text, 2..end);
+        assert_eq!(text.len(), len);
+        assert_eq!(text.lines().nth(2), Some("b"));
+    }
+}

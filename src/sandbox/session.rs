@@ -1,0 +1,195 @@
+//! One shader file being worked on: the last good pipeline, the parameter
+//! values, and reloading that keeps both when the new text fails.
+//!
+//! Used by the window (which builds pipelines on another thread: compile
+//! with [`Session::compile`], build with a [`PipelineBuilder`], then
+//! [`Session::install`]) and by tests and headless renders ([`Session::reload`]).
+
+use std::fmt;
+use std::path::{Path, PathBuf};
+
+use super::compose::{Compiled, Style, compile, compile_file};
+use super::params::{ParamSet, sidecar_path};
+use super::render::{PipelineBuilder, ShaderPipeline};
+use crate::gpu::ShaderError;
+
+/// Why a reload did not take.
+#[derive(Debug, Clone)]
+pub enum ReloadError {
+    /// The source is wrong: located in the user's file.
+    Shader(ShaderError),
+    /// wgpu refused a module naga accepted (rare: an adapter limit).
+    Gpu(String),
+}
+
+impl fmt::Display for ReloadError {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        match self {
+            ReloadError::Shader(e) => write!(f, "{e}"),
+            ReloadError::Gpu(e) => write!(f, "{e}"),
+        }
+    }
+}
+
+impl ReloadError {
+    /// `FILE:LINE:COLUMN` (or the message's first line), for one-line reports.
+    pub fn location(&self) -> String {
+        match self {
+            ReloadError::Shader(e) => format!("{}:{}:{}", e.file, e.line, e.column),
+            ReloadError::Gpu(e) => e.lines().next().unwrap_or_default().to_string(),
+        }
+    }
+}
+
+pub struct Session {
+    path: PathBuf,
+    /// The last shader that compiled, and its pipeline.
+    current: Option<(Compiled, ShaderPipeline)>,
+    /// Parameter values (of the current shader, or kept from the last one).
+    pub params: ParamSet,
+    /// The last reload's error, until a reload succeeds.
+    pub error: Option<ReloadError>,
+    /// The text of the last compile attempt: a change event that leaves the
+    /// text as it was (a touch, a save without edits) is not a reload.
+    last_text: Option<String>,
+}
+
+impl Session {
+    /// A session with nothing compiled yet.
+    pub fn new(path: &Path) -> Self {
+        Session {
+            path: path.to_path_buf(),
+            current: None,
+            params: ParamSet::default(),
+            error: None,
+            last_text: None,
+        }
+    }
+
+    pub fn path(&self) -> &Path {
+        &self.path
+    }
+
+    /// Reads and compiles the file (naga only; quick), unless its text is
+    /// the one compiled last time: then `Ok(None)`. Does not change the
+    /// running shader; a failure is also kept in `error`.
+    pub fn compile(&mut self) -> Result<Option<Compiled>, ReloadError> {
+        let name = self.path.display().to_string();
+        let text = match std::fs::read_to_string(&self.path) {
+            Ok(text) => text,
+            // Unreadable (e.g. replaced this instant): compile_file says why.
+            Err(_) => return self.compiled_or_error(compile_file(&self.path)).map(Some),
+        };
+        if self.last_text.as_deref() == Some(text.as_str()) {
+            return Ok(None);
+        }
+        let result = compile(&name, &text);
+        self.last_text = Some(text);
+        self.compiled_or_error(result).map(Some)
+    }
+
+    fn compiled_or_error(
+        &mut self,
+        result: Result<Compiled, ShaderError>,
+    ) -> Result<Compiled, ReloadError> {
+        result.map_err(|e| {
+            let e = ReloadError::Shader(e);
+            self.error = Some(e.clone());
+            e
+        })
+    }
+
+    /// Makes a compiled shader and its pipeline the current ones. Parameter
+    /// values carry over by name; on the first install the sidecar file is
+    /// read if there is one (returns its warnings).
+    pub fn install(&mut self, compiled: Compiled, pipeline: ShaderPipeline) -> Vec<String> {
+        let mut params = compiled.params.clone();
+        let mut warnings = Vec::new();
+        if self.current.is_none() {
+            warnings = self.load_sidecar_into(&mut params);
+        } else {
+            params.keep_values_from(&self.params);
+        }
+        self.params = params;
+        self.current = Some((compiled, pipeline));
+        self.error = None;
+        warnings
+    }
+
+    /// A pipeline build failed: the current one stays.
+    pub fn fail(&mut self, error: ReloadError) {
+        self.error = Some(error);
+    }
+
+    /// Compiles and builds on this thread; on failure everything that ran
+    /// before stays.
+    /// Returns the warnings of a sidecar file read on the first load, and
+    /// nothing when the text did not change.
+    pub fn reload(&mut self, builder: &PipelineBuilder) -> Result<Vec<String>, ReloadError> {
+        let Some(compiled) = self.compile()? else {
+            return Ok(Vec::new());
+        };
+        match builder.build(&compiled) {
+            Ok(pipeline) => Ok(self.install(compiled, pipeline)),
+            Err(e) => {
+                let e = ReloadError::Gpu(e);
+                self.fail(e.clone());
+                Err(e)
+            }
+        }
+    }
+
+    /// The last good pipeline, if any shader compiled yet.
+    pub fn pipeline(&self) -> Option<&ShaderPipeline> {
+        self.current.as_ref().map(|(_, p)| p)
+    }
+
+    pub fn compiled(&self) -> Option<&Compiled> {
+        self.current.as_ref().map(|(c, _)| c)
+    }
+
+    pub fn style(&self) -> Option<Style> {
+        self.compiled().map(|c| c.style)
+    }
+
+    /// `FILE.params.toml` next to the shader.
+    pub fn sidecar(&self) -> PathBuf {
+        sidecar_path(&self.path)
+    }
+
+    /// Writes the parameter values to the sidecar file.
+    pub fn save_params(&self) -> Result<PathBuf, String> {
+        let path = self.sidecar();
+        let name = self
+            .path
+            .file_name()
+            .map_or_else(String::new, |n| n.to_string_lossy().into_owned());
+        crate::app::write_atomically(&path, &self.params.to_toml(&name))
+            .map_err(|e| format!("{}: {e}", path.display()))?;
+        Ok(path)
+    }
+
+    /// Reads the sidecar file into the current values; returns warnings.
+    pub fn load_params(&mut self) -> Result<Vec<String>, String> {
+        let path = self.sidecar();
+        let text =
+            std::fs::read_to_string(&path).map_err(|e| format!("{}: {e}", path.display()))?;
+        self.params
+            .apply_toml(&text)
+            .map_err(|e| format!("{}: {e}", path.display()))
+    }
+
+    fn load_sidecar_into(&self, params: &mut ParamSet) -> Vec<String> {
+        let path = self.sidecar();
+        match std::fs::read_to_string(&path) {
+            Ok(text) => match params.apply_toml(&text) {
+                Ok(warnings) => warnings
+                    .into_iter()
+                    .map(|w| format!("{}: {w}", path.display()))
+                    .collect(),
+                Err(e) => vec![format!("{}: {e}", path.display())],
+            },
+            Err(_) => Vec::new(),
+        }
+    }
+}
