@@ -6,6 +6,7 @@
 mod document;
 mod orbit;
 mod panel;
+mod pipelines;
 mod ui;
 mod watch;
 
@@ -20,7 +21,7 @@ use winit::window::{Fullscreen, Window, WindowId};
 
 use crate::gpu::{FrameStatus, Gpu, Pipelines, ShaderOptions, ShaderSource, Viewport};
 use crate::reference;
-use crate::scene::bundled;
+use crate::scene::{Scene, bundled};
 use document::Document;
 use panel::PanelAction;
 use ui::{Command, Editor, Status, ViewInput};
@@ -65,8 +66,8 @@ pub enum ViewerError {
 /// Things other threads tell the event loop.
 pub enum UserEvent {
     FileChanged(watch::Change),
-    /// Pipelines built in the background from reloaded shaders.
-    PipelinesBuilt(Box<Result<Pipelines, String>>),
+    /// Pipelines built in the background (new feature set or reloaded shaders).
+    PipelinesBuilt(Box<pipelines::Built>),
 }
 
 /// Opens the viewer and runs until the window closes.
@@ -97,7 +98,8 @@ pub fn run(options: ViewerOptions) -> Result<(), ViewerError> {
         doc,
         editor: Editor::default(),
         shader_dir,
-        shaders,
+        startup_shaders: Some(shaders),
+        reload_pending: false,
         gfx: None,
         watch: None,
         fatal: None,
@@ -123,6 +125,7 @@ struct Graphics {
     window: Arc<Window>,
     gpu: Gpu,
     viewport: Viewport,
+    pipelines: pipelines::PipelineCache,
     egui: EguiLayer,
 }
 
@@ -139,8 +142,10 @@ struct App {
     doc: Document,
     editor: Editor,
     shader_dir: Option<PathBuf>,
-    /// The shader source of the pipelines in use (the last good one).
-    shaders: ShaderSource,
+    /// The validated shader source to start with (taken when the window opens).
+    startup_shaders: Option<ShaderSource>,
+    /// A shader reload validated and its pipelines are being built.
+    reload_pending: bool,
     gfx: Option<Graphics>,
     watch: Option<watch::Watch>,
     /// Why the viewer had to stop, reported after the loop ends.
@@ -174,7 +179,7 @@ impl ApplicationHandler<UserEvent> for App {
         match event {
             UserEvent::FileChanged(watch::Change::Shaders) => self.reload_shaders(),
             UserEvent::FileChanged(watch::Change::SceneFile) => self.reload_scene_file(),
-            UserEvent::PipelinesBuilt(result) => self.pipelines_built(*result),
+            UserEvent::PipelinesBuilt(built) => self.pipelines_built(*built),
         }
         self.request_redraw();
     }
@@ -239,13 +244,14 @@ impl App {
         )
         .map_err(|e| ViewerError::NoGpu(e.to_string()))?;
         let formats = Viewport::output_formats(&gpu, &surface);
-        let pipelines = Pipelines::new(
-            &gpu.device,
-            &self.shaders,
-            &formats,
-            &ShaderOptions::default(),
-        )
-        .map_err(|e| ViewerError::Shader(e.to_string()))?;
+        let source = self
+            .startup_shaders
+            .take()
+            .expect("graphics are created once");
+        let options = ShaderOptions::for_scene(&self.doc.scene);
+        let pipelines = Pipelines::new(&gpu.device, &source, &formats, &options)
+            .map_err(|e| ViewerError::Shader(e.to_string()))?;
+        let cache = pipelines::PipelineCache::new(source, options, pipelines.clone());
         let size = window.inner_size();
         let viewport = Viewport::new(
             &gpu,
@@ -273,6 +279,7 @@ impl App {
             window,
             gpu,
             viewport,
+            pipelines: cache,
             egui: EguiLayer {
                 ctx,
                 state,
@@ -319,43 +326,67 @@ impl App {
     /// a valid source goes on to the (slow) pipeline build, on another thread,
     /// while the last good pipelines keep drawing.
     fn reload_shaders(&mut self) {
-        let (Some(dir), Some(gfx)) = (&self.shader_dir, &self.gfx) else {
+        let (Some(dir), Some(gfx)) = (&self.shader_dir, &mut self.gfx) else {
             return;
         };
-        let source = match ShaderSource::from_dir(dir).and_then(|s| s.validate().map(|_| s)) {
-            Ok(source) => source,
+        match ShaderSource::from_dir(dir).and_then(|s| s.validate().map(|_| s)) {
+            Ok(source) => {
+                gfx.pipelines.set_source(source);
+                gfx.pipelines.current = None;
+                self.reload_pending = true;
+                self.ensure_pipelines();
+            }
             Err(e) => {
                 self.event(&format!("shader-error {}:{}:{}", e.file, e.line, e.column));
                 log::error!("{e}");
                 self.editor.shader_error = Some(e.to_string());
-                return;
             }
-        };
+        }
+    }
+
+    /// Draws with the pipelines for the scene's feature set (and the current
+    /// shader source) once they are built; starts building them otherwise.
+    fn ensure_pipelines(&mut self) {
+        let Some(gfx) = &mut self.gfx else { return };
+        let wanted = ShaderOptions::for_scene(&self.doc.scene);
+        if gfx.pipelines.current == Some(wanted) {
+            return;
+        }
         let device = gfx.gpu.device.clone();
         let formats = [gfx.viewport.surface_format(), crate::gpu::EXPORT_FORMAT];
         let proxy = self.proxy.clone();
-        self.shaders = source.clone();
-        std::thread::spawn(move || {
-            let result = Pipelines::new(&device, &source, &formats, &ShaderOptions::default())
-                .map_err(|e| e.to_string());
-            let _ = proxy.send_event(UserEvent::PipelinesBuilt(Box::new(result)));
-        });
-    }
-
-    fn pipelines_built(&mut self, result: Result<Pipelines, String>) {
-        let Some(gfx) = &mut self.gfx else { return };
-        match result {
-            Ok(pipelines) => {
-                gfx.viewport.set_pipelines(&gfx.gpu, pipelines);
+        let spawn = move |source: ShaderSource, generation| {
+            std::thread::spawn(move || {
+                let result =
+                    Pipelines::new(&device, &source, &formats, &wanted).map_err(|e| e.to_string());
+                let built = pipelines::Built {
+                    generation,
+                    options: wanted,
+                    result,
+                };
+                let _ = proxy.send_event(UserEvent::PipelinesBuilt(Box::new(built)));
+            });
+        };
+        if let Some(pipelines) = gfx.pipelines.get_or_build(wanted, spawn) {
+            gfx.viewport.set_pipelines(&gfx.gpu, pipelines);
+            gfx.pipelines.current = Some(wanted);
+            if std::mem::take(&mut self.reload_pending) {
                 self.editor.shader_error = None;
                 self.event("shaders-reloaded");
             }
-            Err(e) => {
-                log::error!("{e}");
-                self.editor.shader_error = Some(e);
-                self.event("shader-error");
-            }
         }
+    }
+
+    fn pipelines_built(&mut self, built: pipelines::Built) {
+        let Some(gfx) = &mut self.gfx else { return };
+        if let Err(e) = gfx.pipelines.finished(built) {
+            log::error!("{e}");
+            self.editor.shader_error = Some(e);
+            self.reload_pending = false;
+            self.event("shader-error");
+            return;
+        }
+        self.ensure_pipelines();
     }
 
     /// An external edit of the scene file: an invalid file is reported and
@@ -370,7 +401,7 @@ impl App {
                     self.event("scene-changed-on-disk");
                 } else {
                     self.doc.accept_external(scene, text);
-                    self.scene_changed();
+                    self.scene_changed(None);
                     self.event("scene-reloaded");
                 }
             }
@@ -382,10 +413,19 @@ impl App {
         }
     }
 
-    fn scene_changed(&mut self) {
+    /// Tells the viewport what changed: only the view (camera, render
+    /// settings: the globals) or the shapes too (buffers and BVH rebuilt).
+    /// A new feature set gets its own pipelines.
+    fn scene_changed(&mut self, before: Option<&Scene>) {
         if let Some(gfx) = &mut self.gfx {
-            gfx.viewport.set_scene(&gfx.gpu, &self.doc.scene);
+            match before {
+                Some(old) if same_shapes(old, &self.doc.scene) => {
+                    gfx.viewport.set_view(&self.doc.scene)
+                }
+                _ => gfx.viewport.set_scene(&gfx.gpu, &self.doc.scene),
+            }
         }
+        self.ensure_pipelines();
     }
 
     fn quit(&mut self, event_loop: &ActiveEventLoop, force: bool) {
@@ -405,7 +445,7 @@ impl App {
         }
         self.apply_view_input(&input);
         if self.doc.scene != before {
-            self.scene_changed();
+            self.scene_changed(Some(&before));
         }
         self.update_title();
         self.paint(egui_output, input.dragging);
@@ -421,6 +461,7 @@ impl App {
             samples: gfx.viewport.samples(),
             resolution: gfx.viewport.traced_resolution(),
             adapter: gfx.gpu.adapter.get_info().name,
+            compiling: gfx.pipelines.building(),
         };
         let names = bundled::names();
         let mut result = (Vec::new(), ViewInput::default());
@@ -464,7 +505,7 @@ impl App {
             Command::AcceptReload => {
                 if let Some((scene, text)) = self.editor.pending_reload.take() {
                     self.doc.accept_external(scene, text);
-                    self.scene_changed();
+                    self.scene_changed(None);
                     self.event("scene-reloaded");
                 }
             }
@@ -522,7 +563,7 @@ impl App {
                 self.doc = doc;
                 self.editor.panel.selection = None;
                 self.editor.scene_error = None;
-                self.scene_changed();
+                self.scene_changed(None);
                 self.restart_watch();
                 self.editor.message = Some(format!("opened {}", self.doc.label()));
             }
@@ -662,4 +703,13 @@ impl App {
             self.repaint_at = Some(Instant::now() + delay);
         }
     }
+}
+
+/// Whether two scenes differ at most in camera and render settings.
+fn same_shapes(a: &Scene, b: &Scene) -> bool {
+    a.lights == b.lights
+        && a.materials == b.materials
+        && a.spheres == b.spheres
+        && a.planes == b.planes
+        && a.cubes == b.cubes
 }

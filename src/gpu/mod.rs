@@ -2,6 +2,7 @@
 //! and offscreen rendering with readback. Knows scenes, not windows or UI.
 
 mod context;
+mod features;
 pub mod layout;
 mod offscreen;
 pub mod shaders;
@@ -10,10 +11,9 @@ mod tracer;
 mod viewport;
 
 pub use context::{Gpu, GpuError};
+pub use features::{Features, ShaderOptions};
 pub use offscreen::{OffscreenRenderer, render_image};
 pub use shaders::{ShaderError, ShaderSource};
 pub use timer::{GpuTimer, Timing};
-pub use tracer::{
-    Accumulator, FrameTarget, PipelineError, Pipelines, SceneBuffers, ShaderOptions, encode_frame,
-};
+pub use tracer::{Accumulator, FrameTarget, PipelineError, Pipelines, SceneBuffers, encode_frame};
 pub use viewport::{EXPORT_FORMAT, FrameStatus, Viewport};
