@@ -33,6 +33,9 @@ enum Command {
     },
     /// Render a scene to a PNG file, on the GPU or with the CPU reference.
     Render(RenderArgs),
+    /// Benchmark: GPU time against error, specialised against generic
+    /// pipelines, and scaling with the number of spheres (BVH on and off).
+    Bench(raysandbox::bench::BenchArgs),
 }
 
 #[derive(clap::Args, Default)]
@@ -146,6 +149,10 @@ fn main() -> ExitCode {
         Command::View(args) => view(args),
         Command::Check { scene } => check(&scene),
         Command::Render(args) => render(&args),
+        Command::Bench(args) => raysandbox::bench::run(&args).map_err(|e| match e {
+            raysandbox::bench::BenchError::NoGpu(m) => Failure::Runtime(RuntimeError(m)),
+            raysandbox::bench::BenchError::Failed(m) => Failure::Runtime(RuntimeError(m)),
+        }),
     };
     match result {
         Ok(()) => ExitCode::SUCCESS,

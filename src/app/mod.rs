@@ -27,6 +27,7 @@ use panel::PanelAction;
 use ui::{Command, Editor, Status, ViewInput};
 
 pub use document::write_atomically;
+pub use panel::{DEFAULT_MAX_SAMPLES, DEFAULT_MIN_WEIGHT};
 
 /// How the viewer was started (the `view` subcommand's options).
 #[derive(Debug, Clone, Default)]
@@ -258,7 +259,7 @@ impl App {
             surface,
             (size.width, size.height),
             pipelines,
-            &self.doc.scene,
+            &self.shown_scene(),
         );
         let ctx = egui::Context::default();
         let state = egui_winit::State::new(
@@ -417,15 +418,23 @@ impl App {
     /// settings: the globals) or the shapes too (buffers and BVH rebuilt).
     /// A new feature set gets its own pipelines.
     fn scene_changed(&mut self, before: Option<&Scene>) {
+        let shown = self.shown_scene();
         if let Some(gfx) = &mut self.gfx {
             match before {
-                Some(old) if same_shapes(old, &self.doc.scene) => {
-                    gfx.viewport.set_view(&self.doc.scene)
-                }
-                _ => gfx.viewport.set_scene(&gfx.gpu, &self.doc.scene),
+                Some(old) if same_shapes(old, &self.doc.scene) => gfx.viewport.set_view(&shown),
+                _ => gfx.viewport.set_scene(&gfx.gpu, &shown),
             }
         }
         self.ensure_pipelines();
+    }
+
+    /// The scene as the viewer draws it: the file's, with `min_weight`
+    /// raised to the viewer's floor (the panel's "min weight").
+    fn shown_scene(&self) -> Scene {
+        let mut scene = self.doc.scene.clone();
+        let floor = self.editor.view.min_weight;
+        scene.render.min_weight = scene.render.min_weight.max(floor);
+        scene
     }
 
     fn quit(&mut self, event_loop: &ActiveEventLoop, force: bool) {
@@ -439,12 +448,13 @@ impl App {
 
     fn redraw(&mut self, event_loop: &ActiveEventLoop) {
         let before = self.doc.scene.clone();
+        let view_before = self.editor.view.min_weight;
         let (commands, input, egui_output) = self.run_ui();
         for command in commands {
             self.execute(command, event_loop);
         }
         self.apply_view_input(&input);
-        if self.doc.scene != before {
+        if self.doc.scene != before || self.editor.view.min_weight != view_before {
             self.scene_changed(Some(&before));
         }
         self.update_title();

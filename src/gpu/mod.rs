@@ -14,6 +14,6 @@ pub use context::{Gpu, GpuError};
 pub use features::{Features, ShaderOptions};
 pub use offscreen::{OffscreenRenderer, render_image};
 pub use shaders::{ShaderError, ShaderSource};
-pub use timer::{GpuTimer, Timing};
+pub use timer::{GpuTimer, TIMER_FEATURES, Timing};
 pub use tracer::{Accumulator, FrameTarget, PipelineError, Pipelines, SceneBuffers, encode_frame};
 pub use viewport::{EXPORT_FORMAT, FrameStatus, Viewport};
