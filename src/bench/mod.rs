@@ -75,9 +75,12 @@ impl Plan {
 
     /// The (spp, max_depth, min_weight, scale) points of the time/error
     /// sweep: max_depth x min_weight at 1 sample and full resolution, and
-    /// samples x resolution scale at the scene's own depth (at most 8) for
-    /// each min_weight. Together they hold the cheap and the converged ends
-    /// of the trade-off without the full product of all four axes.
+    /// samples x resolution scale x min_weight at the scene's own depth (at
+    /// most 8). Together they hold the cheap and the converged ends of the
+    /// trade-off without the full product of all four axes. Beyond 16
+    /// samples (up to the viewer's refinement limit) only full resolution
+    /// with min_weight 0 and the viewer's default is measured: those renders
+    /// are long, and only they can show where the error becomes invisible.
     fn points(&self, scene: &Scene) -> Vec<Point> {
         let own_depth = scene.render.max_depth.clamp(1, 8);
         let mut points = Vec::new();
@@ -94,12 +97,16 @@ impl Plan {
         for &spp in &self.spp {
             for &scale in &self.scales {
                 for &min_weight in &self.min_weights {
-                    points.push(Point {
-                        spp,
-                        depth: own_depth,
-                        min_weight,
-                        scale,
-                    });
+                    let converging =
+                        scale == 1.0 && (min_weight == 0.0 || min_weight == DEFAULT_MIN_WEIGHT);
+                    if spp <= 16 || converging {
+                        points.push(Point {
+                            spp,
+                            depth: own_depth,
+                            min_weight,
+                            scale,
+                        });
+                    }
                 }
             }
         }
