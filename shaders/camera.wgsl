@@ -85,7 +85,7 @@ fn camera_ray(pixel: vec2<f32>, lens: vec2<f32>) -> Ray {
     let x = h * (size.x / size.y) * (pixel.x / size.x - 0.5);
     let y = h * (0.5 - pixel.y / size.y);
     let to_film = x * b.u + y * b.v - b.w;
-    if globals.aperture > 0.0 {
+    if HAS_LENS && globals.aperture > 0.0 {
         // Thin lens: aim from the lens point at P = e + focus_distance * to_film.
         let lens_offset = globals.aperture * (lens.x * b.u + lens.y * b.v);
         let dir = globals.focus_distance * to_film - lens_offset;

@@ -355,39 +355,133 @@ fn hit_cube_naive(ray: Ray, cube: Cube, index: u32, best: Hit) -> Hit {
     return Hit(t, p, cube.rotation * n_local, KIND_CUBE, index, 0.0);
 }
 
-/// The nearest hit over the whole scene with 0 < t < t_max.
-fn hit_scene(ray: Ray, t_max: f32) -> Hit {
-    var best = no_hit(t_max);
-    for (var i = 0u; i < globals.sphere_count; i++) {
-        best = hit_sphere(ray, spheres[i], i, best);
+/// Whether the ray meets the box for some 0 <= t < t_max: the slab test
+/// with the same care as hit_cube (a parallel axis decided by a branch, the
+/// far bound widened by 1 + 2 gamma(3)). `inv_d` is 1 / d, 0 where |d_i| is
+/// below 1e-20 (those components are not used).
+fn hit_box(lo: vec3<f32>, hi: vec3<f32>, ray: Ray, inv_d: vec3<f32>, t_max: f32) -> bool {
+    var near = 0.0;
+    var far = t_max;
+    for (var i = 0u; i < 3u; i++) {
+        if abs(ray.dir[i]) < 1e-20 {
+            if ray.origin[i] < lo[i] || ray.origin[i] > hi[i] {
+                return false;
+            }
+            continue;
+        }
+        let ta = (lo[i] - ray.origin[i]) * inv_d[i];
+        let tb = (hi[i] - ray.origin[i]) * inv_d[i];
+        near = max(near, min(ta, tb));
+        far = min(far, max(ta, tb) * (1.0 + 2.0 * GAMMA3));
     }
-    for (var i = 0u; i < globals.plane_count; i++) {
-        best = hit_plane(ray, planes[i], i, best);
+    return near <= far;
+}
+
+/// Deepest BVH level (src/bvh.rs MAX_DEPTH) + 1: the traversal stack.
+const BVH_STACK: u32 = 31u;
+
+/// The nearest sphere or box hit through the BVH, nearer than best.t. With
+/// `any`, stops at the first hit (shadow rays need no more). The root's box
+/// holds every bounded shape, so a ray that misses it leaves at once.
+fn hit_bounded_bvh(ray: Ray, best_in: Hit, any: bool) -> Hit {
+    var best = best_in;
+    if globals.bvh_node_count == 0u {
+        return best;
     }
-    for (var i = 0u; i < globals.cube_count; i++) {
-        best = hit_cube(ray, cubes[i], i, best);
+    let inv_d = select(1.0 / ray.dir, vec3(0.0), abs(ray.dir) < vec3(1e-20));
+    var stack: array<u32, BVH_STACK>;
+    stack[0] = 0u;
+    var top = 1u;
+    while top > 0u {
+        top -= 1u;
+        let node = bvh_nodes[stack[top]];
+        if !hit_box(node.bounds_min, node.bounds_max, ray, inv_d, best.t) {
+            continue;
+        }
+        if node.count == 0u {
+            // Visit the nearer child first: push it last.
+            let e = node.bounds_max - node.bounds_min;
+            var axis = 2u;
+            if e.x >= e.y && e.x >= e.z {
+                axis = 0u;
+            } else if e.y >= e.z {
+                axis = 1u;
+            }
+            let near_first = ray.dir[axis] >= 0.0;
+            stack[top] = select(node.first, node.first + 1u, near_first);
+            stack[top + 1u] = select(node.first + 1u, node.first, near_first);
+            top = min(top + 2u, BVH_STACK - 1u);
+            continue;
+        }
+        for (var i = node.first; i < node.first + node.count; i++) {
+            let shape = bvh_shapes[i];
+            if (shape & CUBE_BIT) != 0u {
+                if HAS_CUBES {
+                    best = hit_cube(ray, cubes[shape & ~CUBE_BIT], shape & ~CUBE_BIT, best);
+                }
+            } else if HAS_SPHERES {
+                best = hit_sphere(ray, spheres[shape], shape, best);
+            }
+        }
+        if any && best.kind != KIND_NONE {
+            return best;
+        }
     }
     return best;
+}
+
+/// The nearest sphere or box hit by looping over all of them (USE_BVH =
+/// false: the lecture's loop, and the baseline of the BVH's speed-up).
+fn hit_bounded_loop(ray: Ray, best_in: Hit, any: bool) -> Hit {
+    var best = best_in;
+    if HAS_SPHERES {
+        for (var i = 0u; i < globals.sphere_count; i++) {
+            best = hit_sphere(ray, spheres[i], i, best);
+            if any && best.kind != KIND_NONE {
+                return best;
+            }
+        }
+    }
+    if HAS_CUBES {
+        for (var i = 0u; i < globals.cube_count; i++) {
+            best = hit_cube(ray, cubes[i], i, best);
+            if any && best.kind != KIND_NONE {
+                return best;
+            }
+        }
+    }
+    return best;
+}
+
+/// The nearest hit with 0 < t < best.t over planes and bounded shapes; with
+/// `any`, any hit will do.
+fn hit_shapes(ray: Ray, best_in: Hit, any: bool) -> Hit {
+    var best = best_in;
+    if HAS_PLANES {
+        for (var i = 0u; i < globals.plane_count; i++) {
+            best = hit_plane(ray, planes[i], i, best);
+            if any && best.kind != KIND_NONE {
+                return best;
+            }
+        }
+    }
+    if HAS_SPHERES || HAS_CUBES {
+        if USE_BVH {
+            best = hit_bounded_bvh(ray, best, any);
+        } else {
+            best = hit_bounded_loop(ray, best, any);
+        }
+    }
+    return best;
+}
+
+/// The nearest hit over the whole scene with 0 < t < t_max.
+fn hit_scene(ray: Ray, t_max: f32) -> Hit {
+    return hit_shapes(ray, no_hit(t_max), false);
 }
 
 /// Whether anything blocks the segment 0 < t < t_max (shadow rays): stops at
 /// the first blocker, since any blocker casts the whole shadow.
 fn occluded(ray: Ray, t_max: f32) -> bool {
-    let none = no_hit(t_max);
-    for (var i = 0u; i < globals.sphere_count; i++) {
-        if hit_sphere(ray, spheres[i], i, none).kind != KIND_NONE {
-            return true;
-        }
-    }
-    for (var i = 0u; i < globals.plane_count; i++) {
-        if hit_plane(ray, planes[i], i, none).kind != KIND_NONE {
-            return true;
-        }
-    }
-    for (var i = 0u; i < globals.cube_count; i++) {
-        if hit_cube(ray, cubes[i], i, none).kind != KIND_NONE {
-            return true;
-        }
-    }
-    return false;
+    return hit_shapes(ray, no_hit(t_max), true).kind != KIND_NONE;
 }

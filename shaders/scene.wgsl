@@ -24,7 +24,7 @@ struct Globals {
     plane_count: u32,
     cube_count: u32,
     light_count: u32,
-    _pad0: u32,
+    bvh_node_count: u32,     // 0: no bounded shapes (spheres, boxes)
     output_size: vec2<u32>,  // size of the display target (may exceed `resolution`)
 }
 
@@ -69,6 +69,20 @@ struct Material {
     _pad2: u32,
 }
 
+/// A node of the bounding volume hierarchy over spheres and boxes (built on
+/// the CPU, src/bvh.rs): an inner node (count = 0) has its children at
+/// `first` and `first + 1`; a leaf holds `count` entries of `bvh_shapes`
+/// from `first`. The box is rounded outwards, so it holds its shapes.
+struct BvhNode {
+    bounds_min: vec3<f32>,
+    first: u32,
+    bounds_max: vec3<f32>,
+    count: u32,
+}
+
+/// In `bvh_shapes`: a box index with this bit set, else a sphere index.
+const CUBE_BIT: u32 = 0x80000000u;
+
 struct Light {
     position: vec3<f32>,
     _pad: u32,
@@ -82,3 +96,19 @@ struct Light {
 @group(0) @binding(3) var<storage, read> cubes: array<Cube>;
 @group(0) @binding(4) var<storage, read> materials: array<Material>;
 @group(0) @binding(5) var<storage, read> lights: array<Light>;
+@group(0) @binding(6) var<storage, read> bvh_nodes: array<BvhNode>;
+@group(0) @binding(7) var<storage, read> bvh_shapes: array<u32>;
+
+// What the scene uses, as pipeline-overridable constants (src/gpu/features.rs):
+// the pipeline for a scene is compiled with false for what it does not use,
+// and the compiler drops the code behind those flags. The defaults (all
+// true) make the generic pipeline, which draws any scene.
+override HAS_SPHERES: bool = true;
+override HAS_PLANES: bool = true;
+override HAS_CUBES: bool = true;
+override HAS_LIGHTS: bool = true;        // shading by lights, shadow rays
+override HAS_MIRRORS: bool = true;       // materials with mirror > 0
+override HAS_TRANSPARENCY: bool = true;  // materials with transparency > 0
+override HAS_CHECKER: bool = true;
+override HAS_LENS: bool = true;          // aperture > 0
+override USE_BVH: bool = true;           // spheres and boxes through the BVH

@@ -37,7 +37,7 @@ const NAIVE_OFFSET: f32 = 1e-3;
 /// side everywhere. `checker_cell` evaluates floor(p / s - 0.001 n) exactly
 /// from p / s instead.
 fn albedo_at(m: Material, p: vec3<f32>, n: vec3<f32>) -> vec3<f32> {
-    if m.checker_size <= 0.0 {
+    if !HAS_CHECKER || m.checker_size <= 0.0 {
         return m.color;
     }
     let s = m.checker_size;
@@ -99,6 +99,9 @@ fn refract_dir(d: vec3<f32>, ns: vec3<f32>, eta: f32) -> vec3<f32> {
 /// that the point sees (a shadow ray to it hits nothing).
 fn shade_local(hit: Hit, ns: vec3<f32>, d: vec3<f32>, m: Material, albedo: vec3<f32>) -> vec3<f32> {
     var color = globals.ambient * albedo * m.diffuse;
+    if !HAS_LIGHTS {
+        return color;
+    }
     let shadow_origin = offset_ray(hit.point, ns, hit.error_scale);
     for (var i = 0u; i < globals.light_count; i++) {
         let light = lights[i];
@@ -138,10 +141,12 @@ struct PendingRay {
     throughput: vec3<f32>,   // what this ray's radiance is multiplied by in the pixel
 }
 
-/// Depth-first, each hit pushes at most its two children and the reflected
-/// one is popped at once, so at most one pending sibling waits per level:
-/// max_depth + 1 = 17 entries suffice.
-const STACK_SIZE: u32 = 17u;
+// The stack: depth-first, each hit pushes at most its two children and the
+// reflected one is popped at once, so at most one pending sibling waits per
+// level and max_depth + 1 entries suffice. STACK_SIZE is declared by the
+// program in a generated part in front of these files, as the scene's
+// max_depth + 1 (at most 17; src/gpu/shaders.rs): WGSL cannot size an array
+// with an `override`, and a stack no larger than needed is markedly faster.
 
 /// Whether the spec allows a child ray of this depth and weight.
 fn worth_tracing(depth: u32, weight: f32) -> bool {
@@ -174,7 +179,7 @@ fn trace(primary: Ray) -> vec3<f32> {
         // Fresnel only where the material has a dielectric part.
         var f = 0.0;
         var eta = 1.0;
-        if m.transparency > 0.0 {
+        if HAS_TRANSPARENCY && m.transparency > 0.0 {
             let cos_i = -dot(ray.dir, ns);
             if hit.kind == KIND_PLANE || into_surface {
                 f = fresnel(cos_i, 1.0, m.ior);
@@ -189,7 +194,7 @@ fn trace(primary: Ray) -> vec3<f32> {
         let child_depth = job.depth + 1u;
 
         let refracted_weight = job.weight * wt * max(albedo.r, max(albedo.g, albedo.b));
-        if worth_tracing(child_depth, refracted_weight) && top < STACK_SIZE {
+        if HAS_TRANSPARENCY && worth_tracing(child_depth, refracted_weight) && top < STACK_SIZE {
             var dir = ray.dir;             // thin planes pass the ray on unbent
             if hit.kind != KIND_PLANE {
                 dir = refract_dir(ray.dir, ns, eta);
@@ -199,7 +204,8 @@ fn trace(primary: Ray) -> vec3<f32> {
             top += 1u;
         }
         let reflected_weight = job.weight * wr;
-        if worth_tracing(child_depth, reflected_weight) && top < STACK_SIZE {
+        let reflects = HAS_MIRRORS || HAS_TRANSPARENCY;
+        if reflects && worth_tracing(child_depth, reflected_weight) && top < STACK_SIZE {
             let origin = offset_ray(hit.point, ns, hit.error_scale);
             stack[top] = PendingRay(Ray(origin, reflect_dir(ray.dir, ns)), child_depth, reflected_weight, job.throughput * wr);
             top += 1u;

@@ -2,6 +2,7 @@
 //! as an f64 CPU reference that measures how far the GPU is from exact.
 
 pub mod app;
+pub mod bench;
 pub mod bvh;
 pub mod compare;
 pub mod gpu;

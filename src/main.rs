@@ -2,7 +2,7 @@
 
 use std::path::{Path, PathBuf};
 use std::process::ExitCode;
-use std::time::Instant;
+use std::time::{Duration, Instant};
 
 use clap::{Parser, Subcommand};
 
@@ -39,6 +39,9 @@ enum Command {
     /// style), reloaded on save, with sliders from its annotations; or
     /// render it headless (--render, --frames). See docs/sandbox.md.
     Shader(raysandbox::sandbox::ShaderArgs),
+    /// Benchmark: GPU time against error, specialised against generic
+    /// pipelines, and scaling with the number of spheres (BVH on and off).
+    Bench(raysandbox::bench::BenchArgs),
 }
 
 #[derive(clap::Args, Default)]
@@ -96,6 +99,30 @@ struct RenderArgs {
     /// Read the WGSL from this folder instead of the embedded copy.
     #[arg(long)]
     shaders: Option<PathBuf>,
+    /// The GPU pipeline: compiled for the scene's features only, or with
+    /// every feature (the same source either way).
+    #[arg(long, value_enum, default_value_t = PipelineKind::Specialized)]
+    pipeline: PipelineKind,
+    /// Spheres and boxes through the bounding volume hierarchy, or a loop
+    /// over every shape.
+    #[arg(long, value_enum, default_value_t = Switch::On)]
+    bvh: Switch,
+    /// Render the image this many times after one warm-up render and print
+    /// the median, fastest and slowest GPU time.
+    #[arg(long, default_value_t = 1, value_parser = clap::value_parser!(u32).range(1..=10000))]
+    frames: u32,
+}
+
+#[derive(Clone, Copy, PartialEq, Eq, clap::ValueEnum)]
+enum PipelineKind {
+    Specialized,
+    Generic,
+}
+
+#[derive(Clone, Copy, PartialEq, Eq, clap::ValueEnum)]
+enum Switch {
+    On,
+    Off,
 }
 
 /// A failure the user caused (bad file, bad arguments): exit status 2.
@@ -135,6 +162,10 @@ fn main() -> ExitCode {
         Command::Shader(args) => raysandbox::sandbox::run(&args).map_err(|e| match e {
             raysandbox::sandbox::SandboxError::Input(m) => Failure::Input(InputError(m)),
             raysandbox::sandbox::SandboxError::Runtime(m) => Failure::Runtime(RuntimeError(m)),
+        }),
+        Command::Bench(args) => raysandbox::bench::run(&args).map_err(|e| match e {
+            raysandbox::bench::BenchError::NoGpu(m) => Failure::Runtime(RuntimeError(m)),
+            raysandbox::bench::BenchError::Failed(m) => Failure::Runtime(RuntimeError(m)),
         }),
     };
     match result {
@@ -193,16 +224,34 @@ fn render(args: &RenderArgs) -> Result<(), Failure> {
         source.validate().map_err(|e| InputError(e.to_string()))?;
         let gpu = Gpu::headless().map_err(|e| RuntimeError(e.to_string()))?;
         println!("adapter: {}", gpu.describe());
-        let options = ShaderOptions::default();
+        let mut options = match args.pipeline {
+            PipelineKind::Specialized => ShaderOptions::for_scene(&scene),
+            PipelineKind::Generic => ShaderOptions::default(),
+        };
+        options.features.bvh = args.bvh == Switch::On;
         let mut renderer =
             OffscreenRenderer::new(&gpu, &source, &options, &scene, args.width, args.height)
                 .map_err(|e| InputError(e.to_string()))?;
-        let gpu_time = renderer.render(&gpu, args.spp);
+        let ms = |d: Duration| d.as_secs_f64() * 1e3;
+        let first = renderer.render(&gpu, args.spp);
         println!(
             "GPU time ({}): {:.1} ms",
             renderer.timing().describe(),
-            gpu_time.as_secs_f64() * 1e3
+            ms(first)
         );
+        if args.frames > 1 {
+            let mut times: Vec<Duration> = (0..args.frames)
+                .map(|_| renderer.render(&gpu, args.spp))
+                .collect();
+            times.sort();
+            println!(
+                "{} frames after warm-up: median {:.2} ms, fastest {:.2} ms, slowest {:.2} ms",
+                times.len(),
+                ms(times[times.len() / 2]),
+                ms(times[0]),
+                ms(times[times.len() - 1]),
+            );
+        }
         renderer.read_image(&gpu)
     };
     println!(

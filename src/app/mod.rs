@@ -8,6 +8,7 @@ mod document;
 mod orbit;
 mod overlay;
 mod panel;
+mod pipelines;
 mod sandbox_window;
 mod shell;
 mod ui;
@@ -25,13 +26,14 @@ use winit::window::WindowId;
 use crate::gpu::{FrameStatus, Gpu, Pipelines, ShaderOptions, ShaderSource, Viewport};
 use crate::reference;
 use crate::sandbox::SourceParams;
-use crate::scene::bundled;
+use crate::scene::{Scene, bundled};
 use document::Document;
 use panel::PanelAction;
 use shell::{EguiLayer, EventLog};
 use ui::{Command, Editor, Status, ViewInput};
 
 pub use document::write_atomically;
+pub use panel::{DEFAULT_MAX_SAMPLES, DEFAULT_MIN_WEIGHT};
 pub use sandbox_window::{SandboxOptions, run_sandbox};
 
 /// How the viewer was started (the `view` subcommand's options).
@@ -72,9 +74,9 @@ pub enum ViewerError {
 /// Things other threads tell the event loop.
 pub enum UserEvent {
     FileChanged(watch::Change),
-    /// Pipelines built in the background from reloaded shaders (or changed
-    /// shader parameters); the number tells builds apart.
-    PipelinesBuilt(u64, Box<Result<Pipelines, String>>),
+    /// Pipelines built in the background: for a new scene feature set, from
+    /// reloaded shaders or for changed shader parameters.
+    PipelinesBuilt(Box<pipelines::Built>),
 }
 
 /// Opens the viewer and runs until the window closes.
@@ -109,7 +111,7 @@ pub fn run(options: ViewerOptions) -> Result<(), ViewerError> {
         shader_dir,
         shaders,
         shader_params,
-        builds: Builds::default(),
+        reload_pending: false,
         gfx: None,
         watch: None,
         fatal: None,
@@ -130,20 +132,12 @@ pub fn run(options: ViewerOptions) -> Result<(), ViewerError> {
     }
 }
 
-/// Pipeline builds on other threads: only the newest one is used, and a
-/// parameter change during a build starts one more when it is done.
-#[derive(Debug, Default)]
-struct Builds {
-    started: u64,
-    running: bool,
-    again: bool,
-}
-
 /// The window and everything that draws into it.
 struct Graphics {
     window: Arc<winit::window::Window>,
     gpu: Gpu,
     viewport: Viewport,
+    pipelines: pipelines::PipelineCache,
     egui: EguiLayer,
 }
 
@@ -159,7 +153,8 @@ struct App {
     /// Its annotated constants: the "Shader parameters" of the panel, whose
     /// values are written into the source the pipelines are built from.
     shader_params: SourceParams,
-    builds: Builds,
+    /// New shaders or parameter values validated; their pipelines are being built.
+    reload_pending: bool,
     gfx: Option<Graphics>,
     watch: Option<watch::Watch>,
     /// Why the viewer had to stop, reported after the loop ends.
@@ -193,7 +188,7 @@ impl ApplicationHandler<UserEvent> for App {
         match event {
             UserEvent::FileChanged(watch::Change::Shaders) => self.reload_shaders(),
             UserEvent::FileChanged(watch::Change::SceneFile) => self.reload_scene_file(),
-            UserEvent::PipelinesBuilt(build, result) => self.pipelines_built(build, *result),
+            UserEvent::PipelinesBuilt(built) => self.pipelines_built(*built),
         }
         self.request_redraw();
     }
@@ -234,26 +229,25 @@ impl App {
         let (window, gpu, surface) =
             shell::open_window(event_loop, "raysandbox", self.options.size, (1280.0, 760.0))?;
         let formats = Viewport::output_formats(&gpu, &surface);
-        let pipelines = Pipelines::new(
-            &gpu.device,
-            &self.shader_params.apply(&self.shaders),
-            &formats,
-            &ShaderOptions::default(),
-        )
-        .map_err(|e| ViewerError::Shader(e.to_string()))?;
+        let source = self.shader_params.apply(&self.shaders);
+        let options = ShaderOptions::for_scene(&self.doc.scene);
+        let pipelines = Pipelines::new(&gpu.device, &source, &formats, &options)
+            .map_err(|e| ViewerError::Shader(e.to_string()))?;
+        let cache = pipelines::PipelineCache::new(source, options, pipelines.clone());
         let size = window.inner_size();
         let viewport = Viewport::new(
             &gpu,
             surface,
             (size.width, size.height),
             pipelines,
-            &self.doc.scene,
+            &self.shown_scene(),
         );
         let egui = EguiLayer::new(&window, &gpu, viewport.surface_format());
         Ok(Graphics {
             window,
             gpu,
             viewport,
+            pipelines: cache,
             egui,
         })
     }
@@ -316,47 +310,59 @@ impl App {
     }
 
     /// Builds pipelines from the current source and parameter values on
-    /// another thread, or after the build that is running.
+    /// another thread; the pipelines in use keep drawing until they are ready.
     fn build_pipelines(&mut self) {
-        let Some(gfx) = &self.gfx else { return };
-        if self.builds.running {
-            self.builds.again = true;
+        let Some(gfx) = &mut self.gfx else { return };
+        gfx.pipelines
+            .set_source(self.shader_params.apply(&self.shaders));
+        gfx.pipelines.current = None;
+        self.reload_pending = true;
+        self.ensure_pipelines();
+    }
+
+    /// Draws with the pipelines for the scene's feature set (and the current
+    /// shader source) once they are built; starts building them otherwise.
+    fn ensure_pipelines(&mut self) {
+        let Some(gfx) = &mut self.gfx else { return };
+        let wanted = ShaderOptions::for_scene(&self.doc.scene);
+        if gfx.pipelines.current == Some(wanted) {
             return;
         }
-        let source = self.shader_params.apply(&self.shaders);
         let device = gfx.gpu.device.clone();
         let formats = [gfx.viewport.surface_format(), crate::gpu::EXPORT_FORMAT];
         let proxy = self.proxy.clone();
-        self.builds.started += 1;
-        self.builds.running = true;
-        let build = self.builds.started;
-        std::thread::spawn(move || {
-            let result = Pipelines::new(&device, &source, &formats, &ShaderOptions::default())
-                .map_err(|e| e.to_string());
-            let _ = proxy.send_event(UserEvent::PipelinesBuilt(build, Box::new(result)));
-        });
-    }
-
-    fn pipelines_built(&mut self, build: u64, result: Result<Pipelines, String>) {
-        if build == self.builds.started {
-            self.builds.running = false;
-        }
-        let Some(gfx) = &mut self.gfx else { return };
-        match result {
-            Ok(pipelines) => {
-                gfx.viewport.set_pipelines(&gfx.gpu, pipelines);
+        let spawn = move |source: ShaderSource, generation| {
+            std::thread::spawn(move || {
+                let result =
+                    Pipelines::new(&device, &source, &formats, &wanted).map_err(|e| e.to_string());
+                let built = pipelines::Built {
+                    generation,
+                    options: wanted,
+                    result,
+                };
+                let _ = proxy.send_event(UserEvent::PipelinesBuilt(Box::new(built)));
+            });
+        };
+        if let Some(pipelines) = gfx.pipelines.get_or_build(wanted, spawn) {
+            gfx.viewport.set_pipelines(&gfx.gpu, pipelines);
+            gfx.pipelines.current = Some(wanted);
+            if std::mem::take(&mut self.reload_pending) {
                 self.editor.shader_error = None;
                 self.event("shaders-reloaded");
             }
-            Err(e) => {
-                log::error!("{e}");
-                self.editor.shader_error = Some(e);
-                self.event("shader-error");
-            }
         }
-        if std::mem::take(&mut self.builds.again) {
-            self.build_pipelines();
+    }
+
+    fn pipelines_built(&mut self, built: pipelines::Built) {
+        let Some(gfx) = &mut self.gfx else { return };
+        if let Err(e) = gfx.pipelines.finished(built) {
+            log::error!("{e}");
+            self.editor.shader_error = Some(e);
+            self.reload_pending = false;
+            self.event("shader-error");
+            return;
         }
+        self.ensure_pipelines();
     }
 
     /// An external edit of the scene file: an invalid file is reported and
@@ -371,7 +377,7 @@ impl App {
                     self.event("scene-changed-on-disk");
                 } else {
                     self.doc.accept_external(scene, text);
-                    self.scene_changed();
+                    self.scene_changed(None);
                     self.event("scene-reloaded");
                 }
             }
@@ -383,10 +389,27 @@ impl App {
         }
     }
 
-    fn scene_changed(&mut self) {
+    /// Tells the viewport what changed: only the view (camera, render
+    /// settings: the globals) or the shapes too (buffers and BVH rebuilt).
+    /// A new feature set gets its own pipelines.
+    fn scene_changed(&mut self, before: Option<&Scene>) {
+        let shown = self.shown_scene();
         if let Some(gfx) = &mut self.gfx {
-            gfx.viewport.set_scene(&gfx.gpu, &self.doc.scene);
+            match before {
+                Some(old) if same_shapes(old, &self.doc.scene) => gfx.viewport.set_view(&shown),
+                _ => gfx.viewport.set_scene(&gfx.gpu, &shown),
+            }
         }
+        self.ensure_pipelines();
+    }
+
+    /// The scene as the viewer draws it: the file's, with `min_weight`
+    /// raised to the viewer's floor (the panel's "min weight").
+    fn shown_scene(&self) -> Scene {
+        let mut scene = self.doc.scene.clone();
+        let floor = self.editor.view.min_weight;
+        scene.render.min_weight = scene.render.min_weight.max(floor);
+        scene
     }
 
     fn quit(&mut self, event_loop: &ActiveEventLoop, force: bool) {
@@ -400,13 +423,14 @@ impl App {
 
     fn redraw(&mut self, event_loop: &ActiveEventLoop) {
         let before = self.doc.scene.clone();
+        let view_before = self.editor.view.min_weight;
         let (commands, input, egui_output) = self.run_ui();
         for command in commands {
             self.execute(command, event_loop);
         }
         self.apply_view_input(&input);
-        if self.doc.scene != before {
-            self.scene_changed();
+        if self.doc.scene != before || self.editor.view.min_weight != view_before {
+            self.scene_changed(Some(&before));
         }
         self.update_title();
         self.paint(egui_output, input.dragging);
@@ -421,6 +445,7 @@ impl App {
             samples: gfx.viewport.samples(),
             resolution: gfx.viewport.traced_resolution(),
             adapter: gfx.gpu.adapter.get_info().name,
+            compiling: gfx.pipelines.building(),
         };
         let names = bundled::names();
         let mut result = (Vec::new(), ViewInput::default());
@@ -467,7 +492,7 @@ impl App {
             Command::AcceptReload => {
                 if let Some((scene, text)) = self.editor.pending_reload.take() {
                     self.doc.accept_external(scene, text);
-                    self.scene_changed();
+                    self.scene_changed(None);
                     self.event("scene-reloaded");
                 }
             }
@@ -525,7 +550,7 @@ impl App {
                 self.doc = doc;
                 self.editor.panel.selection = None;
                 self.editor.scene_error = None;
-                self.scene_changed();
+                self.scene_changed(None);
                 self.restart_watch();
                 self.editor.message = Some(format!("opened {}", self.doc.label()));
             }
@@ -625,4 +650,13 @@ impl App {
             self.repaint_at = Some(Instant::now() + delay);
         }
     }
+}
+
+/// Whether two scenes differ at most in camera and render settings.
+fn same_shapes(a: &Scene, b: &Scene) -> bool {
+    a.lights == b.lights
+        && a.materials == b.materials
+        && a.spheres == b.spheres
+        && a.planes == b.planes
+        && a.cubes == b.cubes
 }

@@ -34,13 +34,23 @@ pub struct ViewSettings {
     /// Resolution scale while the camera moves (0.25..=1.0): fewer pixels
     /// keep orbiting smooth on a weak GPU.
     pub interaction_scale: f32,
+    /// While viewing, secondary rays weaker than this are skipped even if
+    /// the file's `min_weight` is lower (the file keeps its value). The
+    /// default leaves no visible difference: docs/performance.md.
+    pub min_weight: f64,
 }
+
+/// The viewer's default progressive refinement limit (docs/performance.md).
+pub const DEFAULT_MAX_SAMPLES: u32 = 64;
+/// The viewer's default floor on `min_weight` (docs/performance.md).
+pub const DEFAULT_MIN_WEIGHT: f64 = 1e-3;
 
 impl Default for ViewSettings {
     fn default() -> Self {
         Self {
-            max_samples: 64,
+            max_samples: DEFAULT_MAX_SAMPLES,
             interaction_scale: 0.5,
+            min_weight: DEFAULT_MIN_WEIGHT,
         }
     }
 }
@@ -353,6 +363,14 @@ fn render_section(ui: &mut Ui, render: &mut RenderSettings, view: &mut ViewSetti
             "Resolution while the camera moves: lower keeps orbiting smooth",
         );
         ui.add(Slider::new(&mut view.interaction_scale, 0.25..=1.0));
+        ui.end_row();
+
+        field(
+            ui,
+            "min weight",
+            "While viewing, skip secondary rays weaker than this (the file's min_weight is kept)",
+        );
+        ui.add(Slider::new(&mut view.min_weight, 0.0..=0.1).logarithmic(true));
         ui.end_row();
     });
 }
@@ -990,6 +1008,7 @@ mod tests {
                 assert_eq!(selection, state.selection);
                 assert!((1..=1024).contains(&view.max_samples));
                 assert!((0.25..=1.0).contains(&view.interaction_scale));
+                assert!((0.0..=0.1).contains(&view.min_weight));
             }
         }
     }
@@ -998,6 +1017,7 @@ mod tests {
     fn view_defaults_are_in_range() {
         let view = ViewSettings::default();
         assert_eq!((view.max_samples, view.interaction_scale), (64, 0.5));
+        assert_eq!(view.min_weight, DEFAULT_MIN_WEIGHT);
     }
 
     #[test]

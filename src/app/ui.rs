@@ -56,6 +56,8 @@ pub struct Status {
     pub samples: u32,
     pub resolution: (u32, u32),
     pub adapter: String,
+    /// Pipelines for a new feature set or shader are being compiled.
+    pub compiling: bool,
 }
 
 /// What the app must do after this frame.
@@ -216,6 +218,11 @@ fn status_line(ui: &mut egui::Ui, status: &Status, editor: &Editor) {
         ui.separator();
         ui.label(&status.adapter)
             .on_hover_text("the GPU adapter in use");
+        if status.compiling {
+            ui.separator();
+            ui.spinner();
+            ui.label("compiling shaders");
+        }
         if let Some(message) = &editor.message {
             ui.separator();
             ui.label(message);

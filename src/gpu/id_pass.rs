@@ -5,12 +5,11 @@
 //! the reference's `first_hits`, to tell a shape that is wrongly hit from a
 //! colour that is merely a little off.
 
-use wgpu::util::DeviceExt;
-
 use super::context::Gpu;
+use super::features::ShaderOptions;
 use super::layout::PackedScene;
 use super::shaders::ShaderSource;
-use super::tracer::{PipelineError, ShaderOptions, scene_layout_entries};
+use super::tracer::{PipelineError, SceneBuffers, scene_layout_entries};
 use crate::scene::Scene;
 
 const ID_FORMAT: wgpu::TextureFormat = wgpu::TextureFormat::Rgba32Uint;
@@ -107,44 +106,9 @@ impl IdRenderer {
     /// back: one [`FirstHit`] per pixel, row-major, the top row first.
     pub fn render(&self, gpu: &Gpu, scene: &Scene, width: u32, height: u32) -> Vec<FirstHit> {
         let device = &gpu.device;
-        let packed = PackedScene::new(scene, width, height);
-        let buffer = |label, contents: &[u8], usage| {
-            device.create_buffer_init(&wgpu::util::BufferInitDescriptor {
-                label: Some(label),
-                contents,
-                usage,
-            })
-        };
-        let storage = wgpu::BufferUsages::STORAGE;
-        let buffers = [
-            buffer(
-                "globals",
-                bytemuck::bytes_of(&packed.globals),
-                wgpu::BufferUsages::UNIFORM,
-            ),
-            buffer("spheres", bytemuck::cast_slice(&packed.spheres), storage),
-            buffer("planes", bytemuck::cast_slice(&packed.planes), storage),
-            buffer("cubes", bytemuck::cast_slice(&packed.cubes), storage),
-            buffer(
-                "materials",
-                bytemuck::cast_slice(&packed.materials),
-                storage,
-            ),
-            buffer("lights", bytemuck::cast_slice(&packed.lights), storage),
-        ];
-        let entries: Vec<wgpu::BindGroupEntry> = buffers
-            .iter()
-            .enumerate()
-            .map(|(i, b)| wgpu::BindGroupEntry {
-                binding: i as u32,
-                resource: b.as_entire_binding(),
-            })
-            .collect();
-        let bind_group = device.create_bind_group(&wgpu::BindGroupDescriptor {
-            label: Some("scene (id pass)"),
-            layout: &self.layout,
-            entries: &entries,
-        });
+        let scene =
+            SceneBuffers::with_layout(device, &self.layout, PackedScene::new(scene, width, height));
+        let bind_group = &scene.bind_group;
         let target = device.create_texture(&wgpu::TextureDescriptor {
             label: Some("first hits"),
             size: wgpu::Extent3d {
@@ -179,7 +143,7 @@ impl IdRenderer {
                 multiview_mask: None,
             });
             pass.set_pipeline(&self.pipeline);
-            pass.set_bind_group(0, &bind_group, &[]);
+            pass.set_bind_group(0, bind_group, &[]);
             pass.draw(0..3, 0..1);
         }
         let row_bytes = width * 16;

@@ -6,6 +6,7 @@
 use bytemuck::{Pod, Zeroable};
 use glam::DVec3;
 
+use crate::bvh::{Aabb, Bvh, Prim};
 use crate::scene::{self, Scene};
 
 /// Rounds an f64 vector to the f32 triple the shader reads.
@@ -34,7 +35,7 @@ pub struct Globals {
     pub plane_count: u32,
     pub cube_count: u32,
     pub light_count: u32,
-    pub _pad0: u32,
+    pub bvh_node_count: u32,
     pub output_size: [u32; 2],
 }
 
@@ -86,6 +87,22 @@ pub struct Material {
     pub _pad2: u32,
 }
 
+/// A BVH node (see `crate::bvh::Node`): an inner node (`count == 0`) has its
+/// children at `first` and `first + 1`, a leaf holds `count` entries of the
+/// shape list from `first`.
+#[repr(C)]
+#[derive(Debug, Clone, Copy, PartialEq, Pod, Zeroable)]
+pub struct BvhNode {
+    pub bounds_min: [f32; 3],
+    pub first: u32,
+    pub bounds_max: [f32; 3],
+    pub count: u32,
+}
+
+/// Marks a box in the BVH's shape list (else: a sphere); the other bits are
+/// the index into `cubes` or `spheres`.
+pub const CUBE_BIT: u32 = 1 << 31;
+
 #[repr(C)]
 #[derive(Debug, Clone, Copy, PartialEq, Pod, Zeroable)]
 pub struct Light {
@@ -106,14 +123,20 @@ pub struct PackedScene {
     pub cubes: Vec<Cube>,
     pub materials: Vec<Material>,
     pub lights: Vec<Light>,
+    pub bvh_nodes: Vec<BvhNode>,
+    /// Sphere index, or box index | [`CUBE_BIT`], in leaf order.
+    pub bvh_prims: Vec<u32>,
 }
 
 impl PackedScene {
     /// Packs `scene` for an image of `width` x `height` pixels. The sample
     /// range in the globals starts empty; the renderer sets it per pass.
     pub fn new(scene: &Scene, width: u32, height: u32) -> Self {
+        let bvh = Bvh::build(scene);
+        let mut globals = pack_globals(scene, width, height);
+        globals.bvh_node_count = bvh.nodes.len() as u32;
         PackedScene {
-            globals: pack_globals(scene, width, height),
+            globals,
             spheres: non_empty(scene.spheres.iter().map(|s| pack_sphere(scene, s))),
             planes: non_empty(scene.planes.iter().map(|p| pack_plane(scene, p))),
             cubes: non_empty(scene.cubes.iter().map(|c| pack_cube(scene, c))),
@@ -122,7 +145,36 @@ impl PackedScene {
                 .map(|m| pack_material(&m))
                 .collect(),
             lights: non_empty(scene.lights.iter().map(pack_light)),
+            bvh_nodes: non_empty(
+                bvh.nodes
+                    .iter()
+                    .map(|n| pack_node(n.bounds, n.first, n.count)),
+            ),
+            bvh_prims: non_empty(bvh.prims.iter().map(|p| match *p {
+                Prim::Sphere(i) => i,
+                Prim::Cube(i) => i | CUBE_BIT,
+            })),
         }
+    }
+}
+
+/// A node with its box rounded outwards to f32, so that the box the shader
+/// tests always holds the shapes inside it (rounding to nearest could cut a
+/// sliver off a shape, and rays through that sliver would miss it).
+fn pack_node(bounds: Aabb, first: u32, count: u32) -> BvhNode {
+    let down = |x: f64| {
+        let f = x as f32;
+        if f64::from(f) > x { f.next_down() } else { f }
+    };
+    let up = |x: f64| {
+        let f = x as f32;
+        if f64::from(f) < x { f.next_up() } else { f }
+    };
+    BvhNode {
+        bounds_min: bounds.min.to_array().map(down),
+        first,
+        bounds_max: bounds.max.to_array().map(up),
+        count,
     }
 }
 
@@ -134,31 +186,36 @@ fn non_empty<T: Zeroable>(items: impl Iterator<Item = T>) -> Vec<T> {
     v
 }
 
+impl Globals {
+    /// Writes the camera and the render settings: what changes while the
+    /// shapes stay (orbiting, a slider on exposure), without repacking them.
+    pub fn set_view(&mut self, camera: &scene::Camera, render: &scene::RenderSettings) {
+        self.eye = f32x3(camera.from);
+        self.film_height = (2.0 * (camera.fov.to_radians() / 2.0).tan()) as f32;
+        self.look_at = f32x3(camera.to);
+        self.aperture = camera.aperture as f32;
+        self.up = f32x3(camera.up);
+        self.focus_distance = camera.focus_distance() as f32;
+        self.background = f32x3(render.background);
+        self.min_weight = render.min_weight as f32;
+        self.ambient = f32x3(render.ambient);
+        self.exposure = render.exposure as f32;
+        self.max_depth = render.max_depth;
+    }
+}
+
 fn pack_globals(scene: &Scene, width: u32, height: u32) -> Globals {
-    let cam = &scene.camera;
-    let r = &scene.render;
-    Globals {
-        eye: f32x3(cam.from),
-        film_height: (2.0 * (cam.fov.to_radians() / 2.0).tan()) as f32,
-        look_at: f32x3(cam.to),
-        aperture: cam.aperture as f32,
-        up: f32x3(cam.up),
-        focus_distance: cam.focus_distance() as f32,
-        background: f32x3(r.background),
-        min_weight: r.min_weight as f32,
-        ambient: f32x3(r.ambient),
-        exposure: r.exposure as f32,
+    let mut globals = Globals {
         resolution: [width, height],
-        sample_start: 0,
-        sample_count: 0,
-        max_depth: r.max_depth,
         sphere_count: scene.spheres.len() as u32,
         plane_count: scene.planes.len() as u32,
         cube_count: scene.cubes.len() as u32,
         light_count: scene.lights.len() as u32,
-        _pad0: 0,
         output_size: [width, height],
-    }
+        ..Zeroable::zeroed()
+    };
+    globals.set_view(&scene.camera, &scene.render);
+    globals
 }
 
 fn pack_sphere(scene: &Scene, s: &scene::Sphere) -> Sphere {
@@ -274,7 +331,7 @@ mod tests {
                 plane_count,
                 cube_count,
                 light_count,
-                _pad0,
+                bvh_node_count,
                 output_size
             }),
             rust_layout!(Sphere {
@@ -311,6 +368,12 @@ mod tests {
                 _pad0,
                 _pad1,
                 _pad2
+            }),
+            rust_layout!(BvhNode {
+                bounds_min,
+                first,
+                bounds_max,
+                count
             }),
             rust_layout!(Light {
                 position,
@@ -368,6 +431,26 @@ mod tests {
         assert_eq!(packed.spheres[0].material, 2);
         assert_eq!(packed.spheres[1].material, 0);
         assert_eq!(packed.materials[0].color, [0.8, 0.8, 0.8]);
+    }
+
+    #[test]
+    fn bvh_boxes_are_rounded_outwards() {
+        let b = Aabb {
+            min: glam::DVec3::splat(0.1),
+            max: glam::DVec3::splat(0.1),
+        };
+        let node = pack_node(b, 0, 1);
+        assert!(f64::from(node.bounds_min[0]) <= 0.1 && f64::from(node.bounds_max[0]) >= 0.1);
+        assert!(node.bounds_min[0] < node.bounds_max[0], "0.1 is not an f32");
+        let exact = pack_node(
+            Aabb {
+                min: glam::DVec3::ONE,
+                max: glam::DVec3::ONE,
+            },
+            0,
+            1,
+        );
+        assert_eq!(exact.bounds_min, exact.bounds_max, "f32 values stay put");
     }
 
     #[test]

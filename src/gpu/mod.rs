@@ -2,6 +2,7 @@
 //! and offscreen rendering with readback. Knows scenes, not windows or UI.
 
 mod context;
+mod features;
 mod id_pass;
 pub mod layout;
 mod offscreen;
@@ -11,11 +12,10 @@ mod tracer;
 mod viewport;
 
 pub use context::{Gpu, GpuError};
+pub use features::{Features, ShaderOptions};
 pub use id_pass::{FirstHit, IdRenderer};
 pub use offscreen::{OffscreenRenderer, read_texture, render_image};
 pub use shaders::{ShaderError, ShaderSource};
-pub use timer::{GpuTimer, Timing};
-pub use tracer::{
-    Accumulator, FrameTarget, PipelineError, Pipelines, SceneBuffers, ShaderOptions, encode_frame,
-};
+pub use timer::{GpuTimer, TIMER_FEATURES, Timing};
+pub use tracer::{Accumulator, FrameTarget, PipelineError, Pipelines, SceneBuffers, encode_frame};
 pub use viewport::{EXPORT_FORMAT, FrameStatus, Viewport};

@@ -3,11 +3,12 @@
 use std::time::{Duration, Instant};
 
 use super::context::Gpu;
+use super::features::ShaderOptions;
 use super::layout::PackedScene;
 use super::shaders::ShaderSource;
 use super::timer::{GpuTimer, Timing};
 use super::tracer::{
-    Accumulator, FrameTarget, PipelineError, Pipelines, SceneBuffers, ShaderOptions, encode_frame,
+    Accumulator, FrameTarget, PipelineError, Pipelines, SceneBuffers, encode_frame,
 };
 use crate::scene::Scene;
 

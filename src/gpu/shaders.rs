@@ -85,14 +85,45 @@ impl fmt::Display for ShaderError {
 
 impl std::error::Error for ShaderError {}
 
+/// The largest ray-tree stack a scene can need: `max_depth` 16, plus one.
+pub const MAX_STACK_SIZE: u32 = 17;
+
+/// Name of the part the program writes in front of the shader files.
+const GENERATED: &str = "(generated) specialisation";
+
+/// The generated part: WGSL constants that cannot be pipeline-overridable
+/// because they size arrays.
+fn generated_part(stack_size: u32) -> (String, String) {
+    let stack_size = stack_size.clamp(1, MAX_STACK_SIZE);
+    (
+        GENERATED.to_string(),
+        format!(
+            "// Written by raysandbox for the scene being drawn (src/gpu/shaders.rs).\n\
+             const STACK_SIZE: u32 = {stack_size}u;\n"
+        ),
+    )
+}
+
 impl ShaderSource {
     /// The shader files compiled into the binary.
     pub fn embedded() -> Self {
         Self::join(
-            SHADER_FILES
-                .iter()
-                .zip(EMBEDDED)
-                .map(|(name, text)| (format!("shaders/{name}"), text.to_string())),
+            std::iter::once(generated_part(MAX_STACK_SIZE)).chain(
+                SHADER_FILES
+                    .iter()
+                    .zip(EMBEDDED)
+                    .map(|(name, text)| (format!("shaders/{name}"), text.to_string())),
+            ),
+        )
+    }
+
+    /// The same source with the ray-tree stack sized for `stack_size`
+    /// entries (a scene's `max_depth + 1`).
+    pub fn with_stack_size(&self, stack_size: u32) -> Self {
+        let files = self.parts().filter(|(name, _)| *name != GENERATED);
+        Self::join(
+            std::iter::once(generated_part(stack_size))
+                .chain(files.map(|(name, text)| (name.to_string(), text.to_string()))),
         )
     }
 
@@ -111,7 +142,9 @@ impl ShaderSource {
             })?;
             files.push((path.display().to_string(), text));
         }
-        Ok(Self::join(files))
+        Ok(Self::join(
+            std::iter::once(generated_part(MAX_STACK_SIZE)).chain(files),
+        ))
     }
 
     fn join(files: impl IntoIterator<Item = (String, String)>) -> Self {
@@ -302,6 +335,33 @@ mod tests {
         let err = ShaderSource::join(files).validate().unwrap_err();
         assert_eq!(err.file, "c.wgsl");
         assert_eq!(err.line, 2, "{err}");
+    }
+
+    #[test]
+    fn stack_size_is_generated_in_front_and_keeps_file_lines() {
+        let source = ShaderSource::embedded().with_stack_size(4);
+        assert!(source.text().contains("const STACK_SIZE: u32 = 4u;"));
+        assert_eq!(source.text().matches("const STACK_SIZE").count(), 1);
+        source.validate().unwrap_or_else(|e| panic!("{e}"));
+        // An error in a file is still reported at the file's own line.
+        let broken: Vec<(String, String)> = source
+            .parts()
+            .map(|(name, text)| {
+                let text = if name.ends_with("main.wgsl") {
+                    text.replacen("@fragment", "@fragment oops", 1)
+                } else {
+                    text.to_string()
+                };
+                (name.to_string(), text)
+            })
+            .collect();
+        let err = ShaderSource::join(broken).validate().unwrap_err();
+        assert_eq!(err.file, "shaders/main.wgsl");
+        let expected = EMBEDDED[4][..EMBEDDED[4].find("@fragment").unwrap()]
+            .lines()
+            .count()
+            + 1;
+        assert_eq!(err.line as usize, expected, "{err}");
     }
 
     #[test]

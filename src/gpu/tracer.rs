@@ -8,6 +8,7 @@
 
 use wgpu::util::DeviceExt;
 
+use super::features::ShaderOptions;
 use super::layout::PackedScene;
 use super::shaders::{ShaderError, ShaderSource};
 
@@ -15,30 +16,10 @@ use super::shaders::{ShaderError, ShaderSource};
 /// add up without banding.
 const ACCUM_FORMAT: wgpu::TextureFormat = wgpu::TextureFormat::Rgba32Float;
 
-/// Values for the shader's pipeline-overridable constants (`override` in
-/// WGSL): variants of one source, compiled without the code they switch off.
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
-pub struct ShaderOptions {
-    /// The robust intersection and offset routines (true) or the lecture's
-    /// textbook versions (false), to show what the robust ones fix.
-    pub robust: bool,
-}
-
-impl Default for ShaderOptions {
-    fn default() -> Self {
-        ShaderOptions { robust: true }
-    }
-}
-
-impl ShaderOptions {
-    /// The `(name, value)` pairs for `PipelineCompilationOptions::constants`.
-    pub(super) fn constants(&self) -> Vec<(&'static str, f64)> {
-        vec![("ROBUST", f64::from(u8::from(self.robust)))]
-    }
-}
-
 /// Pipelines for one shader source: the trace pass, and a display pass for
 /// each output format asked for (e.g. the window's and PNG export's).
+/// Cloning is cheap (wgpu handles are reference counted).
+#[derive(Clone)]
 pub struct Pipelines {
     trace: wgpu::RenderPipeline,
     display: Vec<(wgpu::TextureFormat, wgpu::RenderPipeline)>,
@@ -65,6 +46,7 @@ impl Pipelines {
         output_formats: &[wgpu::TextureFormat],
         options: &ShaderOptions,
     ) -> Result<Self, PipelineError> {
+        let source = &source.with_stack_size(options.stack_size);
         source.validate()?;
         let scope = device.push_error_scope(wgpu::ErrorFilter::Validation);
         let pipelines = Self::build(device, source, output_formats, options);
@@ -163,9 +145,10 @@ impl Pipelines {
     }
 }
 
-/// Binding 0: the globals uniform; 1..=5: spheres, planes, cubes, materials,
-/// lights as read-only storage buffers (the order of `scene.wgsl`).
-pub(super) fn scene_layout_entries() -> [wgpu::BindGroupLayoutEntry; 6] {
+/// Binding 0: the globals uniform; 1..=7: spheres, planes, cubes, materials,
+/// lights, BVH nodes and BVH shape list as read-only storage buffers (the
+/// order of `scene.wgsl`).
+pub(super) fn scene_layout_entries() -> [wgpu::BindGroupLayoutEntry; 8] {
     std::array::from_fn(|i| wgpu::BindGroupLayoutEntry {
         binding: i as u32,
         visibility: wgpu::ShaderStages::FRAGMENT,
@@ -186,11 +169,21 @@ pub(super) fn scene_layout_entries() -> [wgpu::BindGroupLayoutEntry; 6] {
 pub struct SceneBuffers {
     packed: PackedScene,
     globals: wgpu::Buffer,
-    bind_group: wgpu::BindGroup,
+    pub(super) bind_group: wgpu::BindGroup,
 }
 
 impl SceneBuffers {
     pub fn new(device: &wgpu::Device, pipelines: &Pipelines, packed: PackedScene) -> Self {
+        Self::with_layout(device, &pipelines.scene_layout, packed)
+    }
+
+    /// The buffers and their bind group for any pipeline whose group 0 is
+    /// [`scene_layout_entries`] (the tracer's, the id pass's).
+    pub(super) fn with_layout(
+        device: &wgpu::Device,
+        layout: &wgpu::BindGroupLayout,
+        packed: PackedScene,
+    ) -> Self {
         let globals = device.create_buffer_init(&wgpu::util::BufferInitDescriptor {
             label: Some("globals"),
             contents: bytemuck::bytes_of(&packed.globals),
@@ -209,6 +202,8 @@ impl SceneBuffers {
             storage("cubes", bytemuck::cast_slice(&packed.cubes)),
             storage("materials", bytemuck::cast_slice(&packed.materials)),
             storage("lights", bytemuck::cast_slice(&packed.lights)),
+            storage("bvh nodes", bytemuck::cast_slice(&packed.bvh_nodes)),
+            storage("bvh shapes", bytemuck::cast_slice(&packed.bvh_prims)),
         ];
         let entries: Vec<wgpu::BindGroupEntry> = std::iter::once(&globals)
             .chain(&buffers)
@@ -220,7 +215,7 @@ impl SceneBuffers {
             .collect();
         let bind_group = device.create_bind_group(&wgpu::BindGroupDescriptor {
             label: Some("scene"),
-            layout: &pipelines.scene_layout,
+            layout,
             entries: &entries,
         });
         SceneBuffers {
@@ -233,6 +228,11 @@ impl SceneBuffers {
     /// The packed scene currently on the GPU.
     pub fn packed(&self) -> &PackedScene {
         &self.packed
+    }
+
+    /// Takes a new camera and render settings; the shapes stay as they are.
+    pub fn set_view(&mut self, scene: &crate::scene::Scene) {
+        self.packed.globals.set_view(&scene.camera, &scene.render);
     }
 }
 

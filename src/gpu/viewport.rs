@@ -113,6 +113,13 @@ impl Viewport {
         self.accum.reset();
     }
 
+    /// Takes a scene whose shapes, materials and lights are unchanged (only
+    /// camera or render settings differ): no buffers are rebuilt.
+    pub fn set_view(&mut self, scene: &Scene) {
+        self.scene.set_view(scene);
+        self.accum.reset();
+    }
+
     /// Swaps in new pipelines (after a shader reload) and restarts refinement.
     /// The scene buffers and accumulator are rebuilt against their layouts.
     pub fn set_pipelines(&mut self, gpu: &Gpu, pipelines: Pipelines) {

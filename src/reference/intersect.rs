@@ -9,6 +9,7 @@ use glam::{DMat3, DVec3};
 
 use super::PreparedScene;
 use super::ray::Ray;
+use crate::bvh::Prim;
 
 /// A point where a ray meets a surface.
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -484,31 +485,31 @@ fn routines(robust: bool) -> Routines {
 
 /// The nearest hit over the whole scene, and which shape it is.
 ///
-/// Spheres, then planes, then cubes; passing the current nearest `t` as
-/// `t_max` means a later shape replaces the current hit only when strictly
-/// nearer (the shader's order too).
+/// Planes by a loop, spheres and boxes through the scene's bounding volume
+/// hierarchy (`crate::bvh`), which skips every shape whose box the ray does
+/// not meet before the nearest hit so far; the result is the same as a loop
+/// over all shapes. Passing the current nearest `t` as `t_max` means a later
+/// shape replaces the current hit only when strictly nearer (the shader's
+/// order too: planes, then the BVH's).
 pub fn nearest_hit(scene: &PreparedScene, ray: &Ray) -> Option<(ShapeId, Hit)> {
     let hit = routines(scene.robust);
     let mut nearest = None;
     let mut t_closest = f64::INFINITY;
-    for (i, sphere) in scene.spheres.iter().enumerate() {
-        if let Some(h) = (hit.sphere)(sphere, ray, t_closest) {
-            t_closest = h.t;
-            nearest = Some((ShapeId::Sphere(i), h));
-        }
-    }
     for (i, plane) in scene.planes.iter().enumerate() {
         if let Some(h) = (hit.plane)(plane, ray, t_closest) {
             t_closest = h.t;
             nearest = Some((ShapeId::Plane(i), h));
         }
     }
-    for (i, cube) in scene.cubes.iter().enumerate() {
-        if let Some(h) = (hit.cube)(cube, ray, t_closest) {
-            t_closest = h.t;
-            nearest = Some((ShapeId::Cube(i), h));
-        }
-    }
+    scene
+        .bvh
+        .traverse(ray.origin, ray.dir, t_closest, |prim, t_max| {
+            if let Some((id, h)) = hit_prim(scene, &hit, prim, ray, t_max) {
+                nearest = Some((id, h));
+                return Some(h.t);
+            }
+            Some(t_max)
+        });
     nearest
 }
 
@@ -516,18 +517,36 @@ pub fn nearest_hit(scene: &PreparedScene, ray: &Ray) -> Option<(ShapeId, Hit)> {
 /// blocks fully, so the first hit found is enough).
 pub fn any_hit(scene: &PreparedScene, ray: &Ray, t_max: f64) -> bool {
     let hit = routines(scene.robust);
-    scene
-        .spheres
+    if scene
+        .planes
         .iter()
-        .any(|s| (hit.sphere)(s, ray, t_max).is_some())
-        || scene
-            .planes
-            .iter()
-            .any(|p| (hit.plane)(p, ray, t_max).is_some())
-        || scene
-            .cubes
-            .iter()
-            .any(|c| (hit.cube)(c, ray, t_max).is_some())
+        .any(|p| (hit.plane)(p, ray, t_max).is_some())
+    {
+        return true;
+    }
+    let mut blocked = false;
+    scene.bvh.traverse(ray.origin, ray.dir, t_max, |prim, t| {
+        blocked = hit_prim(scene, &hit, prim, ray, t).is_some();
+        (!blocked).then_some(t)
+    });
+    blocked
+}
+
+/// The hit of one bounded shape of the BVH.
+fn hit_prim(
+    scene: &PreparedScene,
+    hit: &Routines,
+    prim: Prim,
+    ray: &Ray,
+    t_max: f64,
+) -> Option<(ShapeId, Hit)> {
+    match prim {
+        Prim::Sphere(i) => (hit.sphere)(&scene.spheres[i as usize], ray, t_max)
+            .map(|h| (ShapeId::Sphere(i as usize), h)),
+        Prim::Cube(i) => {
+            (hit.cube)(&scene.cubes[i as usize], ray, t_max).map(|h| (ShapeId::Cube(i as usize), h))
+        }
+    }
 }
 
 #[cfg(test)]

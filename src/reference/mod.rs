@@ -25,6 +25,7 @@ mod shade;
 use glam::{DVec2, DVec3};
 use rayon::prelude::*;
 
+use crate::bvh::Bvh;
 use crate::scene::{Material, Scene};
 
 pub use camera::{camera_basis, normalize_or};
@@ -56,6 +57,8 @@ pub struct PreparedScene {
     spheres: Vec<intersect::Sphere>,
     planes: Vec<intersect::Plane>,
     cubes: Vec<intersect::Cube>,
+    /// Spheres and boxes in a bounding volume hierarchy.
+    bvh: Bvh,
     background: DVec3,
     ambient: DVec3,
     max_depth: u32,
@@ -96,6 +99,7 @@ impl PreparedScene {
             .collect();
         let slot = |name: &Option<String>| scene.material_slot(name.as_deref()) as usize;
         Self {
+            bvh: Bvh::build(scene),
             camera: Camera::new(&scene.camera),
             lights: scene
                 .lights

@@ -76,7 +76,10 @@ const IMAGE_FORMAT: wgpu::TextureFormat = wgpu::TextureFormat::Rgba8Unorm;
 
 impl GpuVariant {
     pub fn new(gpu: &Gpu, source: &ShaderSource, robust: bool) -> Result<Self, PipelineError> {
-        let options = ShaderOptions { robust };
+        let options = ShaderOptions {
+            robust,
+            ..ShaderOptions::default()
+        };
         Ok(GpuVariant {
             pipelines: Pipelines::new(&gpu.device, source, &[IMAGE_FORMAT], &options)?,
             ids: IdRenderer::new(gpu, source, &options)?,

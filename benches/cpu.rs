@@ -1,0 +1,93 @@
+//! Criterion benchmarks of the CPU side: the reference's intersection
+//! routines (robust and naive), BVH construction, and the reference tracer's
+//! rays per second. `cargo bench`; results in target/criterion/.
+
+use std::hint::black_box;
+
+use criterion::{BenchmarkId, Criterion, Throughput, criterion_group, criterion_main};
+use glam::{DMat3, DVec3};
+use raysandbox::bench::sphere_field;
+use raysandbox::bvh::Bvh;
+use raysandbox::reference::intersect::{
+    Cube, Plane, Sphere, hit_cube, hit_cube_naive, hit_plane, hit_plane_naive, hit_sphere,
+    hit_sphere_naive,
+};
+use raysandbox::reference::ray::Ray;
+use raysandbox::reference::{PreparedScene, render_linear};
+use raysandbox::scene::{Scene, bundled};
+
+/// Rays from a ring of origins at the unit shapes at the origin: about half
+/// hit, so both branches of every routine are measured.
+fn rays() -> Vec<Ray> {
+    (0..256)
+        .map(|k| {
+            let a = k as f64 * 0.1;
+            let origin = DVec3::new(5.0 * a.cos(), 2.0 * (a * 0.7).sin(), 5.0 * a.sin());
+            let aim = DVec3::new((a * 3.1).sin(), (a * 1.3).cos(), (a * 2.3).sin()) * 1.2;
+            Ray::new(origin, aim - origin)
+        })
+        .collect()
+}
+
+fn intersections(c: &mut Criterion) {
+    let rays = rays();
+    let sphere = Sphere::new(DVec3::ZERO, 1.0, 0);
+    let plane = Plane::new(DVec3::ZERO, DVec3::new(0.2, 1.0, 0.1), 0);
+    let rotation = DMat3::from_rotation_y(0.5) * DMat3::from_rotation_x(0.3);
+    let cube = Cube::new(DVec3::ZERO, DVec3::new(1.0, 2.0, 1.5), rotation, 0);
+    let mut group = c.benchmark_group("intersect");
+    group.throughput(Throughput::Elements(rays.len() as u64));
+    let mut run = |name: &str, hit: &dyn Fn(&Ray) -> bool| {
+        group.bench_function(name, |b| {
+            b.iter(|| rays.iter().filter(|r| hit(black_box(r))).count())
+        });
+    };
+    run("sphere robust", &|r| {
+        hit_sphere(&sphere, r, f64::MAX).is_some()
+    });
+    run("sphere naive", &|r| {
+        hit_sphere_naive(&sphere, r, f64::MAX).is_some()
+    });
+    run("plane robust", &|r| {
+        hit_plane(&plane, r, f64::MAX).is_some()
+    });
+    run("plane naive", &|r| {
+        hit_plane_naive(&plane, r, f64::MAX).is_some()
+    });
+    run("box robust", &|r| hit_cube(&cube, r, f64::MAX).is_some());
+    run("box naive", &|r| {
+        hit_cube_naive(&cube, r, f64::MAX).is_some()
+    });
+    group.finish();
+}
+
+fn bvh_build(c: &mut Criterion) {
+    let mut group = c.benchmark_group("bvh build");
+    for n in [256usize, 4096, 16384] {
+        let scene = sphere_field(n);
+        group.throughput(Throughput::Elements(n as u64));
+        group.bench_with_input(BenchmarkId::from_parameter(n), &scene, |b, scene| {
+            b.iter(|| Bvh::build(black_box(scene)))
+        });
+    }
+    group.finish();
+}
+
+fn reference_tracer(c: &mut Criterion) {
+    let mut group = c.benchmark_group("reference tracer");
+    group.sample_size(10);
+    let (width, height) = (160u32, 90u32);
+    for name in ["whitted", "many_spheres"] {
+        let scene = Scene::from_toml_str(bundled::text(name).unwrap(), None).unwrap();
+        let prepared = PreparedScene::new(&scene);
+        // Primary rays per second (each may spawn shadow and secondary rays).
+        group.throughput(Throughput::Elements(u64::from(width * height)));
+        group.bench_function(name, |b| {
+            b.iter(|| render_linear(black_box(&prepared), width, height, 1))
+        });
+    }
+    group.finish();
+}
+
+criterion_group!(benches, intersections, bvh_build, reference_tracer);
+criterion_main!(benches);

@@ -1,0 +1,156 @@
+//! The measurements: GPU frame times (median after a warm-up frame) and
+//! errors against the converged f64 reference.
+
+use std::time::{Duration, Instant};
+
+use glam::DVec3;
+use image::RgbaImage;
+
+use crate::bvh::Bvh;
+use crate::compare::diff_images;
+use crate::gpu::{Gpu, OffscreenRenderer, ShaderOptions, ShaderSource};
+use crate::reference;
+use crate::scene::Scene;
+
+/// Median GPU time of `frames` renders after one warm-up render, and the
+/// last image. The warm-up absorbs shader compilation and first-use costs.
+pub fn frame_time(
+    gpu: &Gpu,
+    options: &ShaderOptions,
+    scene: &Scene,
+    size: (u32, u32),
+    spp: u32,
+    frames: u32,
+) -> Result<(Duration, RgbaImage), String> {
+    let source = ShaderSource::embedded();
+    let mut renderer = OffscreenRenderer::new(gpu, &source, options, scene, size.0, size.1)
+        .map_err(|e| e.to_string())?;
+    renderer.render(gpu, spp);
+    let mut times: Vec<Duration> = (0..frames.max(1))
+        .map(|_| renderer.render(gpu, spp))
+        .collect();
+    times.sort();
+    Ok((times[times.len() / 2], renderer.read_image(gpu)))
+}
+
+/// The converged reference: 64 samples per pixel, max_depth 16,
+/// min_weight 0, whatever the scene file says.
+pub fn converged_reference(scene: &Scene, size: (u32, u32)) -> RgbaImage {
+    let mut scene = scene.clone();
+    scene.render.max_depth = 16;
+    scene.render.min_weight = 0.0;
+    reference::render_rgba8(&scene, size.0, size.1, 64)
+}
+
+/// RMSE (channels in [0, 1]) and PSNR (dB) of `image`, shown at the size of
+/// `reference` (a lower-resolution image is scaled up pixel by pixel, as the
+/// viewer shows it), against `reference`.
+pub fn error(image: &RgbaImage, reference: &RgbaImage) -> (f64, f64) {
+    let shown = if image.dimensions() == reference.dimensions() {
+        image.clone()
+    } else {
+        image::imageops::resize(
+            image,
+            reference.width(),
+            reference.height(),
+            image::imageops::FilterType::Nearest,
+        )
+    };
+    let d = diff_images(&shown, reference);
+    (d.rmse, d.psnr())
+}
+
+/// Median time of building the BVH of `scene`, over `runs` builds.
+pub fn bvh_build_time(scene: &Scene, runs: usize) -> Duration {
+    let mut times: Vec<Duration> = (0..runs.max(1))
+        .map(|_| {
+            let start = Instant::now();
+            std::hint::black_box(Bvh::build(std::hint::black_box(scene)));
+            start.elapsed()
+        })
+        .collect();
+    times.sort();
+    times[times.len() / 2]
+}
+
+/// `n` spheres on a jittered grid over a fixed square of the floor, with
+/// radii shrinking as 1 / sqrt(n): the picture covers about the same part
+/// of the screen at every n, so only the number of shapes changes.
+pub fn sphere_field(n: usize) -> Scene {
+    let mut scene = Scene::from_toml_str(
+        r#"
+        [render]
+        max_depth = 2
+        background = [0.6, 0.7, 0.9]
+        [camera]
+        from = [0, 7, 11]
+        to = [0, 0, 0]
+        fov = 45
+        [[lights]]
+        position = [5, 12, 6]
+        [materials.floor]
+        color = [0.8, 0.8, 0.8]
+        [materials.ball]
+        color = [0.8, 0.3, 0.2]
+        specular = 0.3
+        [[planes]]
+        point = [0, 0, 0]
+        normal = [0, 1, 0]
+        material = "floor"
+        "#,
+        None,
+    )
+    .expect("the field scene is valid");
+    let side = (n as f64).sqrt().ceil().max(1.0) as usize;
+    let spacing = 10.0 / side as f64;
+    let radius = 0.35 * spacing;
+    let mut seed = 0x9e37_79b9_7f4a_7c15_u64;
+    let mut jitter = || {
+        seed ^= seed << 13;
+        seed ^= seed >> 7;
+        seed ^= seed << 17;
+        (seed % 1000) as f64 / 1000.0 - 0.5
+    };
+    for k in 0..n {
+        let (i, j) = ((k % side) as f64, (k / side) as f64);
+        let x = -5.0 + (i + 0.5 + 0.3 * jitter()) * spacing;
+        let z = -5.0 + (j + 0.5 + 0.3 * jitter()) * spacing;
+        scene.spheres.push(crate::scene::Sphere {
+            center: DVec3::new(x, radius, z),
+            radius,
+            material: Some("ball".into()),
+        });
+    }
+    scene
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn sphere_field_has_n_valid_spheres_on_the_floor() {
+        for n in [1, 7, 64] {
+            let scene = sphere_field(n);
+            assert_eq!(scene.spheres.len(), n);
+            let text = scene.to_toml_string();
+            let back = Scene::from_toml_str(&text, None).expect("valid");
+            assert_eq!(back.spheres.len(), n);
+            assert!(
+                scene
+                    .spheres
+                    .iter()
+                    .all(|s| (s.center.y - s.radius).abs() < 1e-12)
+            );
+        }
+    }
+
+    #[test]
+    fn error_of_an_upscaled_image_compares_at_full_size() {
+        let reference = RgbaImage::from_pixel(4, 2, image::Rgba([100, 100, 100, 255]));
+        let small = RgbaImage::from_pixel(2, 1, image::Rgba([100, 100, 100, 255]));
+        let (rmse, psnr) = error(&small, &reference);
+        assert_eq!(rmse, 0.0);
+        assert!(psnr.is_infinite());
+    }
+}

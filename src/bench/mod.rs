@@ -1,0 +1,600 @@
+//! `raysandbox bench`: run time against error, specialised against generic
+//! pipelines, and scaling with the number of shapes, with and without the
+//! BVH. Writes CSV files, a Markdown report and PNG plots to `--out`.
+
+mod measure;
+mod plot;
+
+use std::fmt::Write as _;
+use std::path::{Path, PathBuf};
+use std::time::Duration;
+
+use indicatif::{ProgressBar, ProgressStyle};
+
+use crate::gpu::{Gpu, ShaderOptions, Timing};
+use crate::scene::{Scene, bundled};
+
+pub use measure::sphere_field;
+
+#[derive(clap::Args, Debug, Clone)]
+pub struct BenchArgs {
+    /// Folder for the CSV files, results.md and the plots.
+    #[arg(long, default_value = "bench-results")]
+    pub out: PathBuf,
+    /// A small sweep (two scenes, few points, small sizes) that finishes in
+    /// a minute or two.
+    #[arg(long)]
+    pub quick: bool,
+    /// Frames timed per point (median), after one warm-up frame.
+    #[arg(long, default_value_t = 10, value_parser = clap::value_parser!(u32).range(1..=1000))]
+    pub frames: u32,
+}
+
+/// The viewer's defaults, chosen from this benchmark (docs/performance.md):
+/// they are marked on the plots.
+pub const DEFAULT_MIN_WEIGHT: f64 = crate::app::DEFAULT_MIN_WEIGHT;
+
+/// What one run sweeps.
+struct Plan {
+    scenes: Vec<&'static str>,
+    size: (u32, u32),
+    spp: Vec<u32>,
+    depths: Vec<u32>,
+    min_weights: Vec<f64>,
+    scales: Vec<f64>,
+    sphere_counts: Vec<usize>,
+    scaling_size: (u32, u32),
+}
+
+impl Plan {
+    fn new(quick: bool) -> Plan {
+        if quick {
+            return Plan {
+                scenes: vec!["whitted", "mirror_cube"],
+                size: (96, 54),
+                spp: vec![1, 4, 64],
+                depths: vec![1, 4],
+                min_weights: vec![0.0, 1e-2],
+                scales: vec![0.5, 1.0],
+                sphere_counts: vec![1, 16, 256],
+                scaling_size: (96, 54),
+            };
+        }
+        Plan {
+            scenes: bundled::names(),
+            size: (320, 180),
+            // The issue's 1..16, and the viewer's refinement limit beyond.
+            spp: vec![1, 2, 4, 8, 16, 32, 64],
+            depths: (1..=8).collect(),
+            min_weights: vec![0.0, 1e-3, 1e-2, 5e-2],
+            scales: vec![0.5, 1.0],
+            sphere_counts: (0..=7).map(|k| 4usize.pow(k)).collect(),
+            scaling_size: (320, 180),
+        }
+    }
+
+    /// The (spp, max_depth, min_weight, scale) points of the time/error
+    /// sweep: max_depth x min_weight at 1 sample and full resolution, and
+    /// samples x resolution scale x min_weight at the scene's own depth (at
+    /// most 8). Together they hold the cheap and the converged ends of the
+    /// trade-off without the full product of all four axes. Beyond 16
+    /// samples (up to the viewer's refinement limit) only full resolution
+    /// with min_weight 0 and the viewer's default is measured: those renders
+    /// are long, and only they can show where the error becomes invisible.
+    fn points(&self, scene: &Scene) -> Vec<Point> {
+        let own_depth = scene.render.max_depth.clamp(1, 8);
+        let mut points = Vec::new();
+        for &depth in &self.depths {
+            for &min_weight in &self.min_weights {
+                points.push(Point {
+                    spp: 1,
+                    depth,
+                    min_weight,
+                    scale: 1.0,
+                });
+            }
+        }
+        for &spp in &self.spp {
+            for &scale in &self.scales {
+                for &min_weight in &self.min_weights {
+                    let converging =
+                        scale == 1.0 && (min_weight == 0.0 || min_weight == DEFAULT_MIN_WEIGHT);
+                    if spp <= 16 || converging {
+                        points.push(Point {
+                            spp,
+                            depth: own_depth,
+                            min_weight,
+                            scale,
+                        });
+                    }
+                }
+            }
+        }
+        points.sort_by(|a, b| a.key().partial_cmp(&b.key()).expect("finite"));
+        points.dedup();
+        points
+    }
+}
+
+/// One setting of the renderer.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Point {
+    pub spp: u32,
+    pub depth: u32,
+    pub min_weight: f64,
+    pub scale: f64,
+}
+
+impl Point {
+    fn key(&self) -> (u32, u32, f64, f64) {
+        (self.spp, self.depth, self.min_weight, self.scale)
+    }
+}
+
+/// A measured point of the time/error sweep.
+#[derive(Debug, Clone)]
+pub struct ErrorRow {
+    pub scene: String,
+    pub point: Point,
+    pub time_ms: f64,
+    pub rmse: f64,
+    pub psnr: f64,
+}
+
+#[derive(Debug, Clone)]
+pub struct PipelineRow {
+    pub scene: String,
+    pub specialized_ms: f64,
+    pub generic_ms: f64,
+}
+
+#[derive(Debug, Clone)]
+pub struct ScalingRow {
+    pub spheres: usize,
+    pub bvh_ms: f64,
+    pub loop_ms: f64,
+    pub build_ms: f64,
+}
+
+/// Where and how the numbers were taken.
+pub struct Environment {
+    pub adapter: String,
+    pub timing: Timing,
+    pub cpu: String,
+}
+
+#[derive(Debug, thiserror::Error)]
+pub enum BenchError {
+    #[error("{0}")]
+    NoGpu(String),
+    #[error("{0}")]
+    Failed(String),
+}
+
+pub fn run(args: &BenchArgs) -> Result<(), BenchError> {
+    let gpu = Gpu::headless().map_err(|e| BenchError::NoGpu(e.to_string()))?;
+    let plan = Plan::new(args.quick);
+    let env = Environment {
+        adapter: gpu.describe(),
+        timing: timing_of(&gpu),
+        cpu: cpu_model(),
+    };
+    println!(
+        "adapter: {}\ntiming: {}\ncpu: {}",
+        env.adapter,
+        env.timing.describe(),
+        env.cpu
+    );
+    std::fs::create_dir_all(&args.out).map_err(|e| fail(&args.out, e))?;
+
+    let scenes: Vec<(String, Scene)> = plan
+        .scenes
+        .iter()
+        .map(|name| {
+            let text = bundled::text(name).expect("a bundled scene");
+            (
+                name.to_string(),
+                Scene::from_toml_str(text, None).expect("bundled scenes are valid"),
+            )
+        })
+        .collect();
+    let steps: usize = scenes
+        .iter()
+        .map(|(_, s)| plan.points(s).len() + 3)
+        .sum::<usize>()
+        + plan.sphere_counts.len();
+    let bar = ProgressBar::new(steps as u64).with_style(
+        ProgressStyle::with_template("{bar:40} {pos}/{len} {elapsed_precise} {msg}")
+            .expect("a valid template"),
+    );
+
+    let mut errors = Vec::new();
+    let mut pipelines = Vec::new();
+    for (name, scene) in &scenes {
+        bar.set_message(format!("{name}: converged reference"));
+        let reference = measure::converged_reference(scene, plan.size);
+        bar.inc(1);
+        for point in plan.points(scene) {
+            bar.set_message(format!("{name}: {point:?}"));
+            errors.push(error_row(
+                &gpu,
+                name,
+                scene,
+                &plan,
+                point,
+                &reference,
+                args.frames,
+            )?);
+            bar.inc(1);
+        }
+        bar.set_message(format!("{name}: specialised and generic"));
+        pipelines.push(pipeline_row(&gpu, name, scene, plan.size, args.frames)?);
+        bar.inc(2);
+    }
+    let mut scaling = Vec::new();
+    for &n in &plan.sphere_counts {
+        bar.set_message(format!("{n} spheres"));
+        scaling.push(scaling_row(&gpu, n, plan.scaling_size, args.frames)?);
+        bar.inc(1);
+    }
+    bar.finish_with_message("done");
+
+    write_outputs(&args.out, &env, &plan, &errors, &pipelines, &scaling)?;
+    println!("wrote {}", args.out.join("results.md").display());
+    Ok(())
+}
+
+fn fail(path: &Path, e: impl std::fmt::Display) -> BenchError {
+    BenchError::Failed(format!("{}: {e}", path.display()))
+}
+
+fn ms(d: Duration) -> f64 {
+    d.as_secs_f64() * 1e3
+}
+
+fn timing_of(gpu: &Gpu) -> Timing {
+    if gpu.device.features().contains(crate::gpu::TIMER_FEATURES) {
+        Timing::GpuTimestamps
+    } else {
+        Timing::SubmitToDone
+    }
+}
+
+/// The CPU's model name from /proc/cpuinfo, and the number of threads.
+fn cpu_model() -> String {
+    let model = std::fs::read_to_string("/proc/cpuinfo")
+        .ok()
+        .and_then(|text| {
+            text.lines()
+                .find(|l| l.starts_with("model name"))
+                .and_then(|l| l.split(':').nth(1))
+                .map(|m| m.trim().to_string())
+        })
+        .unwrap_or_else(|| "unknown CPU".into());
+    let threads = std::thread::available_parallelism().map_or(0, |n| n.get());
+    format!("{model}, {threads} threads")
+}
+
+fn error_row(
+    gpu: &Gpu,
+    name: &str,
+    scene: &Scene,
+    plan: &Plan,
+    point: Point,
+    reference: &image::RgbaImage,
+    frames: u32,
+) -> Result<ErrorRow, BenchError> {
+    let mut scene = scene.clone();
+    scene.render.max_depth = point.depth;
+    scene.render.min_weight = point.min_weight;
+    let size = (
+        ((f64::from(plan.size.0) * point.scale).round() as u32).max(1),
+        ((f64::from(plan.size.1) * point.scale).round() as u32).max(1),
+    );
+    let options = ShaderOptions::for_scene(&scene);
+    let (time, image) = measure::frame_time(gpu, &options, &scene, size, point.spp, frames)
+        .map_err(BenchError::Failed)?;
+    let (rmse, psnr) = measure::error(&image, reference);
+    Ok(ErrorRow {
+        scene: name.to_string(),
+        point,
+        time_ms: ms(time),
+        rmse,
+        psnr,
+    })
+}
+
+fn pipeline_row(
+    gpu: &Gpu,
+    name: &str,
+    scene: &Scene,
+    size: (u32, u32),
+    frames: u32,
+) -> Result<PipelineRow, BenchError> {
+    let time = |options: ShaderOptions| {
+        measure::frame_time(gpu, &options, scene, size, 1, frames)
+            .map(|(t, _)| ms(t))
+            .map_err(BenchError::Failed)
+    };
+    Ok(PipelineRow {
+        scene: name.to_string(),
+        specialized_ms: time(ShaderOptions::for_scene(scene))?,
+        generic_ms: time(ShaderOptions::default())?,
+    })
+}
+
+fn scaling_row(
+    gpu: &Gpu,
+    n: usize,
+    size: (u32, u32),
+    frames: u32,
+) -> Result<ScalingRow, BenchError> {
+    let scene = sphere_field(n);
+    let mut options = ShaderOptions::for_scene(&scene);
+    let time = |options: &ShaderOptions| {
+        measure::frame_time(gpu, options, &scene, size, 1, frames)
+            .map(|(t, _)| ms(t))
+            .map_err(BenchError::Failed)
+    };
+    let bvh_ms = time(&options)?;
+    options.features.bvh = false;
+    let loop_ms = time(&options)?;
+    Ok(ScalingRow {
+        spheres: n,
+        bvh_ms,
+        loop_ms,
+        build_ms: ms(measure::bvh_build_time(&scene, 9)),
+    })
+}
+
+/// The Pareto front of one scene's points: those no other point beats in
+/// both time and error, by increasing time.
+pub fn pareto_front(rows: &[&ErrorRow]) -> Vec<ErrorRow> {
+    let mut sorted: Vec<&ErrorRow> = rows.to_vec();
+    sorted.sort_by(|a, b| {
+        a.time_ms
+            .total_cmp(&b.time_ms)
+            .then(a.rmse.total_cmp(&b.rmse))
+    });
+    let mut front: Vec<ErrorRow> = Vec::new();
+    for row in sorted {
+        if front.last().is_none_or(|best| row.rmse < best.rmse) {
+            front.push(row.clone());
+        }
+    }
+    front
+}
+
+/// The cheapest point whose PSNR reaches `psnr` (the error is invisible).
+pub fn cheapest_at(rows: &[&ErrorRow], psnr: f64) -> Option<ErrorRow> {
+    rows.iter()
+        .filter(|r| r.psnr >= psnr)
+        .min_by(|a, b| a.time_ms.total_cmp(&b.time_ms))
+        .map(|r| (*r).clone())
+}
+
+/// The sweep point that uses the viewer's defaults for `scene`: the
+/// refinement limit, the scene's own depth, the default min_weight, full
+/// resolution.
+fn is_default(row: &ErrorRow, scene: &Scene) -> bool {
+    row.point.spp == crate::app::DEFAULT_MAX_SAMPLES
+        && row.point.depth == scene.render.max_depth.clamp(1, 8)
+        && row.point.min_weight == DEFAULT_MIN_WEIGHT
+        && row.point.scale == 1.0
+}
+
+/// The CSV columns of `time_vs_error.csv` (tests check them).
+pub const ERROR_COLUMNS: &str = "scene,spp,max_depth,min_weight,scale,time_ms,rmse,psnr_db";
+pub const PIPELINE_COLUMNS: &str = "scene,specialized_ms,generic_ms,ratio";
+pub const SCALING_COLUMNS: &str = "spheres,bvh_ms,loop_ms,bvh_build_ms";
+
+fn write_outputs(
+    out: &Path,
+    env: &Environment,
+    plan: &Plan,
+    errors: &[ErrorRow],
+    pipelines: &[PipelineRow],
+    scaling: &[ScalingRow],
+) -> Result<(), BenchError> {
+    let write = |name: &str, text: String| {
+        let path = out.join(name);
+        std::fs::write(&path, text).map_err(|e| fail(&path, e))
+    };
+    let mut csv = format!("{ERROR_COLUMNS}\n");
+    for r in errors {
+        let p = r.point;
+        let _ = writeln!(
+            csv,
+            "{},{},{},{},{},{:.4},{:.6},{:.3}",
+            r.scene, p.spp, p.depth, p.min_weight, p.scale, r.time_ms, r.rmse, r.psnr
+        );
+    }
+    write("time_vs_error.csv", csv)?;
+    let mut csv = format!("{PIPELINE_COLUMNS}\n");
+    for r in pipelines {
+        let _ = writeln!(
+            csv,
+            "{},{:.4},{:.4},{:.4}",
+            r.scene,
+            r.specialized_ms,
+            r.generic_ms,
+            r.generic_ms / r.specialized_ms
+        );
+    }
+    write("specialized_vs_generic.csv", csv)?;
+    let mut csv = format!("{SCALING_COLUMNS}\n");
+    for r in scaling {
+        let _ = writeln!(
+            csv,
+            "{},{:.4},{:.4},{:.4}",
+            r.spheres, r.bvh_ms, r.loop_ms, r.build_ms
+        );
+    }
+    write("scaling.csv", csv)?;
+
+    let mut md = String::new();
+    let _ = writeln!(md, "# raysandbox bench\n");
+    let _ = writeln!(md, "- adapter: {}", env.adapter);
+    let _ = writeln!(
+        md,
+        "- frame time: {}, median after one warm-up frame",
+        env.timing.describe()
+    );
+    let _ = writeln!(md, "- CPU: {}", env.cpu);
+    let _ = writeln!(
+        md,
+        "- time/error sweep at {}x{} (resolution scale multiplies it), scaling at {}x{}\n",
+        plan.size.0, plan.size.1, plan.scaling_size.0, plan.scaling_size.1
+    );
+    let _ = writeln!(md, "## Time against error: Pareto fronts\n");
+    let _ = writeln!(
+        md,
+        "Error against the converged f64 reference (64 spp, max_depth 16, min_weight 0).\n"
+    );
+    for name in &plan.scenes {
+        let rows: Vec<&ErrorRow> = errors.iter().filter(|r| r.scene == *name).collect();
+        let scene =
+            Scene::from_toml_str(bundled::text(name).expect("bundled"), None).expect("valid");
+        let front = pareto_front(&rows);
+        let default = rows
+            .iter()
+            .find(|r| is_default(r, &scene))
+            .map(|r| (*r).clone());
+        let plot_name = format!("pareto_{name}.png");
+        plot::pareto(&out.join(&plot_name), name, &rows, &front, default.as_ref())
+            .map_err(|e| fail(&out.join(&plot_name), e))?;
+        let _ = writeln!(md, "### {name}\n\n![{name}]({plot_name})\n");
+        let _ = writeln!(
+            md,
+            "| spp | max_depth | min_weight | scale | time (ms) | RMSE | PSNR (dB) |"
+        );
+        let _ = writeln!(md, "| --- | --- | --- | --- | --- | --- | --- |");
+        for r in &front {
+            let p = r.point;
+            let _ = writeln!(
+                md,
+                "| {} | {} | {} | {} | {:.2} | {:.5} | {:.1} |",
+                p.spp, p.depth, p.min_weight, p.scale, r.time_ms, r.rmse, r.psnr
+            );
+        }
+        match cheapest_at(&rows, 45.0) {
+            Some(r) => {
+                let _ = writeln!(
+                    md,
+                    "\nCheapest point with PSNR >= 45 dB: {:?} at {:.2} ms ({:.1} dB).\n",
+                    r.point, r.time_ms, r.psnr
+                );
+            }
+            None => {
+                let _ = writeln!(md, "\nNo point of the sweep reaches PSNR 45 dB.\n");
+            }
+        }
+        if let Some(d) = default {
+            let _ = writeln!(
+                md,
+                "Viewer defaults ({:?}): {:.2} ms, {:.1} dB.\n",
+                d.point, d.time_ms, d.psnr
+            );
+        }
+    }
+    let _ = writeln!(
+        md,
+        "## Specialised against generic pipeline (1 spp, {}x{})\n",
+        plan.size.0, plan.size.1
+    );
+    let _ = writeln!(
+        md,
+        "| scene | specialised (ms) | generic (ms) | generic / specialised |"
+    );
+    let _ = writeln!(md, "| --- | --- | --- | --- |");
+    for r in pipelines {
+        let _ = writeln!(
+            md,
+            "| {} | {:.2} | {:.2} | {:.2} |",
+            r.scene,
+            r.specialized_ms,
+            r.generic_ms,
+            r.generic_ms / r.specialized_ms
+        );
+    }
+    let _ = writeln!(
+        md,
+        "\n## Scaling with the number of spheres\n\n![scaling](scaling.png)\n"
+    );
+    let _ = writeln!(md, "| spheres | BVH (ms) | loop (ms) | BVH build (ms) |");
+    let _ = writeln!(md, "| --- | --- | --- | --- |");
+    for r in scaling {
+        let _ = writeln!(
+            md,
+            "| {} | {:.2} | {:.2} | {:.3} |",
+            r.spheres, r.bvh_ms, r.loop_ms, r.build_ms
+        );
+    }
+    plot::scaling(&out.join("scaling.png"), scaling)
+        .map_err(|e| fail(&out.join("scaling.png"), e))?;
+    write("results.md", md)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn row(time_ms: f64, rmse: f64) -> ErrorRow {
+        ErrorRow {
+            scene: "s".into(),
+            point: Point {
+                spp: 1,
+                depth: 1,
+                min_weight: 0.0,
+                scale: 1.0,
+            },
+            time_ms,
+            rmse,
+            psnr: -20.0 * rmse.log10(),
+        }
+    }
+
+    #[test]
+    fn pareto_front_keeps_only_undominated_points() {
+        let rows = [
+            row(1.0, 0.1),
+            row(2.0, 0.2),
+            row(3.0, 0.05),
+            row(4.0, 0.05),
+            row(0.5, 0.3),
+        ];
+        let refs: Vec<&ErrorRow> = rows.iter().collect();
+        let front: Vec<(f64, f64)> = pareto_front(&refs)
+            .iter()
+            .map(|r| (r.time_ms, r.rmse))
+            .collect();
+        assert_eq!(front, vec![(0.5, 0.3), (1.0, 0.1), (3.0, 0.05)]);
+        assert_eq!(cheapest_at(&refs, 20.0).unwrap().time_ms, 1.0);
+        assert!(cheapest_at(&refs, 90.0).is_none());
+    }
+
+    #[test]
+    fn the_full_plan_sweeps_every_axis_of_the_issue() {
+        let plan = Plan::new(false);
+        let scene = Scene::from_toml_str(bundled::text("whitted").unwrap(), None).unwrap();
+        let points = plan.points(&scene);
+        for spp in [1, 2, 4, 8, 16] {
+            assert!(points.iter().any(|p| p.spp == spp));
+        }
+        for depth in 1..=8 {
+            assert!(points.iter().any(|p| p.depth == depth));
+        }
+        for mw in [0.0, 1e-3, 1e-2, 5e-2] {
+            assert!(points.iter().any(|p| p.min_weight == mw));
+        }
+        assert!(points.iter().any(|p| p.scale == 0.5));
+        assert_eq!(plan.sphere_counts.last(), Some(&16384));
+        assert!(points.iter().any(|p| is_default(
+            &ErrorRow {
+                point: *p,
+                ..row(1.0, 0.1)
+            },
+            &scene
+        )));
+    }
+}

@@ -1,0 +1,174 @@
+//! Shader specialisation: one WGSL source, compiled per scene *feature set*
+//! through pipeline-overridable constants (`override` in WGSL). A constant
+//! that is false turns the code behind it into dead code that the driver's
+//! compiler removes, so a spheres-only scene runs no plane, box, refraction
+//! or checker code at all.
+
+use crate::scene::{Material, Scene};
+
+/// What a scene needs from the shader. Every flag that is true for a scene
+/// must be true in the pipeline that draws it; extra flags only cost time.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
+pub struct Features {
+    pub spheres: bool,
+    pub planes: bool,
+    pub cubes: bool,
+    /// Point lights: diffuse and specular terms and shadow rays.
+    pub lights: bool,
+    /// Materials with a mirror term (reflected rays).
+    pub mirrors: bool,
+    /// Materials with a dielectric term (Fresnel, reflected and refracted rays).
+    pub transparency: bool,
+    pub checker: bool,
+    /// A camera with aperture > 0 (thin lens sampling).
+    pub lens: bool,
+    /// Bounded shapes through the BVH (true) or a loop over all of them.
+    pub bvh: bool,
+}
+
+impl Features {
+    /// The generic pipeline: every feature compiled in.
+    pub const ALL: Features = Features {
+        spheres: true,
+        planes: true,
+        cubes: true,
+        lights: true,
+        mirrors: true,
+        transparency: true,
+        checker: true,
+        lens: true,
+        bvh: true,
+    };
+
+    /// Exactly what `scene` uses: shapes present, materials that shapes use
+    /// (a material no shape refers to costs nothing), lights, lens.
+    pub fn of(scene: &Scene) -> Features {
+        let used: Vec<&Material> = scene
+            .spheres
+            .iter()
+            .map(|s| s.material.as_deref())
+            .chain(scene.planes.iter().map(|p| p.material.as_deref()))
+            .chain(scene.cubes.iter().map(|c| c.material.as_deref()))
+            .map(|name| scene.material(name))
+            .collect();
+        Features {
+            spheres: !scene.spheres.is_empty(),
+            planes: !scene.planes.is_empty(),
+            cubes: !scene.cubes.is_empty(),
+            lights: !scene.lights.is_empty(),
+            mirrors: used.iter().any(|m| m.mirror > 0.0),
+            transparency: used.iter().any(|m| m.transparency > 0.0),
+            checker: used.iter().any(|m| m.checker.is_some()),
+            lens: scene.camera.aperture > 0.0,
+            bvh: true,
+        }
+    }
+}
+
+/// Values for the shader's pipeline-overridable constants: the variants of
+/// one source.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
+pub struct ShaderOptions {
+    /// The robust intersection and offset routines (true) or the lecture's
+    /// textbook versions (false), to show what the robust ones fix.
+    pub robust: bool,
+    pub features: Features,
+    /// Entries of the ray-tree stack: the scene's `max_depth + 1` (not a
+    /// pipeline constant: WGSL sizes arrays only with `const`s, so it is
+    /// written into the source, see `ShaderSource::with_stack_size`).
+    pub stack_size: u32,
+}
+
+impl Default for ShaderOptions {
+    /// Robust and generic: draws any scene.
+    fn default() -> Self {
+        ShaderOptions {
+            robust: true,
+            features: Features::ALL,
+            stack_size: super::shaders::MAX_STACK_SIZE,
+        }
+    }
+}
+
+impl ShaderOptions {
+    /// The robust pipeline specialised for `scene`.
+    pub fn for_scene(scene: &Scene) -> Self {
+        ShaderOptions {
+            robust: true,
+            features: Features::of(scene),
+            stack_size: scene.render.max_depth + 1,
+        }
+    }
+
+    /// The `(name, value)` pairs for `PipelineCompilationOptions::constants`.
+    pub(super) fn constants(&self) -> Vec<(&'static str, f64)> {
+        let f = &self.features;
+        [
+            ("ROBUST", self.robust),
+            ("HAS_SPHERES", f.spheres),
+            ("HAS_PLANES", f.planes),
+            ("HAS_CUBES", f.cubes),
+            ("HAS_LIGHTS", f.lights),
+            ("HAS_MIRRORS", f.mirrors),
+            ("HAS_TRANSPARENCY", f.transparency),
+            ("HAS_CHECKER", f.checker),
+            ("HAS_LENS", f.lens),
+            ("USE_BVH", f.bvh),
+        ]
+        .into_iter()
+        .map(|(name, on)| (name, f64::from(u8::from(on))))
+        .collect()
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::scene::bundled;
+
+    fn bundled_scene(name: &str) -> Scene {
+        Scene::from_toml_str(bundled::text(name).unwrap(), None).unwrap()
+    }
+
+    #[test]
+    fn features_follow_the_scene() {
+        let f = Features::of(&bundled_scene("many_spheres"));
+        assert!(f.spheres && f.planes && !f.cubes && f.lights);
+        assert!(f.mirrors && f.transparency && f.checker && !f.lens);
+        let f = Features::of(&bundled_scene("cornell"));
+        assert!(f.cubes && f.transparency && !f.checker);
+    }
+
+    #[test]
+    fn unused_materials_add_no_features() {
+        let scene = Scene::from_toml_str(
+            "[camera]\nfrom = [0, 0, 5]\nto = [0, 0, 0]\n\
+             [materials.glass]\ntransparency = 1.0\n\
+             [[spheres]]\ncenter = [0, 0, 0]\nradius = 1\n",
+            None,
+        )
+        .unwrap();
+        let f = Features::of(&scene);
+        assert!(f.spheres && !f.transparency && !f.mirrors && !f.lights);
+    }
+
+    #[test]
+    fn every_override_in_the_shader_gets_a_value_and_no_other() {
+        let source = super::super::ShaderSource::embedded();
+        let module = source.validate().unwrap().0;
+        let mut declared: Vec<String> = module
+            .overrides
+            .iter()
+            .filter_map(|(_, o)| o.name.clone())
+            .filter(|n| n != "ENCODE_SRGB")
+            .collect();
+        declared.sort();
+        let mut given: Vec<String> = ShaderOptions::default()
+            .constants()
+            .into_iter()
+            .map(|(n, _)| n.to_string())
+            .collect();
+        given.sort();
+        assert_eq!(declared, given);
+    }
+}

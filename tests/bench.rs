@@ -1,0 +1,78 @@
+//! `raysandbox bench` end to end on its smallest configuration: the files it
+//! promises exist, with the documented columns and finite numbers. No
+//! timing is asserted (timing targets belong to the benchmark itself).
+
+mod common;
+
+use std::path::Path;
+use std::process::Command;
+
+use raysandbox::bench::{ERROR_COLUMNS, PIPELINE_COLUMNS, SCALING_COLUMNS};
+
+fn check_csv(path: &Path, columns: &str, text_columns: usize) -> usize {
+    let text = std::fs::read_to_string(path).unwrap_or_else(|e| panic!("{}: {e}", path.display()));
+    let mut lines = text.lines();
+    assert_eq!(lines.next(), Some(columns), "{}", path.display());
+    let width = columns.split(',').count();
+    let mut rows = 0;
+    for line in lines {
+        let cells: Vec<&str> = line.split(',').collect();
+        assert_eq!(cells.len(), width, "{line}");
+        for cell in &cells[text_columns..] {
+            let value: f64 = cell
+                .parse()
+                .unwrap_or_else(|_| panic!("not a number: {cell} in {line}"));
+            // PSNR is infinite only for an exact match, which the sweep's
+            // cheap points cannot have; everything else must be finite.
+            assert!(value.is_finite() && value >= 0.0, "{line}");
+        }
+        rows += 1;
+    }
+    rows
+}
+
+#[test]
+fn quick_bench_writes_csv_markdown_and_plots() {
+    if common::gpu().is_none() {
+        return;
+    }
+    let out = std::env::temp_dir().join(format!("raysandbox-bench-{}", std::process::id()));
+    let status = Command::new(env!("CARGO_BIN_EXE_raysandbox"))
+        .args([
+            "bench",
+            "--quick",
+            "--frames",
+            "1",
+            "--out",
+            out.to_str().unwrap(),
+        ])
+        .status()
+        .expect("run raysandbox bench");
+    assert!(status.success());
+    assert!(check_csv(&out.join("time_vs_error.csv"), ERROR_COLUMNS, 1) > 4);
+    assert_eq!(
+        check_csv(&out.join("specialized_vs_generic.csv"), PIPELINE_COLUMNS, 1),
+        2
+    );
+    assert_eq!(check_csv(&out.join("scaling.csv"), SCALING_COLUMNS, 0), 3);
+    let report = std::fs::read_to_string(out.join("results.md")).unwrap();
+    for needle in [
+        "adapter:",
+        "CPU:",
+        "Pareto",
+        "Specialised against generic",
+        "Scaling",
+    ] {
+        assert!(report.contains(needle), "results.md lacks {needle}");
+    }
+    for plot in [
+        "pareto_whitted.png",
+        "pareto_mirror_cube.png",
+        "scaling.png",
+    ] {
+        let image = image::open(out.join(plot)).expect("a PNG plot").to_rgb8();
+        let first = image.get_pixel(0, 0);
+        assert!(image.pixels().any(|p| p != first), "{plot} is blank");
+    }
+    std::fs::remove_dir_all(&out).unwrap();
+}
