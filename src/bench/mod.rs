@@ -62,14 +62,17 @@ impl Plan {
         }
         Plan {
             scenes: bundled::names(),
-            size: (320, 180),
+            // Small enough that the full sweep (with 10 timed frames per
+            // point, up to 64 samples) finishes in about 20 minutes on two
+            // CPU cores with lavapipe.
+            size: (160, 90),
             // The 1..16, and the viewer's refinement limit beyond.
             spp: vec![1, 2, 4, 8, 16, 32, 64],
             depths: (1..=8).collect(),
             min_weights: vec![0.0, 1e-3, 1e-2, 5e-2],
             scales: vec![0.5, 1.0],
             sphere_counts: (0..=7).map(|k| 4usize.pow(k)).collect(),
-            scaling_size: (320, 180),
+            scaling_size: (160, 90),
         }
     }
 
@@ -331,6 +334,7 @@ fn scaling_row(
 ) -> Result<ScalingRow, BenchError> {
     let scene = sphere_field(n);
     let mut options = ShaderOptions::for_scene(&scene);
+    options.features.bvh = true;
     let time = |options: &ShaderOptions| {
         measure::frame_time(gpu, options, &scene, size, 1, frames)
             .map(|(t, _)| ms(t))

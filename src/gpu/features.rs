@@ -26,6 +26,11 @@ pub struct Features {
     pub bvh: bool,
 }
 
+/// Below this many spheres and boxes a loop over them beats the BVH: its
+/// traversal stack costs about as much as testing ~150 spheres on lavapipe
+/// (`raysandbox bench`, scaling table in docs/performance.md).
+pub const BVH_MIN_SHAPES: usize = 128;
+
 impl Features {
     /// The generic pipeline: every feature compiled in.
     pub const ALL: Features = Features {
@@ -60,7 +65,7 @@ impl Features {
             transparency: used.iter().any(|m| m.transparency > 0.0),
             checker: used.iter().any(|m| m.checker.is_some()),
             lens: scene.camera.aperture > 0.0,
-            bvh: true,
+            bvh: scene.spheres.len() + scene.cubes.len() >= BVH_MIN_SHAPES,
         }
     }
 }
@@ -134,9 +139,9 @@ mod tests {
     fn features_follow_the_scene() {
         let f = Features::of(&bundled_scene("many_spheres"));
         assert!(f.spheres && f.planes && !f.cubes && f.lights);
-        assert!(f.mirrors && f.transparency && f.checker && !f.lens);
+        assert!(f.mirrors && f.transparency && f.checker && !f.lens && f.bvh);
         let f = Features::of(&bundled_scene("cornell"));
-        assert!(f.cubes && f.transparency && !f.checker);
+        assert!(f.cubes && f.transparency && !f.checker && !f.bvh);
     }
 
     #[test]

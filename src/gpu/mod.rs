@@ -3,6 +3,7 @@
 
 mod context;
 mod features;
+pub mod fullscreen;
 mod id_pass;
 pub mod layout;
 mod offscreen;

@@ -180,6 +180,15 @@ impl ShaderSource {
                 .unwrap_or_default();
             self.locate(span, e.message().to_string(), label)
         })?;
+        self.check(module)
+    }
+
+    /// Runs naga's validator on a parsed module; its errors are located in
+    /// the part they fall in, like parse errors.
+    fn check(
+        &self,
+        module: naga::Module,
+    ) -> Result<(naga::Module, naga::valid::ModuleInfo), ShaderError> {
         let info = naga::valid::Validator::new(
             naga::valid::ValidationFlags::all(),
             naga::valid::Capabilities::default(),
@@ -229,22 +238,7 @@ impl ShaderSource {
                 Some(e) => self.locate(e.meta, e.kind.to_string(), String::new()),
                 None => self.locate(naga::Span::default(), errors.to_string(), String::new()),
             })?;
-        let info = naga::valid::Validator::new(
-            naga::valid::ValidationFlags::all(),
-            naga::valid::Capabilities::default(),
-        )
-        .validate(&module)
-        .map_err(|e| {
-            let (span, label) = e.spans().next().cloned().unwrap_or_default();
-            let mut message = e.as_inner().to_string();
-            let mut source = std::error::Error::source(e.as_inner());
-            while let Some(cause) = source {
-                message = format!("{message}: {cause}");
-                source = cause.source();
-            }
-            self.locate(span, message, label)
-        })?;
-        Ok((module, info))
+        self.check(module)
     }
 
     /// The file, line and column of a span of the joined source (for errors

@@ -9,6 +9,7 @@
 use wgpu::util::DeviceExt;
 
 use super::features::ShaderOptions;
+use super::fullscreen;
 use super::layout::PackedScene;
 use super::shaders::{ShaderError, ShaderSource};
 
@@ -89,34 +90,14 @@ impl Pipelines {
             immediate_size: 0,
         });
         let pass = |entry: &str, format, constants: &[(&str, f64)]| {
-            device.create_render_pipeline(&wgpu::RenderPipelineDescriptor {
-                label: Some(entry),
-                layout: Some(&layout),
-                vertex: wgpu::VertexState {
-                    module: &module,
-                    entry_point: Some("vs_fullscreen"),
-                    compilation_options: Default::default(),
-                    buffers: &[],
-                },
-                primitive: wgpu::PrimitiveState::default(),
-                depth_stencil: None,
-                multisample: wgpu::MultisampleState::default(),
-                fragment: Some(wgpu::FragmentState {
-                    module: &module,
-                    entry_point: Some(entry),
-                    compilation_options: wgpu::PipelineCompilationOptions {
-                        constants,
-                        ..Default::default()
-                    },
-                    targets: &[Some(wgpu::ColorTargetState {
-                        format,
-                        blend: None,
-                        write_mask: wgpu::ColorWrites::ALL,
-                    })],
-                }),
-                multiview_mask: None,
-                cache: None,
-            })
+            fullscreen::pipeline(
+                device,
+                &layout,
+                (&module, "vs_fullscreen"),
+                (&module, entry),
+                constants,
+                format,
+            )
         };
         let display = output_formats
             .iter()
@@ -331,50 +312,19 @@ pub fn encode_frame(
 
     if new_samples > 0 {
         let back = 1 - accum.front;
-        full_screen_pass(
+        fullscreen::pass(
             encoder,
             &pipelines.trace,
-            &scene.bind_group,
-            &accum.bind_groups[accum.front],
+            &[&scene.bind_group, &accum.bind_groups[accum.front]],
             &accum.views[back],
         );
         accum.front = back;
         accum.samples += new_samples;
     }
-    full_screen_pass(
+    fullscreen::pass(
         encoder,
         pipelines.display(target.format),
-        &scene.bind_group,
-        &accum.bind_groups[accum.front],
+        &[&scene.bind_group, &accum.bind_groups[accum.front]],
         target.view,
     );
-}
-
-fn full_screen_pass(
-    encoder: &mut wgpu::CommandEncoder,
-    pipeline: &wgpu::RenderPipeline,
-    scene: &wgpu::BindGroup,
-    accumulated: &wgpu::BindGroup,
-    target: &wgpu::TextureView,
-) {
-    let mut pass = encoder.begin_render_pass(&wgpu::RenderPassDescriptor {
-        label: None,
-        color_attachments: &[Some(wgpu::RenderPassColorAttachment {
-            view: target,
-            depth_slice: None,
-            resolve_target: None,
-            ops: wgpu::Operations {
-                load: wgpu::LoadOp::Clear(wgpu::Color::BLACK),
-                store: wgpu::StoreOp::Store,
-            },
-        })],
-        depth_stencil_attachment: None,
-        timestamp_writes: None,
-        occlusion_query_set: None,
-        multiview_mask: None,
-    });
-    pass.set_pipeline(pipeline);
-    pass.set_bind_group(0, scene, &[]);
-    pass.set_bind_group(1, accumulated, &[]);
-    pass.draw(0..3, 0..1);
 }

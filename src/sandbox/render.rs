@@ -8,7 +8,7 @@ use std::borrow::Cow;
 use super::compose::Compiled;
 use super::params::ParamSet;
 use super::uniforms::{FRAME_UNIFORMS_SIZE, FrameUniforms};
-use crate::gpu::Gpu;
+use crate::gpu::{Gpu, fullscreen};
 
 /// What the user's shader draws into.
 pub const CANVAS_FORMAT: wgpu::TextureFormat = wgpu::TextureFormat::Rgba32Float;
@@ -143,30 +143,14 @@ impl SandboxGpu {
             .iter()
             .map(|&format| {
                 let decode = if format.is_srgb() { 1.0 } else { 0.0 };
-                let pipeline = device.create_render_pipeline(&wgpu::RenderPipelineDescriptor {
-                    label: Some("sandbox display"),
-                    layout: Some(&layout),
-                    vertex: wgpu::VertexState {
-                        module: &display_module,
-                        entry_point: Some("vs_display"),
-                        compilation_options: Default::default(),
-                        buffers: &[],
-                    },
-                    primitive: wgpu::PrimitiveState::default(),
-                    depth_stencil: None,
-                    multisample: wgpu::MultisampleState::default(),
-                    fragment: Some(wgpu::FragmentState {
-                        module: &display_module,
-                        entry_point: Some("fs_display"),
-                        compilation_options: wgpu::PipelineCompilationOptions {
-                            constants: &[("DECODE_SRGB", decode)],
-                            ..Default::default()
-                        },
-                        targets: &[Some(format.into())],
-                    }),
-                    multiview_mask: None,
-                    cache: None,
-                });
+                let pipeline = fullscreen::pipeline(
+                    device,
+                    &layout,
+                    (&display_module, "vs_display"),
+                    (&display_module, "fs_display"),
+                    &[("DECODE_SRGB", decode)],
+                    format,
+                );
                 (format, pipeline)
             })
             .collect();
@@ -208,27 +192,14 @@ impl PipelineBuilder {
             label: Some(&compiled.file),
             source: wgpu::ShaderSource::Naga(Cow::Owned(compiled.module.clone())),
         });
-        let pipeline = device.create_render_pipeline(&wgpu::RenderPipelineDescriptor {
-            label: Some(&compiled.file),
-            layout: Some(&self.pipeline_layout),
-            vertex: wgpu::VertexState {
-                module: &self.vertex,
-                entry_point: Some("vs_fullscreen"),
-                compilation_options: Default::default(),
-                buffers: &[],
-            },
-            primitive: wgpu::PrimitiveState::default(),
-            depth_stencil: None,
-            multisample: wgpu::MultisampleState::default(),
-            fragment: Some(wgpu::FragmentState {
-                module: &module,
-                entry_point: Some(compiled.entry_point),
-                compilation_options: Default::default(),
-                targets: &[Some(CANVAS_FORMAT.into())],
-            }),
-            multiview_mask: None,
-            cache: None,
-        });
+        let pipeline = fullscreen::pipeline(
+            device,
+            &self.pipeline_layout,
+            (&self.vertex, "vs_fullscreen"),
+            (&module, compiled.entry_point),
+            &[],
+            CANVAS_FORMAT,
+        );
         match pollster::block_on(scope.pop()) {
             Some(error) => Err(format!(
                 "{}: wgpu rejected the shader: {error}",
@@ -412,25 +383,7 @@ impl Canvas {
         gpu.queue.write_buffer(&self.params, 0, &bytes);
         gpu.queue
             .write_buffer(&self.frame, 0, bytemuck::bytes_of(frame));
-        let mut pass = encoder.begin_render_pass(&wgpu::RenderPassDescriptor {
-            label: Some("sandbox shader"),
-            color_attachments: &[Some(wgpu::RenderPassColorAttachment {
-                view: &self.view,
-                depth_slice: None,
-                resolve_target: None,
-                ops: wgpu::Operations {
-                    load: wgpu::LoadOp::Clear(wgpu::Color::TRANSPARENT),
-                    store: wgpu::StoreOp::Store,
-                },
-            })],
-            depth_stencil_attachment: None,
-            timestamp_writes: None,
-            occlusion_query_set: None,
-            multiview_mask: None,
-        });
-        pass.set_pipeline(&pipeline.pipeline);
-        pass.set_bind_group(0, &self.bind_group, &[]);
-        pass.draw(0..3, 0..1);
+        fullscreen::pass(encoder, &pipeline.pipeline, &[&self.bind_group], &self.view);
     }
 
     /// Encodes the display pass: the canvas scaled onto `target`.
@@ -441,25 +394,12 @@ impl Canvas {
         target: &wgpu::TextureView,
         format: wgpu::TextureFormat,
     ) {
-        let mut pass = encoder.begin_render_pass(&wgpu::RenderPassDescriptor {
-            label: Some("sandbox display"),
-            color_attachments: &[Some(wgpu::RenderPassColorAttachment {
-                view: target,
-                depth_slice: None,
-                resolve_target: None,
-                ops: wgpu::Operations {
-                    load: wgpu::LoadOp::Clear(wgpu::Color::BLACK),
-                    store: wgpu::StoreOp::Store,
-                },
-            })],
-            depth_stencil_attachment: None,
-            timestamp_writes: None,
-            occlusion_query_set: None,
-            multiview_mask: None,
-        });
-        pass.set_pipeline(sandbox.display(format));
-        pass.set_bind_group(0, &self.display_bind_group, &[]);
-        pass.draw(0..3, 0..1);
+        fullscreen::pass(
+            encoder,
+            sandbox.display(format),
+            &[&self.display_bind_group],
+            target,
+        );
     }
 
     /// The canvas as 8-bit RGBA (what the display pass shows at 1:1), for

@@ -2,6 +2,8 @@
 //! Each test binary compiles this module and uses only part of it.
 #![allow(dead_code)]
 
+pub mod xwindow;
+
 use std::path::{Path, PathBuf};
 
 use raysandbox::gpu::Gpu;

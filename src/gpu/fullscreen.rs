@@ -1,0 +1,76 @@
+//! The one drawing primitive of the project: a single triangle that covers
+//! the viewport (no vertex buffer), run by a fragment shader per pixel.
+//! Every pass uses these two helpers: the tracer's, the id pass, the
+//! sandbox's.
+
+/// A full-screen pipeline: a vertex entry point that makes the triangle
+/// from the vertex index, a fragment entry point with its pipeline
+/// constants, and one colour target without blending.
+pub fn pipeline(
+    device: &wgpu::Device,
+    layout: &wgpu::PipelineLayout,
+    (vs_module, vs): (&wgpu::ShaderModule, &str),
+    (fs_module, fs): (&wgpu::ShaderModule, &str),
+    constants: &[(&str, f64)],
+    format: wgpu::TextureFormat,
+) -> wgpu::RenderPipeline {
+    device.create_render_pipeline(&wgpu::RenderPipelineDescriptor {
+        label: Some(fs),
+        layout: Some(layout),
+        vertex: wgpu::VertexState {
+            module: vs_module,
+            entry_point: Some(vs),
+            compilation_options: Default::default(),
+            buffers: &[],
+        },
+        primitive: wgpu::PrimitiveState::default(),
+        depth_stencil: None,
+        multisample: wgpu::MultisampleState::default(),
+        fragment: Some(wgpu::FragmentState {
+            module: fs_module,
+            entry_point: Some(fs),
+            compilation_options: wgpu::PipelineCompilationOptions {
+                constants,
+                ..Default::default()
+            },
+            targets: &[Some(wgpu::ColorTargetState {
+                format,
+                blend: None,
+                write_mask: wgpu::ColorWrites::ALL,
+            })],
+        }),
+        multiview_mask: None,
+        cache: None,
+    })
+}
+
+/// Encodes one full-screen pass into `target` (cleared first) with the bind
+/// groups bound in order from group 0.
+pub fn pass(
+    encoder: &mut wgpu::CommandEncoder,
+    pipeline: &wgpu::RenderPipeline,
+    bind_groups: &[&wgpu::BindGroup],
+    target: &wgpu::TextureView,
+) {
+    let mut pass = encoder.begin_render_pass(&wgpu::RenderPassDescriptor {
+        label: None,
+        color_attachments: &[Some(wgpu::RenderPassColorAttachment {
+            view: target,
+            depth_slice: None,
+            resolve_target: None,
+            ops: wgpu::Operations {
+                load: wgpu::LoadOp::Clear(wgpu::Color::BLACK),
+                store: wgpu::StoreOp::Store,
+            },
+        })],
+        depth_stencil_attachment: None,
+        timestamp_writes: None,
+        occlusion_query_set: None,
+        multiview_mask: None,
+    });
+    pass.set_pipeline(pipeline);
+    for (group, bind_group) in bind_groups.iter().enumerate() {
+        pass.set_bind_group(group as u32, *bind_group, &[]);
+    }
+    pass.draw(0..3, 0..1);
+}

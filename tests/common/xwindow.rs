@@ -1,0 +1,257 @@
+//! The program's window as a person meets it: the real binary under an Xvfb
+//! server of the test's own, driven with xdotool, its pixels captured with
+//! ImageMagick's `import`.
+//!
+//! The binary's hidden `--print-events` flag prints a line per event
+//! ("ready", "saved PATH", "shader-error FILE:LINE:COL", ...) once the frame
+//! it concerns is on screen, so tests wait for events instead of sleeping.
+
+use std::io::{BufRead, BufReader};
+use std::path::Path;
+use std::process::{Child, Command, Stdio};
+use std::sync::atomic::{AtomicU32, Ordering};
+use std::sync::mpsc::{Receiver, RecvTimeoutError, channel};
+use std::time::{Duration, Instant};
+
+use image::RgbaImage;
+
+/// Lavapipe on two cores is slow: refinement can take a while.
+const TIMEOUT: Duration = Duration::from_secs(120);
+
+fn have(tool: &str) -> bool {
+    Command::new("sh")
+        .args(["-c", &format!("command -v {tool}")])
+        .output()
+        .is_ok_and(|o| o.status.success())
+}
+
+/// An Xvfb server of our own, stopped on drop.
+pub struct Display {
+    server: Child,
+    name: String,
+}
+
+impl Display {
+    /// `None` (with a loud message) off CI when Xvfb, xdotool, ImageMagick or
+    /// a GPU adapter is missing; in CI their absence fails the test
+    /// (scripts/test installs them).
+    pub fn start() -> Option<Display> {
+        let missing: Vec<&str> = ["Xvfb", "xdotool", "import"]
+            .into_iter()
+            .filter(|t| !have(t))
+            .collect();
+        if !missing.is_empty() {
+            if std::env::var("CI").is_ok_and(|v| v == "true") {
+                panic!("CI=true and {missing:?} missing: scripts/test installs them");
+            }
+            eprintln!("!!! SKIPPING WINDOW TEST: {missing:?} missing. Run scripts/test.");
+            return None;
+        }
+        super::gpu()?;
+        // A free display number; test binaries run in parallel, so each
+        // process starts from its own offset.
+        static NEXT: AtomicU32 = AtomicU32::new(0);
+        let number = loop {
+            let n = 40 + std::process::id() % 4000 + NEXT.fetch_add(1, Ordering::SeqCst);
+            if !Path::new(&format!("/tmp/.X11-unix/X{n}")).exists() {
+                break n;
+            }
+        };
+        let name = format!(":{number}");
+        let server = Command::new("Xvfb")
+            .args([
+                name.as_str(),
+                "-screen",
+                "0",
+                "1024x768x24",
+                "-nolisten",
+                "tcp",
+            ])
+            .stdout(Stdio::null())
+            .stderr(Stdio::null())
+            .spawn()
+            .expect("start Xvfb");
+        let socket = format!("/tmp/.X11-unix/X{number}");
+        let start = Instant::now();
+        while !Path::new(&socket).exists() {
+            assert!(
+                start.elapsed() < Duration::from_secs(20),
+                "Xvfb did not start"
+            );
+            std::thread::sleep(Duration::from_millis(50));
+        }
+        Some(Display { server, name })
+    }
+}
+
+impl Drop for Display {
+    fn drop(&mut self) {
+        let _ = self.server.kill();
+        let _ = self.server.wait();
+    }
+}
+
+/// A raysandbox window and the events it prints.
+pub struct Window<'d> {
+    display: &'d Display,
+    child: Child,
+    events: Receiver<String>,
+    /// The X window id.
+    pub id: String,
+    size: (u32, u32),
+}
+
+impl<'d> Window<'d> {
+    /// Runs `raysandbox ARGS --size WxH --print-events` on `display` and
+    /// waits until its first frame is ready.
+    pub fn open(display: &'d Display, args: &[&str], size: (u32, u32)) -> Window<'d> {
+        let mut child = Command::new(env!("CARGO_BIN_EXE_raysandbox"))
+            .args(args)
+            .args([
+                "--size",
+                &format!("{}x{}", size.0, size.1),
+                "--print-events",
+            ])
+            .env("DISPLAY", &display.name)
+            .env_remove("WAYLAND_DISPLAY")
+            .stdout(Stdio::piped())
+            .stderr(Stdio::null())
+            .spawn()
+            .expect("start raysandbox");
+        let stdout = child.stdout.take().unwrap();
+        let (tx, events) = channel();
+        std::thread::spawn(move || {
+            for line in BufReader::new(stdout).lines().map_while(Result::ok) {
+                if tx.send(line).is_err() {
+                    break;
+                }
+            }
+        });
+        let mut window = Window {
+            display,
+            child,
+            events,
+            id: String::new(),
+            size,
+        };
+        window.wait_for("ready");
+        window.id = window
+            .xdotool(&["search", "--sync", "--name", "raysandbox"])
+            .lines()
+            .last()
+            .expect("a window")
+            .to_string();
+        window
+    }
+
+    /// Waits for an event line starting with `prefix`; returns the rest.
+    pub fn wait_for(&mut self, prefix: &str) -> String {
+        let deadline = Instant::now() + TIMEOUT;
+        loop {
+            let left = deadline.saturating_duration_since(Instant::now());
+            match self.events.recv_timeout(left) {
+                Ok(line) => {
+                    if let Some(rest) = line.strip_prefix(&format!("event: {prefix}")) {
+                        return rest.trim().to_string();
+                    }
+                }
+                Err(RecvTimeoutError::Timeout) => panic!("no '{prefix}' event within {TIMEOUT:?}"),
+                Err(RecvTimeoutError::Disconnected) => panic!(
+                    "the window closed while waiting for '{prefix}': {:?}",
+                    self.child.try_wait()
+                ),
+            }
+        }
+    }
+
+    /// Events that arrive within `wait`, without waiting for a given one.
+    pub fn events_within(&self, wait: Duration) -> Vec<String> {
+        std::thread::sleep(wait);
+        self.events.try_iter().collect()
+    }
+
+    pub fn xdotool(&self, args: &[&str]) -> String {
+        let out = Command::new("xdotool")
+            .args(args)
+            .env("DISPLAY", &self.display.name)
+            .output()
+            .expect("run xdotool");
+        assert!(
+            out.status.success(),
+            "xdotool {args:?}: {}",
+            String::from_utf8_lossy(&out.stderr)
+        );
+        String::from_utf8_lossy(&out.stdout).into_owned()
+    }
+
+    /// Drags with `button` from `a` to `b` (window pixels) in small steps.
+    pub fn drag(&self, button: &str, a: (u32, u32), b: (u32, u32)) {
+        let at = |p: (u32, u32)| {
+            self.xdotool(&[
+                "mousemove",
+                "--window",
+                &self.id,
+                &p.0.to_string(),
+                &p.1.to_string(),
+            ]);
+        };
+        at(a);
+        self.xdotool(&["mousedown", button]);
+        for step in 1..=10 {
+            let lerp = |s: u32, e: u32| (s as i64 + (e as i64 - s as i64) * step / 10) as u32;
+            at((lerp(a.0, b.0), lerp(a.1, b.1)));
+            std::thread::sleep(Duration::from_millis(30));
+        }
+        self.xdotool(&["mouseup", button]);
+    }
+
+    pub fn click(&self, at: (u32, u32)) {
+        let (x, y) = (at.0.to_string(), at.1.to_string());
+        self.xdotool(&["mousemove", "--window", &self.id, &x, &y, "click", "1"]);
+    }
+
+    /// Presses keys in the window. Without a window manager nobody gives the
+    /// window the keyboard focus, so the test does, as a click would.
+    pub fn key(&self, keys: &str) {
+        self.xdotool(&["windowfocus", "--sync", &self.id]);
+        self.xdotool(&["key", keys]);
+    }
+
+    /// The window's pixels as shown on the X server.
+    pub fn capture(&self) -> RgbaImage {
+        let file = std::env::temp_dir().join(format!(
+            "raysandbox-capture-{}-{}.png",
+            std::process::id(),
+            self.id
+        ));
+        let status = Command::new("import")
+            .args(["-window", &self.id, file.to_str().unwrap()])
+            .env("DISPLAY", &self.display.name)
+            .status()
+            .expect("run import");
+        assert!(status.success(), "import failed");
+        let image = image::open(&file).expect("captured PNG").to_rgba8();
+        let _ = std::fs::remove_file(&file);
+        assert_eq!(image.dimensions(), self.size, "window size");
+        image
+    }
+
+    pub fn is_running(&mut self) -> bool {
+        self.child
+            .try_wait()
+            .expect("query the window's process")
+            .is_none()
+    }
+}
+
+impl Drop for Window<'_> {
+    fn drop(&mut self) {
+        let _ = self.child.kill();
+        let _ = self.child.wait();
+    }
+}
+
+/// The part `(x, y, width, height)` of an image.
+pub fn crop(image: &RgbaImage, (x, y, w, h): (u32, u32, u32, u32)) -> RgbaImage {
+    image::imageops::crop_imm(image, x, y, w, h).to_image()
+}
