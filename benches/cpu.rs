@@ -89,5 +89,11 @@ fn reference_tracer(c: &mut Criterion) {
     group.finish();
 }
 
-criterion_group!(benches, intersections, bvh_build, reference_tracer);
+criterion_group! {
+    name = benches;
+    // Criterion's HTML plots need a system font (plotters' font feature is
+    // set for the bench command's own plots, which bring their font along).
+    config = Criterion::default().without_plots();
+    targets = intersections, bvh_build, reference_tracer
+}
 criterion_main!(benches);
