@@ -9,6 +9,7 @@ use super::context::Gpu;
 use super::features::ShaderOptions;
 use super::fullscreen;
 use super::layout::PackedScene;
+use super::offscreen::read_texels;
 use super::shaders::ShaderSource;
 use super::tracer::{PipelineError, SceneBuffers, scene_layout_entries};
 use crate::scene::Scene;
@@ -107,43 +108,16 @@ impl IdRenderer {
         let view = target.create_view(&Default::default());
         let mut encoder = device.create_command_encoder(&Default::default());
         fullscreen::pass(&mut encoder, &self.pipeline, &[bind_group], &view);
-        let row_bytes = width * 16;
-        let padded_row = row_bytes.next_multiple_of(wgpu::COPY_BYTES_PER_ROW_ALIGNMENT);
-        let readback = device.create_buffer(&wgpu::BufferDescriptor {
-            label: Some("first hits readback"),
-            size: u64::from(padded_row) * u64::from(height),
-            usage: wgpu::BufferUsages::COPY_DST | wgpu::BufferUsages::MAP_READ,
-            mapped_at_creation: false,
-        });
-        encoder.copy_texture_to_buffer(
-            target.as_image_copy(),
-            wgpu::TexelCopyBufferInfo {
-                buffer: &readback,
-                layout: wgpu::TexelCopyBufferLayout {
-                    offset: 0,
-                    bytes_per_row: Some(padded_row),
-                    rows_per_image: Some(height),
-                },
-            },
-            target.size(),
-        );
         gpu.queue.submit([encoder.finish()]);
-        let slice = readback.slice(..);
-        slice.map_async(wgpu::MapMode::Read, |result| {
-            result.expect("mapping the readback buffer")
-        });
-        device
-            .poll(wgpu::PollType::wait_indefinitely())
-            .expect("waiting for the GPU");
-        let data = slice.get_mapped_range().expect("mapped readback buffer");
+        let data = read_texels(gpu, &target);
         let mut hits = Vec::with_capacity(width as usize * height as usize);
-        for row in data.chunks(padded_row as usize) {
-            let texels: &[[u32; 4]] = bytemuck::cast_slice(&row[..row_bytes as usize]);
-            hits.extend(texels.iter().map(|&[kind, index, t, _]| FirstHit {
+        for texel in data.chunks_exact(16) {
+            let [kind, index, t, _]: [u32; 4] = bytemuck::pod_read_unaligned(texel);
+            hits.push(FirstHit {
                 kind,
                 index,
                 t: f32::from_bits(t),
-            }));
+            });
         }
         hits
     }

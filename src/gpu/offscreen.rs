@@ -128,8 +128,20 @@ impl OffscreenRenderer {
 
 /// Copies an `Rgba8Unorm` texture back to the CPU and waits for it.
 pub fn read_texture(gpu: &Gpu, texture: &wgpu::Texture) -> image::RgbaImage {
+    image::RgbaImage::from_raw(texture.width(), texture.height(), read_texels(gpu, texture))
+        .expect("buffer holds the whole image")
+}
+
+/// Copies a texture back to the CPU and waits for it: its texels row by
+/// row, without the padding a texture-to-buffer copy needs per row.
+pub(super) fn read_texels(gpu: &Gpu, texture: &wgpu::Texture) -> Vec<u8> {
     let (width, height) = (texture.width(), texture.height());
-    let padded_row = (width * 4).next_multiple_of(wgpu::COPY_BYTES_PER_ROW_ALIGNMENT);
+    let texel_bytes = texture
+        .format()
+        .block_copy_size(None)
+        .expect("a colour format");
+    let row_bytes = width * texel_bytes;
+    let padded_row = row_bytes.next_multiple_of(wgpu::COPY_BYTES_PER_ROW_ALIGNMENT);
     let readback = gpu.device.create_buffer(&wgpu::BufferDescriptor {
         label: Some("readback"),
         size: u64::from(padded_row) * u64::from(height),
@@ -157,14 +169,12 @@ pub fn read_texture(gpu: &Gpu, texture: &wgpu::Texture) -> image::RgbaImage {
     gpu.device
         .poll(wgpu::PollType::wait_indefinitely())
         .expect("waiting for the GPU");
-    let mut pixels = Vec::with_capacity((width * height * 4) as usize);
-    {
-        let data = slice.get_mapped_range().expect("mapped readback buffer");
-        for row in data.chunks(padded_row as usize) {
-            pixels.extend_from_slice(&row[..(width * 4) as usize]);
-        }
+    let data = slice.get_mapped_range().expect("mapped readback buffer");
+    let mut texels = Vec::with_capacity((row_bytes * height) as usize);
+    for row in data.chunks(padded_row as usize) {
+        texels.extend_from_slice(&row[..row_bytes as usize]);
     }
-    image::RgbaImage::from_raw(width, height, pixels).expect("buffer holds the whole image")
+    texels
 }
 
 /// Renders `scene` once at `spp` samples per pixel with the embedded shader.
