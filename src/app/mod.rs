@@ -212,14 +212,8 @@ impl ApplicationHandler<UserEvent> for App {
     }
 
     fn about_to_wait(&mut self, event_loop: &ActiveEventLoop) {
-        match self.repaint_at {
-            Some(at) if at <= Instant::now() => {
-                self.repaint_at = None;
-                self.request_redraw();
-                event_loop.set_control_flow(ControlFlow::Wait);
-            }
-            Some(at) => event_loop.set_control_flow(ControlFlow::WaitUntil(at)),
-            None => event_loop.set_control_flow(ControlFlow::Wait),
+        if shell::wait_for_repaint(&mut self.repaint_at, event_loop) {
+            self.request_redraw();
         }
     }
 }

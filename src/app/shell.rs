@@ -4,9 +4,9 @@
 //! differ only in what they draw under the UI.
 
 use std::sync::Arc;
-use std::time::Duration;
+use std::time::{Duration, Instant};
 
-use winit::event_loop::ActiveEventLoop;
+use winit::event_loop::{ActiveEventLoop, ControlFlow};
 use winit::window::{Fullscreen, Window};
 
 use super::ViewerError;
@@ -200,6 +200,27 @@ impl EventLog {
             let mut out = std::io::stdout().lock();
             let _ = writeln!(out, "event: {line}");
             let _ = out.flush();
+        }
+    }
+}
+
+/// Lets the event loop sleep until egui's next requested repaint (an
+/// animation, a tooltip) or, without one, until an event arrives: an idle
+/// window uses no CPU. True when that repaint is due now.
+pub fn wait_for_repaint(repaint_at: &mut Option<Instant>, event_loop: &ActiveEventLoop) -> bool {
+    match *repaint_at {
+        Some(at) if at <= Instant::now() => {
+            *repaint_at = None;
+            event_loop.set_control_flow(ControlFlow::Wait);
+            true
+        }
+        Some(at) => {
+            event_loop.set_control_flow(ControlFlow::WaitUntil(at));
+            false
+        }
+        None => {
+            event_loop.set_control_flow(ControlFlow::Wait);
+            false
         }
     }
 }
