@@ -74,3 +74,22 @@ pub fn pass(
     }
     pass.draw(0..3, 0..1);
 }
+
+/// A bind group layout of one texture read with `textureLoad` in the
+/// fragment stage (unfilterable, so `Rgba32Float` works everywhere): how a
+/// pass reads the image an earlier pass wrote.
+pub fn texture_layout(device: &wgpu::Device, label: &str) -> wgpu::BindGroupLayout {
+    device.create_bind_group_layout(&wgpu::BindGroupLayoutDescriptor {
+        label: Some(label),
+        entries: &[wgpu::BindGroupLayoutEntry {
+            binding: 0,
+            visibility: wgpu::ShaderStages::FRAGMENT,
+            ty: wgpu::BindingType::Texture {
+                sample_type: wgpu::TextureSampleType::Float { filterable: false },
+                view_dimension: wgpu::TextureViewDimension::D2,
+                multisampled: false,
+            },
+            count: None,
+        }],
+    })
+}

@@ -71,19 +71,7 @@ impl Pipelines {
             label: Some("scene"),
             entries: &scene_layout_entries(),
         });
-        let accum_layout = device.create_bind_group_layout(&wgpu::BindGroupLayoutDescriptor {
-            label: Some("accumulated radiance"),
-            entries: &[wgpu::BindGroupLayoutEntry {
-                binding: 0,
-                visibility: wgpu::ShaderStages::FRAGMENT,
-                ty: wgpu::BindingType::Texture {
-                    sample_type: wgpu::TextureSampleType::Float { filterable: false },
-                    view_dimension: wgpu::TextureViewDimension::D2,
-                    multisampled: false,
-                },
-                count: None,
-            }],
-        });
+        let accum_layout = fullscreen::texture_layout(device, "accumulated radiance");
         let layout = device.create_pipeline_layout(&wgpu::PipelineLayoutDescriptor {
             label: Some("tracer"),
             bind_group_layouts: &[Some(&scene_layout), Some(&accum_layout)],

@@ -117,19 +117,7 @@ impl SandboxGpu {
             label: Some("sandbox vertex"),
             source: wgpu::ShaderSource::Wgsl(VERTEX_WGSL.into()),
         });
-        let display_layout = device.create_bind_group_layout(&wgpu::BindGroupLayoutDescriptor {
-            label: Some("sandbox canvas"),
-            entries: &[wgpu::BindGroupLayoutEntry {
-                binding: 0,
-                visibility: wgpu::ShaderStages::FRAGMENT,
-                ty: wgpu::BindingType::Texture {
-                    sample_type: wgpu::TextureSampleType::Float { filterable: false },
-                    view_dimension: wgpu::TextureViewDimension::D2,
-                    multisampled: false,
-                },
-                count: None,
-            }],
-        });
+        let display_layout = fullscreen::texture_layout(device, "sandbox canvas");
         let display_module = device.create_shader_module(wgpu::ShaderModuleDescriptor {
             label: Some("sandbox display"),
             source: wgpu::ShaderSource::Wgsl(DISPLAY_WGSL.into()),

@@ -36,22 +36,34 @@ pub fn text(name: &str) -> Option<&'static str> {
         .map(|(_, text)| *text)
 }
 
+/// The sorted names (without `.toml`) of the scene files in a folder of the
+/// project: tests check that every file there is embedded.
+#[cfg(test)]
+pub(crate) fn toml_stems(folder: &str) -> Vec<String> {
+    let dir = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join(folder);
+    let mut stems: Vec<String> = std::fs::read_dir(dir)
+        .expect("the folder exists")
+        .filter_map(|e| {
+            let path = e.expect("a directory entry").path();
+            (path.extension()? == "toml").then(|| {
+                path.file_stem()
+                    .unwrap_or_default()
+                    .to_string_lossy()
+                    .into_owned()
+            })
+        })
+        .collect();
+    stems.sort();
+    stems
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
 
     #[test]
     fn every_scene_file_is_bundled_and_valid() {
-        let dir = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("assets/scenes");
-        let mut on_disk: Vec<String> = std::fs::read_dir(dir)
-            .unwrap()
-            .filter_map(|e| {
-                let path = e.unwrap().path();
-                (path.extension()? == "toml")
-                    .then(|| path.file_stem().unwrap().to_string_lossy().into_owned())
-            })
-            .collect();
-        on_disk.sort();
+        let on_disk = toml_stems("assets/scenes");
         let mut bundled: Vec<String> = names().iter().map(|s| s.to_string()).collect();
         bundled.sort();
         assert_eq!(bundled, on_disk, "bundle every scene of assets/scenes");

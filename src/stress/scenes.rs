@@ -209,16 +209,7 @@ mod tests {
 
     #[test]
     fn every_stress_file_is_embedded_and_valid() {
-        let dir = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("assets/scenes/stress");
-        let mut on_disk: Vec<String> = std::fs::read_dir(dir)
-            .unwrap()
-            .filter_map(|e| {
-                let path = e.unwrap().path();
-                (path.extension()? == "toml")
-                    .then(|| path.file_stem().unwrap().to_string_lossy().into_owned())
-            })
-            .collect();
-        on_disk.sort();
+        let on_disk = crate::scene::bundled::toml_stems("assets/scenes/stress");
         let mut embedded: Vec<String> = SCENES.iter().map(|(n, _)| n.to_string()).collect();
         embedded.sort();
         assert_eq!(
