@@ -3,6 +3,7 @@
 struct Ray {
     origin: vec3<f32>,
     dir: vec3<f32>,          // unit length
+    t_min: f32,              // hits count for t_min < t: 0, or < 0 for camera rays
 }
 
 /// The camera's orthonormal basis, as on the slides.
@@ -78,6 +79,16 @@ fn concentric_disk(s: vec2<f32>) -> vec2<f32> {
 /// The ray through film position `pixel` (in pixels, y down from the top) with
 /// lens sample `lens` in the unit disk. The direction is built from the basis,
 /// x u + y v - w, never as the difference of two far-away world points.
+///
+/// The robust ray starts where its position is known best: where it crosses
+/// the plane in focus (the target's plane for a pinhole), written relative to
+/// the target as (D - F) w + F (x u + y v), with D = |eye - target| and F the
+/// focus distance. Its t_min = -|F (x u + y v - w) - lens offset| reaches
+/// back to the eye (or the lens point), so nothing in front of the focus
+/// plane is missed. From there, an f32 direction rounded by ~6e-8 rad moves
+/// the ray by 6e-8 times the distance from the focus plane, not from the
+/// eye: a small sphere framed from 1e6 units stays where it is
+/// (docs/accuracy.md). The textbook ray (ROBUST = false) starts at the eye.
 fn camera_ray(pixel: vec2<f32>, lens: vec2<f32>) -> Ray {
     let b = camera_basis(globals.eye, globals.look_at, globals.up);
     let size = vec2<f32>(globals.resolution);
@@ -85,13 +96,23 @@ fn camera_ray(pixel: vec2<f32>, lens: vec2<f32>) -> Ray {
     let x = h * (size.x / size.y) * (pixel.x / size.x - 0.5);
     let y = h * (0.5 - pixel.y / size.y);
     let to_film = x * b.u + y * b.v - b.w;
+    let target_distance = length(globals.eye - globals.look_at);
+    var focus = target_distance;
+    var lens_offset = vec3(0.0);
     if HAS_LENS && globals.aperture > 0.0 {
         // Thin lens: aim from the lens point at P = e + focus_distance * to_film.
-        let lens_offset = globals.aperture * (lens.x * b.u + lens.y * b.v);
-        let dir = globals.focus_distance * to_film - lens_offset;
-        // Its -w component is -focus_distance, so dir is never zero; the
-        // scaled normalisation keeps a tiny focus distance finite too.
-        return Ray(globals.eye + lens_offset, normalize_or(dir, -b.w));
+        focus = globals.focus_distance;
+        lens_offset = globals.aperture * (lens.x * b.u + lens.y * b.v);
     }
-    return Ray(globals.eye, normalize(to_film));
+    // Its -w component is -focus, so it is zero only for a zero focus
+    // distance (eye == target in f32): then the pinhole ray from the eye. The
+    // scaled normalisation keeps a tiny focus distance finite.
+    let to_focus = focus * to_film - lens_offset;
+    let dir = normalize_or(to_focus, normalize(to_film));
+    let reach = dot(to_focus, dir);
+    if !ROBUST || !(reach > 0.0) {
+        return Ray(globals.eye + lens_offset, dir, 0.0);
+    }
+    let on_focus_plane = (target_distance - focus) * b.w + focus * (x * b.u + y * b.v);
+    return Ray(globals.look_at + on_focus_plane, dir, -reach);
 }

@@ -1,7 +1,8 @@
 // intersect.wgsl: ray-shape intersection (spec section 2).
 //
-// Every routine accepts only 0 < t < t_max and reports the outward geometric
-// normal. WGSL makes no promise about inf and NaN, so no routine may form
+// Every routine accepts only ray.t_min < t < t_max (t_min is 0 but for
+// camera rays, which start on the focus plane and reach back to the eye) and
+// reports the outward geometric normal. WGSL makes no promise about inf and NaN, so no routine may form
 // them: divisions are guarded by explicit branches.
 
 /// Largest ray parameter we ever use; finite, so comparisons stay defined.
@@ -133,15 +134,15 @@ fn hit_sphere(ray: Ray, s: Sphere, index: u32, best: Hit) -> Hit {
     let t1 = max(c / q, q);
     var t = t0;
     var along = -h;            // the near root is -b - sqrt(disc)
-    if t <= 0.0 {
+    if t <= ray.t_min {
         t = t1;
         along = h;
     }
-    if t <= 0.0 || t >= best.t {
+    if t <= ray.t_min || t >= best.t {
         return best;
     }
     let n = normalize(g + along * d);
-    let ray_scale = max3(abs(ray.origin)) + t;
+    let ray_scale = max3(abs(ray.origin)) + abs(t);
     let centre_scale = max3(abs(s.center)) + r;
     var p = s.center + r * n;
     if ray_scale < centre_scale {
@@ -167,10 +168,10 @@ fn hit_sphere_naive(ray: Ray, s: Sphere, index: u32, best: Hit) -> Hit {
         return best;
     }
     var t = (-b - sqrt(disc)) / (2.0 * a);
-    if t <= 0.0 {
+    if t <= ray.t_min {
         t = (-b + sqrt(disc)) / (2.0 * a);
     }
-    if t <= 0.0 || t >= best.t {
+    if t <= ray.t_min || t >= best.t {
         return best;
     }
     let p = ray.origin + t * ray.dir;
@@ -195,13 +196,13 @@ fn hit_plane(ray: Ray, pl: Plane, index: u32, best: Hit) -> Hit {
         return best;
     }
     let t = num / denom;
-    if t <= 0.0 || t >= best.t {
+    if t <= ray.t_min || t >= best.t {
         return best;
     }
     var p = ray.origin + t * ray.dir;
     let ft = foot(ray, pl.point);
     let t_foot = -dot(ft.g, pl.normal) / denom;
-    if max3(abs(ray.origin)) + t > max3(abs(pl.point)) + abs(t_foot) {
+    if max3(abs(ray.origin)) + abs(t) > max3(abs(pl.point)) + abs(t_foot) {
         p = pl.point + (ft.g + t_foot * ray.dir);
     }
     p -= dot(p - pl.point, pl.normal) * pl.normal;
@@ -216,7 +217,7 @@ fn hit_plane_naive(ray: Ray, pl: Plane, index: u32, best: Hit) -> Hit {
         return best;
     }
     let t = dot(pl.point - ray.origin, pl.normal) / denom;
-    if t <= 0.0 || t >= best.t {
+    if t <= ray.t_min || t >= best.t {
         return best;
     }
     return Hit(t, ray.origin + t * ray.dir, pl.normal, KIND_PLANE, index, 0.0);
@@ -282,13 +283,13 @@ fn hit_cube(ray: Ray, cube: Cube, index: u32, best: Hit) -> Hit {
     var t_local = t_near;
     var axis = near_axis;
     var side = -1.0;           // the entry face faces against the ray
-    if s + t_near <= 0.0 {
+    if s + t_near <= ray.t_min {
         t_local = t_far;
         axis = far_axis;
         side = 1.0;            // the exit face faces along it
     }
     let t = s + t_local;
-    if t <= 0.0 || t >= best.t {
+    if t <= ray.t_min || t >= best.t {
         return best;
     }
     let sign = side * select(-1.0, 1.0, d[axis] >= 0.0);
@@ -341,12 +342,12 @@ fn hit_cube_naive(ray: Ray, cube: Cube, index: u32, best: Hit) -> Hit {
     var t = t_near;
     var axis = near_axis;
     var side = -1.0;
-    if t_near <= 0.0 {
+    if t_near <= ray.t_min {
         t = t_far;
         axis = far_axis;
         side = 1.0;
     }
-    if t <= 0.0 || t >= best.t {
+    if t <= ray.t_min || t >= best.t {
         return best;
     }
     var n_local = vec3(0.0);
@@ -355,12 +356,12 @@ fn hit_cube_naive(ray: Ray, cube: Cube, index: u32, best: Hit) -> Hit {
     return Hit(t, p, cube.rotation * n_local, KIND_CUBE, index, 0.0);
 }
 
-/// Whether the ray meets the box for some 0 <= t < t_max: the slab test
+/// Whether the ray meets the box for some t_min <= t < t_max: the slab test
 /// with the same care as hit_cube (a parallel axis decided by a branch, the
 /// far bound widened by 1 + 2 gamma(3)). `inv_d` is 1 / d, 0 where |d_i| is
 /// below 1e-20 (those components are not used).
 fn hit_box(lo: vec3<f32>, hi: vec3<f32>, ray: Ray, inv_d: vec3<f32>, t_max: f32) -> bool {
-    var near = 0.0;
+    var near = ray.t_min;
     var far = t_max;
     for (var i = 0u; i < 3u; i++) {
         if abs(ray.dir[i]) < 1e-20 {

@@ -70,12 +70,14 @@ fn fs_display(@builtin(position) frag: vec4<f32>) -> @location(0) vec4<f32> {
 
 /// The id/depth pass (accuracy measurements, `raysandbox stress`): for the
 /// ray through the pixel centre and the lens centre, what it hits first:
-/// (kind, index, bits of t, 1), kind = KIND_NONE where it hits nothing.
+/// (kind, index, bits of t, 1), kind = KIND_NONE where it hits nothing; t is
+/// counted from the eye (the camera ray's own t starts at t_min there).
 /// Rendered into an Rgba32Uint target; the reference computes the same with
 /// `reference::pick`, and the two are compared pixel by pixel.
 @fragment
 fn fs_id(@builtin(position) frag: vec4<f32>) -> @location(0) vec4<u32> {
     let pixel = vec2<f32>(floor(frag.xy)) + vec2(0.5);
-    let hit = hit_scene(camera_ray(pixel, vec2(0.0)), T_FAR);
-    return vec4(hit.kind, hit.index, bitcast<u32>(hit.t), 1u);
+    let ray = camera_ray(pixel, vec2(0.0));
+    let hit = hit_scene(ray, T_FAR);
+    return vec4(hit.kind, hit.index, bitcast<u32>(hit.t - ray.t_min), 1u);
 }

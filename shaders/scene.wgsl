@@ -3,12 +3,17 @@
 // Every struct here has a twin in src/gpu/layout.rs (`#[repr(C)]`, bytemuck);
 // a unit test checks that sizes and field offsets agree. Vectors are vec3 with
 // a scalar packed into the fourth slot, so no field hides implicit padding.
+//
+// Positions (eye, look_at, centres, points, lights, BVH boxes) are relative
+// to a frame origin, the camera target, subtracted in f64 on the CPU before
+// rounding (docs/implementation.md, "Camera-relative coordinates"): the
+// numbers stay at the size of what the camera sees wherever that is.
 
 /// Camera, render settings and counts: one uniform buffer, written on every change.
 struct Globals {
-    eye: vec3<f32>,          // camera `from`
+    eye: vec3<f32>,          // camera `from`, relative to the frame origin
     film_height: f32,        // h = 2 tan(fov / 2), the film height at unit distance
-    look_at: vec3<f32>,      // camera `to`
+    look_at: vec3<f32>,      // camera `to`, relative (0 until the viewer pans)
     aperture: f32,           // lens radius, 0 = pinhole
     up: vec3<f32>,
     focus_distance: f32,
@@ -59,14 +64,12 @@ struct Material {
     diffuse: f32,
     checker_color: vec3<f32>,
     checker_size: f32,       // 0 = no checker
+    checker_phase: vec3<f32>, // (frame origin / checker_size) mod 2, see albedo_at
     specular: f32,
     shininess: f32,
     mirror: f32,
     transparency: f32,
     ior: f32,
-    _pad0: u32,
-    _pad1: u32,
-    _pad2: u32,
 }
 
 /// A node of the bounding volume hierarchy over spheres and boxes (built on

@@ -35,7 +35,8 @@ const NAIVE_OFFSET: f32 = 1e-3;
 /// spacing of p (at 1e5 it is 0.0005 against an ulp of 0.008), p - 0.001 s n
 /// rounds back to p, and a floor on a boundary takes the cell on the wrong
 /// side everywhere. `checker_cell` evaluates floor(p / s - 0.001 n) exactly
-/// from p / s instead.
+/// from p / s instead. p is relative to the frame origin (scene.wgsl): the
+/// material's checker_phase puts back what that origin adds to p / s.
 fn albedo_at(m: Material, p: vec3<f32>, n: vec3<f32>) -> vec3<f32> {
     if !HAS_CHECKER || m.checker_size <= 0.0 {
         return m.color;
@@ -43,9 +44,9 @@ fn albedo_at(m: Material, p: vec3<f32>, n: vec3<f32>) -> vec3<f32> {
     let s = m.checker_size;
     var cell: vec3<i32>;
     if ROBUST {
-        cell = checker_cell(p / s, 0.001 * n);
+        cell = checker_cell(p / s + m.checker_phase, 0.001 * n);
     } else {
-        cell = vec3<i32>(floor((p - 0.001 * s * n) / s));
+        cell = vec3<i32>(floor((p - 0.001 * s * n) / s + m.checker_phase));
     }
     if ((cell.x + cell.y + cell.z) & 1) == 0 {
         return m.color;
@@ -119,7 +120,7 @@ fn shade_local(hit: Hit, ns: vec3<f32>, d: vec3<f32>, m: Material, albedo: vec3<
         }
         let to_light = light.position - shadow_origin;
         let dist = length(to_light);
-        if dist <= 0.0 || occluded(Ray(shadow_origin, to_light / dist), dist) {
+        if dist <= 0.0 || occluded(Ray(shadow_origin, to_light / dist, 0.0), dist) {
             continue;
         }
         var highlight = 0.0;
@@ -200,14 +201,14 @@ fn trace(primary: Ray) -> vec3<f32> {
                 dir = refract_dir(ray.dir, ns, eta);
             }
             let origin = offset_ray(hit.point, -ns, hit.error_scale);
-            stack[top] = PendingRay(Ray(origin, dir), child_depth, refracted_weight, job.throughput * wt * albedo);
+            stack[top] = PendingRay(Ray(origin, dir, 0.0), child_depth, refracted_weight, job.throughput * wt * albedo);
             top += 1u;
         }
         let reflected_weight = job.weight * wr;
         let reflects = HAS_MIRRORS || HAS_TRANSPARENCY;
         if reflects && worth_tracing(child_depth, reflected_weight) && top < STACK_SIZE {
             let origin = offset_ray(hit.point, ns, hit.error_scale);
-            stack[top] = PendingRay(Ray(origin, reflect_dir(ray.dir, ns)), child_depth, reflected_weight, job.throughput * wr);
+            stack[top] = PendingRay(Ray(origin, reflect_dir(ray.dir, ns), 0.0), child_depth, reflected_weight, job.throughput * wr);
             top += 1u;
         }
     }

@@ -97,7 +97,7 @@ fn test_intersections(@builtin(global_invocation_id) id: vec3<u32>) {
         return;
     }
     let c = test_cases[i];
-    let ray = Ray(c.origin, c.dir);
+    let ray = Ray(c.origin, c.dir, 0.0);
     var h = no_hit(T_FAR);
     switch c.kind {
         case 1u: {

@@ -38,6 +38,9 @@ impl FirstHit {
 pub struct IdRenderer {
     pipeline: wgpu::RenderPipeline,
     layout: wgpu::BindGroupLayout,
+    /// The naive variant packs in world coordinates, as its image pass does
+    /// (`PackedScene::in_world`).
+    robust: bool,
 }
 
 impl IdRenderer {
@@ -81,15 +84,23 @@ impl IdRenderer {
             &constants,
             ID_FORMAT,
         );
-        IdRenderer { pipeline, layout }
+        IdRenderer {
+            pipeline,
+            layout,
+            robust: options.robust,
+        }
     }
 
     /// Runs the pass on `scene` at `width x height` and reads the result
     /// back: one [`FirstHit`] per pixel, row-major, the top row first.
     pub fn render(&self, gpu: &Gpu, scene: &Scene, width: u32, height: u32) -> Vec<FirstHit> {
         let device = &gpu.device;
-        let scene =
-            SceneBuffers::with_layout(device, &self.layout, PackedScene::new(scene, width, height));
+        let packed = if self.robust {
+            PackedScene::new(scene, width, height)
+        } else {
+            PackedScene::in_world(scene, width, height)
+        };
+        let scene = SceneBuffers::with_layout(device, &self.layout, packed);
         let bind_group = &scene.bind_group;
         let target = device.create_texture(&wgpu::TextureDescriptor {
             label: Some("first hits"),

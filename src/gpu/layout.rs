@@ -14,6 +14,13 @@ fn f32x3(v: DVec3) -> [f32; 3] {
     v.as_vec3().to_array()
 }
 
+/// A position as the shader reads it: relative to the frame origin,
+/// subtracted in f64 before the rounding to f32 (docs/implementation.md,
+/// "Camera-relative coordinates"). Every packed position goes through here.
+fn relative(p: DVec3, origin: DVec3) -> [f32; 3] {
+    f32x3(p - origin)
+}
+
 #[repr(C)]
 #[derive(Debug, Clone, Copy, PartialEq, Pod, Zeroable)]
 pub struct Globals {
@@ -77,14 +84,12 @@ pub struct Material {
     pub diffuse: f32,
     pub checker_color: [f32; 3],
     pub checker_size: f32,
+    pub checker_phase: [f32; 3],
     pub specular: f32,
     pub shininess: f32,
     pub mirror: f32,
     pub transparency: f32,
     pub ior: f32,
-    pub _pad0: u32,
-    pub _pad1: u32,
-    pub _pad2: u32,
 }
 
 /// A BVH node (see `crate::bvh::Node`): an inner node (`count == 0`) has its
@@ -117,6 +122,10 @@ pub struct Light {
 /// how many are real.
 #[derive(Debug, Clone, PartialEq)]
 pub struct PackedScene {
+    /// The world point that the positions are relative to (the camera
+    /// target when packed; zero for the textbook world coordinates). Kept
+    /// in f64 on the CPU only: [`PackedScene::set_view`] needs it.
+    pub frame_origin: DVec3,
     pub globals: Globals,
     pub spheres: Vec<Sphere>,
     pub planes: Vec<Plane>,
@@ -129,26 +138,41 @@ pub struct PackedScene {
 }
 
 impl PackedScene {
-    /// Packs `scene` for an image of `width` x `height` pixels. The sample
-    /// range in the globals starts empty; the renderer sets it per pass.
+    /// Packs `scene` for an image of `width` x `height` pixels, with every
+    /// position relative to the camera target (see [`relative`]), so that
+    /// the image does not depend on where the scene is in the world. The
+    /// sample range in the globals starts empty; the renderer sets it per
+    /// pass.
     pub fn new(scene: &Scene, width: u32, height: u32) -> Self {
+        Self::in_frame(scene, width, height, scene.camera.frame_origin())
+    }
+
+    /// Packs `scene` in world coordinates, as the textbook does: the frame
+    /// of the naive variant (`ROBUST = false`), which shows what
+    /// camera-relative coordinates fix.
+    pub fn in_world(scene: &Scene, width: u32, height: u32) -> Self {
+        Self::in_frame(scene, width, height, DVec3::ZERO)
+    }
+
+    fn in_frame(scene: &Scene, width: u32, height: u32, origin: DVec3) -> Self {
         let bvh = Bvh::build(scene);
-        let mut globals = pack_globals(scene, width, height);
+        let mut globals = pack_globals(scene, width, height, origin);
         globals.bvh_node_count = bvh.nodes.len() as u32;
         PackedScene {
+            frame_origin: origin,
             globals,
-            spheres: non_empty(scene.spheres.iter().map(|s| pack_sphere(scene, s))),
-            planes: non_empty(scene.planes.iter().map(|p| pack_plane(scene, p))),
-            cubes: non_empty(scene.cubes.iter().map(|c| pack_cube(scene, c))),
+            spheres: non_empty(scene.spheres.iter().map(|s| pack_sphere(scene, s, origin))),
+            planes: non_empty(scene.planes.iter().map(|p| pack_plane(scene, p, origin))),
+            cubes: non_empty(scene.cubes.iter().map(|c| pack_cube(scene, c, origin))),
             materials: std::iter::once(scene::Material::default())
                 .chain(scene.materials.values().cloned())
-                .map(|m| pack_material(&m))
+                .map(|m| pack_material(&m, origin))
                 .collect(),
-            lights: non_empty(scene.lights.iter().map(pack_light)),
+            lights: non_empty(scene.lights.iter().map(|l| pack_light(l, origin))),
             bvh_nodes: non_empty(
                 bvh.nodes
                     .iter()
-                    .map(|n| pack_node(n.bounds, n.first, n.count)),
+                    .map(|n| pack_node(n.bounds, n.first, n.count, origin)),
             ),
             bvh_prims: non_empty(bvh.prims.iter().map(|p| match *p {
                 Prim::Sphere(i) => i,
@@ -161,7 +185,7 @@ impl PackedScene {
 /// A node with its box rounded outwards to f32, so that the box the shader
 /// tests always holds the shapes inside it (rounding to nearest could cut a
 /// sliver off a shape, and rays through that sliver would miss it).
-fn pack_node(bounds: Aabb, first: u32, count: u32) -> BvhNode {
+fn pack_node(bounds: Aabb, first: u32, count: u32, origin: DVec3) -> BvhNode {
     let down = |x: f64| {
         let f = x as f32;
         if f64::from(f) > x { f.next_down() } else { f }
@@ -171,9 +195,9 @@ fn pack_node(bounds: Aabb, first: u32, count: u32) -> BvhNode {
         if f64::from(f) < x { f.next_up() } else { f }
     };
     BvhNode {
-        bounds_min: bounds.min.to_array().map(down),
+        bounds_min: (bounds.min - origin).to_array().map(down),
         first,
-        bounds_max: bounds.max.to_array().map(up),
+        bounds_max: (bounds.max - origin).to_array().map(up),
         count,
     }
 }
@@ -186,13 +210,22 @@ fn non_empty<T: Zeroable>(items: impl Iterator<Item = T>) -> Vec<T> {
     v
 }
 
-impl Globals {
+impl PackedScene {
     /// Writes the camera and the render settings: what changes while the
     /// shapes stay (orbiting, a slider on exposure), without repacking them.
+    /// The frame origin stays where the shapes were packed: orbiting keeps
+    /// the target, and a target moved by panning is as precise as any
+    /// other position that near the origin.
     pub fn set_view(&mut self, camera: &scene::Camera, render: &scene::RenderSettings) {
-        self.eye = f32x3(camera.from);
+        self.globals.set_view(camera, render, self.frame_origin);
+    }
+}
+
+impl Globals {
+    fn set_view(&mut self, camera: &scene::Camera, render: &scene::RenderSettings, origin: DVec3) {
+        self.eye = relative(camera.from, origin);
         self.film_height = (2.0 * (camera.fov.to_radians() / 2.0).tan()) as f32;
-        self.look_at = f32x3(camera.to);
+        self.look_at = relative(camera.to, origin);
         self.aperture = camera.aperture as f32;
         self.up = f32x3(camera.up);
         self.focus_distance = camera.focus_distance() as f32;
@@ -204,7 +237,7 @@ impl Globals {
     }
 }
 
-fn pack_globals(scene: &Scene, width: u32, height: u32) -> Globals {
+fn pack_globals(scene: &Scene, width: u32, height: u32, origin: DVec3) -> Globals {
     let mut globals = Globals {
         resolution: [width, height],
         sphere_count: scene.spheres.len() as u32,
@@ -214,33 +247,33 @@ fn pack_globals(scene: &Scene, width: u32, height: u32) -> Globals {
         output_size: [width, height],
         ..Zeroable::zeroed()
     };
-    globals.set_view(&scene.camera, &scene.render);
+    globals.set_view(&scene.camera, &scene.render, origin);
     globals
 }
 
-fn pack_sphere(scene: &Scene, s: &scene::Sphere) -> Sphere {
+fn pack_sphere(scene: &Scene, s: &scene::Sphere, origin: DVec3) -> Sphere {
     Sphere {
-        center: f32x3(s.center),
+        center: relative(s.center, origin),
         radius: s.radius as f32,
         material: scene.material_slot(s.material.as_deref()),
         ..Zeroable::zeroed()
     }
 }
 
-fn pack_plane(scene: &Scene, p: &scene::Plane) -> Plane {
+fn pack_plane(scene: &Scene, p: &scene::Plane, origin: DVec3) -> Plane {
     Plane {
-        point: f32x3(p.point),
+        point: relative(p.point, origin),
         material: scene.material_slot(p.material.as_deref()),
         normal: f32x3(p.normal),
         _pad: 0,
     }
 }
 
-fn pack_cube(scene: &Scene, c: &scene::Cube) -> Cube {
+fn pack_cube(scene: &Scene, c: &scene::Cube, origin: DVec3) -> Cube {
     let m = c.rotation_matrix();
     let column = |v: DVec3| v.as_vec3().extend(0.0).to_array();
     Cube {
-        center: f32x3(c.center),
+        center: relative(c.center, origin),
         material: scene.material_slot(c.material.as_deref()),
         half_size: f32x3(c.size.edges() * 0.5),
         _pad: 0,
@@ -248,28 +281,37 @@ fn pack_cube(scene: &Scene, c: &scene::Cube) -> Cube {
     }
 }
 
-fn pack_material(m: &scene::Material) -> Material {
-    let (checker_color, checker_size) = match &m.checker {
-        Some(c) => (f32x3(c.color), c.size as f32),
-        None => ([0.0; 3], 0.0),
+/// The checker's cells are counted in world coordinates, but the shader
+/// sees positions relative to `origin`: `checker_phase` is what the dropped
+/// `origin / size` adds to the cell coordinate, reduced modulo 2 in f64
+/// (only the parity of the cell sum matters), so the shader's
+/// `p / size + checker_phase` stays small and exact enough.
+fn pack_material(m: &scene::Material, origin: DVec3) -> Material {
+    let (checker_color, checker_size, checker_phase) = match &m.checker {
+        Some(c) => (
+            f32x3(c.color),
+            c.size as f32,
+            f32x3((origin / c.size).rem_euclid(DVec3::splat(2.0))),
+        ),
+        None => ([0.0; 3], 0.0, [0.0; 3]),
     };
     Material {
         color: f32x3(m.color),
         diffuse: m.diffuse as f32,
         checker_color,
         checker_size,
+        checker_phase,
         specular: m.specular as f32,
         shininess: m.shininess as f32,
         mirror: m.mirror as f32,
         transparency: m.transparency as f32,
         ior: m.ior as f32,
-        ..Zeroable::zeroed()
     }
 }
 
-fn pack_light(l: &scene::Light) -> Light {
+fn pack_light(l: &scene::Light, origin: DVec3) -> Light {
     Light {
-        position: f32x3(l.position),
+        position: relative(l.position, origin),
         radiance: f32x3(l.color * l.intensity),
         ..Zeroable::zeroed()
     }
@@ -360,14 +402,12 @@ mod tests {
                 diffuse,
                 checker_color,
                 checker_size,
+                checker_phase,
                 specular,
                 shininess,
                 mirror,
                 transparency,
-                ior,
-                _pad0,
-                _pad1,
-                _pad2
+                ior
             }),
             rust_layout!(BvhNode {
                 bounds_min,
@@ -439,7 +479,7 @@ mod tests {
             min: glam::DVec3::splat(0.1),
             max: glam::DVec3::splat(0.1),
         };
-        let node = pack_node(b, 0, 1);
+        let node = pack_node(b, 0, 1, DVec3::ZERO);
         assert!(f64::from(node.bounds_min[0]) <= 0.1 && f64::from(node.bounds_max[0]) >= 0.1);
         assert!(node.bounds_min[0] < node.bounds_max[0], "0.1 is not an f32");
         let exact = pack_node(
@@ -449,6 +489,7 @@ mod tests {
             },
             0,
             1,
+            DVec3::ZERO,
         );
         assert_eq!(exact.bounds_min, exact.bounds_max, "f32 values stay put");
     }

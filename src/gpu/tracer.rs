@@ -201,7 +201,7 @@ impl SceneBuffers {
 
     /// Takes a new camera and render settings; the shapes stay as they are.
     pub fn set_view(&mut self, scene: &crate::scene::Scene) {
-        self.packed.globals.set_view(&scene.camera, &scene.render);
+        self.packed.set_view(&scene.camera, &scene.render);
     }
 }
 

@@ -49,6 +49,13 @@ struct PointLight {
 /// f64. Prepare once, render many times.
 #[derive(Debug, Clone)]
 pub struct PreparedScene {
+    /// The world point every position below is relative to: the camera
+    /// target (robust), or zero (the naive variant's world coordinates).
+    /// Subtracted in f64 before tracing, as the GPU's packing does, so that
+    /// offsets and rounding scale with the view and not with the distance
+    /// from the world origin (docs/implementation.md, "Camera-relative
+    /// coordinates"). The checker and `pick` add it back.
+    frame_origin: DVec3,
     camera: Camera,
     lights: Vec<PointLight>,
     /// The default material, then the scene's materials in file order: the
@@ -94,11 +101,18 @@ impl PreparedScene {
 
     /// Prepares a validated scene for the variant `options` chooses.
     pub fn with_options(scene: &Scene, options: &ReferenceOptions) -> Self {
+        let frame_origin = if options.robust {
+            scene.camera.frame_origin()
+        } else {
+            DVec3::ZERO
+        };
+        let scene = &scene.translated(-frame_origin);
         let materials = std::iter::once(Material::default())
             .chain(scene.materials.values().cloned())
             .collect();
         let slot = |name: &Option<String>| scene.material_slot(name.as_deref()) as usize;
         Self {
+            frame_origin,
             bvh: Bvh::build(scene),
             camera: Camera::new(&scene.camera),
             lights: scene
@@ -265,7 +279,7 @@ pub fn pick(
         return None;
     }
     let ray = camera_ray(&scene.camera, width, height, x, y, DVec2::ZERO);
-    nearest_hit(scene, &ray).map(|(shape, hit)| (shape, hit.p))
+    nearest_hit(scene, &ray).map(|(shape, hit)| (shape, hit.p + scene.frame_origin))
 }
 
 #[cfg(test)]

@@ -45,7 +45,7 @@ fn shade(
     let entering = d.dot(hit.n) < 0.0;
     // The shading normal faces the ray, whichever side was hit.
     let ns = if entering { hit.n } else { -hit.n };
-    let albedo = albedo(m, hit.p, hit.n, scene.robust);
+    let albedo = albedo(m, hit.p + scene.frame_origin, hit.n, scene.robust);
     let mut radiance = local(scene, m, albedo, hit, ns, d);
 
     if depth >= scene.max_depth {

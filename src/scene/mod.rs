@@ -95,6 +95,14 @@ fn default_fov() -> f64 {
 }
 
 impl Camera {
+    /// The world point that both renderers take positions relative to
+    /// before tracing: the target, where what the camera looks at is, so
+    /// that the numbers stay at the size of the view wherever the scene
+    /// lies (docs/implementation.md, "Camera-relative coordinates").
+    pub fn frame_origin(&self) -> DVec3 {
+        self.to
+    }
+
     /// The focus distance in effect: the given one, else `|from - to|`.
     pub fn focus_distance(&self) -> f64 {
         self.focus_distance
@@ -249,6 +257,27 @@ impl Scene {
     pub fn material_slot(&self, name: Option<&str>) -> u32 {
         name.and_then(|n| self.materials.get_index_of(n))
             .map_or(0, |i| i as u32 + 1)
+    }
+
+    /// The scene moved by `offset` (in f64): camera, lights and shapes. The
+    /// checker grid stays where it is in the world.
+    pub fn translated(&self, offset: DVec3) -> Scene {
+        let mut s = self.clone();
+        s.camera.from += offset;
+        s.camera.to += offset;
+        for light in &mut s.lights {
+            light.position += offset;
+        }
+        for sphere in &mut s.spheres {
+            sphere.center += offset;
+        }
+        for plane in &mut s.planes {
+            plane.point += offset;
+        }
+        for cube in &mut s.cubes {
+            cube.center += offset;
+        }
+        s
     }
 
     /// Number of shapes of every kind together.

@@ -70,6 +70,7 @@ pub struct GpuRender {
 pub struct GpuVariant {
     pipelines: Pipelines,
     ids: IdRenderer,
+    robust: bool,
 }
 
 const IMAGE_FORMAT: wgpu::TextureFormat = wgpu::TextureFormat::Rgba8Unorm;
@@ -83,17 +84,21 @@ impl GpuVariant {
         Ok(GpuVariant {
             pipelines: Pipelines::new(&gpu.device, source, &[IMAGE_FORMAT], &options)?,
             ids: IdRenderer::new(gpu, source, &options)?,
+            robust,
         })
     }
 
     /// The image at 1 sample per pixel (the pixel centre) and the first hits.
+    /// The robust variant gets camera-relative positions, the naive one the
+    /// textbook's world coordinates.
     pub fn render(&self, gpu: &Gpu, scene: &Scene, width: u32, height: u32) -> GpuRender {
         let device = &gpu.device;
-        let buffers = SceneBuffers::new(
-            device,
-            &self.pipelines,
-            PackedScene::new(scene, width, height),
-        );
+        let packed = if self.robust {
+            PackedScene::new(scene, width, height)
+        } else {
+            PackedScene::in_world(scene, width, height)
+        };
+        let buffers = SceneBuffers::new(device, &self.pipelines, packed);
         let mut accum = Accumulator::new(device, &self.pipelines, width, height);
         let texture = device.create_texture(&wgpu::TextureDescriptor {
             label: Some("stress image"),
