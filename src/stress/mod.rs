@@ -181,8 +181,32 @@ impl Harness {
     pub fn measure(&self, gpu: &Gpu, scene: &Scene, width: u32, height: u32) -> Measured {
         let scene = scenes::round_to_f32(scene);
         let reference = reference_render(&scene, width, height);
-        let robust = self.robust.render(gpu, &scene, width, height);
-        let naive = self.naive.render(gpu, &scene, width, height);
+        self.compare(gpu, &scene, reference, width, height)
+    }
+
+    /// Measures an entry: against the reference of its own f32-rounded
+    /// scene, or, for a moved scene, against the reference of the exact
+    /// answer (the scene before it was moved, in f64).
+    pub fn measure_entry(&self, gpu: &Gpu, entry: &Entry, width: u32, height: u32) -> Measured {
+        match &entry.exact {
+            None => self.measure(gpu, &entry.scene, width, height),
+            Some(exact) => {
+                let reference = reference_render(exact, width, height);
+                self.compare(gpu, &entry.scene, reference, width, height)
+            }
+        }
+    }
+
+    fn compare(
+        &self,
+        gpu: &Gpu,
+        scene: &Scene,
+        reference: ReferenceRender,
+        width: u32,
+        height: u32,
+    ) -> Measured {
+        let robust = self.robust.render(gpu, scene, width, height);
+        let naive = self.naive.render(gpu, scene, width, height);
         let (robust_cmp, robust_flip) =
             metrics::compare(&reference, &robust.image, &robust.first_hits);
         let (naive_cmp, naive_flip) = metrics::compare(&reference, &naive.image, &naive.first_hits);
@@ -201,13 +225,16 @@ impl Harness {
 /// A scene of the run: its name, where it came from, and the scene.
 pub struct Entry {
     pub name: String,
-    /// "stress" or "bundled".
+    /// "stress", "moved" or "bundled".
     pub group: &'static str,
     pub scene: Scene,
+    /// For a moved scene ([`scenes::moved`]): the scene whose f64 image is
+    /// the exact answer.
+    pub exact: Option<Scene>,
 }
 
-/// The scenes the command runs: the stress scenes, then (unless left out)
-/// the bundled ones, filtered by name.
+/// The scenes the command runs: the stress scenes, their moved and scaled
+/// copies, then (unless left out) the bundled ones, filtered by name.
 pub fn entries(filter: Option<&str>, bundled: bool) -> Vec<Entry> {
     let mut out: Vec<Entry> = scenes::SCENES
         .iter()
@@ -215,8 +242,15 @@ pub fn entries(filter: Option<&str>, bundled: bool) -> Vec<Entry> {
             name: name.to_string(),
             group: "stress",
             scene: scenes::load(name),
+            exact: None,
         })
         .collect();
+    out.extend(scenes::moved().into_iter().map(|m| Entry {
+        name: m.name,
+        group: "moved",
+        scene: m.scene,
+        exact: Some(m.exact),
+    }));
     if bundled {
         for name in crate::scene::bundled::names() {
             let text = crate::scene::bundled::text(name).expect("bundled scene");
@@ -224,6 +258,7 @@ pub fn entries(filter: Option<&str>, bundled: bool) -> Vec<Entry> {
                 name: name.to_string(),
                 group: "bundled",
                 scene: Scene::from_toml_str(text, None).expect("bundled scenes are valid"),
+                exact: None,
             });
         }
     }
@@ -305,7 +340,8 @@ pub fn run(args: &StressArgs) -> Result<(), StressError> {
     let gpu = Gpu::headless().map_err(|e| StressError::Runtime(e.to_string()))?;
     println!("adapter: {}", gpu.describe());
     println!(
-        "{} scenes at {}x{}, 1 sample per pixel; reference: f64 on the f32-rounded scene",
+        "{} scenes at {}x{}, 1 sample per pixel; reference: f64 on the f32-rounded scene \
+         (moved scenes: f64 on the scene before it was moved)",
         entries.len(),
         args.width,
         args.height
@@ -324,7 +360,7 @@ pub fn run(args: &StressArgs) -> Result<(), StressError> {
     let mut rows = Vec::new();
     println!("{}", report::console_header());
     for entry in &entries {
-        let m = harness.measure(&gpu, &entry.scene, args.width, args.height);
+        let m = harness.measure_entry(&gpu, entry, args.width, args.height);
         let row = report::Row {
             name: entry.name.clone(),
             group: entry.group,

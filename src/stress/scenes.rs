@@ -48,6 +48,7 @@ stress_scenes!(
     "translate_1e4",
     "translate_1e5",
     "translate_1e6",
+    "scale_1e-4",
     "scale_1e-3",
     "scale_1e-2",
     "scale_1e-1",
@@ -55,6 +56,7 @@ stress_scenes!(
     "scale_1e1",
     "scale_1e2",
     "scale_1e3",
+    "scale_1e4",
 );
 
 /// The TOML text of a stress scene.
@@ -180,6 +182,53 @@ pub fn scaled(scene: &Scene, factor: f64) -> Scene {
         };
     }
     s
+}
+
+/// A stress scene moved or scaled, with the scene whose image is its exact
+/// answer: `raysandbox stress` compares the GPU's render of `scene` with
+/// the f64 reference's render of `exact`, which shares no rounding with it.
+pub struct Moved {
+    pub name: String,
+    pub scene: Scene,
+    pub exact: Scene,
+}
+
+/// The position-independence targets (docs/accuracy.md): the base scene of
+/// the series translated by 1e6 along several directions and scaled by
+/// 1e-4 and 1e4, and the oblique small sphere seen from 1e6 units moved
+/// 1e6 away from the origin. Translating or scaling (lights do not fall off)
+/// leaves the image as it is, so the untransformed scene is the answer.
+pub fn moved() -> Vec<Moved> {
+    let base = load("scale_1e0");
+    let oblique = load("small_sphere_oblique_1e6");
+    let translations: [(&str, [f64; 3]); 5] = [
+        ("+1e6x", [1.0, 0.0, 0.0]),
+        ("-1e6y", [0.0, -1.0, 0.0]),
+        ("+1e6z", [0.0, 0.0, 1.0]),
+        ("+1e6xyz", [1.0, 1.0, 1.0]),
+        ("-1e6x+1e6y-1e6z", [-1.0, 1.0, -1.0]),
+    ];
+    let mut out: Vec<Moved> = translations
+        .iter()
+        .map(|(label, dir)| Moved {
+            name: format!("base_at_{label}"),
+            scene: base.translated(1e6 * DVec3::from_array(*dir)),
+            exact: base.clone(),
+        })
+        .collect();
+    for k in [-4, 4] {
+        out.push(Moved {
+            name: format!("base_x1e{k}"),
+            scene: scaled(&base, power_of_ten(k)),
+            exact: base.clone(),
+        });
+    }
+    out.push(Moved {
+        name: "oblique_1e6_at_-1e6x+1e6y-1e6z".to_string(),
+        scene: oblique.translated(DVec3::new(-1e6, 1e6, -1e6)),
+        exact: oblique,
+    });
+    out
 }
 
 /// `10^k` as the literal `1e<k>` reads, exactly as in the scene files.
