@@ -96,13 +96,14 @@ fn camera_ray(pixel: vec2<f32>, lens: vec2<f32>) -> Ray {
     let x = h * (size.x / size.y) * (pixel.x / size.x - 0.5);
     let y = h * (0.5 - pixel.y / size.y);
     let to_film = x * b.u + y * b.v - b.w;
-    let target_distance = length(globals.eye - globals.look_at);
-    var focus = target_distance;
+    var focus = length(globals.eye - globals.look_at);
     var lens_offset = vec3(0.0);
     if HAS_LENS && globals.aperture > 0.0 {
         // Thin lens: aim from the lens point at P = e + focus_distance * to_film.
         focus = globals.focus_distance;
         lens_offset = globals.aperture * (lens.x * b.u + lens.y * b.v);
+    } else if !ROBUST {
+        return Ray(globals.eye, normalize(to_film), 0.0);
     }
     // Its -w component is -focus, so it is zero only for a zero focus
     // distance (eye == target in f32): then the pinhole ray from the eye. The
@@ -113,6 +114,7 @@ fn camera_ray(pixel: vec2<f32>, lens: vec2<f32>) -> Ray {
     if !ROBUST || !(reach > 0.0) {
         return Ray(globals.eye + lens_offset, dir, 0.0);
     }
+    let target_distance = length(globals.eye - globals.look_at);
     let on_focus_plane = (target_distance - focus) * b.w + focus * (x * b.u + y * b.v);
     return Ray(globals.look_at + on_focus_plane, dir, -reach);
 }

@@ -1,13 +1,17 @@
-//! The accuracy targets of issue 4, at 321 x 181 (odd, so that the centre
-//! row and column of rays have exactly zero direction components), GPU
+//! The accuracy targets of docs/accuracy.md, at 321 x 181 (odd, so that the
+//! centre row and column of rays have exactly zero direction components), GPU
 //! (robust and naive) against the f64 reference fed the same f32-rounded
 //! scenes:
 //! - every bundled and stress scene: FLIP mean <= 0.01, first-hit mismatch
-//!   <= 0.1 % outside silhouette bands, no NaN pixel; the series up to the
-//!   limits documented in docs/accuracy.md (beyond them f32 world
-//!   coordinates cannot follow, see there);
-//! - the small sphere matches up to D = 1e4 at least, where the naive
-//!   quadratic has long failed;
+//!   <= 0.1 % outside silhouette bands, no NaN pixel, every series member
+//!   included (the small sphere from 1e6 units, obliquely too; the scene
+//!   1e6 from the origin; scaled from 1e-4 to 1e4);
+//! - position independence: the base scene translated by 1e6 along five
+//!   directions and scaled by 1e-4 and 1e4, and the oblique small sphere
+//!   moved 1e6 away, each against the f64 image of the scene before it was
+//!   moved (the exact answer, sharing no rounding with the render), with
+//!   the same targets; the naive variant (world coordinates, rays from the
+//!   eye) fails every one of them;
 //! - no acne on the plane lit at 0.01 degrees, and the same image when the
 //!   scene is scaled by 1000 or 1/1000;
 //! - the naive switch shows the failures the robust code fixes.
@@ -22,18 +26,6 @@ use raysandbox::stress::{self, Harness, scenes};
 
 const WIDTH: u32 = 321;
 const HEIGHT: u32 = 181;
-
-/// Series members beyond the documented limits (docs/accuracy.md): an
-/// oblique unit vector in f32 points only along a grid ~6e-8 rad fine (a
-/// third of a pixel at D = 1e4 here), and at 1e5 from the origin world
-/// coordinates are 0.008 apart.
-const BEYOND_LIMITS: &[&str] = &[
-    "small_sphere_oblique_1e4",
-    "small_sphere_oblique_1e5",
-    "small_sphere_oblique_1e6",
-    "translate_1e5",
-    "translate_1e6",
-];
 
 /// Scenes the naive variant must fail (the evidence that the robust code
 /// matters), with what gives way.
@@ -57,14 +49,26 @@ const NAIVE_FAILS: &[(&str, &str)] = &[
         "the fixed offset 1e-3 is as large as the scene",
     ),
     ("scale_1e3", "the fixed offset is lost in the rounding"),
+    ("scale_1e-4", "the fixed offset 1e-3 is larger than the spheres"),
+    ("scale_1e4", "the fixed offset is lost in the rounding"),
+    ("translate_1e5", "world coordinates 0.008 apart"),
+    ("translate_1e6", "world coordinates 0.06 apart"),
+    (
+        "small_sphere_oblique_1e6",
+        "b^2 - 4ac cancels, directions rounded 6e-8 D off",
+    ),
 ];
+
+/// The naive variant must fail every moved copy (scenes::moved): world
+/// coordinates rounded at 1e6, rays from a far eye, a fixed offset.
+const MOVED_NAIVE_FAILS: &str = "world coordinates, rays from the eye, fixed offset";
 
 fn measure_all() -> Option<HashMap<String, (Comparison, Comparison)>> {
     let gpu = common::gpu()?;
     let harness = Harness::new(&gpu, &ShaderSource::embedded()).unwrap_or_else(|e| panic!("{e}"));
     let mut out = HashMap::new();
     for entry in stress::entries(None, true) {
-        let m = harness.measure(&gpu, &entry.scene, WIDTH, HEIGHT);
+        let m = harness.measure_entry(&gpu, &entry, WIDTH, HEIGHT);
         println!(
             "{:<26} robust FLIP {:.4} id {:.3}% acne {:.3}% NaN {} | naive FLIP {:.4} id {:.3}% NaN {}",
             entry.name,
@@ -76,7 +80,7 @@ fn measure_all() -> Option<HashMap<String, (Comparison, Comparison)>> {
             m.naive_cmp.id_mismatch * 100.0,
             m.naive_cmp.nan_pixels
         );
-        if !m.robust_cmp.passes() && !BEYOND_LIMITS.contains(&entry.name.as_str()) {
+        if !m.robust_cmp.passes() {
             let dir = std::env::temp_dir();
             m.robust
                 .image
@@ -95,16 +99,18 @@ fn measure_all() -> Option<HashMap<String, (Comparison, Comparison)>> {
 #[test]
 fn every_scene_meets_the_targets_and_naive_shows_the_failures() {
     let Some(results) = measure_all() else { return };
+    let moved = scenes::moved();
+    assert!(moved.len() >= 8, "five translations, two scales, the far sphere");
     assert!(
-        results.len() >= scenes::SCENES.len() + 5,
-        "stress and bundled scenes"
+        results.len() >= scenes::SCENES.len() + moved.len() + 5,
+        "stress, moved and bundled scenes"
     );
     let mut failures = Vec::new();
     for (name, (robust, _)) in &results {
         if robust.nan_pixels > 0 {
             failures.push(format!("{name}: {} NaN pixels", robust.nan_pixels));
         }
-        if !BEYOND_LIMITS.contains(&name.as_str()) && !robust.passes() {
+        if !robust.passes() {
             failures.push(format!(
                 "{name}: FLIP {:.4} (max 0.01), first hit {:.3}% (max 0.1%)",
                 robust.flip_mean,
@@ -112,10 +118,14 @@ fn every_scene_meets_the_targets_and_naive_shows_the_failures() {
             ));
         }
     }
-    // The small sphere from 1e2 to 1e6 on an axis, and up to 1e3 obliquely
-    // (covered above); the naive quadratic fails from 1e2 on.
-    for (name, why) in NAIVE_FAILS {
-        let (_, naive) = &results[*name];
+    // The small sphere from 1e2 to 1e6 on an axis and obliquely (covered
+    // above); the naive quadratic fails from 1e2 on.
+    let naive_fails = NAIVE_FAILS
+        .iter()
+        .copied()
+        .chain(moved.iter().map(|m| (m.name.as_str(), MOVED_NAIVE_FAILS)));
+    for (name, why) in naive_fails {
+        let (_, naive) = &results[name];
         if naive.passes() {
             failures.push(format!("naive {name} passes, but should fail: {why}"));
         }
