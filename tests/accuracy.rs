@@ -5,9 +5,11 @@
 //! - every bundled and stress scene: FLIP mean <= 0.01, first-hit mismatch
 //!   <= 0.1 % outside silhouette bands, no NaN pixel, every series member
 //!   included (the small sphere from 1e6 units, obliquely too; the scene
-//!   1e6 from the origin; scaled from 1e-4 to 1e4);
+//!   1e6 from the origin; scaled from 1e-4 to 1e4), but the two members
+//!   that show where the limits are;
 //! - position independence: the base scene translated by 1e6 along five
-//!   directions and scaled by 1e-4 and 1e4, and the oblique small sphere
+//!   directions (and by up to 1e12 along one), scaled from 1e-6 to 1e16
+//!   (1e-4 and 1e4 are the targets), and the oblique small sphere
 //!   moved 1e6 away, each against the f64 image of the scene before it was
 //!   moved (the exact answer, sharing no rounding with the render), with
 //!   the same targets; the naive variant (world coordinates, rays from the
@@ -59,9 +61,16 @@ const NAIVE_FAILS: &[(&str, &str)] = &[
     ),
 ];
 
-/// The naive variant must fail every moved copy (scenes::moved): world
-/// coordinates rounded at 1e6, rays from a far eye, a fixed offset.
+/// The naive variant must fail every moved copy (scenes::moved) but the
+/// unmoved one: world coordinates rounded at 1e6, rays from a far eye, a
+/// fixed offset.
 const MOVED_NAIVE_FAILS: &str = "world coordinates, rays from the eye, fixed offset";
+
+/// The members beyond the limits measured in docs/accuracy.md: at 1e14 from
+/// the origin f64 itself spaces the scene's numbers 0.016 apart (the moved
+/// scene is no longer the same scene), and at a scale of 1e-7 the offset's
+/// floor (8 ulps of 1/32, 3e-8) is larger than the smallest sphere.
+const BEYOND_LIMITS: &[&str] = &["moved_1e14", "scaled_1e-7"];
 
 fn measure_all() -> Option<HashMap<String, (Comparison, Comparison)>> {
     let gpu = common::gpu()?;
@@ -80,7 +89,7 @@ fn measure_all() -> Option<HashMap<String, (Comparison, Comparison)>> {
             m.naive_cmp.id_mismatch * 100.0,
             m.naive_cmp.nan_pixels
         );
-        if !m.robust_cmp.passes() {
+        if !m.robust_cmp.passes() && !BEYOND_LIMITS.contains(&entry.name.as_str()) {
             let dir = std::env::temp_dir();
             m.robust
                 .image
@@ -100,7 +109,24 @@ fn measure_all() -> Option<HashMap<String, (Comparison, Comparison)>> {
 fn every_scene_meets_the_targets_and_naive_shows_the_failures() {
     let Some(results) = measure_all() else { return };
     let moved = scenes::moved();
-    assert!(moved.len() >= 8, "five translations, two scales, the far sphere");
+    // The targets: translated by 1e6 in five directions, scaled by 1e-4 and
+    // 1e4, the oblique small sphere framed from 1e6 units, 1e6 from the
+    // origin; all measured against the unmoved scene's f64 image.
+    for target in [
+        "moved_1e6",
+        "base_at_+1e6x",
+        "base_at_-1e6y",
+        "base_at_+1e6z",
+        "base_at_+1e6xyz",
+        "scaled_1e-4",
+        "scaled_1e4",
+        "oblique_1e6_at_-1e6x+1e6y-1e6z",
+    ] {
+        assert!(
+            moved.iter().any(|m| m.name == target && m.exact.shape_count() > 0),
+            "{target} is measured against the unmoved scene"
+        );
+    }
     assert!(
         results.len() >= scenes::SCENES.len() + moved.len() + 5,
         "stress, moved and bundled scenes"
@@ -110,7 +136,7 @@ fn every_scene_meets_the_targets_and_naive_shows_the_failures() {
         if robust.nan_pixels > 0 {
             failures.push(format!("{name}: {} NaN pixels", robust.nan_pixels));
         }
-        if !robust.passes() {
+        if !BEYOND_LIMITS.contains(&name.as_str()) && !robust.passes() {
             failures.push(format!(
                 "{name}: FLIP {:.4} (max 0.01), first hit {:.3}% (max 0.1%)",
                 robust.flip_mean,
@@ -123,7 +149,12 @@ fn every_scene_meets_the_targets_and_naive_shows_the_failures() {
     let naive_fails = NAIVE_FAILS
         .iter()
         .copied()
-        .chain(moved.iter().map(|m| (m.name.as_str(), MOVED_NAIVE_FAILS)));
+        .chain(
+            moved
+                .iter()
+                .filter(|m| m.name != "scaled_1e0")
+                .map(|m| (m.name.as_str(), MOVED_NAIVE_FAILS)),
+        );
     for (name, why) in naive_fails {
         let (_, naive) = &results[name];
         if naive.passes() {

@@ -89,6 +89,14 @@ pub const SERIES: &[(&str, &str)] = &[
     ),
     ("translate", "whole scene translated by 10^k (1, 1, 1)"),
     ("scale", "whole scene scaled by 10^k"),
+    (
+        "moved",
+        "whole scene translated by 10^k (-1, 1, -1), against the unmoved scene's f64 image",
+    ),
+    (
+        "scaled",
+        "whole scene scaled by 10^k, against the unscaled scene's f64 image",
+    ),
 ];
 
 /// Rounds every number of the scene to the nearest f32, as the GPU buffers
@@ -193,35 +201,42 @@ pub struct Moved {
     pub exact: Scene,
 }
 
-/// The position-independence targets (docs/accuracy.md): the base scene of
-/// the series translated by 1e6 along several directions and scaled by
-/// 1e-4 and 1e4, and the oblique small sphere seen from 1e6 units moved
-/// 1e6 away from the origin. Translating or scaling (lights do not fall off)
-/// leaves the image as it is, so the untransformed scene is the answer.
+/// The position-independence targets (docs/accuracy.md), each with the
+/// scene whose f64 image is its exact answer (translating or scaling a scene
+/// leaves its image as it is: lights do not fall off with distance):
+/// - `moved_1e<k>`: the base scene of the series translated by
+///   10^k (-1, 1, -1), k = 6 to 12 (the limit is in f64 itself);
+/// - `base_at_...`: translated by 1e6 along four more directions;
+/// - `scaled_1e<k>`: the base scene scaled by 10^k, k = -6 to 8 (1e0: the
+///   base against its own reference, the comparison's floor);
+/// - the oblique small sphere seen from 1e6 units, moved 1e6 away from the
+///   origin.
 pub fn moved() -> Vec<Moved> {
     let base = load("scale_1e0");
     let oblique = load("small_sphere_oblique_1e6");
-    let translations: [(&str, [f64; 3]); 5] = [
+    let member = |name: String, scene: Scene| Moved {
+        name,
+        scene,
+        exact: base.clone(),
+    };
+    let mut out = Vec::new();
+    for k in [6, 8, 10, 12, 14] {
+        let offset = power_of_ten(k) * DVec3::new(-1.0, 1.0, -1.0);
+        out.push(member(format!("moved_1e{k}"), base.translated(offset)));
+    }
+    let directions: [(&str, [f64; 3]); 4] = [
         ("+1e6x", [1.0, 0.0, 0.0]),
         ("-1e6y", [0.0, -1.0, 0.0]),
         ("+1e6z", [0.0, 0.0, 1.0]),
         ("+1e6xyz", [1.0, 1.0, 1.0]),
-        ("-1e6x+1e6y-1e6z", [-1.0, 1.0, -1.0]),
     ];
-    let mut out: Vec<Moved> = translations
-        .iter()
-        .map(|(label, dir)| Moved {
-            name: format!("base_at_{label}"),
-            scene: base.translated(1e6 * DVec3::from_array(*dir)),
-            exact: base.clone(),
-        })
-        .collect();
-    for k in [-4, 4] {
-        out.push(Moved {
-            name: format!("base_x1e{k}"),
-            scene: scaled(&base, power_of_ten(k)),
-            exact: base.clone(),
-        });
+    for (label, dir) in directions {
+        let offset = 1e6 * DVec3::from_array(dir);
+        out.push(member(format!("base_at_{label}"), base.translated(offset)));
+    }
+    for k in [-7, -6, -5, -4, 0, 4, 8, 12, 16] {
+        let scene = scaled(&base, power_of_ten(k));
+        out.push(member(format!("scaled_1e{k}"), scene));
     }
     out.push(Moved {
         name: "oblique_1e6_at_-1e6x+1e6y-1e6z".to_string(),
