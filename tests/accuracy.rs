@@ -51,7 +51,10 @@ const NAIVE_FAILS: &[(&str, &str)] = &[
         "the fixed offset 1e-3 is as large as the scene",
     ),
     ("scale_1e3", "the fixed offset is lost in the rounding"),
-    ("scale_1e-4", "the fixed offset 1e-3 is larger than the spheres"),
+    (
+        "scale_1e-4",
+        "the fixed offset 1e-3 is larger than the spheres",
+    ),
     ("scale_1e4", "the fixed offset is lost in the rounding"),
     ("translate_1e5", "world coordinates 0.008 apart"),
     ("translate_1e6", "world coordinates 0.06 apart"),
@@ -123,7 +126,9 @@ fn every_scene_meets_the_targets_and_naive_shows_the_failures() {
         "oblique_1e6_at_-1e6x+1e6y-1e6z",
     ] {
         assert!(
-            moved.iter().any(|m| m.name == target && m.exact.shape_count() > 0),
+            moved
+                .iter()
+                .any(|m| m.name == target && m.exact.shape_count() > 0),
             "{target} is measured against the unmoved scene"
         );
     }
@@ -146,15 +151,12 @@ fn every_scene_meets_the_targets_and_naive_shows_the_failures() {
     }
     // The small sphere from 1e2 to 1e6 on an axis and obliquely (covered
     // above); the naive quadratic fails from 1e2 on.
-    let naive_fails = NAIVE_FAILS
-        .iter()
-        .copied()
-        .chain(
-            moved
-                .iter()
-                .filter(|m| m.name != "scaled_1e0")
-                .map(|m| (m.name.as_str(), MOVED_NAIVE_FAILS)),
-        );
+    let naive_fails = NAIVE_FAILS.iter().copied().chain(
+        moved
+            .iter()
+            .filter(|m| m.name != "scaled_1e0")
+            .map(|m| (m.name.as_str(), MOVED_NAIVE_FAILS)),
+    );
     for (name, why) in naive_fails {
         let (_, naive) = &results[name];
         if naive.passes() {

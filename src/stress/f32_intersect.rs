@@ -21,7 +21,10 @@ pub const OFFSET_ULPS: f32 = 8.0;
 /// The shader's `NAIVE_OFFSET`.
 pub const NAIVE_OFFSET: f32 = 1e-3;
 
-/// A ray with unit direction.
+/// A ray with unit direction. The shader's `Ray` also carries `t_min`,
+/// which is 0 for every ray but a camera ray; the port and the property
+/// tests cover that case (`0 < t`), where `t <= ray.t_min` in the WGSL reads
+/// `t <= 0.0` here.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct Ray {
     pub origin: Vec3,
