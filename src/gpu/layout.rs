@@ -494,6 +494,62 @@ mod tests {
         assert_eq!(exact.bounds_min, exact.bounds_max, "f32 values stay put");
     }
 
+    /// A scene and its copy 1e6 away pack to the same numbers (to an f32
+    /// rounding: the f64 subtractions differ by ~1e-10), so the GPU sees
+    /// the same scene; the checker's phase keeps its world cells.
+    #[test]
+    fn positions_are_packed_relative_to_the_target() {
+        let text = r#"
+            [camera]
+            from = [0.4, 1.7, 6.5]
+            to = [0, 0.6, 0]
+            [materials.floor]
+            checker = { color = [0, 0, 0], size = 0.5 }
+            [[lights]]
+            position = [-4, 6, 5]
+            [[planes]]
+            point = [0, 0, 0]
+            normal = [0, 1, 0]
+            material = "floor"
+            [[spheres]]
+            center = [0.9, 0.7, 1]
+            radius = 0.7
+            [[cubes]]
+            center = [1.8, 0.5, -1]
+            size = 1
+        "#;
+        let scene = Scene::from_toml_str(text, None).expect("valid scene");
+        let offset = DVec3::new(-1e6, 1e6, -1e6);
+        let near = PackedScene::new(&scene, 4, 3);
+        let far = PackedScene::new(&scene.translated(offset), 4, 3);
+        assert_eq!(near.frame_origin, scene.camera.to);
+        assert_eq!(near.globals.look_at, [0.0; 3]);
+        let close = |a: [f32; 3], b: [f32; 3]| {
+            (0..3).all(|i| (a[i] - b[i]).abs() <= f32::EPSILON * a[i].abs().max(1.0))
+        };
+        assert!(close(near.globals.eye, far.globals.eye));
+        assert!(close(near.spheres[0].center, far.spheres[0].center));
+        assert!(close(near.planes[0].point, [0.0, -0.6, 0.0]));
+        assert!(close(near.planes[0].point, far.planes[0].point));
+        assert!(close(near.cubes[0].center, far.cubes[0].center));
+        assert!(close(near.lights[0].position, far.lights[0].position));
+        assert!(close(
+            near.bvh_nodes[0].bounds_min,
+            far.bvh_nodes[0].bounds_min
+        ));
+        // Phase: (origin / 0.5) mod 2 per axis. Near: (0, 1.2, 0).
+        let phase = near.materials[1].checker_phase;
+        assert!(close(phase, [0.0, 1.2, 0.0]), "{phase:?}");
+        // Far: origin (-1e6, 1e6 + 0.6, -1e6) / 0.5 = (-2e6, 2e6 + 1.2, -2e6),
+        // the same phase modulo 2.
+        assert!(close(far.materials[1].checker_phase, phase));
+        // The textbook frame keeps world coordinates.
+        let world = PackedScene::in_world(&scene.translated(offset), 4, 3);
+        assert_eq!(world.frame_origin, DVec3::ZERO);
+        assert_eq!(world.spheres[0].center, [-999999.1, 1000000.7, -999999.0]);
+        assert_eq!(world.materials[1].checker_phase, [0.0; 3]);
+    }
+
     #[test]
     fn cube_rotation_columns_are_the_rotated_local_axes() {
         let text = r#"

@@ -622,6 +622,50 @@ mod tests {
         assert!(naive_small > 0.01, "{naive_small}");
     }
 
+    /// The reference traces relative to the target in f64: the scene moved
+    /// 1e6 away renders the image of the scene at the origin (its exact
+    /// answer) to far below an 8-bit level, and `pick` answers in world
+    /// coordinates.
+    #[test]
+    fn a_translated_scene_renders_the_same_image() {
+        let s: Scene = toml::from_str(
+            r#"
+            [camera]
+            from = [0.4, 1.7, 6.5]
+            to = [0, 0.6, 0]
+            [materials.floor]
+            checker = { color = [0.1, 0.1, 0.1], size = 0.5 }
+            [[lights]]
+            position = [-4, 6, 5]
+            [[planes]]
+            point = [0, 0, 0]
+            normal = [0, 1, 0]
+            material = "floor"
+            [[spheres]]
+            center = [0.9, 0.7, 1]
+            radius = 0.7
+            [[cubes]]
+            center = [-1.2, 0.5, -1]
+            size = 1
+            "#,
+        )
+        .unwrap();
+        let offset = DVec3::new(-1e6, 1e6, -1e6);
+        let far = s.translated(offset);
+        let a = render_linear(&PreparedScene::new(&s), 24, 16, 1);
+        let b = render_linear(&PreparedScene::new(&far), 24, 16, 1);
+        let worst = a
+            .iter()
+            .zip(&b)
+            .map(|(x, y)| (*x - *y).abs().max_element())
+            .fold(0.0, f64::max);
+        assert!(worst < 1e-6, "largest difference {worst}");
+        let (shape, p) = pick(&PreparedScene::new(&far), 24, 16, 12.5, 8.5).unwrap();
+        let (shape0, p0) = pick(&PreparedScene::new(&s), 24, 16, 12.5, 8.5).unwrap();
+        assert_eq!(shape, shape0);
+        assert!((p - offset - p0).length() < 1e-8, "{p} vs {p0}");
+    }
+
     #[test]
     fn pick_misses() {
         let p = PreparedScene::new(&scene(RED_SPHERE));
