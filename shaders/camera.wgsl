@@ -1,4 +1,4 @@
-// camera.wgsl: from a pixel to a primary ray (spec section 1).
+// camera.wgsl: from a pixel to a primary ray (docs/rendering-model.md, "Camera").
 
 struct Ray {
     origin: vec3<f32>,

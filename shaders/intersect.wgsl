@@ -1,4 +1,4 @@
-// intersect.wgsl: ray-shape intersection (spec section 2).
+// intersect.wgsl: ray-shape intersection (docs/rendering-model.md, "Shapes").
 //
 // Every routine accepts only 0 < t < t_max and reports the outward geometric
 // normal. WGSL makes no promise about inf and NaN, so no routine may form

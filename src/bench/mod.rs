@@ -66,7 +66,7 @@ impl Plan {
             // point, up to 64 samples) finishes in about 20 minutes on two
             // CPU cores with lavapipe.
             size: (160, 90),
-            // The 1..16, and the viewer's refinement limit beyond.
+            // 1..16, what a class demo uses, and the viewer's refinement limit beyond.
             spp: vec![1, 2, 4, 8, 16, 32, 64],
             depths: (1..=8).collect(),
             min_weights: vec![0.0, 1e-3, 1e-2, 5e-2],

@@ -13,7 +13,7 @@ use super::tracer::{
 use crate::scene::Scene;
 
 /// The offscreen target: 8-bit, and `fs_display` encodes sRGB itself so the
-/// exact formula of spec section 5 is used.
+/// exact formula of docs/rendering-model.md, "Output" is used.
 const OUTPUT_FORMAT: wgpu::TextureFormat = wgpu::TextureFormat::Rgba8Unorm;
 
 /// Samples traced per submission. Long single draws can trip the watchdog of

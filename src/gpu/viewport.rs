@@ -10,7 +10,7 @@ use super::timer::{GpuTimer, Timing};
 use super::tracer::{Accumulator, FrameTarget, Pipelines, SceneBuffers, encode_frame};
 use crate::scene::Scene;
 
-/// Format of screenshots: 8-bit RGBA with the exact sRGB formula of the spec.
+/// Format of screenshots: 8-bit RGBA with the exact sRGB formula of the rendering model.
 pub const EXPORT_FORMAT: wgpu::TextureFormat = wgpu::TextureFormat::Rgba8Unorm;
 
 /// What happened to a frame.
@@ -265,7 +265,7 @@ impl Viewport {
 }
 
 /// Surface settings: a plain (non-sRGB) 8-bit format when there is one, so
-/// the display pass encodes with the exact formula of the spec, as in PNG
+/// the display pass encodes with the exact formula of the rendering model, as in PNG
 /// output, and egui's colours (already sRGB) are written unchanged; FIFO
 /// presentation (no tearing, and supported everywhere).
 fn surface_config(
