@@ -16,6 +16,7 @@ mod widgets;
 
 use std::path::PathBuf;
 
+use crate::gpu::{DEFAULT_MAX_SAMPLES, DEFAULT_MIN_WEIGHT};
 use crate::reference::ShapeId;
 use crate::scene::{Camera, CubeSize, Light, Material, RenderSettings, Scene};
 use egui::{
@@ -39,11 +40,6 @@ pub struct ViewSettings {
     /// default leaves no visible difference: docs/performance.md.
     pub min_weight: f64,
 }
-
-/// The viewer's default progressive refinement limit (docs/performance.md).
-pub const DEFAULT_MAX_SAMPLES: u32 = 64;
-/// The viewer's default floor on `min_weight` (docs/performance.md).
-pub const DEFAULT_MIN_WEIGHT: f64 = 1e-3;
 
 impl Default for ViewSettings {
     fn default() -> Self {

@@ -42,6 +42,10 @@ pub struct Scene {
     pub cubes: Vec<Cube>,
 }
 
+/// Deepest secondary ray a scene may ask for (`max_depth` in
+/// docs/scene-format.md): the shader's ray-tree stack is sized from it.
+pub const MAX_DEPTH: u32 = 16;
+
 /// `[render]`: global shading settings (defaults in docs/scene-format.md).
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
 #[serde(deny_unknown_fields, default)]

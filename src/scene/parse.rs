@@ -5,9 +5,9 @@
 use serde::Deserialize;
 use toml::de::{DeValue, ValueDeserializer};
 
+use super::MAX_DEPTH;
 use super::document::{Document, Node};
 use super::key_path::KeyPath;
-use super::validate::MAX_DEPTH;
 use super::{Scene, SceneError};
 
 /// The scene the document describes, not yet checked against the ranges of

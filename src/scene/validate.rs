@@ -13,11 +13,9 @@ use super::document::Document;
 use super::key_path::KeyPath;
 use super::parse;
 use super::{
-    Camera, Cube, CubeSize, Light, Material, Plane, RenderSettings, Scene, SceneError, Sphere,
+    Camera, Cube, CubeSize, Light, MAX_DEPTH, Material, Plane, RenderSettings, Scene, SceneError,
+    Sphere,
 };
-
-/// Deepest secondary ray a scene may ask for (docs/scene-format.md).
-pub(super) const MAX_DEPTH: u32 = 16;
 
 /// How far from 1 the squared length of a plane normal may be for it to count
 /// as unit length already. `normalize` lands within a few ulps of 1.
