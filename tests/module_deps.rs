@@ -249,7 +249,7 @@ fn edges(sources: &[Source]) -> (Edges, BTreeMap<String, Edges>) {
             }
             let at = format!("{}:{line}", source.file);
             let from = &source.module;
-            if path.is_empty() || !modules.contains(&path[..1].to_vec()) {
+            if path.is_empty() || !modules.contains(&path[..1]) {
                 continue;
             }
             if path[0] != from[0] {
@@ -257,7 +257,7 @@ fn edges(sources: &[Source]) -> (Edges, BTreeMap<String, Edges>) {
             } else if from.len() >= 2
                 && path.len() >= 2
                 && path[1] != from[1]
-                && modules.contains(&path[..2].to_vec())
+                && modules.contains(&path[..2])
             {
                 inner
                     .entry(from[0].clone())
