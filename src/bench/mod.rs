@@ -574,7 +574,7 @@ mod tests {
     }
 
     #[test]
-    fn the_full_plan_sweeps_every_axis_of_the_issue() {
+    fn the_full_plan_sweeps_every_axis() {
         let plan = Plan::new(false);
         let scene = Scene::from_toml_str(bundled::text("whitted").unwrap(), None).unwrap();
         let points = plan.points(&scene);
