@@ -96,7 +96,8 @@ fn camera_ray(pixel: vec2<f32>, lens: vec2<f32>) -> Ray {
     let x = h * (size.x / size.y) * (pixel.x / size.x - 0.5);
     let y = h * (0.5 - pixel.y / size.y);
     let to_film = x * b.u + y * b.v - b.w;
-    var focus = length(globals.eye - globals.look_at);
+    let target_distance = length(globals.eye - globals.look_at);
+    var focus = target_distance;
     var lens_offset = vec3(0.0);
     if HAS_LENS && globals.aperture > 0.0 {
         // Thin lens: aim from the lens point at P = e + focus_distance * to_film.
@@ -114,7 +115,6 @@ fn camera_ray(pixel: vec2<f32>, lens: vec2<f32>) -> Ray {
     if !ROBUST || !(reach > 0.0) {
         return Ray(globals.eye + lens_offset, dir, 0.0);
     }
-    let target_distance = length(globals.eye - globals.look_at);
     let on_focus_plane = (target_distance - focus) * b.w + focus * (x * b.u + y * b.v);
     return Ray(globals.look_at + on_focus_plane, dir, -reach);
 }

@@ -2,8 +2,9 @@
 //
 // Every routine accepts only ray.t_min < t < t_max (t_min is 0 but for
 // camera rays, which start on the focus plane and reach back to the eye) and
-// reports the outward geometric normal. WGSL makes no promise about inf and NaN, so no routine may form
-// them: divisions are guarded by explicit branches.
+// reports the outward geometric normal. WGSL makes no promise about inf and
+// NaN, so no routine may form them: divisions are guarded by explicit
+// branches.
 
 /// Largest ray parameter we ever use; finite, so comparisons stay defined.
 const T_FAR: f32 = 1e30;
