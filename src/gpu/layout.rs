@@ -4,15 +4,11 @@
 //! every size and offset against these structs.
 
 use bytemuck::{Pod, Zeroable};
-use glam::DVec3;
 
+pub use super::shapes::{Cube, Plane, Sphere};
+use super::shapes::{Frame, PackShape, f32x3};
 use crate::bvh::{Aabb, Bvh, Prim};
 use crate::scene::{self, Scene};
-
-/// Rounds an f64 vector to the f32 triple the shader reads.
-fn f32x3(v: DVec3) -> [f32; 3] {
-    v.as_vec3().to_array()
-}
 
 #[repr(C)]
 #[derive(Debug, Clone, Copy, PartialEq, Pod, Zeroable)]
@@ -37,37 +33,6 @@ pub struct Globals {
     pub light_count: u32,
     pub bvh_node_count: u32,
     pub output_size: [u32; 2],
-}
-
-#[repr(C)]
-#[derive(Debug, Clone, Copy, PartialEq, Pod, Zeroable)]
-pub struct Sphere {
-    pub center: [f32; 3],
-    pub radius: f32,
-    pub material: u32,
-    pub _pad0: u32,
-    pub _pad1: u32,
-    pub _pad2: u32,
-}
-
-#[repr(C)]
-#[derive(Debug, Clone, Copy, PartialEq, Pod, Zeroable)]
-pub struct Plane {
-    pub point: [f32; 3],
-    pub material: u32,
-    pub normal: [f32; 3],
-    pub _pad: u32,
-}
-
-#[repr(C)]
-#[derive(Debug, Clone, Copy, PartialEq, Pod, Zeroable)]
-pub struct Cube {
-    pub center: [f32; 3],
-    pub material: u32,
-    pub half_size: [f32; 3],
-    pub _pad: u32,
-    /// `mat3x3<f32>`: three columns, each padded to 16 bytes.
-    pub rotation: [[f32; 4]; 3],
 }
 
 #[repr(C)]
@@ -132,14 +97,15 @@ impl PackedScene {
     /// Packs `scene` for an image of `width` x `height` pixels. The sample
     /// range in the globals starts empty; the renderer sets it per pass.
     pub fn new(scene: &Scene, width: u32, height: u32) -> Self {
+        let frame = Frame::WORLD;
         let bvh = Bvh::build(scene);
         let mut globals = pack_globals(scene, width, height);
         globals.bvh_node_count = bvh.nodes.len() as u32;
         PackedScene {
             globals,
-            spheres: non_empty(scene.spheres.iter().map(|s| pack_sphere(scene, s))),
-            planes: non_empty(scene.planes.iter().map(|p| pack_plane(scene, p))),
-            cubes: non_empty(scene.cubes.iter().map(|c| pack_cube(scene, c))),
+            spheres: non_empty(scene.spheres.iter().map(|s| Sphere::pack(scene, &frame, s))),
+            planes: non_empty(scene.planes.iter().map(|p| Plane::pack(scene, &frame, p))),
+            cubes: non_empty(scene.cubes.iter().map(|c| Cube::pack(scene, &frame, c))),
             materials: std::iter::once(scene::Material::default())
                 .chain(scene.materials.values().cloned())
                 .map(|m| pack_material(&m))
@@ -216,36 +182,6 @@ fn pack_globals(scene: &Scene, width: u32, height: u32) -> Globals {
     };
     globals.set_view(&scene.camera, &scene.render);
     globals
-}
-
-fn pack_sphere(scene: &Scene, s: &scene::Sphere) -> Sphere {
-    Sphere {
-        center: f32x3(s.center),
-        radius: s.radius as f32,
-        material: scene.material_slot(s.material.as_deref()),
-        ..Zeroable::zeroed()
-    }
-}
-
-fn pack_plane(scene: &Scene, p: &scene::Plane) -> Plane {
-    Plane {
-        point: f32x3(p.point),
-        material: scene.material_slot(p.material.as_deref()),
-        normal: f32x3(p.normal),
-        _pad: 0,
-    }
-}
-
-fn pack_cube(scene: &Scene, c: &scene::Cube) -> Cube {
-    let m = c.rotation_matrix();
-    let column = |v: DVec3| v.as_vec3().extend(0.0).to_array();
-    Cube {
-        center: f32x3(c.center),
-        material: scene.material_slot(c.material.as_deref()),
-        half_size: f32x3(c.size.edges() * 0.5),
-        _pad: 0,
-        rotation: [column(m.x_axis), column(m.y_axis), column(m.z_axis)],
-    }
 }
 
 fn pack_material(m: &scene::Material) -> Material {
@@ -382,7 +318,7 @@ mod tests {
                 _pad1
             }),
         ];
-        for (name, size, fields) in expected {
+        for (name, size, fields) in expected.clone() {
             let (wgsl_size, wgsl_fields) = wgsl_layout(&module, name);
             assert_eq!(size, wgsl_size, "size of {name}");
             let fields: Vec<(String, usize)> = fields
@@ -391,6 +327,18 @@ mod tests {
                 .collect();
             assert_eq!(fields, wgsl_fields, "fields and offsets of {name}");
         }
+        // Every registered shape kind must be in the list above.
+        let listed: Vec<&str> = expected.iter().map(|(name, _, _)| *name).collect();
+        macro_rules! assert_listed {
+            ($t:ident, $wgsl:literal) => {
+                assert!(
+                    listed.contains(&$wgsl),
+                    "shape kind {} is registered in gpu/shapes but its layout is not checked here",
+                    $wgsl
+                );
+            };
+        }
+        crate::gpu::shapes::for_each_packed_shape!(assert_listed);
     }
 
     #[test]

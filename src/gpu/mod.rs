@@ -8,6 +8,7 @@ mod id_pass;
 pub mod layout;
 mod offscreen;
 pub mod shaders;
+pub mod shapes;
 mod timer;
 mod tracer;
 mod viewport;
