@@ -1,4 +1,4 @@
-// camera.wgsl: from a pixel to a primary ray (spec section 1).
+// camera.wgsl: from a pixel to a primary ray (docs/rendering-model.md, "Camera").
 
 struct Ray {
     origin: vec3<f32>,
@@ -26,8 +26,8 @@ fn normalize_or(v: vec3<f32>, fallback: vec3<f32>) -> vec3<f32> {
 }
 
 /// w points backwards (away from what we look at), u to the right, v up.
-/// When `up` is (nearly) parallel to w (|cross(up, w)| < 1e-6 |up|, spec
-/// section 1), cross(up, w) vanishes: replace up by the world axis along which
+/// When `up` is (nearly) parallel to w (|cross(up, w)| < 1e-6 |up|,
+/// docs/rendering-model.md, "Camera"), cross(up, w) vanishes: replace up by the world axis along which
 /// w is smallest (x, y, z first on a tie). Looking straight up or down, as at
 /// the poles of an orbit, w = -+y and the axis is x. `up` is normalised first,
 /// so the test reads |cross(up, w)| < 1e-6 and holds for any length of up;

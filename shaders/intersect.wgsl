@@ -1,4 +1,4 @@
-// intersect.wgsl: ray-shape intersection (spec section 2).
+// intersect.wgsl: ray-shape intersection (docs/rendering-model.md, "Shapes").
 //
 // Every routine accepts only 0 < t < t_max and reports the outward geometric
 // normal. WGSL makes no promise about inf and NaN, so no routine may form
@@ -377,9 +377,6 @@ fn hit_box(lo: vec3<f32>, hi: vec3<f32>, ray: Ray, inv_d: vec3<f32>, t_max: f32)
     return near <= far;
 }
 
-/// Deepest BVH level (src/bvh.rs MAX_DEPTH) + 1: the traversal stack.
-const BVH_STACK: u32 = 31u;
-
 /// The nearest sphere or box hit through the BVH, nearer than best.t. With
 /// `any`, stops at the first hit (shadow rays need no more). The root's box
 /// holds every bounded shape, so a ray that misses it leaves at once.
@@ -389,6 +386,7 @@ fn hit_bounded_bvh(ray: Ray, best_in: Hit, any: bool) -> Hit {
         return best;
     }
     let inv_d = select(1.0 / ray.dir, vec3(0.0), abs(ray.dir) < vec3(1e-20));
+    // BVH_STACK (generated from src/bvh.rs) is enough for the deepest tree.
     var stack: array<u32, BVH_STACK>;
     stack[0] = 0u;
     var top = 1u;
@@ -410,7 +408,7 @@ fn hit_bounded_bvh(ray: Ray, best_in: Hit, any: bool) -> Hit {
             let near_first = ray.dir[axis] >= 0.0;
             stack[top] = select(node.first, node.first + 1u, near_first);
             stack[top + 1u] = select(node.first + 1u, node.first, near_first);
-            top = min(top + 2u, BVH_STACK - 1u);
+            top = min(top + 2u, BVH_STACK);
             continue;
         }
         for (var i = node.first; i < node.first + node.count; i++) {

@@ -2,7 +2,7 @@
 //
 // 1. `fs_trace` traces `sample_count` samples per pixel and adds their linear
 //    radiance to the running sum of earlier passes (progressive refinement).
-// 2. `fs_display` turns the sum into the output colour (spec section 5).
+// 2. `fs_display` turns the sum into the output colour (docs/rendering-model.md, "Output").
 
 /// One triangle that covers the whole viewport; no vertex buffer needed.
 @vertex
@@ -38,7 +38,7 @@ fn is_finite(x: vec3<f32>) -> vec3<bool> {
     return (bitcast<vec3<u32>>(x) & vec3(0x7f800000u)) != vec3(0x7f800000u);
 }
 
-/// The sRGB transfer function of spec section 5, for c in [0, 1].
+/// The sRGB transfer function of docs/rendering-model.md, "Output", for c in [0, 1].
 fn srgb_encode(c: vec3<f32>) -> vec3<f32> {
     let low = 12.92 * c;
     let high = 1.055 * pow(c, vec3(1.0 / 2.4)) - 0.055;

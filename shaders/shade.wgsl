@@ -1,4 +1,4 @@
-// shade.wgsl: Whitted shading (spec sections 3 and 4).
+// shade.wgsl: Whitted shading (docs/rendering-model.md, "Materials" and "Whitted shading").
 
 /// Moves p off the surface along n by 8 units in the last place of the
 /// scale of the numbers involved: max(|p|_max, the shape's error_scale, 1/32).
@@ -29,7 +29,7 @@ fn offset_ray(p: vec3<f32>, n: vec3<f32>, error_scale: f32) -> vec3<f32> {
 const NAIVE_OFFSET: f32 = 1e-3;
 
 /// Albedo at p: the material colour, or the checker's second colour on odd
-/// cells. The spec looks the cell up at q = p - 0.001 s n, a small step into
+/// cells. The rendering model looks the cell up at q = p - 0.001 s n, a small step into
 /// the surface, so that a plane lying on a cell boundary does not flicker
 /// between two cells. Far from the origin that step is smaller than the f32
 /// spacing of p (at 1e5 it is 0.0005 against an ulp of 0.008), p - 0.001 s n
@@ -137,7 +137,7 @@ fn shade_local(hit: Hit, ns: vec3<f32>, d: vec3<f32>, m: Material, albedo: vec3<
 struct PendingRay {
     ray: Ray,
     depth: u32,
-    weight: f32,             // the spec's scalar weight, for the min_weight rule
+    weight: f32,             // the rendering model's scalar weight, for the min_weight rule
     throughput: vec3<f32>,   // what this ray's radiance is multiplied by in the pixel
 }
 
@@ -148,7 +148,7 @@ struct PendingRay {
 // max_depth + 1 (at most 17; src/gpu/shaders.rs): WGSL cannot size an array
 // with an `override`, and a stack no larger than needed is markedly faster.
 
-/// Whether the spec allows a child ray of this depth and weight.
+/// Whether the rendering model allows a child ray of this depth and weight.
 fn worth_tracing(depth: u32, weight: f32) -> bool {
     return depth <= globals.max_depth && weight > 0.0 && weight >= globals.min_weight;
 }

@@ -106,8 +106,15 @@ pub struct Bvh {
 
 /// Leaves hold at most this many shapes unless the tree is too deep.
 const MAX_LEAF: usize = 4;
-/// Deepest level; the shader's traversal stack holds `MAX_DEPTH + 1` nodes.
+/// Deepest level (the root is level 0).
 pub const MAX_DEPTH: usize = 30;
+/// Entries a nearest-first traversal stack needs: visiting an inner node
+/// pops one entry and pushes its two children, so while a node of level d
+/// is being visited at most one sibling per level above it waits, and
+/// pushing the children of an inner node of the deepest inner level,
+/// `MAX_DEPTH - 1`, fills `MAX_DEPTH + 1` entries. The shader's `BVH_STACK`
+/// is generated from this (src/gpu/shaders.rs).
+pub const TRAVERSAL_STACK: usize = MAX_DEPTH + 1;
 const BINS: usize = 16;
 /// Cost of visiting a node relative to intersecting one shape.
 const TRAVERSAL_COST: f64 = 1.0;
@@ -204,7 +211,7 @@ impl Bvh {
             return;
         }
         let inv_d = safe_inverse(d);
-        let mut stack = Vec::with_capacity(MAX_DEPTH + 1);
+        let mut stack = Vec::with_capacity(TRAVERSAL_STACK);
         stack.push(0usize);
         while let Some(index) = stack.pop() {
             let node = &self.nodes[index];
@@ -461,6 +468,37 @@ mod tests {
             "median splits keep it a tree: {}",
             bvh.nodes.len()
         );
+    }
+
+    /// Spheres at x = 4^i: every split peels off the farthest one, so the
+    /// tree is a chain as deep as the builder allows.
+    fn chain_scene(n: usize) -> Scene {
+        let mut text = String::from("[camera]\nfrom = [0, 0, 5]\nto = [0, 0, 0]\n");
+        for i in 0..n {
+            let x = 4f64.powi(i as i32);
+            text += &format!("[[spheres]]\ncenter = [{x:e}, 0, 0]\nradius = 0.25\n");
+        }
+        Scene::from_toml_str(&text, None).expect("valid scene")
+    }
+
+    #[test]
+    fn the_traversal_stack_holds_the_deepest_tree() {
+        let bvh = Bvh::build(&chain_scene(4 * MAX_DEPTH));
+        // The shader's discipline: pop one node, push both children of an
+        // inner node (every box is hit, the worst case).
+        let (mut deepest, mut most) = (0, 0);
+        let mut stack = vec![(0usize, 0usize)];
+        while let Some((index, depth)) = stack.pop() {
+            deepest = deepest.max(depth);
+            let node = bvh.nodes[index];
+            if node.count == 0 {
+                let first = node.first as usize;
+                stack.extend([(first + 1, depth + 1), (first, depth + 1)]);
+                most = most.max(stack.len());
+            }
+        }
+        assert_eq!(deepest, MAX_DEPTH, "the chain reaches the depth limit");
+        assert_eq!(most, TRAVERSAL_STACK, "and fills the stack exactly");
     }
 
     #[test]

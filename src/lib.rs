@@ -4,6 +4,7 @@
 pub mod app;
 pub mod bench;
 pub mod bvh;
+pub mod cli;
 pub mod compare;
 pub mod gpu;
 pub mod reference;

@@ -6,6 +6,7 @@ use std::time::{Duration, Instant};
 
 use clap::{Parser, Subcommand};
 
+use raysandbox::cli::parse_size;
 use raysandbox::gpu::{Gpu, OffscreenRenderer, ShaderOptions, ShaderSource};
 use raysandbox::reference;
 use raysandbox::scene::Scene;
@@ -62,21 +63,6 @@ struct ViewArgs {
     /// for scripts and tests that drive the window.
     #[arg(long, hide = true)]
     print_events: bool,
-}
-
-/// Parses `WIDTHxHEIGHT`.
-fn parse_size(text: &str) -> Result<(u32, u32), String> {
-    let (w, h) = text
-        .split_once(['x', 'X'])
-        .ok_or_else(|| format!("expected WIDTHxHEIGHT, got {text:?}"))?;
-    let parse = |s: &str| {
-        s.trim()
-            .parse::<u32>()
-            .ok()
-            .filter(|n| (1..=16384).contains(n))
-            .ok_or_else(|| format!("expected a size from 1 to 16384, got {s:?}"))
-    };
-    Ok((parse(w)?, parse(h)?))
 }
 
 #[derive(clap::Args)]

@@ -1,4 +1,4 @@
-//! The accuracy targets of issue 4, at 321 x 181 (odd, so that the centre
+//! The accuracy targets of docs/accuracy.md, at 321 x 181 (odd, so that the centre
 //! row and column of rays have exactly zero direction components), GPU
 //! (robust and naive) against the f64 reference fed the same f32-rounded
 //! scenes:

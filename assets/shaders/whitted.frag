@@ -53,7 +53,7 @@ struct Material {
 
 Material material(int id, vec3 p, vec3 n) {
     if (id == 0) {
-        // The checker of the spec: step into the surface, count the cells.
+        // The checker of the rendering model: step into the surface, count the cells.
         vec3 q = floor((p - 0.001 * 0.8 * n) / 0.8);
         bool even = mod(q.x + q.y + q.z, 2.0) == 0.0;
         vec3 c = even ? vec3(0.95, 0.85, 0.1) : vec3(0.85, 0.08, 0.05);

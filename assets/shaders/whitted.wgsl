@@ -45,7 +45,7 @@ struct Material {
 
 fn material(id: i32, p: vec3<f32>, n: vec3<f32>) -> Material {
     if id == 0 {
-        // The checker of the spec: step into the surface, count the cells.
+        // The checker of the rendering model: step into the surface, count the cells.
         let q = floor((p - 0.001 * 0.8 * n) / 0.8);
         let even = (q.x + q.y + q.z) - 2.0 * floor((q.x + q.y + q.z) / 2.0) == 0.0;
         let c = select(vec3(0.85, 0.08, 0.05), vec3(0.95, 0.85, 0.1), even);

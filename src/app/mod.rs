@@ -33,7 +33,6 @@ use shell::{EguiLayer, EventLog};
 use ui::{Command, Editor, Status, ViewInput};
 
 pub use document::write_atomically;
-pub use panel::{DEFAULT_MAX_SAMPLES, DEFAULT_MIN_WEIGHT};
 pub use sandbox_window::{SandboxOptions, run_sandbox};
 
 /// How the viewer was started (the `view` subcommand's options).

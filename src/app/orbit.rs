@@ -1,7 +1,7 @@
 //! Orbit camera control, as in Blender or three.js OrbitControls: the eye moves
 //! on a sphere around the target `to`, with the camera's `up` as the pole.
 //!
-//! Every operation keeps the camera valid for the spec (from != to, finite)
+//! Every operation keeps the camera valid for the rendering model (from != to, finite)
 //! and never produces NaN, whatever the input: elevation is clamped short of
 //! the poles and the distance never reaches zero.
 

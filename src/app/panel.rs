@@ -2,7 +2,7 @@
 //!
 //! The panel edits the [`Scene`] in place and keeps no copy of it: the app
 //! sees a change by comparing the scene with its own copy, and re-renders.
-//! Whatever the user clicks or types, the scene stays one the spec accepts
+//! Whatever the user clicks or types, the scene stays one the rendering model accepts
 //! (positive radii, `from != to`, unit plane normals once an edit is done,
 //! materials that exist), so the renderers never see an invalid value.
 //! Anything beyond the scene (files, the GPU, the window) is left to the app
@@ -16,6 +16,7 @@ mod widgets;
 
 use std::path::PathBuf;
 
+use crate::gpu::{DEFAULT_MAX_SAMPLES, DEFAULT_MIN_WEIGHT};
 use crate::reference::ShapeId;
 use crate::scene::{Camera, CubeSize, Light, Material, RenderSettings, Scene};
 use egui::{
@@ -39,11 +40,6 @@ pub struct ViewSettings {
     /// default leaves no visible difference: docs/performance.md.
     pub min_weight: f64,
 }
-
-/// The viewer's default progressive refinement limit (docs/performance.md).
-pub const DEFAULT_MAX_SAMPLES: u32 = 64;
-/// The viewer's default floor on `min_weight` (docs/performance.md).
-pub const DEFAULT_MIN_WEIGHT: f64 = 1e-3;
 
 impl Default for ViewSettings {
     fn default() -> Self {
@@ -534,8 +530,8 @@ fn material_buttons(
     op
 }
 
-/// The fields of spec section 3. Weights show a 0..1 slider but take larger
-/// typed values: the spec only asks for >= 0.
+/// The fields of docs/rendering-model.md, "Materials". Weights show a 0..1 slider but take larger
+/// typed values: the rendering model only asks for >= 0.
 fn material_grid(ui: &mut Ui, m: &mut Material, scale: f64) {
     Grid::new("material").num_columns(2).show(ui, |ui| {
         field(ui, "colour", "Albedo; also tints light passing through (linear RGB)");

@@ -11,7 +11,7 @@ use std::time::Duration;
 
 use indicatif::{ProgressBar, ProgressStyle};
 
-use crate::gpu::{Gpu, ShaderOptions, Timing};
+use crate::gpu::{DEFAULT_MAX_SAMPLES, DEFAULT_MIN_WEIGHT, Gpu, ShaderOptions, Timing};
 use crate::scene::{Scene, bundled};
 
 pub use measure::sphere_field;
@@ -29,10 +29,6 @@ pub struct BenchArgs {
     #[arg(long, default_value_t = 10, value_parser = clap::value_parser!(u32).range(1..=1000))]
     pub frames: u32,
 }
-
-/// The viewer's defaults, chosen from this benchmark (docs/performance.md):
-/// they are marked on the plots.
-pub const DEFAULT_MIN_WEIGHT: f64 = crate::app::DEFAULT_MIN_WEIGHT;
 
 /// What one run sweeps.
 struct Plan {
@@ -66,7 +62,7 @@ impl Plan {
             // point, up to 64 samples) finishes in about 20 minutes on two
             // CPU cores with lavapipe.
             size: (160, 90),
-            // The issue's 1..16, and the viewer's refinement limit beyond.
+            // 1..16, what a class demo uses, and the viewer's refinement limit beyond.
             spp: vec![1, 2, 4, 8, 16, 32, 64],
             depths: (1..=8).collect(),
             min_weights: vec![0.0, 1e-3, 1e-2, 5e-2],
@@ -381,7 +377,7 @@ pub fn cheapest_at(rows: &[&ErrorRow], psnr: f64) -> Option<ErrorRow> {
 /// refinement limit, the scene's own depth, the default min_weight, full
 /// resolution.
 fn is_default(row: &ErrorRow, scene: &Scene) -> bool {
-    row.point.spp == crate::app::DEFAULT_MAX_SAMPLES
+    row.point.spp == DEFAULT_MAX_SAMPLES
         && row.point.depth == scene.render.max_depth.clamp(1, 8)
         && row.point.min_weight == DEFAULT_MIN_WEIGHT
         && row.point.scale == 1.0
@@ -578,7 +574,7 @@ mod tests {
     }
 
     #[test]
-    fn the_full_plan_sweeps_every_axis_of_the_issue() {
+    fn the_full_plan_sweeps_every_axis() {
         let plan = Plan::new(false);
         let scene = Scene::from_toml_str(bundled::text("whitted").unwrap(), None).unwrap();
         let points = plan.points(&scene);

@@ -8,6 +8,12 @@ pub struct Gpu {
     pub queue: wgpu::Queue,
 }
 
+/// The optional features the device is asked for when the adapter has
+/// them: timestamp queries, so that the frame timer (`GpuTimer`) can use
+/// them.
+pub const TIMER_FEATURES: wgpu::Features =
+    wgpu::Features::TIMESTAMP_QUERY.union(wgpu::Features::TIMESTAMP_QUERY_INSIDE_ENCODERS);
+
 #[derive(Debug, thiserror::Error)]
 pub enum GpuError {
     #[error(
@@ -56,7 +62,7 @@ impl Gpu {
         let (device, queue) = pollster::block_on(adapter.request_device(&wgpu::DeviceDescriptor {
             label: Some("raysandbox"),
             // Timestamp queries time frames where the adapter has them.
-            required_features: adapter.features() & super::timer::TIMER_FEATURES,
+            required_features: adapter.features() & TIMER_FEATURES,
             required_limits: wgpu::Limits::default(),
             ..Default::default()
         }))

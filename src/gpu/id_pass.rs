@@ -11,6 +11,7 @@ use super::fullscreen;
 use super::layout::PackedScene;
 use super::offscreen::read_texels;
 use super::shaders::ShaderSource;
+use super::texture::render_target;
 use super::tracer::{PipelineError, SceneBuffers, scene_layout_entries};
 use crate::scene::Scene;
 
@@ -91,20 +92,13 @@ impl IdRenderer {
         let scene =
             SceneBuffers::with_layout(device, &self.layout, PackedScene::new(scene, width, height));
         let bind_group = &scene.bind_group;
-        let target = device.create_texture(&wgpu::TextureDescriptor {
-            label: Some("first hits"),
-            size: wgpu::Extent3d {
-                width,
-                height,
-                depth_or_array_layers: 1,
-            },
-            mip_level_count: 1,
-            sample_count: 1,
-            dimension: wgpu::TextureDimension::D2,
-            format: ID_FORMAT,
-            usage: wgpu::TextureUsages::RENDER_ATTACHMENT | wgpu::TextureUsages::COPY_SRC,
-            view_formats: &[],
-        });
+        let target = render_target(
+            device,
+            "first hits",
+            (width, height),
+            ID_FORMAT,
+            wgpu::TextureUsages::COPY_SRC,
+        );
         let view = target.create_view(&Default::default());
         let mut encoder = device.create_command_encoder(&Default::default());
         fullscreen::pass(&mut encoder, &self.pipeline, &[bind_group], &view);

@@ -9,15 +9,20 @@ pub mod layout;
 mod offscreen;
 pub mod shaders;
 pub mod shapes;
+mod texture;
 mod timer;
 mod tracer;
 mod viewport;
 
-pub use context::{Gpu, GpuError};
+pub use context::{Gpu, GpuError, TIMER_FEATURES};
 pub use features::{Features, ShaderOptions};
 pub use id_pass::{FirstHit, IdRenderer};
 pub use offscreen::{OffscreenRenderer, read_texture, render_image};
 pub use shaders::{ShaderError, ShaderSource};
-pub use timer::{GpuTimer, TIMER_FEATURES, Timing};
-pub use tracer::{Accumulator, FrameTarget, PipelineError, Pipelines, SceneBuffers, encode_frame};
+pub use texture::render_target;
+pub use timer::{GpuTimer, Timing};
+pub use tracer::{
+    Accumulator, DEFAULT_MAX_SAMPLES, DEFAULT_MIN_WEIGHT, FrameTarget, PipelineError, Pipelines,
+    SceneBuffers, encode_frame,
+};
 pub use viewport::{EXPORT_FORMAT, FrameStatus, Viewport};

@@ -6,6 +6,7 @@ use super::context::Gpu;
 use super::features::ShaderOptions;
 use super::layout::PackedScene;
 use super::shaders::ShaderSource;
+use super::texture::render_target;
 use super::timer::{GpuTimer, Timing};
 use super::tracer::{
     Accumulator, FrameTarget, PipelineError, Pipelines, SceneBuffers, encode_frame,
@@ -13,7 +14,7 @@ use super::tracer::{
 use crate::scene::Scene;
 
 /// The offscreen target: 8-bit, and `fs_display` encodes sRGB itself so the
-/// exact formula of spec section 5 is used.
+/// exact formula of docs/rendering-model.md, "Output" is used.
 const OUTPUT_FORMAT: wgpu::TextureFormat = wgpu::TextureFormat::Rgba8Unorm;
 
 /// Samples traced per submission. Long single draws can trip the watchdog of
@@ -42,20 +43,13 @@ impl OffscreenRenderer {
         let pipelines = Pipelines::new(device, source, &[OUTPUT_FORMAT], options)?;
         let scene = SceneBuffers::new(device, &pipelines, PackedScene::new(scene, width, height));
         let accum = Accumulator::new(device, &pipelines, width, height);
-        let target = device.create_texture(&wgpu::TextureDescriptor {
-            label: Some("offscreen image"),
-            size: wgpu::Extent3d {
-                width,
-                height,
-                depth_or_array_layers: 1,
-            },
-            mip_level_count: 1,
-            sample_count: 1,
-            dimension: wgpu::TextureDimension::D2,
-            format: OUTPUT_FORMAT,
-            usage: wgpu::TextureUsages::RENDER_ATTACHMENT | wgpu::TextureUsages::COPY_SRC,
-            view_formats: &[],
-        });
+        let target = render_target(
+            device,
+            "offscreen image",
+            (width, height),
+            OUTPUT_FORMAT,
+            wgpu::TextureUsages::COPY_SRC,
+        );
         Ok(OffscreenRenderer {
             pipelines,
             scene,

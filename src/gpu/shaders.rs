@@ -85,8 +85,9 @@ impl fmt::Display for ShaderError {
 
 impl std::error::Error for ShaderError {}
 
-/// The largest ray-tree stack a scene can need: `max_depth` 16, plus one.
-pub const MAX_STACK_SIZE: u32 = 17;
+/// The largest ray-tree stack a scene can need: the deepest `max_depth`,
+/// plus one.
+pub const MAX_STACK_SIZE: u32 = crate::scene::MAX_DEPTH + 1;
 
 /// Name of the part the program writes in front of the shader files.
 const GENERATED: &str = "(generated) specialisation";
@@ -99,7 +100,10 @@ fn generated_part(stack_size: u32) -> (String, String) {
         GENERATED.to_string(),
         format!(
             "// Written by raysandbox for the scene being drawn (src/gpu/shaders.rs).\n\
-             const STACK_SIZE: u32 = {stack_size}u;\n"
+             const STACK_SIZE: u32 = {stack_size}u;\n\
+             // The BVH traversal stack, for trees as deep as src/bvh.rs builds them.\n\
+             const BVH_STACK: u32 = {}u;\n",
+            crate::bvh::TRAVERSAL_STACK
         ),
     )
 }
@@ -356,6 +360,14 @@ mod tests {
             .count()
             + 1;
         assert_eq!(err.line as usize, expected, "{err}");
+    }
+
+    #[test]
+    fn the_bvh_stack_is_generated_from_the_tree_depth_limit() {
+        let source = ShaderSource::embedded();
+        let expected = format!("const BVH_STACK: u32 = {}u;", crate::bvh::TRAVERSAL_STACK);
+        assert!(source.text().contains(&expected));
+        assert_eq!(source.text().matches("const BVH_STACK").count(), 1);
     }
 
     #[test]

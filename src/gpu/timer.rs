@@ -3,11 +3,7 @@
 
 use std::time::Duration;
 
-use super::context::Gpu;
-
-/// The features the timer needs; [`Gpu`] requests them when the adapter has them.
-pub const TIMER_FEATURES: wgpu::Features =
-    wgpu::Features::TIMESTAMP_QUERY.union(wgpu::Features::TIMESTAMP_QUERY_INSIDE_ENCODERS);
+use super::context::{Gpu, TIMER_FEATURES};
 
 /// How a frame time was measured.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]

@@ -12,6 +12,7 @@ use super::features::ShaderOptions;
 use super::fullscreen;
 use super::layout::PackedScene;
 use super::shaders::{ShaderError, ShaderSource};
+use super::texture::render_target;
 
 /// Where the radiance sum is kept: full f32 precision, so 1000s of samples
 /// add up without banding.
@@ -205,6 +206,13 @@ impl SceneBuffers {
     }
 }
 
+/// The default progressive refinement limit of the viewer, in samples per
+/// pixel, chosen from `raysandbox bench` (docs/performance.md).
+pub const DEFAULT_MAX_SAMPLES: u32 = 64;
+/// The viewer's default floor on `min_weight`, chosen from `raysandbox bench`
+/// (docs/performance.md): it leaves no visible difference.
+pub const DEFAULT_MIN_WEIGHT: f64 = 1e-3;
+
 /// Two radiance-sum textures used in turn, and how many samples they hold.
 pub struct Accumulator {
     views: [wgpu::TextureView; 2],
@@ -218,23 +226,14 @@ pub struct Accumulator {
 impl Accumulator {
     pub fn new(device: &wgpu::Device, pipelines: &Pipelines, width: u32, height: u32) -> Self {
         let views = std::array::from_fn(|_| {
-            device
-                .create_texture(&wgpu::TextureDescriptor {
-                    label: Some("accumulated radiance"),
-                    size: wgpu::Extent3d {
-                        width,
-                        height,
-                        depth_or_array_layers: 1,
-                    },
-                    mip_level_count: 1,
-                    sample_count: 1,
-                    dimension: wgpu::TextureDimension::D2,
-                    format: ACCUM_FORMAT,
-                    usage: wgpu::TextureUsages::RENDER_ATTACHMENT
-                        | wgpu::TextureUsages::TEXTURE_BINDING,
-                    view_formats: &[],
-                })
-                .create_view(&Default::default())
+            render_target(
+                device,
+                "accumulated radiance",
+                (width, height),
+                ACCUM_FORMAT,
+                wgpu::TextureUsages::TEXTURE_BINDING,
+            )
+            .create_view(&Default::default())
         });
         let bind_groups = std::array::from_fn(|i| {
             device.create_bind_group(&wgpu::BindGroupDescriptor {

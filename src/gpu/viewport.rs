@@ -6,11 +6,12 @@ use std::time::{Duration, Instant};
 
 use super::context::Gpu;
 use super::layout::PackedScene;
+use super::texture::render_target;
 use super::timer::{GpuTimer, Timing};
 use super::tracer::{Accumulator, FrameTarget, Pipelines, SceneBuffers, encode_frame};
 use crate::scene::Scene;
 
-/// Format of screenshots: 8-bit RGBA with the exact sRGB formula of the spec.
+/// Format of screenshots: 8-bit RGBA with the exact sRGB formula of the rendering model.
 pub const EXPORT_FORMAT: wgpu::TextureFormat = wgpu::TextureFormat::Rgba8Unorm;
 
 /// What happened to a frame.
@@ -230,20 +231,13 @@ impl Viewport {
     /// on top, as 8-bit sRGB (for screenshots and tests).
     pub fn capture(&mut self, gpu: &Gpu) -> image::RgbaImage {
         let size = self.accum.size();
-        let texture = gpu.device.create_texture(&wgpu::TextureDescriptor {
-            label: Some("screenshot"),
-            size: wgpu::Extent3d {
-                width: size.0,
-                height: size.1,
-                depth_or_array_layers: 1,
-            },
-            mip_level_count: 1,
-            sample_count: 1,
-            dimension: wgpu::TextureDimension::D2,
-            format: EXPORT_FORMAT,
-            usage: wgpu::TextureUsages::RENDER_ATTACHMENT | wgpu::TextureUsages::COPY_SRC,
-            view_formats: &[],
-        });
+        let texture = render_target(
+            &gpu.device,
+            "screenshot",
+            size,
+            EXPORT_FORMAT,
+            wgpu::TextureUsages::COPY_SRC,
+        );
         let view = texture.create_view(&Default::default());
         let mut encoder = gpu.device.create_command_encoder(&Default::default());
         encode_frame(
@@ -265,7 +259,7 @@ impl Viewport {
 }
 
 /// Surface settings: a plain (non-sRGB) 8-bit format when there is one, so
-/// the display pass encodes with the exact formula of the spec, as in PNG
+/// the display pass encodes with the exact formula of the rendering model, as in PNG
 /// output, and egui's colours (already sRGB) are written unchanged; FIFO
 /// presentation (no tearing, and supported everywhere).
 fn surface_config(

@@ -1,5 +1,5 @@
 //! The lecture's pinhole camera with the film one unit in front of the eye,
-//! plus the optional thin lens (spec section 1).
+//! plus the optional thin lens (docs/rendering-model.md, "Camera").
 
 use glam::{DVec2, DVec3};
 
@@ -44,13 +44,13 @@ impl Camera {
 /// `w = normalize(from - to)`, `u = normalize(cross(up, w))`, `v = cross(w, u)`.
 ///
 /// When `up` is (nearly) parallel to the view, `cross(up, w)` is (nearly)
-/// zero and `u` would be NaN or noise. The spec's rule then replaces `up` by
+/// zero and `u` would be NaN or noise. The rendering model's rule then replaces `up` by
 /// the coordinate axis along which `w` is smallest (x before y before z on a
 /// tie), the axis most perpendicular to `w`. Looking straight down or up, `w`
 /// is ±y and the replacement is x.
 ///
 /// As in the shader (`camera_basis` in `shaders/camera.wgsl`), `up` is
-/// normalised first, so the spec's test `|cross(up, w)| < 1e-6 |up|` reads
+/// normalised first, so the rendering model's test `|cross(up, w)| < 1e-6 |up|` reads
 /// `|cross(up, w)| < 1e-6`, and both normalisations divide by the largest
 /// component first ([`normalize_or`]), so that no length over- or underflows.
 /// Validation rejects `from == to` and `up == 0`; they still give a basis
@@ -98,7 +98,7 @@ fn smallest_axis(w: DVec3) -> DVec3 {
 /// `(i + sx, j + sy)`, and `(0, 0)` is the top left corner of the film.
 /// `lens` is a point of the unit disk; `(0, 0)` is the lens centre.
 ///
-/// Spec section 1: the film point is `x u + y v - w` from the eye with
+/// docs/rendering-model.md, "Camera": the film point is `x u + y v - w` from the eye with
 /// `x = (h W / H) (px / W - 0.5)` and `y = h (0.5 - py / H)`. The film size
 /// depends only on `fov` and the aspect ratio, never on the resolution.
 ///

@@ -1,8 +1,8 @@
-//! Ray-shape intersection (spec section 2, docs/implementation.md
+//! Ray-shape intersection (docs/rendering-model.md, "Shapes"; docs/implementation.md
 //! "Intersections"): spheres, planes and boxes, the nearest hit over the
 //! scene, and the any-hit query of shadow rays.
 //!
-//! Every routine accepts only hits with `0 < t < t_max` (the spec's
+//! Every routine accepts only hits with `0 < t < t_max` (the rendering model's
 //! `0 < t < t_closest`) and returns the outward geometric normal, unit length.
 
 use glam::{DMat3, DVec3};

@@ -1,7 +1,7 @@
 //! The f64 CPU reference tracer: the yardstick the GPU image is measured
 //! against.
 //!
-//! It follows the rendering model (`shared/spec/rendering-model.md`) and the
+//! It follows the rendering model (`docs/rendering-model.md`) and the
 //! implementation choices the shader makes too (`docs/implementation.md`),
 //! in f64 and written for reading next to the lecture slides rather than for
 //! speed. One file per concern:
@@ -639,7 +639,7 @@ mod tests {
 
     #[test]
     fn showcase_scene_has_no_nan() {
-        // The spec's example scene, with a camera straight above as well.
+        // The rendering model's example scene, with a camera straight above as well.
         let text = r#"
             [render]
             max_depth = 8

@@ -1,4 +1,4 @@
-//! From linear radiance to 8-bit sRGB pixels (spec section 5).
+//! From linear radiance to 8-bit sRGB pixels (docs/rendering-model.md, "Output").
 
 use glam::DVec3;
 use image::{Rgba, RgbaImage};

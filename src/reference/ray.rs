@@ -114,7 +114,7 @@ mod tests {
         // Near the origin the floor 1/32 applies.
         let small = offset_ray(DVec3::new(0.001, 0.0, 0.0), -DVec3::X, 0.01);
         assert_eq!(small.x, 0.001 - 2f64.powi(-49));
-        // Well within the spec's "at most 1e-4 of max(1, |p|)" for small shapes.
+        // Well within the rendering model's "at most 1e-4 of max(1, |p|)" for small shapes.
         assert!(far.x - 1.0 < 1e-4 * 1024.0);
     }
 }

@@ -17,7 +17,7 @@ pub const R4_ROOT: f64 = 1.1673039782614187;
 /// Why R4: successive samples fill the 4-D unit cube evenly, whatever their
 /// number, so progressive refinement (one sample per frame) converges
 /// smoothly. The `0.5` start makes sample 0 the pixel centre and the lens
-/// centre, which the spec requires at 1 sample per pixel. Components 0 and 1
+/// centre, which the rendering model requires at 1 sample per pixel. Components 0 and 1
 /// are the pixel offset `(sx, sy)`, 2 and 3 the lens sample in the square.
 /// The reference computes `k * alpha` in f64 (the shader in f32).
 pub fn r4(k: u32) -> [f64; 4] {

@@ -1,4 +1,4 @@
-//! Whitted shading (spec sections 3 and 4): local Lambert and Blinn-Phong
+//! Whitted shading (docs/rendering-model.md, "Materials" and "Whitted shading"): local Lambert and Blinn-Phong
 //! light with hard shadows, ambient light, and recursive perfect reflection
 //! and refraction weighted by the exact Fresnel term.
 
@@ -76,7 +76,7 @@ fn shade(
 ///
 /// `l` points from `p` to the light and `h = normalize(l - d)` is Blinn's
 /// half vector between it and the direction back to the viewer. Lights do not
-/// fall off with distance (spec section 4).
+/// fall off with distance (docs/rendering-model.md, "Whitted shading").
 fn local(
     scene: &PreparedScene,
     m: &Material,
@@ -140,7 +140,7 @@ fn offset(scene: &PreparedScene, hit: &Hit, n: DVec3) -> DVec3 {
 ///
 /// As in the shader, `floor(p / s - 0.001 n)` is evaluated by [`checker_cell`]
 /// without forming the sum, whose step is lost in the rounding of `p / s`
-/// far from the origin; the naive variant forms it as the spec writes it.
+/// far from the origin; the naive variant forms it as the rendering model writes it.
 pub fn albedo(m: &Material, p: DVec3, n: DVec3, robust: bool) -> DVec3 {
     let Some(checker) = &m.checker else {
         return m.color;
@@ -188,7 +188,7 @@ struct Split {
     transmitted: Option<DVec3>,
 }
 
-/// The Fresnel split of spec section 4. Closed shapes go from index 1 to
+/// The Fresnel split of docs/rendering-model.md, "Whitted shading". Closed shapes go from index 1 to
 /// `ior` when the ray enters and from `ior` to 1 when it leaves, and bend the
 /// transmitted ray by Snell's law. Planes are thin: F as for entering, and
 /// the ray goes straight on (a sheet of glass shifts it sideways by its
@@ -442,7 +442,7 @@ mod tests {
             DVec3::splat(0.8)
         );
         // Far from the origin the step of 0.001 s is below the spacing of
-        // p (1e17 has an ulp of 16): the spec's q = p - 0.001 s n rounds back
+        // p (1e17 has an ulp of 16): the rendering model's q = p - 0.001 s n rounds back
         // to p and the naive formula lands in the cell above the boundary;
         // checker_cell still steps into the floor.
         let far = DVec3::new(0.5, 1e17, 0.5);

@@ -35,6 +35,7 @@ pub use render::{CanvasStats, Offscreen, render_once};
 pub use session::{ReloadError, Session};
 pub use uniforms::FrameUniforms;
 
+use crate::cli::parse_size;
 use crate::gpu::Gpu;
 
 /// Arguments of `raysandbox shader`.
@@ -74,21 +75,6 @@ pub struct ShaderArgs {
     /// on stdout, for scripts and tests that drive the window.
     #[arg(long, hide = true)]
     pub print_events: bool,
-}
-
-/// Parses `WIDTHxHEIGHT`.
-pub fn parse_size(text: &str) -> Result<(u32, u32), String> {
-    let (w, h) = text
-        .split_once(['x', 'X'])
-        .ok_or_else(|| format!("expected WIDTHxHEIGHT, got {text:?}"))?;
-    let parse = |s: &str| {
-        s.trim()
-            .parse::<u32>()
-            .ok()
-            .filter(|n| (1..=16384).contains(n))
-            .ok_or_else(|| format!("expected a size from 1 to 16384, got {s:?}"))
-    };
-    Ok((parse(w)?, parse(h)?))
 }
 
 fn parse_scale(text: &str) -> Result<f32, String> {

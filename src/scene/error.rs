@@ -4,7 +4,7 @@ use std::fmt;
 use std::path::{Path, PathBuf};
 
 /// A scene that failed to load: unreadable file, TOML syntax, wrong type,
-/// unknown key or a value that breaks a rule of the spec.
+/// unknown key or a value that breaks a rule of the rendering model.
 ///
 /// The parts are kept apart so that a UI can show them separately (jump to
 /// `line`, highlight `key`); `Display` joins them into the single line that

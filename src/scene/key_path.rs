@@ -10,8 +10,8 @@ pub(super) enum Step {
     Index(usize),
 }
 
-/// The path from the root of the document to a value. It prints the way the
-/// spec writes keys in messages: `spheres[2].radius`, `materials.glass.ior`,
+/// The path from the root of the document to a value. It prints the way
+/// docs/scene-format.md writes keys in error messages: `spheres[2].radius`, `materials.glass.ior`,
 /// with array indices counted from 0.
 #[derive(Debug, Clone, Default, PartialEq, Eq)]
 pub(super) struct KeyPath(Vec<Step>);

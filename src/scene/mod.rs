@@ -1,7 +1,7 @@
-//! The scene: plain data loaded from TOML (spec section 6), plus validation.
+//! The scene: plain data loaded from TOML (docs/scene-format.md), plus validation.
 //!
 //! This module knows nothing of the GPU or the UI. A [`Scene`] that came out of
-//! [`Scene::from_toml_str`] or [`Scene::load`] has passed every rule of the spec,
+//! [`Scene::from_toml_str`] or [`Scene::load`] has passed every rule of the rendering model,
 //! so renderers may rely on positive radii, known material names and so on.
 
 pub mod bundled;
@@ -42,7 +42,11 @@ pub struct Scene {
     pub cubes: Vec<Cube>,
 }
 
-/// `[render]`: global shading settings (spec section 6 defaults).
+/// Deepest secondary ray a scene may ask for (`max_depth` in
+/// docs/scene-format.md): the shader's ray-tree stack is sized from it.
+pub const MAX_DEPTH: u32 = 16;
+
+/// `[render]`: global shading settings (defaults in docs/scene-format.md).
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
 #[serde(deny_unknown_fields, default)]
 pub struct RenderSettings {
@@ -121,7 +125,7 @@ fn default_intensity() -> f64 {
     1.0
 }
 
-/// `[materials.NAME]`: spec section 3. Missing fields take the defaults, and a
+/// `[materials.NAME]`: docs/rendering-model.md, "Materials". Missing fields take the defaults, and a
 /// shape without a material uses `Material::default()`.
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
 #[serde(deny_unknown_fields, default)]
@@ -212,7 +216,7 @@ impl CubeSize {
 }
 
 impl Cube {
-    /// The rotation matrix `Rz(rz) Ry(ry) Rx(rx)` (spec section 2), in f64.
+    /// The rotation matrix `Rz(rz) Ry(ry) Rx(rx)` (docs/rendering-model.md, "Shapes"), in f64.
     pub fn rotation_matrix(&self) -> glam::DMat3 {
         let r = self.rotation * (std::f64::consts::PI / 180.0);
         glam::DMat3::from_rotation_z(r.z)

@@ -5,13 +5,13 @@
 use serde::Deserialize;
 use toml::de::{DeValue, ValueDeserializer};
 
+use super::MAX_DEPTH;
 use super::document::{Document, Node};
 use super::key_path::KeyPath;
-use super::validate::MAX_DEPTH;
 use super::{Scene, SceneError};
 
 /// The scene the document describes, not yet checked against the ranges of
-/// the spec (that is [`super::validate`]'s job).
+/// the rendering model (that is [`super::validate`]'s job).
 pub(super) fn deserialize(doc: &Document<'_>) -> Result<Scene, SceneError> {
     let scene = Scene::deserialize(ValueDeserializer::from(doc.root().clone()))
         .map_err(|e| serde_error(doc, &e))?;

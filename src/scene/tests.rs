@@ -1,5 +1,5 @@
 //! Tests of loading, validation and saving scenes: one or more per rule of
-//! the spec, the defaults, the error format, and round trips.
+//! the rendering model, the defaults, the error format, and round trips.
 
 use std::path::{Path, PathBuf};
 

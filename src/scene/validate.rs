@@ -1,5 +1,5 @@
 //! Loading a scene: the pipeline from text to a checked [`Scene`], and the
-//! rules of the spec (sections 1 to 3 and 6) that serde cannot express:
+//! rules of docs/rendering-model.md and docs/scene-format.md that serde cannot express:
 //! ranges, finiteness, distinct camera points, non-zero directions and known
 //! material names. The one change made on load is also here: plane normals
 //! become unit length.
@@ -13,11 +13,9 @@ use super::document::Document;
 use super::key_path::KeyPath;
 use super::parse;
 use super::{
-    Camera, Cube, CubeSize, Light, Material, Plane, RenderSettings, Scene, SceneError, Sphere,
+    Camera, Cube, CubeSize, Light, MAX_DEPTH, Material, Plane, RenderSettings, Scene, SceneError,
+    Sphere,
 };
-
-/// Deepest secondary ray a scene may ask for (spec section 6).
-pub(super) const MAX_DEPTH: u32 = 16;
 
 /// How far from 1 the squared length of a plane normal may be for it to count
 /// as unit length already. `normalize` lands within a few ulps of 1.
@@ -78,7 +76,7 @@ const FIELD_OF_VIEW: Rule = Rule {
 };
 
 /// Checks every rule, first problem first (sections in the order of the
-/// spec's example file), and normalises plane normals.
+/// example file in docs/scene-format.md), and normalises plane normals.
 fn validate(scene: &mut Scene) -> Check {
     let root = KeyPath::default();
     render(&scene.render, &root.key("render"))?;
@@ -129,7 +127,7 @@ fn camera(c: &Camera, path: &KeyPath) -> Check {
 /// `from - to` gives the view direction. Equal points give none, and points
 /// so close together or so far apart that the length of their difference
 /// under- or overflows give none that f64 can normalise. (An `up` parallel
-/// to the view is fine: the renderers replace it, spec section 1.)
+/// to the view is fine: the renderers replace it, docs/rendering-model.md, "Camera".)
 fn view_direction(c: &Camera, path: &KeyPath) -> Check {
     let offset = c.from - c.to;
     let message = if offset == DVec3::ZERO {
@@ -176,7 +174,7 @@ fn sphere(s: &Sphere, path: &KeyPath, materials: &IndexMap<String, Material>) ->
     material_name(path, s.material.as_deref(), materials)
 }
 
-/// Checks a plane and makes its normal unit length (spec section 2).
+/// Checks a plane and makes its normal unit length (docs/rendering-model.md, "Shapes").
 fn plane(p: &mut Plane, path: &KeyPath, materials: &IndexMap<String, Material>) -> Check {
     vector(&path.key("point"), p.point, &FINITE)?;
     vector(&path.key("normal"), p.normal, &FINITE)?;

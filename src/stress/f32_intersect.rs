@@ -6,7 +6,8 @@
 //! on the same inputs and checks that it agrees with this port and with f64.
 //!
 //! Keep it in sync with the WGSL: same formulas, same order of operations,
-//! same branches. (Rust does not contract `a * b + c` into a fused
+//! same branches; `the_cpu_port_computes_what_the_wgsl_computes` in
+//! `tests/wgsl_intersections.rs` fails when the two drift apart. (Rust does not contract `a * b + c` into a fused
 //! multiply-add; a GPU may, so results can differ in the last bits.)
 
 use glam::{Mat3, Vec3};

@@ -41,7 +41,8 @@ pub struct Comparison {
     pub lit_pixels: usize,
 }
 
-/// The thresholds of issue 4 for a render that "passes".
+/// The thresholds for a render that "passes": a FLIP mean far below what
+/// an observer notices, and first hits that are almost all the same shape.
 pub const MAX_FLIP: f64 = 0.01;
 pub const MAX_ID_MISMATCH: f64 = 0.001;
 

@@ -18,7 +18,7 @@ use image::{RgbImage, RgbaImage};
 
 use crate::gpu::{
     Accumulator, FirstHit, FrameTarget, Gpu, IdRenderer, PipelineError, Pipelines, SceneBuffers,
-    ShaderOptions, ShaderSource, encode_frame, layout::PackedScene, read_texture,
+    ShaderOptions, ShaderSource, encode_frame, layout::PackedScene, read_texture, render_target,
 };
 use crate::reference::{self, PreparedScene, ReferenceOptions};
 use crate::scene::Scene;
@@ -95,20 +95,13 @@ impl GpuVariant {
             PackedScene::new(scene, width, height),
         );
         let mut accum = Accumulator::new(device, &self.pipelines, width, height);
-        let texture = device.create_texture(&wgpu::TextureDescriptor {
-            label: Some("stress image"),
-            size: wgpu::Extent3d {
-                width,
-                height,
-                depth_or_array_layers: 1,
-            },
-            mip_level_count: 1,
-            sample_count: 1,
-            dimension: wgpu::TextureDimension::D2,
-            format: IMAGE_FORMAT,
-            usage: wgpu::TextureUsages::RENDER_ATTACHMENT | wgpu::TextureUsages::COPY_SRC,
-            view_formats: &[],
-        });
+        let texture = render_target(
+            device,
+            "stress image",
+            (width, height),
+            IMAGE_FORMAT,
+            wgpu::TextureUsages::COPY_SRC,
+        );
         let view = texture.create_view(&Default::default());
         let target = FrameTarget {
             view: &view,

@@ -9,7 +9,7 @@ use crate::reference::ShapeId;
 use crate::scene::{Camera, Checker, Cube, CubeSize, Light, Material, Plane, Scene, Sphere};
 
 /// Smallest value the panel writes into a field that must be > 0 (radius,
-/// exposure, ior...): the spec only asks for > 0, and a drag must not stop at 0.
+/// exposure, ior...): the rendering model only asks for > 0, and a drag must not stop at 0.
 pub(super) const MIN_POSITIVE: f64 = 1e-6;
 
 /// How far from 1 the squared length of a normal may be for it to count as

@@ -1,4 +1,4 @@
-//! Small widgets over the scene's f64 values. Each writes only values the spec
+//! Small widgets over the scene's f64 values. Each writes only values the rendering model
 //! accepts: finite and inside the field's range. That needs care with egui:
 //! a number field parses what the user types with `str::parse`, which takes
 //! "inf" and "nan", so every field here has a finite range (egui clamps typed
