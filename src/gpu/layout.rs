@@ -6,20 +6,10 @@
 use bytemuck::{Pod, Zeroable};
 use glam::DVec3;
 
+pub use super::shapes::{Cube, Plane, Sphere};
+use super::shapes::{Frame, PackShape, f32x3};
 use crate::bvh::{Aabb, Bvh, Prim};
 use crate::scene::{self, Scene};
-
-/// Rounds an f64 vector to the f32 triple the shader reads.
-fn f32x3(v: DVec3) -> [f32; 3] {
-    v.as_vec3().to_array()
-}
-
-/// A position as the shader reads it: relative to the frame origin,
-/// subtracted in f64 before the rounding to f32 (docs/implementation.md,
-/// "Camera-relative coordinates"). Every packed position goes through here.
-fn relative(p: DVec3, origin: DVec3) -> [f32; 3] {
-    f32x3(p - origin)
-}
 
 #[repr(C)]
 #[derive(Debug, Clone, Copy, PartialEq, Pod, Zeroable)]
@@ -44,37 +34,6 @@ pub struct Globals {
     pub light_count: u32,
     pub bvh_node_count: u32,
     pub output_size: [u32; 2],
-}
-
-#[repr(C)]
-#[derive(Debug, Clone, Copy, PartialEq, Pod, Zeroable)]
-pub struct Sphere {
-    pub center: [f32; 3],
-    pub radius: f32,
-    pub material: u32,
-    pub _pad0: u32,
-    pub _pad1: u32,
-    pub _pad2: u32,
-}
-
-#[repr(C)]
-#[derive(Debug, Clone, Copy, PartialEq, Pod, Zeroable)]
-pub struct Plane {
-    pub point: [f32; 3],
-    pub material: u32,
-    pub normal: [f32; 3],
-    pub _pad: u32,
-}
-
-#[repr(C)]
-#[derive(Debug, Clone, Copy, PartialEq, Pod, Zeroable)]
-pub struct Cube {
-    pub center: [f32; 3],
-    pub material: u32,
-    pub half_size: [f32; 3],
-    pub _pad: u32,
-    /// `mat3x3<f32>`: three columns, each padded to 16 bytes.
-    pub rotation: [[f32; 4]; 3],
 }
 
 #[repr(C)]
@@ -122,10 +81,10 @@ pub struct Light {
 /// how many are real.
 #[derive(Debug, Clone, PartialEq)]
 pub struct PackedScene {
-    /// The world point that the positions are relative to (the camera
-    /// target when packed; zero for the textbook world coordinates). Kept
-    /// in f64 on the CPU only: [`PackedScene::set_view`] needs it.
-    pub frame_origin: DVec3,
+    /// The frame the positions are measured in (camera-relative, or the
+    /// world for the naive variant). Kept on the CPU in f64:
+    /// [`PackedScene::set_view`] writes the camera in the same frame.
+    pub frame: Frame,
     pub globals: Globals,
     pub spheres: Vec<Sphere>,
     pub planes: Vec<Plane>,
@@ -139,40 +98,40 @@ pub struct PackedScene {
 
 impl PackedScene {
     /// Packs `scene` for an image of `width` x `height` pixels, with every
-    /// position relative to the camera target (see [`relative`]), so that
-    /// the image does not depend on where the scene is in the world. The
-    /// sample range in the globals starts empty; the renderer sets it per
-    /// pass.
+    /// position relative to the camera target ([`Frame::around_target`]),
+    /// so that the image does not depend on where the scene is in the
+    /// world. The sample range in the globals starts empty; the renderer
+    /// sets it per pass.
     pub fn new(scene: &Scene, width: u32, height: u32) -> Self {
-        Self::in_frame(scene, width, height, scene.camera.frame_origin())
+        Self::in_frame(scene, width, height, Frame::around_target(&scene.camera))
     }
 
     /// Packs `scene` in world coordinates, as the textbook does: the frame
     /// of the naive variant (`ROBUST = false`), which shows what
     /// camera-relative coordinates fix.
     pub fn in_world(scene: &Scene, width: u32, height: u32) -> Self {
-        Self::in_frame(scene, width, height, DVec3::ZERO)
+        Self::in_frame(scene, width, height, Frame::WORLD)
     }
 
-    fn in_frame(scene: &Scene, width: u32, height: u32, origin: DVec3) -> Self {
+    fn in_frame(scene: &Scene, width: u32, height: u32, frame: Frame) -> Self {
         let bvh = Bvh::build(scene);
-        let mut globals = pack_globals(scene, width, height, origin);
+        let mut globals = pack_globals(scene, width, height, &frame);
         globals.bvh_node_count = bvh.nodes.len() as u32;
         PackedScene {
-            frame_origin: origin,
+            frame,
             globals,
-            spheres: non_empty(scene.spheres.iter().map(|s| pack_sphere(scene, s, origin))),
-            planes: non_empty(scene.planes.iter().map(|p| pack_plane(scene, p, origin))),
-            cubes: non_empty(scene.cubes.iter().map(|c| pack_cube(scene, c, origin))),
+            spheres: non_empty(scene.spheres.iter().map(|s| Sphere::pack(scene, &frame, s))),
+            planes: non_empty(scene.planes.iter().map(|p| Plane::pack(scene, &frame, p))),
+            cubes: non_empty(scene.cubes.iter().map(|c| Cube::pack(scene, &frame, c))),
             materials: std::iter::once(scene::Material::default())
                 .chain(scene.materials.values().cloned())
-                .map(|m| pack_material(&m, origin))
+                .map(|m| pack_material(&m, &frame))
                 .collect(),
-            lights: non_empty(scene.lights.iter().map(|l| pack_light(l, origin))),
+            lights: non_empty(scene.lights.iter().map(|l| pack_light(l, &frame))),
             bvh_nodes: non_empty(
                 bvh.nodes
                     .iter()
-                    .map(|n| pack_node(n.bounds, n.first, n.count, origin)),
+                    .map(|n| pack_node(n.bounds, n.first, n.count, &frame)),
             ),
             bvh_prims: non_empty(bvh.prims.iter().map(|p| match *p {
                 Prim::Sphere(i) => i,
@@ -185,7 +144,7 @@ impl PackedScene {
 /// A node with its box rounded outwards to f32, so that the box the shader
 /// tests always holds the shapes inside it (rounding to nearest could cut a
 /// sliver off a shape, and rays through that sliver would miss it).
-fn pack_node(bounds: Aabb, first: u32, count: u32, origin: DVec3) -> BvhNode {
+fn pack_node(bounds: Aabb, first: u32, count: u32, frame: &Frame) -> BvhNode {
     let down = |x: f64| {
         let f = x as f32;
         if f64::from(f) > x { f.next_down() } else { f }
@@ -195,9 +154,9 @@ fn pack_node(bounds: Aabb, first: u32, count: u32, origin: DVec3) -> BvhNode {
         if f64::from(f) < x { f.next_up() } else { f }
     };
     BvhNode {
-        bounds_min: (bounds.min - origin).to_array().map(down),
+        bounds_min: (bounds.min - frame.origin).to_array().map(down),
         first,
-        bounds_max: (bounds.max - origin).to_array().map(up),
+        bounds_max: (bounds.max - frame.origin).to_array().map(up),
         count,
     }
 }
@@ -213,19 +172,19 @@ fn non_empty<T: Zeroable>(items: impl Iterator<Item = T>) -> Vec<T> {
 impl PackedScene {
     /// Writes the camera and the render settings: what changes while the
     /// shapes stay (orbiting, a slider on exposure), without repacking them.
-    /// The frame origin stays where the shapes were packed: orbiting keeps
-    /// the target, and a target moved by panning is as precise as any
-    /// other position that near the origin.
+    /// The frame stays where the shapes were packed: orbiting keeps the
+    /// target, and a target moved by panning is as precise as any other
+    /// position that near the frame's origin.
     pub fn set_view(&mut self, camera: &scene::Camera, render: &scene::RenderSettings) {
-        self.globals.set_view(camera, render, self.frame_origin);
+        self.globals.set_view(camera, render, &self.frame);
     }
 }
 
 impl Globals {
-    fn set_view(&mut self, camera: &scene::Camera, render: &scene::RenderSettings, origin: DVec3) {
-        self.eye = relative(camera.from, origin);
+    fn set_view(&mut self, camera: &scene::Camera, render: &scene::RenderSettings, frame: &Frame) {
+        self.eye = frame.point(camera.from);
         self.film_height = (2.0 * (camera.fov.to_radians() / 2.0).tan()) as f32;
-        self.look_at = relative(camera.to, origin);
+        self.look_at = frame.point(camera.to);
         self.aperture = camera.aperture as f32;
         self.up = f32x3(camera.up);
         self.focus_distance = camera.focus_distance() as f32;
@@ -237,7 +196,7 @@ impl Globals {
     }
 }
 
-fn pack_globals(scene: &Scene, width: u32, height: u32, origin: DVec3) -> Globals {
+fn pack_globals(scene: &Scene, width: u32, height: u32, frame: &Frame) -> Globals {
     let mut globals = Globals {
         resolution: [width, height],
         sphere_count: scene.spheres.len() as u32,
@@ -247,51 +206,21 @@ fn pack_globals(scene: &Scene, width: u32, height: u32, origin: DVec3) -> Global
         output_size: [width, height],
         ..Zeroable::zeroed()
     };
-    globals.set_view(&scene.camera, &scene.render, origin);
+    globals.set_view(&scene.camera, &scene.render, frame);
     globals
 }
 
-fn pack_sphere(scene: &Scene, s: &scene::Sphere, origin: DVec3) -> Sphere {
-    Sphere {
-        center: relative(s.center, origin),
-        radius: s.radius as f32,
-        material: scene.material_slot(s.material.as_deref()),
-        ..Zeroable::zeroed()
-    }
-}
-
-fn pack_plane(scene: &Scene, p: &scene::Plane, origin: DVec3) -> Plane {
-    Plane {
-        point: relative(p.point, origin),
-        material: scene.material_slot(p.material.as_deref()),
-        normal: f32x3(p.normal),
-        _pad: 0,
-    }
-}
-
-fn pack_cube(scene: &Scene, c: &scene::Cube, origin: DVec3) -> Cube {
-    let m = c.rotation_matrix();
-    let column = |v: DVec3| v.as_vec3().extend(0.0).to_array();
-    Cube {
-        center: relative(c.center, origin),
-        material: scene.material_slot(c.material.as_deref()),
-        half_size: f32x3(c.size.edges() * 0.5),
-        _pad: 0,
-        rotation: [column(m.x_axis), column(m.y_axis), column(m.z_axis)],
-    }
-}
-
 /// The checker's cells are counted in world coordinates, but the shader
-/// sees positions relative to `origin`: `checker_phase` is what the dropped
-/// `origin / size` adds to the cell coordinate, reduced modulo 2 in f64
-/// (only the parity of the cell sum matters), so the shader's
+/// sees positions relative to the frame's origin: `checker_phase` is what
+/// the dropped `origin / size` adds to the cell coordinate, reduced modulo 2
+/// in f64 (only the parity of the cell sum matters), so the shader's
 /// `p / size + checker_phase` stays small and exact enough.
-fn pack_material(m: &scene::Material, origin: DVec3) -> Material {
+fn pack_material(m: &scene::Material, frame: &Frame) -> Material {
     let (checker_color, checker_size, checker_phase) = match &m.checker {
         Some(c) => (
             f32x3(c.color),
             c.size as f32,
-            f32x3((origin / c.size).rem_euclid(DVec3::splat(2.0))),
+            f32x3((frame.origin / c.size).rem_euclid(DVec3::splat(2.0))),
         ),
         None => ([0.0; 3], 0.0, [0.0; 3]),
     };
@@ -309,9 +238,9 @@ fn pack_material(m: &scene::Material, origin: DVec3) -> Material {
     }
 }
 
-fn pack_light(l: &scene::Light, origin: DVec3) -> Light {
+fn pack_light(l: &scene::Light, frame: &Frame) -> Light {
     Light {
-        position: relative(l.position, origin),
+        position: frame.point(l.position),
         radiance: f32x3(l.color * l.intensity),
         ..Zeroable::zeroed()
     }
@@ -422,7 +351,7 @@ mod tests {
                 _pad1
             }),
         ];
-        for (name, size, fields) in expected {
+        for (name, size, fields) in expected.clone() {
             let (wgsl_size, wgsl_fields) = wgsl_layout(&module, name);
             assert_eq!(size, wgsl_size, "size of {name}");
             let fields: Vec<(String, usize)> = fields
@@ -431,6 +360,18 @@ mod tests {
                 .collect();
             assert_eq!(fields, wgsl_fields, "fields and offsets of {name}");
         }
+        // Every registered shape kind must be in the list above.
+        let listed: Vec<&str> = expected.iter().map(|(name, _, _)| *name).collect();
+        macro_rules! assert_listed {
+            ($t:ident, $wgsl:literal) => {
+                assert!(
+                    listed.contains(&$wgsl),
+                    "shape kind {} is registered in gpu/shapes but its layout is not checked here",
+                    $wgsl
+                );
+            };
+        }
+        crate::gpu::shapes::for_each_packed_shape!(assert_listed);
     }
 
     #[test]
@@ -479,7 +420,7 @@ mod tests {
             min: glam::DVec3::splat(0.1),
             max: glam::DVec3::splat(0.1),
         };
-        let node = pack_node(b, 0, 1, DVec3::ZERO);
+        let node = pack_node(b, 0, 1, &Frame::WORLD);
         assert!(f64::from(node.bounds_min[0]) <= 0.1 && f64::from(node.bounds_max[0]) >= 0.1);
         assert!(node.bounds_min[0] < node.bounds_max[0], "0.1 is not an f32");
         let exact = pack_node(
@@ -489,7 +430,7 @@ mod tests {
             },
             0,
             1,
-            DVec3::ZERO,
+            &Frame::WORLD,
         );
         assert_eq!(exact.bounds_min, exact.bounds_max, "f32 values stay put");
     }
@@ -522,7 +463,7 @@ mod tests {
         let offset = DVec3::new(-1e6, 1e6, -1e6);
         let near = PackedScene::new(&scene, 4, 3);
         let far = PackedScene::new(&scene.translated(offset), 4, 3);
-        assert_eq!(near.frame_origin, scene.camera.to);
+        assert_eq!(near.frame.origin, scene.camera.to);
         assert_eq!(near.globals.look_at, [0.0; 3]);
         let close = |a: [f32; 3], b: [f32; 3]| {
             (0..3).all(|i| (a[i] - b[i]).abs() <= f32::EPSILON * a[i].abs().max(1.0))
@@ -545,7 +486,7 @@ mod tests {
         assert!(close(far.materials[1].checker_phase, phase));
         // The textbook frame keeps world coordinates.
         let world = PackedScene::in_world(&scene.translated(offset), 4, 3);
-        assert_eq!(world.frame_origin, DVec3::ZERO);
+        assert_eq!(world.frame, Frame::WORLD);
         assert_eq!(world.spheres[0].center, [-999999.1, 1000000.7, -999999.0]);
         assert_eq!(world.materials[1].checker_phase, [0.0; 3]);
     }

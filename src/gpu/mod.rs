@@ -8,6 +8,7 @@ mod id_pass;
 pub mod layout;
 mod offscreen;
 pub mod shaders;
+pub mod shapes;
 mod texture;
 mod timer;
 mod tracer;

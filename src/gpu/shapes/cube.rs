@@ -1,0 +1,34 @@
+//! A rotated box as `shaders/scene.wgsl` reads it.
+
+use bytemuck::{Pod, Zeroable};
+use glam::DVec3;
+
+use super::{Frame, PackShape, f32x3};
+use crate::scene::{self, Scene};
+
+#[repr(C)]
+#[derive(Debug, Clone, Copy, PartialEq, Pod, Zeroable)]
+pub struct Cube {
+    pub center: [f32; 3],
+    pub material: u32,
+    pub half_size: [f32; 3],
+    pub _pad: u32,
+    /// `mat3x3<f32>`: three columns, each padded to 16 bytes.
+    pub rotation: [[f32; 4]; 3],
+}
+
+impl PackShape for Cube {
+    type Source = scene::Cube;
+
+    fn pack(scene: &Scene, frame: &Frame, c: &scene::Cube) -> Self {
+        let m = c.rotation_matrix();
+        let column = |v: DVec3| v.as_vec3().extend(0.0).to_array();
+        Cube {
+            center: frame.point(c.center),
+            material: scene.material_slot(c.material.as_deref()),
+            half_size: f32x3(c.size.edges() * 0.5),
+            _pad: 0,
+            rotation: [column(m.x_axis), column(m.y_axis), column(m.z_axis)],
+        }
+    }
+}
