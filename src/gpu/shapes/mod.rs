@@ -151,3 +151,24 @@ pub fn pack_all(scene: &Scene, frame: &Frame) -> Vec<Vec<u32>> {
     for_each_packed_shape!(pack);
     buffers
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// A scene kind without a packed twin would never reach the GPU.
+    #[test]
+    fn every_scene_kind_is_packed_once() {
+        let packed: Vec<ShapeKind> = kinds().iter().map(|k| k.kind).collect();
+        for kind in ShapeKind::ALL {
+            let times = packed.iter().filter(|k| *k == kind).count();
+            assert_eq!(
+                times,
+                1,
+                "{} is packed {times} times in gpu/shapes",
+                kind.name()
+            );
+        }
+        assert_eq!(packed.len(), ShapeKind::ALL.len());
+    }
+}
