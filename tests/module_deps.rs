@@ -15,6 +15,7 @@ use std::path::Path;
 /// what measures them, then the window.
 const LAYERS: &[&str] = &[
     "cli",
+    "expr",
     "scene",
     "bvh",
     "compare",
