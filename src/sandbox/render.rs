@@ -8,13 +8,10 @@ use std::borrow::Cow;
 use super::compose::Compiled;
 use super::params::ParamSet;
 use super::uniforms::{FRAME_UNIFORMS_SIZE, FrameUniforms};
-use crate::gpu::{Gpu, fullscreen};
+use crate::gpu::{EXPORT_FORMAT, Gpu, fullscreen, read_texels, read_texture, render_target};
 
 /// What the user's shader draws into.
 pub const CANVAS_FORMAT: wgpu::TextureFormat = wgpu::TextureFormat::Rgba32Float;
-
-/// The format of headless renders and screenshots.
-pub const EXPORT_FORMAT: wgpu::TextureFormat = wgpu::TextureFormat::Rgba8Unorm;
 
 const VERTEX_WGSL: &str = "\
 /// One triangle that covers the whole viewport; no vertex buffer needed.
@@ -273,22 +270,13 @@ impl Canvas {
     }
 
     fn texture(device: &wgpu::Device, size: (u32, u32)) -> wgpu::Texture {
-        device.create_texture(&wgpu::TextureDescriptor {
-            label: Some("sandbox canvas"),
-            size: wgpu::Extent3d {
-                width: size.0.max(1),
-                height: size.1.max(1),
-                depth_or_array_layers: 1,
-            },
-            mip_level_count: 1,
-            sample_count: 1,
-            dimension: wgpu::TextureDimension::D2,
-            format: CANVAS_FORMAT,
-            usage: wgpu::TextureUsages::RENDER_ATTACHMENT
-                | wgpu::TextureUsages::TEXTURE_BINDING
-                | wgpu::TextureUsages::COPY_SRC,
-            view_formats: &[],
-        })
+        render_target(
+            device,
+            "sandbox canvas",
+            (size.0.max(1), size.1.max(1)),
+            CANVAS_FORMAT,
+            wgpu::TextureUsages::TEXTURE_BINDING | wgpu::TextureUsages::COPY_SRC,
+        )
     }
 
     fn params_buffer(device: &wgpu::Device, size: u64) -> wgpu::Buffer {
@@ -393,71 +381,34 @@ impl Canvas {
     /// The canvas as 8-bit RGBA (what the display pass shows at 1:1), for
     /// screenshots, headless renders and tests.
     pub fn capture(&self, gpu: &Gpu, sandbox: &SandboxGpu) -> image::RgbaImage {
-        let (width, height) = self.size();
-        let texture = gpu.device.create_texture(&wgpu::TextureDescriptor {
-            label: Some("sandbox export"),
-            size: wgpu::Extent3d {
-                width,
-                height,
-                depth_or_array_layers: 1,
-            },
-            mip_level_count: 1,
-            sample_count: 1,
-            dimension: wgpu::TextureDimension::D2,
-            format: EXPORT_FORMAT,
-            usage: wgpu::TextureUsages::RENDER_ATTACHMENT | wgpu::TextureUsages::COPY_SRC,
-            view_formats: &[],
-        });
+        let texture = render_target(
+            &gpu.device,
+            "sandbox export",
+            self.size(),
+            EXPORT_FORMAT,
+            wgpu::TextureUsages::COPY_SRC,
+        );
         let view = texture.create_view(&Default::default());
         let mut encoder = gpu.device.create_command_encoder(&Default::default());
         self.show(sandbox, &mut encoder, &view, EXPORT_FORMAT);
         gpu.queue.submit([encoder.finish()]);
-        crate::gpu::read_texture(gpu, &texture)
+        read_texture(gpu, &texture)
     }
 
     /// Reads the canvas back and counts NaN, infinite and empty pixels.
     pub fn stats(&self, gpu: &Gpu) -> CanvasStats {
         let (width, height) = self.size();
-        let row = u64::from(width) * 16;
-        let padded = row.next_multiple_of(u64::from(wgpu::COPY_BYTES_PER_ROW_ALIGNMENT));
-        let readback = gpu.device.create_buffer(&wgpu::BufferDescriptor {
-            label: Some("sandbox stats readback"),
-            size: padded * u64::from(height),
-            usage: wgpu::BufferUsages::COPY_DST | wgpu::BufferUsages::MAP_READ,
-            mapped_at_creation: false,
-        });
-        let mut encoder = gpu.device.create_command_encoder(&Default::default());
-        encoder.copy_texture_to_buffer(
-            self.texture.as_image_copy(),
-            wgpu::TexelCopyBufferInfo {
-                buffer: &readback,
-                layout: wgpu::TexelCopyBufferLayout {
-                    offset: 0,
-                    bytes_per_row: Some(padded as u32),
-                    rows_per_image: Some(height),
-                },
-            },
-            self.texture.size(),
-        );
-        gpu.queue.submit([encoder.finish()]);
-        let slice = readback.slice(..);
-        slice.map_async(wgpu::MapMode::Read, |r| r.expect("mapping the readback"));
-        gpu.device
-            .poll(wgpu::PollType::wait_indefinitely())
-            .expect("waiting for the GPU");
-        let data = slice.get_mapped_range().expect("mapped readback");
+        let texels = read_texels(gpu, &self.texture);
         let mut stats = CanvasStats {
             pixels: u64::from(width) * u64::from(height),
             ..Default::default()
         };
-        for line in data.chunks(padded as usize) {
-            for px in line[..row as usize].chunks_exact(16) {
-                let c: [f32; 4] = bytemuck::pod_read_unaligned(px);
-                if c[..3].iter().any(|v| !v.is_finite()) {
-                    stats.non_finite += 1;
-                } else if c == [0.0; 4] {
-                    stats.empty += 1;
-                }
+        for px in texels.chunks_exact(16) {
+            let c: [f32; 4] = bytemuck::pod_read_unaligned(px);
+            if c[..3].iter().any(|v| !v.is_finite()) {
+                stats.non_finite += 1;
+            } else if c == [0.0; 4] {
+                stats.empty += 1;
             }
         }
         stats
