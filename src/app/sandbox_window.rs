@@ -8,7 +8,7 @@
 //! [`Session`]'s, which tests and headless renders use too.
 
 use std::path::{Path, PathBuf};
-use std::sync::Arc;
+use std::sync::{Arc, Mutex, PoisonError};
 use std::time::{Duration, Instant};
 
 use egui::{Key, KeyboardShortcut, Modifiers, RichText, Sense};
@@ -22,22 +22,13 @@ use super::controls::{self, ClockAction};
 use super::overlay;
 use super::shell::{self, EguiLayer, EventLog};
 use super::watch;
-use crate::gpu::{Gpu, GpuTimer, Timing, Viewport};
+use crate::gpu::{EXPORT_FORMAT, Gpu, GpuTimer, Timing, Viewport};
 use crate::sandbox::clock::{Clock, Tick};
-use crate::sandbox::render::{Canvas, EXPORT_FORMAT, PipelineBuilder, SandboxGpu, ShaderPipeline};
-use crate::sandbox::{Compiled, FrameUniforms, ReloadError, Session, uniforms};
-
-/// How `raysandbox shader` opens its window.
-#[derive(Debug, Clone)]
-pub struct SandboxOptions {
-    pub file: PathBuf,
-    /// Initial inner size in physical pixels.
-    pub size: Option<(u32, u32)>,
-    pub start_paused: bool,
-    /// Render resolution scale, 0.25..=1.
-    pub scale: f32,
-    pub print_events: bool,
-}
+use crate::sandbox::render::{Canvas, PipelineBuilder, SandboxGpu, ShaderPipeline};
+use crate::sandbox::watchdog::Probe;
+use crate::sandbox::{
+    self, Compiled, FrameUniforms, ReloadError, SandboxError, Session, ShaderArgs, uniforms,
+};
 
 /// The sandbox window's keyboard shortcuts, for the help window.
 pub const SHORTCUTS: [(&str, &str); 9] = [
@@ -65,8 +56,41 @@ enum SandboxEvent {
     },
 }
 
-/// Opens the window and runs until it closes.
-pub fn run_sandbox(options: SandboxOptions) -> Result<(), ViewerError> {
+/// `raysandbox shader FILE` without `--render`/`--frames`: opens the window
+/// and runs until it closes. A missing display or GPU is the machine's
+/// failure; a shader that never compiled is the user's.
+pub fn run_sandbox(args: &ShaderArgs) -> Result<(), SandboxError> {
+    sandbox::require_file(&args.file)?;
+    open_window(args.clone()).map_err(|e| match e {
+        ViewerError::Shader(m) | ViewerError::Scene(m) => SandboxError::Input(m),
+        ViewerError::NoDisplay(m) => SandboxError::Runtime(format!(
+            "cannot open a window: {m}\n\
+             The window needs a display (X11 or Wayland: is DISPLAY or WAYLAND_DISPLAY set?).\n\
+             Without one, render headless: raysandbox shader {} --render out.png",
+            args.file.display()
+        )),
+        ViewerError::NoGpu(m) => SandboxError::Runtime(m),
+    })
+}
+
+/// Builds the pipeline of a compiled shader, then lets the watchdog draw a
+/// trial frame with it: a shader that would freeze the window at `size` is
+/// refused like a compile error.
+fn build_checked(
+    builder: &PipelineBuilder,
+    probe: &Mutex<Probe>,
+    compiled: &Compiled,
+    size: (u32, u32),
+) -> Result<ShaderPipeline, String> {
+    let pipeline = builder.build(compiled)?;
+    probe
+        .lock()
+        .unwrap_or_else(PoisonError::into_inner)
+        .check(compiled, size)?;
+    Ok(pipeline)
+}
+
+fn open_window(options: ShaderArgs) -> Result<(), ViewerError> {
     let event_loop = EventLoop::<SandboxEvent>::with_user_event()
         .build()
         .map_err(|e| ViewerError::NoDisplay(e.to_string()))?;
@@ -78,6 +102,7 @@ pub fn run_sandbox(options: SandboxOptions) -> Result<(), ViewerError> {
             print: options.print_events,
         },
         session: Session::new(&options.file),
+        probe: Arc::default(),
         clock: Clock::new(options.start_paused, now),
         scale: options.scale.clamp(0.25, 1.0),
         options,
@@ -180,9 +205,11 @@ struct Actions {
 
 struct SandboxApp {
     proxy: EventLoopProxy<SandboxEvent>,
-    options: SandboxOptions,
+    options: ShaderArgs,
     events: EventLog,
     session: Session,
+    /// The watchdog's device for trial frames, shared with build threads.
+    probe: Arc<Mutex<Probe>>,
     clock: Clock,
     scale: f32,
     gfx: Option<Graphics>,
@@ -241,7 +268,7 @@ impl ApplicationHandler<SandboxEvent> for SandboxApp {
                 result,
             } => {
                 if generation == self.generation {
-                    self.built(*compiled, result);
+                    self.built(*compiled, result, true);
                 }
             }
         }
@@ -331,8 +358,13 @@ impl SandboxApp {
     /// first frame of the shader (or its error) from the start.
     fn first_load(&mut self) {
         let Some(gfx) = &self.gfx else { return };
-        match self.session.reload(&gfx.builder) {
-            Ok(warnings) => self.loaded(warnings, false),
+        let (builder, size) = (gfx.builder.clone(), gfx.canvas.size());
+        match self.session.compile() {
+            Ok(Some(compiled)) => {
+                let result = build_checked(&builder, &self.probe, &compiled, size);
+                self.built(compiled, result, false);
+            }
+            Ok(None) => {}
             Err(e) => self.failed(&e),
         }
     }
@@ -355,10 +387,12 @@ impl SandboxApp {
         self.generation += 1;
         let Some(gfx) = &self.gfx else { return };
         let builder = gfx.builder.clone();
+        let size = gfx.canvas.size();
+        let probe = Arc::clone(&self.probe);
         let proxy = self.proxy.clone();
         let generation = self.generation;
         std::thread::spawn(move || {
-            let result = builder.build(&compiled);
+            let result = build_checked(&builder, &probe, &compiled, size);
             let _ = proxy.send_event(SandboxEvent::Built {
                 generation,
                 compiled: Box::new(compiled),
@@ -367,11 +401,16 @@ impl SandboxApp {
         });
     }
 
-    fn built(&mut self, compiled: Compiled, result: Result<ShaderPipeline, String>) {
+    fn built(
+        &mut self,
+        compiled: Compiled,
+        result: Result<ShaderPipeline, String>,
+        reloaded: bool,
+    ) {
         match result {
             Ok(pipeline) => {
                 let warnings = self.session.install(compiled, pipeline);
-                self.loaded(warnings, true);
+                self.loaded(warnings, reloaded);
             }
             Err(e) => {
                 let e = ReloadError::Gpu(e);

@@ -17,7 +17,7 @@ mod viewport;
 pub use context::{Gpu, GpuError, TIMER_FEATURES};
 pub use features::{Features, ShaderOptions};
 pub use id_pass::{FirstHit, IdRenderer};
-pub use offscreen::{OffscreenRenderer, read_texture, render_image};
+pub use offscreen::{OffscreenRenderer, read_texels, read_texture, render_image};
 pub use shaders::{ShaderError, ShaderSource};
 pub use texture::render_target;
 pub use timer::{GpuTimer, Timing};

@@ -128,7 +128,7 @@ pub fn read_texture(gpu: &Gpu, texture: &wgpu::Texture) -> image::RgbaImage {
 
 /// Copies a texture back to the CPU and waits for it: its texels row by
 /// row, without the padding a texture-to-buffer copy needs per row.
-pub(super) fn read_texels(gpu: &Gpu, texture: &wgpu::Texture) -> Vec<u8> {
+pub fn read_texels(gpu: &Gpu, texture: &wgpu::Texture) -> Vec<u8> {
     let (width, height) = (texture.width(), texture.height());
     let texel_bytes = texture
         .format()

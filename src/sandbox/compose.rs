@@ -14,6 +14,7 @@ use std::fmt::Write as _;
 use std::path::Path;
 
 use super::params::{self, ParamSet, ParamSpec, ParamType, Scalar};
+use super::repair;
 use super::scan::{self, Kind, Scan, Token};
 use super::uniforms::WGSL_STRUCT;
 use crate::gpu::{ShaderError, ShaderSource};
@@ -99,6 +100,10 @@ pub fn compile(name: &str, text: &str) -> Result<Compiled, ShaderError> {
         compile_glsl(name, &scan)
     };
     result.map_err(|mut e| {
+        if e.line == 0 {
+            // No position (naga failed as a whole): the user's file it is.
+            e.file = name.to_string();
+        }
         if e.file == name && e.line > 0 {
             point_at_missing_semicolon(&mut e, &scan);
             // The joined text may hold the user's line blanked in part: show
@@ -230,7 +235,8 @@ fn compile_wgsl(name: &str, text: &str, scan: &Scan) -> Result<Compiled, ShaderE
         (name.to_string(), text.to_string()),
         (EPILOGUE_NAME.to_string(), wgsl_epilogue(fields.is_some())),
     ]);
-    let (module, _) = source.validate()?;
+    let (module, info) = source.validate()?;
+    source.check_translation(&module, &info)?;
     let params = match &fields {
         Some(fields) => read_params(&module, name, scan, |member| {
             let field = fields.iter().find(|f| f.name == member)?;
@@ -778,7 +784,10 @@ fn compile_glsl(name: &str, scan: &Scan) -> Result<Compiled, ShaderError> {
         parts.push((EPILOGUE_NAME.to_string(), epilogue));
     }
     let source = ShaderSource::from_parts(parts);
-    let (module, _) = source.validate_glsl_fragment()?;
+    let (mut module, _) = source.validate_glsl_fragment()?;
+    repair::spill_pointer_arguments(&mut module);
+    let (module, info) = source.validate_module(module)?;
+    source.check_translation(&module, &info)?;
     let params = read_params(&module, name, scan, |member| {
         let decl = user_params.iter().find(|d| d.name == member)?;
         Some((decl.offset, decl.initializer.clone()))

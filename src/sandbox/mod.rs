@@ -9,21 +9,25 @@
 //! | `params` | annotations, values, the bytes the GPU reads, the sidecar file |
 //! | `uniforms` | the per-frame values (time, mouse, resolution, date) |
 //! | `clock` | pause, resume, restart, step |
+//! | `repair` | workarounds for naga bugs, applied to the parsed module |
 //! | `render` | the GPU passes: the user's shader into a canvas, the canvas shown |
 //! | `session` | one file: the last good pipeline, reloads, parameter values |
+//! | `watchdog` | the window's trial frame that refuses shaders too slow to run |
 //! | `constants` | the same parameters for the ray tracer's shader folder (annotated `const`s) |
 //!
-//! The window is `app::sandbox_window`; it shares the viewer's window setup,
-//! error overlay and controls.
+//! The window is `app::sandbox_window` (`app::run_sandbox`), built on this
+//! module; it shares the viewer's window setup, error overlay and controls.
 
 pub mod clock;
 pub mod compose;
 pub mod constants;
 pub mod params;
 pub mod render;
+mod repair;
 mod scan;
 pub mod session;
 pub mod uniforms;
+pub mod watchdog;
 
 use std::path::{Path, PathBuf};
 use std::time::Instant;
@@ -99,40 +103,30 @@ pub enum SandboxError {
     Runtime(String),
 }
 
-/// Runs `raysandbox shader`: headless with `--render` or `--frames`, else
-/// the window.
-pub fn run(args: &ShaderArgs) -> Result<(), SandboxError> {
-    if !args.file.is_file() {
-        return Err(SandboxError::Input(format!(
-            "{}: no such file",
-            args.file.display()
-        )));
+impl ShaderArgs {
+    /// `--render` or `--frames`: no window ([`run_headless`]); otherwise the
+    /// window, which `app::run_sandbox` owns.
+    pub fn is_headless(&self) -> bool {
+        self.render.is_some() || self.frames.is_some()
     }
-    if args.render.is_some() || args.frames.is_some() {
-        return headless(args);
-    }
-    let options = crate::app::SandboxOptions {
-        file: args.file.clone(),
-        size: args.size,
-        start_paused: args.start_paused,
-        scale: args.scale,
-        print_events: args.print_events,
-    };
-    use crate::app::ViewerError;
-    crate::app::run_sandbox(options).map_err(|e| match e {
-        ViewerError::Shader(m) | ViewerError::Scene(m) => SandboxError::Input(m),
-        ViewerError::NoDisplay(m) => SandboxError::Runtime(format!(
-            "cannot open a window: {m}\n\
-             The window needs a display (X11 or Wayland: is DISPLAY or WAYLAND_DISPLAY set?).\n\
-             Without one, render headless: raysandbox shader {} --render out.png",
-            args.file.display()
-        )),
-        ViewerError::NoGpu(m) => SandboxError::Runtime(m),
-    })
 }
 
-/// `--render OUT.png` or `--frames N --out DIR`.
-fn headless(args: &ShaderArgs) -> Result<(), SandboxError> {
+/// The shader file must exist before anything else is tried (a GPU, a
+/// window): a mistyped name is the user's error.
+pub fn require_file(path: &Path) -> Result<(), SandboxError> {
+    if path.is_file() {
+        Ok(())
+    } else {
+        Err(SandboxError::Input(format!(
+            "{}: no such file",
+            path.display()
+        )))
+    }
+}
+
+/// `raysandbox shader FILE --render OUT.png` or `--frames N --out DIR`.
+pub fn run_headless(args: &ShaderArgs) -> Result<(), SandboxError> {
+    require_file(&args.file)?;
     let compiled = compile_file(&args.file).map_err(|e| SandboxError::Input(e.to_string()))?;
     let mut params = compiled.params.clone();
     let sidecar = params::sidecar_path(&args.file);
@@ -159,7 +153,7 @@ fn headless(args: &ShaderArgs) -> Result<(), SandboxError> {
     };
     let start = Instant::now();
     let mut warned = false;
-    render_sequence(
+    let rendered = render_sequence(
         &gpu,
         &compiled,
         &params,
@@ -185,9 +179,14 @@ fn headless(args: &ShaderArgs) -> Result<(), SandboxError> {
             }
             Ok(())
         },
-    )
-    .map_err(|e| match e {
+    );
+    rendered.map_err(|e| match e {
         RenderError::Gpu(m) => SandboxError::Input(m),
+        RenderError::Stopped(m) => {
+            // Dropping the device would wait for the frame that never ends.
+            std::mem::forget(gpu);
+            SandboxError::Input(m)
+        }
         RenderError::Output(e) => e,
     })?;
     if let Some(dir) = out_dir {
@@ -207,6 +206,9 @@ fn headless(args: &ShaderArgs) -> Result<(), SandboxError> {
 
 enum RenderError<E> {
     Gpu(String),
+    /// The watchdog stopped a frame ([`render::TooSlow`]): the GPU is still
+    /// busy with it.
+    Stopped(String),
     Output(E),
 }
 
@@ -232,7 +234,13 @@ fn render_sequence<E>(
         let mut frame = FrameUniforms::at(time + f64::from(k) / fps, k, size);
         frame.time_delta = (1.0 / fps) as f32;
         frame.frame_rate = fps as f32;
-        offscreen.draw(gpu, &pipeline, params, &frame);
+        if let Err(stopped) = offscreen.draw(gpu, &pipeline, params, &frame) {
+            std::mem::forget((offscreen, pipeline));
+            return Err(RenderError::Stopped(format!(
+                "{}: {stopped}",
+                compiled.file
+            )));
+        }
         let stats = if k == 0 {
             offscreen.stats(gpu)
         } else {

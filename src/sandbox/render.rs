@@ -8,13 +8,10 @@ use std::borrow::Cow;
 use super::compose::Compiled;
 use super::params::ParamSet;
 use super::uniforms::{FRAME_UNIFORMS_SIZE, FrameUniforms};
-use crate::gpu::{Gpu, fullscreen};
+use crate::gpu::{EXPORT_FORMAT, Gpu, fullscreen, read_texels, read_texture, render_target};
 
 /// What the user's shader draws into.
 pub const CANVAS_FORMAT: wgpu::TextureFormat = wgpu::TextureFormat::Rgba32Float;
-
-/// The format of headless renders and screenshots.
-pub const EXPORT_FORMAT: wgpu::TextureFormat = wgpu::TextureFormat::Rgba8Unorm;
 
 const VERTEX_WGSL: &str = "\
 /// One triangle that covers the whole viewport; no vertex buffer needed.
@@ -273,22 +270,13 @@ impl Canvas {
     }
 
     fn texture(device: &wgpu::Device, size: (u32, u32)) -> wgpu::Texture {
-        device.create_texture(&wgpu::TextureDescriptor {
-            label: Some("sandbox canvas"),
-            size: wgpu::Extent3d {
-                width: size.0.max(1),
-                height: size.1.max(1),
-                depth_or_array_layers: 1,
-            },
-            mip_level_count: 1,
-            sample_count: 1,
-            dimension: wgpu::TextureDimension::D2,
-            format: CANVAS_FORMAT,
-            usage: wgpu::TextureUsages::RENDER_ATTACHMENT
-                | wgpu::TextureUsages::TEXTURE_BINDING
-                | wgpu::TextureUsages::COPY_SRC,
-            view_formats: &[],
-        })
+        render_target(
+            device,
+            "sandbox canvas",
+            (size.0.max(1), size.1.max(1)),
+            CANVAS_FORMAT,
+            wgpu::TextureUsages::TEXTURE_BINDING | wgpu::TextureUsages::COPY_SRC,
+        )
     }
 
     fn params_buffer(device: &wgpu::Device, size: u64) -> wgpu::Buffer {
@@ -393,74 +381,61 @@ impl Canvas {
     /// The canvas as 8-bit RGBA (what the display pass shows at 1:1), for
     /// screenshots, headless renders and tests.
     pub fn capture(&self, gpu: &Gpu, sandbox: &SandboxGpu) -> image::RgbaImage {
-        let (width, height) = self.size();
-        let texture = gpu.device.create_texture(&wgpu::TextureDescriptor {
-            label: Some("sandbox export"),
-            size: wgpu::Extent3d {
-                width,
-                height,
-                depth_or_array_layers: 1,
-            },
-            mip_level_count: 1,
-            sample_count: 1,
-            dimension: wgpu::TextureDimension::D2,
-            format: EXPORT_FORMAT,
-            usage: wgpu::TextureUsages::RENDER_ATTACHMENT | wgpu::TextureUsages::COPY_SRC,
-            view_formats: &[],
-        });
+        let texture = render_target(
+            &gpu.device,
+            "sandbox export",
+            self.size(),
+            EXPORT_FORMAT,
+            wgpu::TextureUsages::COPY_SRC,
+        );
         let view = texture.create_view(&Default::default());
         let mut encoder = gpu.device.create_command_encoder(&Default::default());
         self.show(sandbox, &mut encoder, &view, EXPORT_FORMAT);
         gpu.queue.submit([encoder.finish()]);
-        crate::gpu::read_texture(gpu, &texture)
+        read_texture(gpu, &texture)
     }
 
     /// Reads the canvas back and counts NaN, infinite and empty pixels.
     pub fn stats(&self, gpu: &Gpu) -> CanvasStats {
         let (width, height) = self.size();
-        let row = u64::from(width) * 16;
-        let padded = row.next_multiple_of(u64::from(wgpu::COPY_BYTES_PER_ROW_ALIGNMENT));
-        let readback = gpu.device.create_buffer(&wgpu::BufferDescriptor {
-            label: Some("sandbox stats readback"),
-            size: padded * u64::from(height),
-            usage: wgpu::BufferUsages::COPY_DST | wgpu::BufferUsages::MAP_READ,
-            mapped_at_creation: false,
-        });
-        let mut encoder = gpu.device.create_command_encoder(&Default::default());
-        encoder.copy_texture_to_buffer(
-            self.texture.as_image_copy(),
-            wgpu::TexelCopyBufferInfo {
-                buffer: &readback,
-                layout: wgpu::TexelCopyBufferLayout {
-                    offset: 0,
-                    bytes_per_row: Some(padded as u32),
-                    rows_per_image: Some(height),
-                },
-            },
-            self.texture.size(),
-        );
-        gpu.queue.submit([encoder.finish()]);
-        let slice = readback.slice(..);
-        slice.map_async(wgpu::MapMode::Read, |r| r.expect("mapping the readback"));
-        gpu.device
-            .poll(wgpu::PollType::wait_indefinitely())
-            .expect("waiting for the GPU");
-        let data = slice.get_mapped_range().expect("mapped readback");
+        let texels = read_texels(gpu, &self.texture);
         let mut stats = CanvasStats {
             pixels: u64::from(width) * u64::from(height),
             ..Default::default()
         };
-        for line in data.chunks(padded as usize) {
-            for px in line[..row as usize].chunks_exact(16) {
-                let c: [f32; 4] = bytemuck::pod_read_unaligned(px);
-                if c[..3].iter().any(|v| !v.is_finite()) {
-                    stats.non_finite += 1;
-                } else if c == [0.0; 4] {
-                    stats.empty += 1;
-                }
+        for px in texels.chunks_exact(16) {
+            let c: [f32; 4] = bytemuck::pod_read_unaligned(px);
+            if c[..3].iter().any(|v| !v.is_finite()) {
+                stats.non_finite += 1;
+            } else if c == [0.0; 4] {
+                stats.empty += 1;
             }
         }
         stats
+    }
+}
+
+/// The longest one frame of a user's shader may take without a window
+/// before it is stopped. lavapipe (Vulkan on the CPU) ends every loop after
+/// 65535 iterations, so there an endless loop is only very slow; elsewhere
+/// it never ends.
+pub const FRAME_LIMIT: std::time::Duration = std::time::Duration::from_secs(20);
+
+/// A frame did not finish within [`FRAME_LIMIT`]. The GPU is still running
+/// it: its device must not be waited on again, nor dropped (dropping waits
+/// for it), so the caller reports the error and leaks the device.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub struct TooSlow;
+
+impl std::fmt::Display for TooSlow {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        write!(
+            f,
+            "the shader did not finish a frame in {} s and was stopped: \
+             an endless loop, or too much work per pixel for this GPU \
+             (try a smaller --size)",
+            FRAME_LIMIT.as_secs()
+        )
     }
 }
 
@@ -484,14 +459,17 @@ impl Offscreen {
         self.sandbox.builder(&gpu.device)
     }
 
-    /// Draws one frame at the size of `frame.resolution`.
+    /// Draws one frame at the size of `frame.resolution` and waits for it,
+    /// at most [`FRAME_LIMIT`]: a shader that takes longer (an endless loop,
+    /// on most GPUs) is stopped with an error. The GPU may still be busy
+    /// with it then: the device is no use any more, see [`TooSlow`].
     pub fn draw(
         &mut self,
         gpu: &Gpu,
         pipeline: &ShaderPipeline,
         params: &ParamSet,
         frame: &FrameUniforms,
-    ) {
+    ) -> Result<(), TooSlow> {
         let size = (frame.resolution[0] as u32, frame.resolution[1] as u32);
         let sandbox = &self.sandbox;
         let canvas = self
@@ -500,7 +478,14 @@ impl Offscreen {
         canvas.resize(gpu, sandbox, size);
         let mut encoder = gpu.device.create_command_encoder(&Default::default());
         canvas.draw(gpu, sandbox, &mut encoder, pipeline, frame, params);
-        gpu.queue.submit([encoder.finish()]);
+        let submission = gpu.queue.submit([encoder.finish()]);
+        gpu.device
+            .poll(wgpu::PollType::Wait {
+                submission_index: Some(submission),
+                timeout: Some(FRAME_LIMIT),
+            })
+            .map(|_| ())
+            .map_err(|_| TooSlow)
     }
 
     /// The last frame as 8-bit RGBA.
@@ -525,6 +510,9 @@ pub fn render_once(
 ) -> Result<(image::RgbaImage, CanvasStats), String> {
     let mut offscreen = Offscreen::new(gpu);
     let pipeline = offscreen.builder(gpu).build(compiled)?;
-    offscreen.draw(gpu, &pipeline, params, frame);
+    if let Err(stopped) = offscreen.draw(gpu, &pipeline, params, frame) {
+        std::mem::forget((offscreen, pipeline));
+        return Err(format!("{}: {stopped}", compiled.file));
+    }
     Ok((offscreen.image(gpu), offscreen.stats(gpu)))
 }
