@@ -222,7 +222,7 @@ fn a_failed_reload_keeps_the_last_good_frame_and_the_fix_renders_again() {
     let frame = FrameUniforms::at(1.0, 0, SIZE);
     let mut draw = |session: &Session| {
         offscreen.draw(&gpu, session.pipeline().unwrap(), &session.params, &frame);
-        offscreen.image(&gpu)
+        offscreen.image(&gpu).unwrap_or_else(|e| panic!("{e}"))
     };
     let good = draw(&session);
 

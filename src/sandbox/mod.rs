@@ -36,7 +36,7 @@ pub use session::{ReloadError, Session};
 pub use uniforms::FrameUniforms;
 
 use crate::cli::parse_size;
-use crate::gpu::Gpu;
+use crate::gpu::{Gpu, GpuWaitError};
 
 /// Arguments of `raysandbox shader`.
 #[derive(Debug, Clone, clap::Args)]
@@ -120,7 +120,9 @@ pub fn run(args: &ShaderArgs) -> Result<(), SandboxError> {
     };
     use crate::app::ViewerError;
     crate::app::run_sandbox(options).map_err(|e| match e {
-        ViewerError::Shader(m) | ViewerError::Scene(m) => SandboxError::Input(m),
+        ViewerError::Shader(_) | ViewerError::Scene(_) | ViewerError::Size(_) => {
+            SandboxError::Input(e.to_string())
+        }
         ViewerError::NoDisplay(m) => SandboxError::Runtime(format!(
             "cannot open a window: {m}\n\
              The window needs a display (X11 or Wayland: is DISPLAY or WAYLAND_DISPLAY set?).\n\
@@ -148,6 +150,8 @@ fn headless(args: &ShaderArgs) -> Result<(), SandboxError> {
     let gpu = Gpu::headless().map_err(|e| SandboxError::Runtime(e.to_string()))?;
     println!("adapter: {}", gpu.describe());
     let size = args.size.unwrap_or((1280, 720));
+    gpu.check_size(size)
+        .map_err(|e| SandboxError::Input(format!("--size: {e}")))?;
     let (count, out_dir) = match (&args.render, args.frames, &args.out) {
         (Some(_), _, _) => (1, None),
         (None, Some(n), Some(dir)) => {
@@ -188,6 +192,7 @@ fn headless(args: &ShaderArgs) -> Result<(), SandboxError> {
     )
     .map_err(|e| match e {
         RenderError::Gpu(m) => SandboxError::Input(m),
+        RenderError::Wait(m) => SandboxError::Runtime(m),
         RenderError::Output(e) => e,
     })?;
     if let Some(dir) = out_dir {
@@ -205,8 +210,12 @@ fn headless(args: &ShaderArgs) -> Result<(), SandboxError> {
     Ok(())
 }
 
+/// Why a headless render stopped: the shader's pipeline (the user's input),
+/// the GPU not finishing a frame (a shader running too long, a lost device),
+/// or the caller's handling of a frame (writing the file).
 enum RenderError<E> {
     Gpu(String),
+    Wait(String),
     Output(E),
 }
 
@@ -233,12 +242,14 @@ fn render_sequence<E>(
         frame.time_delta = (1.0 / fps) as f32;
         frame.frame_rate = fps as f32;
         offscreen.draw(gpu, &pipeline, params, &frame);
+        let wait = |e: GpuWaitError| RenderError::Wait(e.to_string());
         let stats = if k == 0 {
-            offscreen.stats(gpu)
+            offscreen.stats(gpu).map_err(wait)?
         } else {
             CanvasStats::default()
         };
-        each(k, offscreen.image(gpu), stats).map_err(RenderError::Output)?;
+        let image = offscreen.image(gpu).map_err(wait)?;
+        each(k, image, stats).map_err(RenderError::Output)?;
     }
     Ok(())
 }

@@ -8,7 +8,7 @@ use std::borrow::Cow;
 use super::compose::Compiled;
 use super::params::ParamSet;
 use super::uniforms::{FRAME_UNIFORMS_SIZE, FrameUniforms};
-use crate::gpu::{Gpu, fullscreen};
+use crate::gpu::{Gpu, GpuWaitError, fullscreen, read_texels, read_texture, render_target};
 
 /// What the user's shader draws into.
 pub const CANVAS_FORMAT: wgpu::TextureFormat = wgpu::TextureFormat::Rgba32Float;
@@ -391,76 +391,44 @@ impl Canvas {
     }
 
     /// The canvas as 8-bit RGBA (what the display pass shows at 1:1), for
-    /// screenshots, headless renders and tests.
-    pub fn capture(&self, gpu: &Gpu, sandbox: &SandboxGpu) -> image::RgbaImage {
-        let (width, height) = self.size();
-        let texture = gpu.device.create_texture(&wgpu::TextureDescriptor {
-            label: Some("sandbox export"),
-            size: wgpu::Extent3d {
-                width,
-                height,
-                depth_or_array_layers: 1,
-            },
-            mip_level_count: 1,
-            sample_count: 1,
-            dimension: wgpu::TextureDimension::D2,
-            format: EXPORT_FORMAT,
-            usage: wgpu::TextureUsages::RENDER_ATTACHMENT | wgpu::TextureUsages::COPY_SRC,
-            view_formats: &[],
-        });
+    /// screenshots, headless renders and tests. A GPU that does not finish
+    /// (a shader running too long) is an error.
+    pub fn capture(
+        &self,
+        gpu: &Gpu,
+        sandbox: &SandboxGpu,
+    ) -> Result<image::RgbaImage, GpuWaitError> {
+        let texture = render_target(
+            &gpu.device,
+            "sandbox export",
+            self.size(),
+            EXPORT_FORMAT,
+            wgpu::TextureUsages::COPY_SRC,
+        );
         let view = texture.create_view(&Default::default());
         let mut encoder = gpu.device.create_command_encoder(&Default::default());
         self.show(sandbox, &mut encoder, &view, EXPORT_FORMAT);
         gpu.queue.submit([encoder.finish()]);
-        crate::gpu::read_texture(gpu, &texture)
+        read_texture(gpu, &texture)
     }
 
     /// Reads the canvas back and counts NaN, infinite and empty pixels.
-    pub fn stats(&self, gpu: &Gpu) -> CanvasStats {
+    pub fn stats(&self, gpu: &Gpu) -> Result<CanvasStats, GpuWaitError> {
         let (width, height) = self.size();
-        let row = u64::from(width) * 16;
-        let padded = row.next_multiple_of(u64::from(wgpu::COPY_BYTES_PER_ROW_ALIGNMENT));
-        let readback = gpu.device.create_buffer(&wgpu::BufferDescriptor {
-            label: Some("sandbox stats readback"),
-            size: padded * u64::from(height),
-            usage: wgpu::BufferUsages::COPY_DST | wgpu::BufferUsages::MAP_READ,
-            mapped_at_creation: false,
-        });
-        let mut encoder = gpu.device.create_command_encoder(&Default::default());
-        encoder.copy_texture_to_buffer(
-            self.texture.as_image_copy(),
-            wgpu::TexelCopyBufferInfo {
-                buffer: &readback,
-                layout: wgpu::TexelCopyBufferLayout {
-                    offset: 0,
-                    bytes_per_row: Some(padded as u32),
-                    rows_per_image: Some(height),
-                },
-            },
-            self.texture.size(),
-        );
-        gpu.queue.submit([encoder.finish()]);
-        let slice = readback.slice(..);
-        slice.map_async(wgpu::MapMode::Read, |r| r.expect("mapping the readback"));
-        gpu.device
-            .poll(wgpu::PollType::wait_indefinitely())
-            .expect("waiting for the GPU");
-        let data = slice.get_mapped_range().expect("mapped readback");
+        let data = read_texels(gpu, &self.texture)?;
         let mut stats = CanvasStats {
             pixels: u64::from(width) * u64::from(height),
             ..Default::default()
         };
-        for line in data.chunks(padded as usize) {
-            for px in line[..row as usize].chunks_exact(16) {
-                let c: [f32; 4] = bytemuck::pod_read_unaligned(px);
-                if c[..3].iter().any(|v| !v.is_finite()) {
-                    stats.non_finite += 1;
-                } else if c == [0.0; 4] {
-                    stats.empty += 1;
-                }
+        for px in data.chunks_exact(16) {
+            let c: [f32; 4] = bytemuck::pod_read_unaligned(px);
+            if c[..3].iter().any(|v| !v.is_finite()) {
+                stats.non_finite += 1;
+            } else if c == [0.0; 4] {
+                stats.empty += 1;
             }
         }
-        stats
+        Ok(stats)
     }
 }
 
@@ -504,13 +472,13 @@ impl Offscreen {
     }
 
     /// The last frame as 8-bit RGBA.
-    pub fn image(&self, gpu: &Gpu) -> image::RgbaImage {
+    pub fn image(&self, gpu: &Gpu) -> Result<image::RgbaImage, GpuWaitError> {
         let canvas = self.canvas.as_ref().expect("draw before reading");
         canvas.capture(gpu, &self.sandbox)
     }
 
     /// NaN, infinite and empty pixels of the last frame.
-    pub fn stats(&self, gpu: &Gpu) -> CanvasStats {
+    pub fn stats(&self, gpu: &Gpu) -> Result<CanvasStats, GpuWaitError> {
         let canvas = self.canvas.as_ref().expect("draw before reading");
         canvas.stats(gpu)
     }
@@ -526,5 +494,9 @@ pub fn render_once(
     let mut offscreen = Offscreen::new(gpu);
     let pipeline = offscreen.builder(gpu).build(compiled)?;
     offscreen.draw(gpu, &pipeline, params, frame);
-    Ok((offscreen.image(gpu), offscreen.stats(gpu)))
+    let wait = |e: GpuWaitError| e.to_string();
+    Ok((
+        offscreen.image(gpu).map_err(wait)?,
+        offscreen.stats(gpu).map_err(wait)?,
+    ))
 }
