@@ -149,10 +149,7 @@ fn main() -> ExitCode {
             raysandbox::stress::StressError::Input(m) => Failure::Input(InputError(m)),
             raysandbox::stress::StressError::Runtime(m) => Failure::Runtime(RuntimeError(m)),
         }),
-        Command::Shader(args) => raysandbox::sandbox::run(&args).map_err(|e| match e {
-            raysandbox::sandbox::SandboxError::Input(m) => Failure::Input(InputError(m)),
-            raysandbox::sandbox::SandboxError::Runtime(m) => Failure::Runtime(RuntimeError(m)),
-        }),
+        Command::Shader(args) => shader(&args),
         Command::Bench(args) => raysandbox::bench::run(&args).map_err(|e| match e {
             raysandbox::bench::BenchError::NoGpu(m) => Failure::Runtime(RuntimeError(m)),
             raysandbox::bench::BenchError::Failed(m) => Failure::Runtime(RuntimeError(m)),
@@ -232,6 +229,21 @@ fn view(args: ViewArgs) -> Result<(), Failure> {
             InputError(e.to_string()).into()
         }
         ViewerError::NoDisplay(_) | ViewerError::NoGpu(_) => RuntimeError(e.to_string()).into(),
+    })
+}
+
+/// `raysandbox shader`: headless renders are the sandbox's, the window is
+/// the app's.
+fn shader(args: &raysandbox::sandbox::ShaderArgs) -> Result<(), Failure> {
+    use raysandbox::sandbox::{self, SandboxError};
+    let result = if args.is_headless() {
+        sandbox::run_headless(args)
+    } else {
+        raysandbox::app::run_sandbox(args)
+    };
+    result.map_err(|e| match e {
+        SandboxError::Input(m) => Failure::Input(InputError(m)),
+        SandboxError::Runtime(m) => Failure::Runtime(RuntimeError(m)),
     })
 }
 

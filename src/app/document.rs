@@ -1,9 +1,9 @@
 //! The open scene and its file: what is unsaved, saving without ever leaving
 //! a broken file behind, and telling our own writes from external edits.
 
-use std::io::Write;
 use std::path::{Path, PathBuf};
 
+use crate::files::write_atomically;
 use crate::scene::{Camera, Scene, SceneError, bundled};
 
 /// A scene being edited, and where it came from.
@@ -140,34 +140,6 @@ impl Document {
     }
 }
 
-/// Writes `text` to `path` so that a crash or a full disk mid-write never
-/// leaves a truncated file: write a temporary file in the same folder, flush
-/// it to disk, then rename it over the target (atomic on POSIX and NTFS).
-pub fn write_atomically(path: &Path, text: &str) -> std::io::Result<()> {
-    let dir = path
-        .parent()
-        .filter(|d| !d.as_os_str().is_empty())
-        .unwrap_or(Path::new("."));
-    let name = path
-        .file_name()
-        .ok_or_else(|| std::io::Error::other("not a file name"))?;
-    let tmp = dir.join(format!(
-        ".{}.tmp-{}",
-        name.to_string_lossy(),
-        std::process::id()
-    ));
-    let result = (|| {
-        let mut file = std::fs::File::create(&tmp)?;
-        file.write_all(text.as_bytes())?;
-        file.sync_all()?;
-        std::fs::rename(&tmp, path)
-    })();
-    if result.is_err() {
-        let _ = std::fs::remove_file(&tmp);
-    }
-    result
-}
-
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -220,18 +192,6 @@ mod tests {
             "an invalid edit is an error"
         );
         assert_eq!(doc.scene.render.exposure, 2.0, "the current scene is kept");
-        std::fs::remove_dir_all(&dir).unwrap();
-    }
-
-    #[test]
-    fn failed_write_keeps_the_old_file() {
-        let dir = temp_dir("fail");
-        let path = dir.join("keep.toml");
-        std::fs::write(&path, "old").unwrap();
-        // A folder where the temporary file should go makes the write fail.
-        let blocked = dir.join("missing-folder").join("x.toml");
-        assert!(write_atomically(&blocked, "new").is_err());
-        assert_eq!(std::fs::read_to_string(&path).unwrap(), "old");
         std::fs::remove_dir_all(&dir).unwrap();
     }
 

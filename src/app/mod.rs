@@ -32,8 +32,7 @@ use panel::PanelAction;
 use shell::{EguiLayer, EventLog};
 use ui::{Command, Editor, Status, ViewInput};
 
-pub use document::write_atomically;
-pub use sandbox_window::{SandboxOptions, run_sandbox};
+pub use sandbox_window::run_sandbox;
 
 /// How the viewer was started (the `view` subcommand's options).
 #[derive(Debug, Clone, Default)]

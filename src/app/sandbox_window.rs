@@ -22,22 +22,12 @@ use super::controls::{self, ClockAction};
 use super::overlay;
 use super::shell::{self, EguiLayer, EventLog};
 use super::watch;
-use crate::gpu::{Gpu, GpuTimer, Timing, Viewport};
+use crate::gpu::{EXPORT_FORMAT, Gpu, GpuTimer, Timing, Viewport};
 use crate::sandbox::clock::{Clock, Tick};
-use crate::sandbox::render::{Canvas, EXPORT_FORMAT, PipelineBuilder, SandboxGpu, ShaderPipeline};
-use crate::sandbox::{Compiled, FrameUniforms, ReloadError, Session, uniforms};
-
-/// How `raysandbox shader` opens its window.
-#[derive(Debug, Clone)]
-pub struct SandboxOptions {
-    pub file: PathBuf,
-    /// Initial inner size in physical pixels.
-    pub size: Option<(u32, u32)>,
-    pub start_paused: bool,
-    /// Render resolution scale, 0.25..=1.
-    pub scale: f32,
-    pub print_events: bool,
-}
+use crate::sandbox::render::{Canvas, PipelineBuilder, SandboxGpu, ShaderPipeline};
+use crate::sandbox::{
+    self, Compiled, FrameUniforms, ReloadError, SandboxError, Session, ShaderArgs, uniforms,
+};
 
 /// The sandbox window's keyboard shortcuts, for the help window.
 pub const SHORTCUTS: [(&str, &str); 9] = [
@@ -65,8 +55,25 @@ enum SandboxEvent {
     },
 }
 
-/// Opens the window and runs until it closes.
-pub fn run_sandbox(options: SandboxOptions) -> Result<(), ViewerError> {
+/// `raysandbox shader FILE` without `--render`/`--frames`: opens the window
+/// and runs until it closes. A missing display or GPU is the machine's
+/// failure; a shader that never compiled is the user's.
+pub fn run_sandbox(args: &ShaderArgs) -> Result<(), SandboxError> {
+    sandbox::require_file(&args.file)?;
+    open_window(args.clone()).map_err(|e| match e {
+        ViewerError::Shader(m) | ViewerError::Scene(m) => SandboxError::Input(m),
+        e @ ViewerError::Size(_) => SandboxError::Input(e.to_string()),
+        ViewerError::NoDisplay(m) => SandboxError::Runtime(format!(
+            "cannot open a window: {m}\n\
+             The window needs a display (X11 or Wayland: is DISPLAY or WAYLAND_DISPLAY set?).\n\
+             Without one, render headless: raysandbox shader {} --render out.png",
+            args.file.display()
+        )),
+        ViewerError::NoGpu(m) => SandboxError::Runtime(m),
+    })
+}
+
+fn open_window(options: ShaderArgs) -> Result<(), ViewerError> {
     let event_loop = EventLoop::<SandboxEvent>::with_user_event()
         .build()
         .map_err(|e| ViewerError::NoDisplay(e.to_string()))?;
@@ -180,7 +187,7 @@ struct Actions {
 
 struct SandboxApp {
     proxy: EventLoopProxy<SandboxEvent>,
-    options: SandboxOptions,
+    options: ShaderArgs,
     events: EventLog,
     session: Session,
     clock: Clock,

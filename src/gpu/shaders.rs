@@ -176,7 +176,8 @@ impl ShaderSource {
     /// a broken shader is reported with its file and line and never reaches
     /// pipeline creation.
     pub fn validate(&self) -> Result<(naga::Module, naga::valid::ModuleInfo), ShaderError> {
-        let module = naga::front::wgsl::parse_str(&self.joined).map_err(|e| {
+        let parsed = self.without_panics(|| naga::front::wgsl::parse_str(&self.joined))?;
+        let module = parsed.map_err(|e| {
             let (span, label) = e
                 .labels()
                 .next()
@@ -193,12 +194,15 @@ impl ShaderSource {
         &self,
         module: naga::Module,
     ) -> Result<(naga::Module, naga::valid::ModuleInfo), ShaderError> {
-        let info = naga::valid::Validator::new(
-            naga::valid::ValidationFlags::all(),
-            naga::valid::Capabilities::default(),
-        )
-        .validate(&module)
-        .map_err(|e| {
+        let validated = self.without_panics(|| {
+            naga::valid::Validator::new(
+                naga::valid::ValidationFlags::all(),
+                naga::valid::Capabilities::default(),
+            )
+            .validate(&module)
+            .map_err(Box::new)
+        })?;
+        let info = validated.map_err(|e| {
             let (span, label) = e.spans().next().cloned().unwrap_or_default();
             // The innermost cause says what is wrong; the outer ones say where.
             let mut message = e.as_inner().to_string();
@@ -210,6 +214,43 @@ impl ShaderSource {
             self.locate(span, message, label)
         })?;
         Ok((module, info))
+    }
+
+    /// Translates a validated module without `override`s to SPIR-V once, as
+    /// wgpu will for the Vulkan driver, so that a module naga's SPIR-V
+    /// writer cannot handle (or panics on) is an error here, not a crash
+    /// when the pipeline is built.
+    pub fn check_translation(
+        &self,
+        module: &naga::Module,
+        info: &naga::valid::ModuleInfo,
+    ) -> Result<(), ShaderError> {
+        let translated = self.without_panics(|| {
+            naga::back::spv::write_vec(module, info, &Default::default(), None)
+        })?;
+        translated.map(|_| ()).map_err(|e| {
+            self.locate(
+                naga::Span::default(),
+                format!("the SPIR-V translation failed: {e}"),
+                String::new(),
+            )
+        })
+    }
+
+    /// Runs a step of naga and turns a panic inside it (a bug of naga's that
+    /// some inputs hit) into an error: a shader must never take the program
+    /// down. The error has no position; it names the first part.
+    fn without_panics<T>(&self, step: impl FnOnce() -> T) -> Result<T, ShaderError> {
+        catch_panic(step).map_err(|message| {
+            self.locate(
+                naga::Span::default(),
+                format!(
+                    "the shader compiler (naga) failed on this shader: {message}; \
+                     rewriting the line it trips on usually helps"
+                ),
+                String::new(),
+            )
+        })
     }
 
     /// Joins named parts in order: for example a prelude the program
@@ -236,12 +277,13 @@ impl ShaderSource {
         &self,
     ) -> Result<(naga::Module, naga::valid::ModuleInfo), ShaderError> {
         let options = naga::front::glsl::Options::from(naga::ShaderStage::Fragment);
-        let module = naga::front::glsl::Frontend::default()
-            .parse(&options, &self.joined)
-            .map_err(|errors| match errors.errors.first() {
-                Some(e) => self.locate(e.meta, e.kind.to_string(), String::new()),
-                None => self.locate(naga::Span::default(), errors.to_string(), String::new()),
-            })?;
+        let parsed = self.without_panics(|| {
+            naga::front::glsl::Frontend::default().parse(&options, &self.joined)
+        })?;
+        let module = parsed.map_err(|errors| match errors.errors.first() {
+            Some(e) => self.locate(e.meta, e.kind.to_string(), String::new()),
+            None => self.locate(naga::Span::default(), errors.to_string(), String::new()),
+        })?;
         self.check(module)
     }
 
@@ -290,6 +332,34 @@ impl ShaderSource {
             label,
         }
     }
+}
+
+/// Calls `step`, catching a panic: `Err` with the panic's message. The
+/// default panic report on stderr is silenced for the panics caught here
+/// (the caller reports them as errors), and only for them.
+pub fn catch_panic<T>(step: impl FnOnce() -> T) -> Result<T, String> {
+    thread_local! {
+        static CATCHING: std::cell::Cell<bool> = const { std::cell::Cell::new(false) };
+    }
+    static QUIET_HOOK: std::sync::Once = std::sync::Once::new();
+    QUIET_HOOK.call_once(|| {
+        let report = std::panic::take_hook();
+        std::panic::set_hook(Box::new(move |info| {
+            if !CATCHING.get() {
+                report(info);
+            }
+        }));
+    });
+    let was_catching = CATCHING.replace(true);
+    let result = std::panic::catch_unwind(std::panic::AssertUnwindSafe(step));
+    CATCHING.set(was_catching);
+    result.map_err(|payload| {
+        payload
+            .downcast_ref::<&str>()
+            .map(|s| s.to_string())
+            .or_else(|| payload.downcast_ref::<String>().cloned())
+            .unwrap_or_else(|| "a panic without a message".to_string())
+    })
 }
 
 #[cfg(test)]
@@ -368,6 +438,15 @@ mod tests {
         let expected = format!("const BVH_STACK: u32 = {}u;", crate::bvh::TRAVERSAL_STACK);
         assert!(source.text().contains(&expected));
         assert_eq!(source.text().matches("const BVH_STACK").count(), 1);
+    }
+
+    #[test]
+    fn a_panic_is_caught_with_its_message_and_other_panics_still_unwind() {
+        assert_eq!(catch_panic(|| 7), Ok(7));
+        let message = catch_panic(|| -> u32 { panic!("Expression [3] is not cached!") });
+        assert_eq!(message, Err("Expression [3] is not cached!".to_string()));
+        let formatted = catch_panic(|| -> u32 { panic!("{} {}", 1, 2) });
+        assert_eq!(formatted, Err("1 2".to_string()));
     }
 
     #[test]

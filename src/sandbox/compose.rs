@@ -99,6 +99,10 @@ pub fn compile(name: &str, text: &str) -> Result<Compiled, ShaderError> {
         compile_glsl(name, &scan)
     };
     result.map_err(|mut e| {
+        if e.line == 0 {
+            // No position (naga failed as a whole): the user's file it is.
+            e.file = name.to_string();
+        }
         if e.file == name && e.line > 0 {
             point_at_missing_semicolon(&mut e, &scan);
             // The joined text may hold the user's line blanked in part: show
@@ -230,7 +234,8 @@ fn compile_wgsl(name: &str, text: &str, scan: &Scan) -> Result<Compiled, ShaderE
         (name.to_string(), text.to_string()),
         (EPILOGUE_NAME.to_string(), wgsl_epilogue(fields.is_some())),
     ]);
-    let (module, _) = source.validate()?;
+    let (module, info) = source.validate()?;
+    source.check_translation(&module, &info)?;
     let params = match &fields {
         Some(fields) => read_params(&module, name, scan, |member| {
             let field = fields.iter().find(|f| f.name == member)?;
@@ -778,7 +783,8 @@ fn compile_glsl(name: &str, scan: &Scan) -> Result<Compiled, ShaderError> {
         parts.push((EPILOGUE_NAME.to_string(), epilogue));
     }
     let source = ShaderSource::from_parts(parts);
-    let (module, _) = source.validate_glsl_fragment()?;
+    let (module, info) = source.validate_glsl_fragment()?;
+    source.check_translation(&module, &info)?;
     let params = read_params(&module, name, scan, |member| {
         let decl = user_params.iter().find(|d| d.name == member)?;
         Some((decl.offset, decl.initializer.clone()))

@@ -13,8 +13,8 @@
 //! | `session` | one file: the last good pipeline, reloads, parameter values |
 //! | `constants` | the same parameters for the ray tracer's shader folder (annotated `const`s) |
 //!
-//! The window is `app::sandbox_window`; it shares the viewer's window setup,
-//! error overlay and controls.
+//! The window is `app::sandbox_window` (`app::run_sandbox`), built on this
+//! module; it shares the viewer's window setup, error overlay and controls.
 
 pub mod clock;
 pub mod compose;
@@ -99,42 +99,30 @@ pub enum SandboxError {
     Runtime(String),
 }
 
-/// Runs `raysandbox shader`: headless with `--render` or `--frames`, else
-/// the window.
-pub fn run(args: &ShaderArgs) -> Result<(), SandboxError> {
-    if !args.file.is_file() {
-        return Err(SandboxError::Input(format!(
-            "{}: no such file",
-            args.file.display()
-        )));
+impl ShaderArgs {
+    /// `--render` or `--frames`: no window ([`run_headless`]); otherwise the
+    /// window, which `app::run_sandbox` owns.
+    pub fn is_headless(&self) -> bool {
+        self.render.is_some() || self.frames.is_some()
     }
-    if args.render.is_some() || args.frames.is_some() {
-        return headless(args);
-    }
-    let options = crate::app::SandboxOptions {
-        file: args.file.clone(),
-        size: args.size,
-        start_paused: args.start_paused,
-        scale: args.scale,
-        print_events: args.print_events,
-    };
-    use crate::app::ViewerError;
-    crate::app::run_sandbox(options).map_err(|e| match e {
-        ViewerError::Shader(_) | ViewerError::Scene(_) | ViewerError::Size(_) => {
-            SandboxError::Input(e.to_string())
-        }
-        ViewerError::NoDisplay(m) => SandboxError::Runtime(format!(
-            "cannot open a window: {m}\n\
-             The window needs a display (X11 or Wayland: is DISPLAY or WAYLAND_DISPLAY set?).\n\
-             Without one, render headless: raysandbox shader {} --render out.png",
-            args.file.display()
-        )),
-        ViewerError::NoGpu(m) => SandboxError::Runtime(m),
-    })
 }
 
-/// `--render OUT.png` or `--frames N --out DIR`.
-fn headless(args: &ShaderArgs) -> Result<(), SandboxError> {
+/// The shader file must exist before anything else is tried (a GPU, a
+/// window): a mistyped name is the user's error.
+pub fn require_file(path: &Path) -> Result<(), SandboxError> {
+    if path.is_file() {
+        Ok(())
+    } else {
+        Err(SandboxError::Input(format!(
+            "{}: no such file",
+            path.display()
+        )))
+    }
+}
+
+/// `raysandbox shader FILE --render OUT.png` or `--frames N --out DIR`.
+pub fn run_headless(args: &ShaderArgs) -> Result<(), SandboxError> {
+    require_file(&args.file)?;
     let compiled = compile_file(&args.file).map_err(|e| SandboxError::Input(e.to_string()))?;
     let mut params = compiled.params.clone();
     let sidecar = params::sidecar_path(&args.file);

@@ -8,13 +8,12 @@ use std::borrow::Cow;
 use super::compose::Compiled;
 use super::params::ParamSet;
 use super::uniforms::{FRAME_UNIFORMS_SIZE, FrameUniforms};
-use crate::gpu::{Gpu, GpuWaitError, fullscreen, read_texels, read_texture, render_target};
+use crate::gpu::{
+    EXPORT_FORMAT, Gpu, GpuWaitError, fullscreen, read_texels, read_texture, render_target,
+};
 
 /// What the user's shader draws into.
 pub const CANVAS_FORMAT: wgpu::TextureFormat = wgpu::TextureFormat::Rgba32Float;
-
-/// The format of headless renders and screenshots.
-pub const EXPORT_FORMAT: wgpu::TextureFormat = wgpu::TextureFormat::Rgba8Unorm;
 
 const VERTEX_WGSL: &str = "\
 /// One triangle that covers the whole viewport; no vertex buffer needed.
@@ -273,22 +272,13 @@ impl Canvas {
     }
 
     fn texture(device: &wgpu::Device, size: (u32, u32)) -> wgpu::Texture {
-        device.create_texture(&wgpu::TextureDescriptor {
-            label: Some("sandbox canvas"),
-            size: wgpu::Extent3d {
-                width: size.0.max(1),
-                height: size.1.max(1),
-                depth_or_array_layers: 1,
-            },
-            mip_level_count: 1,
-            sample_count: 1,
-            dimension: wgpu::TextureDimension::D2,
-            format: CANVAS_FORMAT,
-            usage: wgpu::TextureUsages::RENDER_ATTACHMENT
-                | wgpu::TextureUsages::TEXTURE_BINDING
-                | wgpu::TextureUsages::COPY_SRC,
-            view_formats: &[],
-        })
+        render_target(
+            device,
+            "sandbox canvas",
+            (size.0.max(1), size.1.max(1)),
+            CANVAS_FORMAT,
+            wgpu::TextureUsages::TEXTURE_BINDING | wgpu::TextureUsages::COPY_SRC,
+        )
     }
 
     fn params_buffer(device: &wgpu::Device, size: u64) -> wgpu::Buffer {

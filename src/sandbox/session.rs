@@ -11,6 +11,7 @@ use std::path::{Path, PathBuf};
 use super::compose::{Compiled, Style, compile, compile_file};
 use super::params::{ParamSet, sidecar_path};
 use super::render::{PipelineBuilder, ShaderPipeline};
+use crate::files::write_atomically;
 use crate::gpu::ShaderError;
 
 /// Why a reload did not take.
@@ -164,7 +165,7 @@ impl Session {
             .path
             .file_name()
             .map_or_else(String::new, |n| n.to_string_lossy().into_owned());
-        crate::app::write_atomically(&path, &self.params.to_toml(&name))
+        write_atomically(&path, &self.params.to_toml(&name))
             .map_err(|e| format!("{}: {e}", path.display()))?;
         Ok(path)
     }
