@@ -6,6 +6,7 @@ pub mod bench;
 pub mod bvh;
 pub mod cli;
 pub mod compare;
+pub mod expr;
 pub mod files;
 pub mod gpu;
 pub mod reference;

@@ -16,6 +16,7 @@ use std::path::Path;
 const LAYERS: &[&str] = &[
     "files",
     "cli",
+    "expr",
     "scene",
     "bvh",
     "compare",
