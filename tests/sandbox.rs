@@ -221,7 +221,9 @@ fn a_failed_reload_keeps_the_last_good_frame_and_the_fix_renders_again() {
     session.reload(&builder).unwrap();
     let frame = FrameUniforms::at(1.0, 0, SIZE);
     let mut draw = |session: &Session| {
-        offscreen.draw(&gpu, session.pipeline().unwrap(), &session.params, &frame);
+        offscreen
+            .draw(&gpu, session.pipeline().unwrap(), &session.params, &frame)
+            .unwrap();
         offscreen.image(&gpu).unwrap_or_else(|e| panic!("{e}"))
     };
     let good = draw(&session);

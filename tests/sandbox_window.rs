@@ -74,6 +74,25 @@ fn the_window_renders_the_file_and_follows_its_edits() {
         "the last good image stays"
     );
 
+    // A loop that never ends: the watchdog's trial frame refuses it, the
+    // window keeps running the last good shader.
+    let endless = edited.replace(
+        "float r = length",
+        "float x = p.x;\n    while (x < 2.0) { x = fract(x + sin(x * 7.0 + p.y)); }\n    float r = x + length",
+    );
+    std::fs::write(&shader, &endless).unwrap();
+    let location = window.wait_for("shader-error");
+    assert!(
+        location.contains("live.frag: a frame would take about"),
+        "{location}"
+    );
+    let during = crop(&window.capture(), FREE);
+    assert_eq!(
+        diff_images(&second, &during).max_abs,
+        0,
+        "the last good image stays"
+    );
+
     // Fixed again, then a screenshot of the image.
     std::fs::write(&shader, RINGS).unwrap();
     window.wait_for("shader-reloaded");

@@ -8,7 +8,7 @@
 //! [`Session`]'s, which tests and headless renders use too.
 
 use std::path::{Path, PathBuf};
-use std::sync::Arc;
+use std::sync::{Arc, Mutex, PoisonError};
 use std::time::{Duration, Instant};
 
 use egui::{Key, KeyboardShortcut, Modifiers, RichText, Sense};
@@ -25,6 +25,7 @@ use super::watch;
 use crate::gpu::{EXPORT_FORMAT, Gpu, GpuTimer, Timing, Viewport};
 use crate::sandbox::clock::{Clock, Tick};
 use crate::sandbox::render::{Canvas, PipelineBuilder, SandboxGpu, ShaderPipeline};
+use crate::sandbox::watchdog::Probe;
 use crate::sandbox::{
     self, Compiled, FrameUniforms, ReloadError, SandboxError, Session, ShaderArgs, uniforms,
 };
@@ -73,6 +74,23 @@ pub fn run_sandbox(args: &ShaderArgs) -> Result<(), SandboxError> {
     })
 }
 
+/// Builds the pipeline of a compiled shader, then lets the watchdog draw a
+/// trial frame with it: a shader that would freeze the window at `size` is
+/// refused like a compile error.
+fn build_checked(
+    builder: &PipelineBuilder,
+    probe: &Mutex<Probe>,
+    compiled: &Compiled,
+    size: (u32, u32),
+) -> Result<ShaderPipeline, String> {
+    let pipeline = builder.build(compiled)?;
+    probe
+        .lock()
+        .unwrap_or_else(PoisonError::into_inner)
+        .check(compiled, size)?;
+    Ok(pipeline)
+}
+
 fn open_window(options: ShaderArgs) -> Result<(), ViewerError> {
     let event_loop = EventLoop::<SandboxEvent>::with_user_event()
         .build()
@@ -85,6 +103,7 @@ fn open_window(options: ShaderArgs) -> Result<(), ViewerError> {
             print: options.print_events,
         },
         session: Session::new(&options.file),
+        probe: Arc::default(),
         clock: Clock::new(options.start_paused, now),
         scale: options.scale.clamp(0.25, 1.0),
         options,
@@ -190,6 +209,8 @@ struct SandboxApp {
     options: ShaderArgs,
     events: EventLog,
     session: Session,
+    /// The watchdog's device for trial frames, shared with build threads.
+    probe: Arc<Mutex<Probe>>,
     clock: Clock,
     scale: f32,
     gfx: Option<Graphics>,
@@ -248,7 +269,7 @@ impl ApplicationHandler<SandboxEvent> for SandboxApp {
                 result,
             } => {
                 if generation == self.generation {
-                    self.built(*compiled, result);
+                    self.built(*compiled, result, true);
                 }
             }
         }
@@ -338,8 +359,13 @@ impl SandboxApp {
     /// first frame of the shader (or its error) from the start.
     fn first_load(&mut self) {
         let Some(gfx) = &self.gfx else { return };
-        match self.session.reload(&gfx.builder) {
-            Ok(warnings) => self.loaded(warnings, false),
+        let (builder, size) = (gfx.builder.clone(), gfx.canvas.size());
+        match self.session.compile() {
+            Ok(Some(compiled)) => {
+                let result = build_checked(&builder, &self.probe, &compiled, size);
+                self.built(compiled, result, false);
+            }
+            Ok(None) => {}
             Err(e) => self.failed(&e),
         }
     }
@@ -362,10 +388,12 @@ impl SandboxApp {
         self.generation += 1;
         let Some(gfx) = &self.gfx else { return };
         let builder = gfx.builder.clone();
+        let size = gfx.canvas.size();
+        let probe = Arc::clone(&self.probe);
         let proxy = self.proxy.clone();
         let generation = self.generation;
         std::thread::spawn(move || {
-            let result = builder.build(&compiled);
+            let result = build_checked(&builder, &probe, &compiled, size);
             let _ = proxy.send_event(SandboxEvent::Built {
                 generation,
                 compiled: Box::new(compiled),
@@ -374,11 +402,16 @@ impl SandboxApp {
         });
     }
 
-    fn built(&mut self, compiled: Compiled, result: Result<ShaderPipeline, String>) {
+    fn built(
+        &mut self,
+        compiled: Compiled,
+        result: Result<ShaderPipeline, String>,
+        reloaded: bool,
+    ) {
         match result {
             Ok(pipeline) => {
                 let warnings = self.session.install(compiled, pipeline);
-                self.loaded(warnings, true);
+                self.loaded(warnings, reloaded);
             }
             Err(e) => {
                 let e = ReloadError::Gpu(e);

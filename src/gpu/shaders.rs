@@ -185,12 +185,12 @@ impl ShaderSource {
                 .unwrap_or_default();
             self.locate(span, e.message().to_string(), label)
         })?;
-        self.check(module)
+        self.validate_module(module)
     }
 
     /// Runs naga's validator on a parsed module; its errors are located in
     /// the part they fall in, like parse errors.
-    fn check(
+    pub fn validate_module(
         &self,
         module: naga::Module,
     ) -> Result<(naga::Module, naga::valid::ModuleInfo), ShaderError> {
@@ -284,7 +284,7 @@ impl ShaderSource {
             Some(e) => self.locate(e.meta, e.kind.to_string(), String::new()),
             None => self.locate(naga::Span::default(), errors.to_string(), String::new()),
         })?;
-        self.check(module)
+        self.validate_module(module)
     }
 
     /// The file, line and column of a span of the joined source (for errors

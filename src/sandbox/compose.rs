@@ -14,6 +14,7 @@ use std::fmt::Write as _;
 use std::path::Path;
 
 use super::params::{self, ParamSet, ParamSpec, ParamType, Scalar};
+use super::repair;
 use super::scan::{self, Kind, Scan, Token};
 use super::uniforms::WGSL_STRUCT;
 use crate::gpu::{ShaderError, ShaderSource};
@@ -783,7 +784,9 @@ fn compile_glsl(name: &str, scan: &Scan) -> Result<Compiled, ShaderError> {
         parts.push((EPILOGUE_NAME.to_string(), epilogue));
     }
     let source = ShaderSource::from_parts(parts);
-    let (module, info) = source.validate_glsl_fragment()?;
+    let (mut module, _) = source.validate_glsl_fragment()?;
+    repair::spill_pointer_arguments(&mut module);
+    let (module, info) = source.validate_module(module)?;
     source.check_translation(&module, &info)?;
     let params = read_params(&module, name, scan, |member| {
         let decl = user_params.iter().find(|d| d.name == member)?;

@@ -9,8 +9,10 @@
 //! | `params` | annotations, values, the bytes the GPU reads, the sidecar file |
 //! | `uniforms` | the per-frame values (time, mouse, resolution, date) |
 //! | `clock` | pause, resume, restart, step |
+//! | `repair` | workarounds for naga bugs, applied to the parsed module |
 //! | `render` | the GPU passes: the user's shader into a canvas, the canvas shown |
 //! | `session` | one file: the last good pipeline, reloads, parameter values |
+//! | `watchdog` | the window's trial frame that refuses shaders too slow to run |
 //! | `constants` | the same parameters for the ray tracer's shader folder (annotated `const`s) |
 //!
 //! The window is `app::sandbox_window` (`app::run_sandbox`), built on this
@@ -21,9 +23,11 @@ pub mod compose;
 pub mod constants;
 pub mod params;
 pub mod render;
+mod repair;
 mod scan;
 pub mod session;
 pub mod uniforms;
+pub mod watchdog;
 
 use std::path::{Path, PathBuf};
 use std::time::Instant;
@@ -151,7 +155,7 @@ pub fn run_headless(args: &ShaderArgs) -> Result<(), SandboxError> {
     };
     let start = Instant::now();
     let mut warned = false;
-    render_sequence(
+    let rendered = render_sequence(
         &gpu,
         &compiled,
         &params,
@@ -177,10 +181,15 @@ pub fn run_headless(args: &ShaderArgs) -> Result<(), SandboxError> {
             }
             Ok(())
         },
-    )
-    .map_err(|e| match e {
+    );
+    rendered.map_err(|e| match e {
         RenderError::Gpu(m) => SandboxError::Input(m),
         RenderError::Wait(m) => SandboxError::Runtime(m),
+        RenderError::Stopped(m) => {
+            // Dropping the device would wait for the frame that never ends.
+            std::mem::forget(gpu);
+            SandboxError::Input(m)
+        }
         RenderError::Output(e) => e,
     })?;
     if let Some(dir) = out_dir {
@@ -199,11 +208,15 @@ pub fn run_headless(args: &ShaderArgs) -> Result<(), SandboxError> {
 }
 
 /// Why a headless render stopped: the shader's pipeline (the user's input),
-/// the GPU not finishing a frame (a shader running too long, a lost device),
-/// or the caller's handling of a frame (writing the file).
+/// a frame stopped by the watchdog, the readback of a frame failing (a lost
+/// device), or the caller's handling of a frame (writing the file).
 enum RenderError<E> {
     Gpu(String),
+    /// Reading the frame back failed ([`GpuWaitError`]).
     Wait(String),
+    /// The watchdog stopped a frame ([`render::TooSlow`]): the GPU is still
+    /// busy with it.
+    Stopped(String),
     Output(E),
 }
 
@@ -229,7 +242,13 @@ fn render_sequence<E>(
         let mut frame = FrameUniforms::at(time + f64::from(k) / fps, k, size);
         frame.time_delta = (1.0 / fps) as f32;
         frame.frame_rate = fps as f32;
-        offscreen.draw(gpu, &pipeline, params, &frame);
+        if let Err(stopped) = offscreen.draw(gpu, &pipeline, params, &frame) {
+            std::mem::forget((offscreen, pipeline));
+            return Err(RenderError::Stopped(format!(
+                "{}: {stopped}",
+                compiled.file
+            )));
+        }
         let wait = |e: GpuWaitError| RenderError::Wait(e.to_string());
         let stats = if k == 0 {
             offscreen.stats(gpu).map_err(wait)?

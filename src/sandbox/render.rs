@@ -422,6 +422,30 @@ impl Canvas {
     }
 }
 
+/// The longest one frame of a user's shader may take without a window
+/// before it is stopped. lavapipe (Vulkan on the CPU) ends every loop after
+/// 65535 iterations, so there an endless loop is only very slow; elsewhere
+/// it never ends.
+pub const FRAME_LIMIT: std::time::Duration = std::time::Duration::from_secs(20);
+
+/// A frame did not finish within [`FRAME_LIMIT`]. The GPU is still running
+/// it: its device must not be waited on again, nor dropped (dropping waits
+/// for it), so the caller reports the error and leaks the device.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub struct TooSlow;
+
+impl std::fmt::Display for TooSlow {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        write!(
+            f,
+            "the shader did not finish a frame in {} s and was stopped: \
+             an endless loop, or too much work per pixel for this GPU \
+             (try a smaller --size)",
+            FRAME_LIMIT.as_secs()
+        )
+    }
+}
+
 /// Drawing without a window (headless renders, tests): the shared passes
 /// and a canvas that follows the size of the frames drawn.
 pub struct Offscreen {
@@ -442,14 +466,17 @@ impl Offscreen {
         self.sandbox.builder(&gpu.device)
     }
 
-    /// Draws one frame at the size of `frame.resolution`.
+    /// Draws one frame at the size of `frame.resolution` and waits for it,
+    /// at most [`FRAME_LIMIT`]: a shader that takes longer (an endless loop,
+    /// on most GPUs) is stopped with an error. The GPU may still be busy
+    /// with it then: the device is no use any more, see [`TooSlow`].
     pub fn draw(
         &mut self,
         gpu: &Gpu,
         pipeline: &ShaderPipeline,
         params: &ParamSet,
         frame: &FrameUniforms,
-    ) {
+    ) -> Result<(), TooSlow> {
         let size = (frame.resolution[0] as u32, frame.resolution[1] as u32);
         let sandbox = &self.sandbox;
         let canvas = self
@@ -458,7 +485,14 @@ impl Offscreen {
         canvas.resize(gpu, sandbox, size);
         let mut encoder = gpu.device.create_command_encoder(&Default::default());
         canvas.draw(gpu, sandbox, &mut encoder, pipeline, frame, params);
-        gpu.queue.submit([encoder.finish()]);
+        let submission = gpu.queue.submit([encoder.finish()]);
+        gpu.device
+            .poll(wgpu::PollType::Wait {
+                submission_index: Some(submission),
+                timeout: Some(FRAME_LIMIT),
+            })
+            .map(|_| ())
+            .map_err(|_| TooSlow)
     }
 
     /// The last frame as 8-bit RGBA.
@@ -483,7 +517,10 @@ pub fn render_once(
 ) -> Result<(image::RgbaImage, CanvasStats), String> {
     let mut offscreen = Offscreen::new(gpu);
     let pipeline = offscreen.builder(gpu).build(compiled)?;
-    offscreen.draw(gpu, &pipeline, params, frame);
+    if let Err(stopped) = offscreen.draw(gpu, &pipeline, params, frame) {
+        std::mem::forget((offscreen, pipeline));
+        return Err(format!("{}: {stopped}", compiled.file));
+    }
     let wait = |e: GpuWaitError| e.to_string();
     Ok((
         offscreen.image(gpu).map_err(wait)?,

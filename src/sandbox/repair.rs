@@ -1,0 +1,173 @@
+//! Repairs of the naga module that work around bugs of naga's own, so that
+//! shaders real people write run (docs/sandbox.md, "What runs").
+//!
+//! The one repair so far: **pointer arguments into a vector, array or
+//! struct.** GLSL passes `out`/`inout` arguments by reference, so naga's
+//! GLSL front end turns `f(p.x)` (with `void f(inout float x)`) into a call
+//! whose argument is a pointer to `p`'s first component. naga's SPIR-V writer
+//! only knows pointers to whole variables as call arguments and panics on
+//! that one ("Expression [N] is not cached!"). The repair does what GLSL's
+//! copy-in/copy-out rule says anyway: the component is copied into a
+//! temporary variable before the call, the temporary is passed, and its value
+//! is copied back after the call.
+
+use naga::{Block, Expression, Function, Handle, LocalVariable, Span, Statement, Type, TypeInner};
+
+/// For every function, the pointee type of each parameter passed by pointer.
+type PointerParams = Vec<Vec<Option<Handle<Type>>>>;
+
+/// Rewrites every call in `module` that passes a pointer into a composite
+/// (not a whole variable) as a copy through a temporary variable.
+pub fn spill_pointer_arguments(module: &mut naga::Module) {
+    let params: PointerParams = module
+        .functions
+        .iter()
+        .map(|(_, f)| {
+            f.arguments
+                .iter()
+                .map(|a| match module.types[a.ty].inner {
+                    TypeInner::Pointer { base, .. } => Some(base),
+                    _ => None,
+                })
+                .collect()
+        })
+        .collect();
+    let functions = module
+        .functions
+        .iter_mut()
+        .map(|(_, f)| f)
+        .chain(module.entry_points.iter_mut().map(|e| &mut e.function));
+    for function in functions {
+        let body = std::mem::take(&mut function.body);
+        function.body = spill_block(body, function, &params);
+    }
+}
+
+fn spill_block(block: Block, function: &mut Function, params: &PointerParams) -> Block {
+    let mut out = Block::with_capacity(block.len());
+    for (statement, span) in block.span_into_iter() {
+        let statement = match statement {
+            Statement::Call {
+                function: callee,
+                mut arguments,
+                result,
+            } => {
+                let mut copy_back = Vec::new();
+                for (i, argument) in arguments.iter_mut().enumerate() {
+                    let pointee = params[callee.index()].get(i).copied().flatten();
+                    let into_composite = matches!(
+                        function.expressions[*argument],
+                        Expression::Access { .. } | Expression::AccessIndex { .. }
+                    );
+                    if let (Some(ty), true) = (pointee, into_composite) {
+                        let temporary = copy_in(function, &mut out, *argument, ty, span);
+                        copy_back.push((*argument, temporary));
+                        *argument = temporary;
+                    }
+                }
+                out.push(
+                    Statement::Call {
+                        function: callee,
+                        arguments,
+                        result,
+                    },
+                    span,
+                );
+                for (target, temporary) in copy_back {
+                    let value = emit(
+                        function,
+                        &mut out,
+                        Expression::Load { pointer: temporary },
+                        span,
+                    );
+                    out.push(
+                        Statement::Store {
+                            pointer: target,
+                            value,
+                        },
+                        span,
+                    );
+                }
+                continue;
+            }
+            Statement::Block(b) => Statement::Block(spill_block(b, function, params)),
+            Statement::If {
+                condition,
+                accept,
+                reject,
+            } => Statement::If {
+                condition,
+                accept: spill_block(accept, function, params),
+                reject: spill_block(reject, function, params),
+            },
+            Statement::Switch { selector, cases } => Statement::Switch {
+                selector,
+                cases: cases
+                    .into_iter()
+                    .map(|mut case| {
+                        case.body = spill_block(case.body, function, params);
+                        case
+                    })
+                    .collect(),
+            },
+            Statement::Loop {
+                body,
+                continuing,
+                break_if,
+            } => Statement::Loop {
+                body: spill_block(body, function, params),
+                continuing: spill_block(continuing, function, params),
+                break_if,
+            },
+            other => other,
+        };
+        out.push(statement, span);
+    }
+    out
+}
+
+/// A new temporary variable of type `ty` holding what `pointer` points to;
+/// returns the pointer to the temporary.
+fn copy_in(
+    function: &mut Function,
+    out: &mut Block,
+    pointer: Handle<Expression>,
+    ty: Handle<Type>,
+    span: Span,
+) -> Handle<Expression> {
+    let variable = function.local_variables.append(
+        LocalVariable {
+            name: None,
+            ty,
+            init: None,
+        },
+        span,
+    );
+    let temporary = function
+        .expressions
+        .append(Expression::LocalVariable(variable), span);
+    let value = emit(function, out, Expression::Load { pointer }, span);
+    out.push(
+        Statement::Store {
+            pointer: temporary,
+            value,
+        },
+        span,
+    );
+    temporary
+}
+
+/// Adds an expression that must be evaluated where it stands.
+fn emit(
+    function: &mut Function,
+    out: &mut Block,
+    expression: Expression,
+    span: Span,
+) -> Handle<Expression> {
+    let handle = function.expressions.append(expression, span);
+    out.push(
+        Statement::Emit(naga::Range::new_from_bounds(handle, handle)),
+        span,
+    );
+    handle
+}
