@@ -5,7 +5,7 @@
 //! the reference's `first_hits`, to tell a shape that is wrongly hit from a
 //! colour that is merely a little off.
 
-use super::context::Gpu;
+use super::context::{Gpu, GpuWaitError};
 use super::features::{ShaderOptions, borrowed};
 use super::fullscreen;
 use super::layout::PackedScene;
@@ -100,7 +100,13 @@ impl IdRenderer {
 
     /// Runs the pass on `scene` at `width x height` and reads the result
     /// back: one [`FirstHit`] per pixel, row-major, the top row first.
-    pub fn render(&self, gpu: &Gpu, scene: &Scene, width: u32, height: u32) -> Vec<FirstHit> {
+    pub fn render(
+        &self,
+        gpu: &Gpu,
+        scene: &Scene,
+        width: u32,
+        height: u32,
+    ) -> Result<Vec<FirstHit>, GpuWaitError> {
         let device = &gpu.device;
         let packed = if self.robust {
             PackedScene::new(scene, width, height)
@@ -120,7 +126,7 @@ impl IdRenderer {
         let mut encoder = device.create_command_encoder(&Default::default());
         fullscreen::pass(&mut encoder, &self.pipeline, &[bind_group], &view);
         gpu.queue.submit([encoder.finish()]);
-        let data = read_texels(gpu, &target);
+        let data = read_texels(gpu, &target)?;
         let mut hits = Vec::with_capacity(width as usize * height as usize);
         for texel in data.chunks_exact(16) {
             let [kind, index, t, _]: [u32; 4] = bytemuck::pod_read_unaligned(texel);
@@ -130,6 +136,6 @@ impl IdRenderer {
                 t: f32::from_bits(t),
             });
         }
-        hits
+        Ok(hits)
     }
 }

@@ -16,7 +16,7 @@ use super::texture::render_target;
 
 /// Where the radiance sum is kept: full f32 precision, so 1000s of samples
 /// add up without banding.
-const ACCUM_FORMAT: wgpu::TextureFormat = wgpu::TextureFormat::Rgba32Float;
+pub(super) const ACCUM_FORMAT: wgpu::TextureFormat = wgpu::TextureFormat::Rgba32Float;
 
 /// Pipelines for one shader source: the trace pass, and a display pass for
 /// each output format asked for (e.g. the window's and PNG export's).
