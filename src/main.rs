@@ -7,7 +7,9 @@ use std::time::{Duration, Instant};
 use clap::{Parser, Subcommand};
 
 use raysandbox::cli::parse_size;
-use raysandbox::gpu::{Gpu, OffscreenRenderer, ShaderOptions, ShaderSource};
+use raysandbox::gpu::{
+    Gpu, GpuWaitError, OffscreenRenderer, RenderError, ShaderOptions, ShaderSource,
+};
 use raysandbox::reference;
 use raysandbox::scene::Scene;
 
@@ -136,6 +138,7 @@ impl From<RuntimeError> for Failure {
 }
 
 fn main() -> ExitCode {
+    give_wayland_clients_a_runtime_dir();
     env_logger::Builder::from_env(env_logger::Env::default().default_filter_or("warn")).init();
     let cli = Cli::parse();
     let result = match cli.command.unwrap_or(Command::View(ViewArgs::default())) {
@@ -165,6 +168,49 @@ fn main() -> ExitCode {
     }
 }
 
+/// A renderer that could not be made: a bad shader or image size is the
+/// user's input (exit status 2), anything else the machine's.
+fn render_failure(e: RenderError) -> Failure {
+    if e.is_input() {
+        InputError(e.to_string()).into()
+    } else {
+        RuntimeError(e.to_string()).into()
+    }
+}
+
+/// The GPU did not deliver the image.
+fn gpu_failure(e: GpuWaitError) -> Failure {
+    RuntimeError(e.to_string()).into()
+}
+
+/// Without `XDG_RUNTIME_DIR` every program that may talk to Wayland prints
+/// "error: XDG_RUNTIME_DIR is invalid or not set in the environment." Here
+/// that is Mesa's Vulkan device-selection layer: wgpu enables the Wayland
+/// surface extension on every Linux instance, so the layer asks libwayland
+/// for a compositor's display, twice, even in a headless render. The
+/// variable is only missing where no Wayland session runs (containers, CI,
+/// ssh), so a private directory of our own is set, as the XDG base
+/// directory rules advise when the session provides none. A directory that
+/// cannot be made private leaves the environment as it is.
+fn give_wayland_clients_a_runtime_dir() {
+    use std::os::unix::fs::{DirBuilderExt, MetadataExt, PermissionsExt};
+    if std::env::var_os("XDG_RUNTIME_DIR").is_some_and(|d| Path::new(&d).is_absolute()) {
+        return;
+    }
+    let Ok(uid) = std::fs::metadata("/proc/self").map(|m| m.uid()) else {
+        return;
+    };
+    let dir = std::env::temp_dir().join(format!("raysandbox-runtime-{uid}"));
+    let _ = std::fs::DirBuilder::new().mode(0o700).create(&dir);
+    let private = std::fs::symlink_metadata(&dir)
+        .is_ok_and(|m| m.is_dir() && m.uid() == uid && m.permissions().mode() & 0o077 == 0);
+    if private {
+        // SAFETY: the first statement of `main`, before any other thread
+        // exists that could read the environment at the same time.
+        unsafe { std::env::set_var("XDG_RUNTIME_DIR", &dir) };
+    }
+}
+
 fn load_scene(path: &Path) -> Result<Scene, InputError> {
     Scene::load(path).map_err(|e| InputError(e.to_string()))
 }
@@ -179,7 +225,9 @@ fn view(args: ViewArgs) -> Result<(), Failure> {
         print_events: args.print_events,
     };
     run(options).map_err(|e| match e {
-        ViewerError::Scene(_) | ViewerError::Shader(_) => InputError(e.to_string()).into(),
+        ViewerError::Scene(_) | ViewerError::Shader(_) | ViewerError::Size(_) => {
+            InputError(e.to_string()).into()
+        }
         ViewerError::NoDisplay(_) | ViewerError::NoGpu(_) => RuntimeError(e.to_string()).into(),
     })
 }
@@ -232,9 +280,9 @@ fn render(args: &RenderArgs) -> Result<(), Failure> {
         }
         let mut renderer =
             OffscreenRenderer::new(&gpu, &source, &options, &scene, args.width, args.height)
-                .map_err(|e| InputError(e.to_string()))?;
+                .map_err(render_failure)?;
         let ms = |d: Duration| d.as_secs_f64() * 1e3;
-        let first = renderer.render(&gpu, args.spp);
+        let first = renderer.render(&gpu, args.spp).map_err(gpu_failure)?;
         println!(
             "GPU time ({}): {:.1} ms",
             renderer.timing().describe(),
@@ -243,7 +291,8 @@ fn render(args: &RenderArgs) -> Result<(), Failure> {
         if args.frames > 1 {
             let mut times: Vec<Duration> = (0..args.frames)
                 .map(|_| renderer.render(&gpu, args.spp))
-                .collect();
+                .collect::<Result<_, _>>()
+                .map_err(gpu_failure)?;
             times.sort();
             println!(
                 "{} frames after warm-up: median {:.2} ms, fastest {:.2} ms, slowest {:.2} ms",
@@ -253,7 +302,7 @@ fn render(args: &RenderArgs) -> Result<(), Failure> {
                 ms(times[times.len() - 1]),
             );
         }
-        renderer.read_image(&gpu)
+        renderer.read_image(&gpu).map_err(gpu_failure)?
     };
     println!(
         "rendered {}x{} at {} spp in {:.1} ms",

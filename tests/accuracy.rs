@@ -80,7 +80,9 @@ fn measure_all() -> Option<HashMap<String, (Comparison, Comparison)>> {
     let harness = Harness::new(&gpu, &ShaderSource::embedded()).unwrap_or_else(|e| panic!("{e}"));
     let mut out = HashMap::new();
     for entry in stress::entries(None, true) {
-        let m = harness.measure_entry(&gpu, &entry, WIDTH, HEIGHT);
+        let m = harness
+            .measure_entry(&gpu, &entry, WIDTH, HEIGHT)
+            .unwrap_or_else(|e| panic!("{}: {e}", entry.name));
         println!(
             "{:<26} robust FLIP {:.4} id {:.3}% acne {:.3}% NaN {} | naive FLIP {:.4} id {:.3}% NaN {}",
             entry.name,
@@ -187,7 +189,9 @@ fn scaled_scenes_render_the_same_images() {
     for name in stress::SCALE_INVARIANCE {
         let scene = scenes::load(name);
         for power in [3, -3] {
-            let r = harness.invariance(&gpu, name, &scene, power, WIDTH, HEIGHT);
+            let r = harness
+                .invariance(&gpu, name, &scene, power, WIDTH, HEIGHT)
+                .unwrap_or_else(|e| panic!("{name}: {e}"));
             println!(
                 "{name} x 1e{power}: FLIP robust {:.4} naive {:.4}, acne robust {:.4}% naive {:.4}%",
                 r.robust_flip,

@@ -142,10 +142,7 @@ fn broken_shader_folder_is_reported_with_file_and_line() {
     let dir = temp_path("broken_shaders");
     std::fs::create_dir_all(&dir).unwrap();
     let shaders = Path::new(env!("CARGO_MANIFEST_DIR")).join("shaders");
-    for entry in std::fs::read_dir(&shaders).unwrap() {
-        let entry = entry.unwrap();
-        std::fs::copy(entry.path(), dir.join(entry.file_name())).unwrap();
-    }
+    common::copy_dir(&shaders, &dir);
     let shade = dir.join("shade.wgsl");
     let broken =
         std::fs::read_to_string(&shade)
@@ -165,4 +162,60 @@ fn broken_shader_folder_is_reported_with_file_and_line() {
     assert_eq!(out.status.code(), Some(2), "{stderr}");
     assert!(stderr.contains("shade.wgsl:"), "{stderr}");
     assert!(!stderr.contains("panicked"), "{stderr}");
+}
+
+/// Sizes the GPU cannot draw end with exit status 2 and a message naming
+/// the limit, never a panic: one pixel beyond the adapter's largest texture,
+/// and zero, for every command that takes a size.
+#[test]
+fn sizes_beyond_the_gpu_or_zero_exit_2_naming_the_limit() {
+    let Some(gpu) = common::gpu() else { return };
+    let max = gpu.device.limits().max_texture_dimension_2d;
+    let too_big = (max + 1).to_string();
+    let too_wide = format!("{too_big}x8");
+    let scene = common::scenes_dir().join("whitted.toml");
+    let scene = scene.to_str().unwrap();
+    let png = temp_path("too_big.png");
+    let png = png.to_str().unwrap();
+    let shader = Path::new(env!("CARGO_MANIFEST_DIR")).join("assets/shaders/mirror_cube.frag");
+    let shader = shader.to_str().unwrap();
+    let over_limit: [Vec<&str>; 3] = [
+        vec![
+            "render", scene, "-o", png, "--width", &too_big, "--height", "8",
+        ],
+        vec![
+            "render", scene, "-o", png, "--width", "8", "--height", &too_big,
+        ],
+        vec!["shader", shader, "--render", png, "--size", &too_wide],
+    ];
+    for args in &over_limit {
+        let out = raysandbox(args);
+        let stderr = text(&out.stderr);
+        assert_eq!(out.status.code(), Some(2), "{args:?}: {stderr}");
+        assert!(
+            stderr.contains(&format!("1 to {max} pixels")),
+            "{args:?}: {stderr}"
+        );
+        assert!(!stderr.contains("panicked"), "{args:?}: {stderr}");
+    }
+    let zero: [Vec<&str>; 5] = [
+        vec!["render", scene, "-o", png, "--width", "0"],
+        vec!["render", scene, "-o", png, "--height", "0"],
+        vec!["shader", shader, "--render", png, "--size", "0x8"],
+        vec!["view", scene, "--size", "8x0"],
+        vec!["stress", "--width", "0"],
+    ];
+    for args in &zero {
+        let out = raysandbox(args);
+        let stderr = text(&out.stderr);
+        assert_eq!(out.status.code(), Some(2), "{args:?}: {stderr}");
+        // clap names the range, e.g. "0 is not in 1..=16384", the size
+        // parser its first value: "expected a size from 1 to 16384".
+        assert!(
+            stderr.contains("1..=") || stderr.contains("8..=") || stderr.contains("from 1 to"),
+            "{args:?}: {stderr}"
+        );
+        assert!(!stderr.contains("panicked"), "{args:?}: {stderr}");
+    }
+    assert!(!Path::new(png).exists(), "nothing is written");
 }

@@ -3,6 +3,8 @@
 //! GPU (lavapipe where there is no GPU), against the f64 evaluation, on
 //! random functions of the whole syntax.
 
+mod common;
+
 use glam::DVec3;
 use proptest::prelude::*;
 use proptest::test_runner::{Config, TestRunner};
@@ -225,10 +227,6 @@ fn run_on_gpu(gpu: &Gpu, functions: &[Function], points: &[[f32; 4]]) -> Vec<Gpu
         .collect()
 }
 
-fn gpu() -> Gpu {
-    Gpu::headless().unwrap_or_else(|e| panic!("these tests run on a GPU: {e}"))
-}
-
 /// How far an f32 evaluation may be from the f64 one: a part relative to
 /// the value, and a multiple of what f32 arithmetic itself loses on this
 /// function at this point (the CPU's f32 evaluation against its f64 one: a
@@ -296,7 +294,7 @@ fn mismatches(gpu: &Gpu, functions: &[Function], points: &[DVec3]) -> Vec<String
 /// are drawn 48 at a time, so one shader runs many.
 #[test]
 fn random_functions_agree_on_cpu_and_gpu() {
-    let gpu = gpu();
+    let Some(gpu) = common::gpu() else { return };
     let mut runner = TestRunner::new(Config {
         cases: 12,
         ..Config::default()
@@ -329,6 +327,7 @@ fn random_functions_agree_on_cpu_and_gpu() {
 /// where f32 and f64 cannot fall on different sides.
 #[test]
 fn jumps_and_special_cases_agree_on_cpu_and_gpu() {
+    let Some(gpu) = common::gpu() else { return };
     let sources = [
         "floor(x) + fract(y) + mod(z, 0.75)",
         "mod(x, -2) + floor(-y) + fract(-z)",
@@ -350,6 +349,6 @@ fn jumps_and_special_cases_agree_on_cpu_and_gpu() {
         DVec3::new(2.6, 0.45, 1.1),
         DVec3::new(-0.2, -0.7, -1.2),
     ];
-    let failures = mismatches(&gpu(), &functions, &points);
+    let failures = mismatches(&gpu, &functions, &points);
     assert!(failures.is_empty(), "{}", failures.join("\n"));
 }

@@ -224,7 +224,7 @@ fn a_failed_reload_keeps_the_last_good_frame_and_the_fix_renders_again() {
         offscreen
             .draw(&gpu, session.pipeline().unwrap(), &session.params, &frame)
             .unwrap();
-        offscreen.image(&gpu)
+        offscreen.image(&gpu).unwrap_or_else(|e| panic!("{e}"))
     };
     let good = draw(&session);
 

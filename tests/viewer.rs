@@ -128,10 +128,7 @@ fn a_broken_shader_keeps_the_last_good_image_and_the_fix_renders_again() {
     };
     let dir = temp_dir("shaders");
     let shaders = Path::new(env!("CARGO_MANIFEST_DIR")).join("shaders");
-    for entry in std::fs::read_dir(&shaders).unwrap() {
-        let entry = entry.unwrap();
-        std::fs::copy(entry.path(), dir.join(entry.file_name())).unwrap();
-    }
+    common::copy_dir(&shaders, &dir);
     let path = scene_path("whitted");
     let mut viewer = open(
         &display,
@@ -220,4 +217,35 @@ fn a_scene_saved_from_the_viewer_loads_back_equal() {
     assert_eq!(edited.materials, original.materials);
     let leftovers = std::fs::read_dir(&dir).unwrap().count();
     assert_eq!(leftovers, 1, "no temporary files are left");
+}
+
+/// A window larger than the GPU can draw into is refused before it shows:
+/// exit status 2 and a message naming the limit, for the viewer and the
+/// shader sandbox alike.
+#[test]
+fn window_larger_than_the_gpu_allows_exits_2_naming_the_limit() {
+    let _serial = serial();
+    let Some(display) = Display::start() else {
+        return;
+    };
+    let max = common::gpu()
+        .unwrap()
+        .device
+        .limits()
+        .max_texture_dimension_2d;
+    let size = format!("{}x64", max + 1);
+    let shader = Path::new(env!("CARGO_MANIFEST_DIR")).join("assets/shaders/whitted.wgsl");
+    for args in [
+        vec!["view", "--size", &size],
+        vec!["shader", shader.to_str().unwrap(), "--size", &size],
+    ] {
+        let out = display.run(&args);
+        let stderr = String::from_utf8_lossy(&out.stderr);
+        assert_eq!(out.status.code(), Some(2), "{args:?}: {stderr}");
+        assert!(
+            stderr.contains(&format!("1 to {max} pixels")),
+            "{args:?}: {stderr}"
+        );
+        assert!(!stderr.contains("panicked"), "{args:?}: {stderr}");
+    }
 }

@@ -67,6 +67,9 @@ pub enum ViewerError {
     Scene(String),
     #[error("{0}")]
     Shader(String),
+    /// `--size` beyond what the GPU can draw.
+    #[error("--size: {0}")]
+    Size(String),
 }
 
 /// Things other threads tell the event loop.
@@ -552,7 +555,13 @@ impl App {
 
     fn screenshot(&mut self) {
         let Some(gfx) = &mut self.gfx else { return };
-        let image = gfx.viewport.capture(&gfx.gpu);
+        let image = match gfx.viewport.capture(&gfx.gpu) {
+            Ok(image) => image,
+            Err(e) => {
+                self.editor.message = Some(format!("no screenshot: {e}"));
+                return;
+            }
+        };
         let path = self.doc.screenshot_path();
         match image.save(&path) {
             Ok(()) => {
@@ -646,9 +655,5 @@ impl App {
 
 /// Whether two scenes differ at most in camera and render settings.
 fn same_shapes(a: &Scene, b: &Scene) -> bool {
-    a.lights == b.lights
-        && a.materials == b.materials
-        && a.spheres == b.spheres
-        && a.planes == b.planes
-        && a.cubes == b.cubes
+    a.lights == b.lights && a.materials == b.materials && a.same_shapes(b)
 }

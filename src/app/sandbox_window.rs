@@ -64,6 +64,7 @@ pub fn run_sandbox(args: &ShaderArgs) -> Result<(), SandboxError> {
     sandbox::require_file(&args.file)?;
     open_window(args.clone()).map_err(|e| match e {
         ViewerError::Shader(m) | ViewerError::Scene(m) => SandboxError::Input(m),
+        e @ ViewerError::Size(_) => SandboxError::Input(e.to_string()),
         ViewerError::NoDisplay(m) => SandboxError::Runtime(format!(
             "cannot open a window: {m}\n\
              The window needs a display (X11 or Wayland: is DISPLAY or WAYLAND_DISPLAY set?).\n\
@@ -691,14 +692,16 @@ impl SandboxApp {
 
     fn screenshot(&mut self) {
         let Some(gfx) = &self.gfx else { return };
-        let image = gfx.canvas.capture(&gfx.gpu, &gfx.sandbox);
         let path = screenshot_path(&self.options.file);
-        self.panel.message = Some(match image.save(&path) {
-            Ok(()) => {
-                self.events.event(&format!("screenshot {}", path.display()));
-                format!("screenshot saved to {}", path.display())
-            }
-            Err(e) => format!("{}: {e}", path.display()),
+        self.panel.message = Some(match gfx.canvas.capture(&gfx.gpu, &gfx.sandbox) {
+            Err(e) => format!("no screenshot: {e}"),
+            Ok(image) => match image.save(&path) {
+                Ok(()) => {
+                    self.events.event(&format!("screenshot {}", path.display()));
+                    format!("screenshot saved to {}", path.display())
+                }
+                Err(e) => format!("{}: {e}", path.display()),
+            },
         });
     }
 
@@ -794,8 +797,10 @@ impl SandboxApp {
         // The output checks: after a reload or resize, and about once a
         // second while the clock runs.
         if draw && (self.check_next || self.last_check.elapsed() > Duration::from_secs(1)) {
-            let stats = gfx.canvas.stats(&gfx.gpu);
-            let warning = stats.warning();
+            let warning = match gfx.canvas.stats(&gfx.gpu) {
+                Ok(stats) => stats.warning(),
+                Err(e) => Some(e.to_string()),
+            };
             if warning.is_some() && warning != self.warning {
                 self.events.event("output-warning");
             }

@@ -46,6 +46,10 @@ pub fn open_window(
     )
     .map_err(|e| ViewerError::NoGpu(e.to_string()))?;
     log::info!("adapter: {}", gpu.describe());
+    if let Some(size) = size {
+        gpu.check_size(size)
+            .map_err(|e| ViewerError::Size(e.to_string()))?;
+    }
     Ok((window, gpu, surface))
 }
 

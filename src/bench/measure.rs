@@ -25,12 +25,17 @@ pub fn frame_time(
     let source = ShaderSource::embedded();
     let mut renderer = OffscreenRenderer::new(gpu, &source, options, scene, size.0, size.1)
         .map_err(|e| e.to_string())?;
-    renderer.render(gpu, spp);
+    let wait = |e: crate::gpu::GpuWaitError| e.to_string();
+    renderer.render(gpu, spp).map_err(wait)?;
     let mut times: Vec<Duration> = (0..frames.max(1))
         .map(|_| renderer.render(gpu, spp))
-        .collect();
+        .collect::<Result<_, _>>()
+        .map_err(wait)?;
     times.sort();
-    Ok((times[times.len() / 2], renderer.read_image(gpu)))
+    Ok((
+        times[times.len() / 2],
+        renderer.read_image(gpu).map_err(wait)?,
+    ))
 }
 
 /// The converged reference: 64 samples per pixel, max_depth 16,

@@ -1,4 +1,9 @@
-//! The wgpu device: adapter choice and the errors a user can act on.
+//! The wgpu device: adapter choice, its limits, waiting for it, and the
+//! errors a user can act on.
+
+use std::time::Duration;
+
+use super::tracer::ACCUM_FORMAT;
 
 /// Adapter, device and queue, shared by everything that draws.
 pub struct Gpu {
@@ -19,13 +24,47 @@ pub enum GpuError {
     #[error(
         "no usable GPU adapter found ({0}).\n\
          On a machine without a GPU install a software Vulkan driver: on Debian or \
-         Ubuntu `apt-get install mesa-vulkan-drivers` (lavapipe). \
+         Ubuntu `apt-get install mesa-vulkan-drivers libvulkan1` (lavapipe). \
          WGPU_BACKEND=vulkan|gl and WGPU_ADAPTER_NAME=... choose an adapter."
     )]
     NoAdapter(String),
     #[error("the adapter \"{adapter}\" refused to create a device: {reason}")]
     NoDevice { adapter: String, reason: String },
 }
+
+/// An image size the device cannot render: a zero side, or a side beyond the
+/// largest 2D texture it allows (8192 pixels on lavapipe with the limits the
+/// device is created with).
+#[derive(Debug, Clone, PartialEq, Eq, thiserror::Error)]
+#[error(
+    "an image of {width}x{height} pixels is not possible on this GPU: each side must be from 1 \
+     to {max} pixels (its largest texture, max_texture_dimension_2d); choose a smaller size"
+)]
+pub struct SizeError {
+    pub width: u32,
+    pub height: u32,
+    pub max: u32,
+}
+
+/// The GPU did not finish the submitted work: too slow (e.g. a shader that
+/// loops for too long), or the device was lost on the way.
+#[derive(Debug, thiserror::Error)]
+pub enum GpuWaitError {
+    #[error(
+        "the GPU did not finish a frame within {} s: is a shader running too long?",
+        .0.as_secs()
+    )]
+    Timeout(Duration),
+    #[error("the GPU failed while finishing a frame (device lost?): {0}")]
+    Lost(String),
+}
+
+/// How long one submission may keep the GPU busy before [`Gpu::wait`] gives
+/// up. The renderers submit a few samples per pixel at a time; on lavapipe
+/// with two cores a batch of the heaviest bundled scene at the largest size
+/// (8192 x 8192) takes a few minutes, so a user's shader that is still
+/// running after ten is taken to be stuck.
+pub const WAIT_LIMIT: Duration = Duration::from_secs(600);
 
 impl Gpu {
     /// A device for offscreen rendering. Honours `WGPU_BACKEND` and
@@ -59,6 +98,18 @@ impl Gpu {
     ) -> Result<Gpu, GpuError> {
         let adapter = pollster::block_on(instance.request_adapter(options))
             .map_err(|e| GpuError::NoAdapter(e.to_string()))?;
+        let accumulates = adapter
+            .get_texture_format_features(ACCUM_FORMAT)
+            .allowed_usages
+            .contains(wgpu::TextureUsages::RENDER_ATTACHMENT);
+        if !accumulates {
+            let info = adapter.get_info();
+            return Err(GpuError::NoAdapter(format!(
+                "{} ({:?}) cannot render into {ACCUM_FORMAT:?} textures, which hold the \
+                 running sum of samples",
+                info.name, info.backend
+            )));
+        }
         let (device, queue) = pollster::block_on(adapter.request_device(&wgpu::DeviceDescriptor {
             label: Some("raysandbox"),
             // Timestamp queries time frames where the adapter has them.
@@ -76,6 +127,33 @@ impl Gpu {
             device,
             queue,
         })
+    }
+
+    /// Whether an image of `width` x `height` pixels can be rendered on this
+    /// device: both sides from 1 to its largest texture size.
+    pub fn check_size(&self, (width, height): (u32, u32)) -> Result<(), SizeError> {
+        let max = self.device.limits().max_texture_dimension_2d;
+        if (1..=max).contains(&width) && (1..=max).contains(&height) {
+            Ok(())
+        } else {
+            Err(SizeError { width, height, max })
+        }
+    }
+
+    /// Waits until the GPU has finished everything submitted so far (and the
+    /// callbacks of finished buffer mappings have run), for at most
+    /// [`WAIT_LIMIT`].
+    pub fn wait(&self) -> Result<(), GpuWaitError> {
+        self.device
+            .poll(wgpu::PollType::Wait {
+                submission_index: None,
+                timeout: Some(WAIT_LIMIT),
+            })
+            .map(drop)
+            .map_err(|e| match e {
+                wgpu::PollError::Timeout => GpuWaitError::Timeout(WAIT_LIMIT),
+                other => GpuWaitError::Lost(other.to_string()),
+            })
     }
 
     /// One line naming the adapter, its backend, kind and driver.

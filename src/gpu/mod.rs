@@ -14,10 +14,10 @@ mod timer;
 mod tracer;
 mod viewport;
 
-pub use context::{Gpu, GpuError, TIMER_FEATURES};
+pub use context::{Gpu, GpuError, GpuWaitError, SizeError, TIMER_FEATURES, WAIT_LIMIT};
 pub use features::{Features, ShaderOptions};
 pub use id_pass::{FirstHit, IdRenderer};
-pub use offscreen::{OffscreenRenderer, read_texels, read_texture, render_image};
+pub use offscreen::{OffscreenRenderer, RenderError, read_texels, read_texture, render_image};
 pub use shaders::{ShaderError, ShaderSource};
 pub use texture::render_target;
 pub use timer::{GpuTimer, Timing};

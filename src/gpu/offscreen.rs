@@ -2,7 +2,7 @@
 
 use std::time::{Duration, Instant};
 
-use super::context::Gpu;
+use super::context::{Gpu, GpuWaitError, SizeError};
 use super::features::ShaderOptions;
 use super::layout::PackedScene;
 use super::shaders::ShaderSource;
@@ -21,6 +21,27 @@ const OUTPUT_FORMAT: wgpu::TextureFormat = wgpu::TextureFormat::Rgba8Unorm;
 /// a desktop GPU driver; a few samples per submission stay well clear of it.
 const SAMPLES_PER_SUBMIT: u32 = 8;
 
+/// Why an offscreen renderer could not be made or could not render.
+#[derive(Debug, thiserror::Error)]
+pub enum RenderError {
+    /// The shader or pipeline (the user's input).
+    #[error(transparent)]
+    Pipeline(#[from] PipelineError),
+    /// The image size (the user's input).
+    #[error(transparent)]
+    Size(#[from] SizeError),
+    /// The GPU did not deliver the image (the machine, or a shader too slow).
+    #[error(transparent)]
+    Gpu(#[from] GpuWaitError),
+}
+
+impl RenderError {
+    /// Whether the user's input caused it (exit status 2 on the command line).
+    pub fn is_input(&self) -> bool {
+        !matches!(self, RenderError::Gpu(_))
+    }
+}
+
 /// Everything needed to render one scene at one size, again and again.
 pub struct OffscreenRenderer {
     pipelines: Pipelines,
@@ -38,7 +59,8 @@ impl OffscreenRenderer {
         scene: &Scene,
         width: u32,
         height: u32,
-    ) -> Result<Self, PipelineError> {
+    ) -> Result<Self, RenderError> {
+        gpu.check_size((width, height))?;
         let device = &gpu.device;
         let pipelines = Pipelines::new(device, source, &[OUTPUT_FORMAT], options)?;
         let scene = SceneBuffers::new(device, &pipelines, PackedScene::new(scene, width, height));
@@ -70,10 +92,18 @@ impl OffscreenRenderer {
     /// Traces `spp` samples per pixel from scratch and waits for the GPU.
     /// Returns the GPU time of the work (see [`Self::timing`]: timestamps
     /// where the adapter has them, else submission to completion).
-    pub fn render(&mut self, gpu: &Gpu, spp: u32) -> Duration {
+    pub fn render(&mut self, gpu: &Gpu, spp: u32) -> Result<Duration, GpuWaitError> {
+        self.accum.reset();
+        self.accumulate(gpu, spp)
+    }
+
+    /// Adds `spp` samples per pixel to those already accumulated (as the
+    /// viewer does frame after frame) and waits for the GPU; returns the GPU
+    /// time as [`Self::render`] does. Samples are traced in submissions of
+    /// at most [`SAMPLES_PER_SUBMIT`], each waited for (see [`Gpu::wait`]).
+    pub fn accumulate(&mut self, gpu: &Gpu, spp: u32) -> Result<Duration, GpuWaitError> {
         let start = Instant::now();
         let mut gpu_time = Duration::ZERO;
-        self.accum.reset();
         let view = self.target.create_view(&Default::default());
         let target = FrameTarget {
             view: &view,
@@ -100,35 +130,43 @@ impl OffscreenRenderer {
                 timer.end(&mut encoder);
             }
             gpu.queue.submit([encoder.finish()]);
+            gpu.wait()?;
             if let Some(time) = self.timer.as_ref().and_then(|t| t.read(gpu)) {
                 gpu_time += time;
             }
             remaining -= batch;
         }
-        gpu.device
-            .poll(wgpu::PollType::wait_indefinitely())
-            .expect("waiting for the GPU");
-        match self.timer {
+        Ok(match self.timer {
             Some(_) => gpu_time,
             None => start.elapsed(),
-        }
+        })
+    }
+
+    /// Samples per pixel accumulated so far.
+    pub fn samples(&self) -> u32 {
+        self.accum.samples()
     }
 
     /// Copies the last rendered image back to the CPU.
-    pub fn read_image(&self, gpu: &Gpu) -> image::RgbaImage {
+    pub fn read_image(&self, gpu: &Gpu) -> Result<image::RgbaImage, GpuWaitError> {
         read_texture(gpu, &self.target)
     }
 }
 
 /// Copies an `Rgba8Unorm` texture back to the CPU and waits for it.
-pub fn read_texture(gpu: &Gpu, texture: &wgpu::Texture) -> image::RgbaImage {
-    image::RgbaImage::from_raw(texture.width(), texture.height(), read_texels(gpu, texture))
-        .expect("buffer holds the whole image")
+pub fn read_texture(gpu: &Gpu, texture: &wgpu::Texture) -> Result<image::RgbaImage, GpuWaitError> {
+    let texels = read_texels(gpu, texture)?;
+    Ok(
+        image::RgbaImage::from_raw(texture.width(), texture.height(), texels)
+            .expect("buffer holds the whole image"),
+    )
 }
 
 /// Copies a texture back to the CPU and waits for it: its texels row by
-/// row, without the padding a texture-to-buffer copy needs per row.
-pub fn read_texels(gpu: &Gpu, texture: &wgpu::Texture) -> Vec<u8> {
+/// row, without the padding a texture-to-buffer copy needs per row. A GPU
+/// that does not finish (see [`Gpu::wait`]) or fails to map the copy is an
+/// error, never a panic: a user's shader can cause it.
+pub fn read_texels(gpu: &Gpu, texture: &wgpu::Texture) -> Result<Vec<u8>, GpuWaitError> {
     let (width, height) = (texture.width(), texture.height());
     let texel_bytes = texture
         .format()
@@ -157,18 +195,23 @@ pub fn read_texels(gpu: &Gpu, texture: &wgpu::Texture) -> Vec<u8> {
     );
     gpu.queue.submit([encoder.finish()]);
     let slice = readback.slice(..);
-    slice.map_async(wgpu::MapMode::Read, |result| {
-        result.expect("mapping the readback buffer")
+    let (sender, mapped) = std::sync::mpsc::channel();
+    slice.map_async(wgpu::MapMode::Read, move |result| {
+        let _ = sender.send(result);
     });
-    gpu.device
-        .poll(wgpu::PollType::wait_indefinitely())
-        .expect("waiting for the GPU");
-    let data = slice.get_mapped_range().expect("mapped readback buffer");
+    gpu.wait()?;
+    mapped
+        .try_recv()
+        .map_err(|_| GpuWaitError::Lost("the readback buffer was never mapped".into()))?
+        .map_err(|e| GpuWaitError::Lost(e.to_string()))?;
+    let data = slice
+        .get_mapped_range()
+        .map_err(|e| GpuWaitError::Lost(e.to_string()))?;
     let mut texels = Vec::with_capacity((row_bytes * height) as usize);
     for row in data.chunks(padded_row as usize) {
         texels.extend_from_slice(&row[..row_bytes as usize]);
     }
-    texels
+    Ok(texels)
 }
 
 /// Renders `scene` once at `spp` samples per pixel with the embedded shader.
@@ -178,7 +221,7 @@ pub fn render_image(
     width: u32,
     height: u32,
     spp: u32,
-) -> Result<image::RgbaImage, PipelineError> {
+) -> Result<image::RgbaImage, RenderError> {
     let mut renderer = OffscreenRenderer::new(
         gpu,
         &ShaderSource::embedded(),
@@ -187,6 +230,6 @@ pub fn render_image(
         width,
         height,
     )?;
-    renderer.render(gpu, spp);
-    Ok(renderer.read_image(gpu))
+    renderer.render(gpu, spp)?;
+    Ok(renderer.read_image(gpu)?)
 }

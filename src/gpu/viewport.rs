@@ -4,7 +4,7 @@
 
 use std::time::{Duration, Instant};
 
-use super::context::Gpu;
+use super::context::{Gpu, GpuWaitError};
 use super::layout::PackedScene;
 use super::texture::render_target;
 use super::timer::{GpuTimer, Timing};
@@ -229,7 +229,7 @@ impl Viewport {
 
     /// The current image at the traced resolution, without anything drawn
     /// on top, as 8-bit sRGB (for screenshots and tests).
-    pub fn capture(&mut self, gpu: &Gpu) -> image::RgbaImage {
+    pub fn capture(&mut self, gpu: &Gpu) -> Result<image::RgbaImage, GpuWaitError> {
         let size = self.accum.size();
         let texture = render_target(
             &gpu.device,

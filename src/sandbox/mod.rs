@@ -40,7 +40,7 @@ pub use session::{ReloadError, Session};
 pub use uniforms::FrameUniforms;
 
 use crate::cli::parse_size;
-use crate::gpu::Gpu;
+use crate::gpu::{Gpu, GpuWaitError};
 
 /// Arguments of `raysandbox shader`.
 #[derive(Debug, Clone, clap::Args)]
@@ -142,6 +142,8 @@ pub fn run_headless(args: &ShaderArgs) -> Result<(), SandboxError> {
     let gpu = Gpu::headless().map_err(|e| SandboxError::Runtime(e.to_string()))?;
     println!("adapter: {}", gpu.describe());
     let size = args.size.unwrap_or((1280, 720));
+    gpu.check_size(size)
+        .map_err(|e| SandboxError::Input(format!("--size: {e}")))?;
     let (count, out_dir) = match (&args.render, args.frames, &args.out) {
         (Some(_), _, _) => (1, None),
         (None, Some(n), Some(dir)) => {
@@ -182,6 +184,7 @@ pub fn run_headless(args: &ShaderArgs) -> Result<(), SandboxError> {
     );
     rendered.map_err(|e| match e {
         RenderError::Gpu(m) => SandboxError::Input(m),
+        RenderError::Wait(m) => SandboxError::Runtime(m),
         RenderError::Stopped(m) => {
             // Dropping the device would wait for the frame that never ends.
             std::mem::forget(gpu);
@@ -204,8 +207,13 @@ pub fn run_headless(args: &ShaderArgs) -> Result<(), SandboxError> {
     Ok(())
 }
 
+/// Why a headless render stopped: the shader's pipeline (the user's input),
+/// a frame stopped by the watchdog, the readback of a frame failing (a lost
+/// device), or the caller's handling of a frame (writing the file).
 enum RenderError<E> {
     Gpu(String),
+    /// Reading the frame back failed ([`GpuWaitError`]).
+    Wait(String),
     /// The watchdog stopped a frame ([`render::TooSlow`]): the GPU is still
     /// busy with it.
     Stopped(String),
@@ -241,12 +249,14 @@ fn render_sequence<E>(
                 compiled.file
             )));
         }
+        let wait = |e: GpuWaitError| RenderError::Wait(e.to_string());
         let stats = if k == 0 {
-            offscreen.stats(gpu)
+            offscreen.stats(gpu).map_err(wait)?
         } else {
             CanvasStats::default()
         };
-        each(k, offscreen.image(gpu), stats).map_err(RenderError::Output)?;
+        let image = offscreen.image(gpu).map_err(wait)?;
+        each(k, image, stats).map_err(RenderError::Output)?;
     }
     Ok(())
 }

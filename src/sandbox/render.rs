@@ -8,7 +8,9 @@ use std::borrow::Cow;
 use super::compose::Compiled;
 use super::params::ParamSet;
 use super::uniforms::{FRAME_UNIFORMS_SIZE, FrameUniforms};
-use crate::gpu::{EXPORT_FORMAT, Gpu, fullscreen, read_texels, read_texture, render_target};
+use crate::gpu::{
+    EXPORT_FORMAT, Gpu, GpuWaitError, fullscreen, read_texels, read_texture, render_target,
+};
 
 /// What the user's shader draws into.
 pub const CANVAS_FORMAT: wgpu::TextureFormat = wgpu::TextureFormat::Rgba32Float;
@@ -379,8 +381,13 @@ impl Canvas {
     }
 
     /// The canvas as 8-bit RGBA (what the display pass shows at 1:1), for
-    /// screenshots, headless renders and tests.
-    pub fn capture(&self, gpu: &Gpu, sandbox: &SandboxGpu) -> image::RgbaImage {
+    /// screenshots, headless renders and tests. A GPU that does not finish
+    /// (a shader running too long) is an error.
+    pub fn capture(
+        &self,
+        gpu: &Gpu,
+        sandbox: &SandboxGpu,
+    ) -> Result<image::RgbaImage, GpuWaitError> {
         let texture = render_target(
             &gpu.device,
             "sandbox export",
@@ -396,14 +403,14 @@ impl Canvas {
     }
 
     /// Reads the canvas back and counts NaN, infinite and empty pixels.
-    pub fn stats(&self, gpu: &Gpu) -> CanvasStats {
+    pub fn stats(&self, gpu: &Gpu) -> Result<CanvasStats, GpuWaitError> {
         let (width, height) = self.size();
-        let texels = read_texels(gpu, &self.texture);
+        let data = read_texels(gpu, &self.texture)?;
         let mut stats = CanvasStats {
             pixels: u64::from(width) * u64::from(height),
             ..Default::default()
         };
-        for px in texels.chunks_exact(16) {
+        for px in data.chunks_exact(16) {
             let c: [f32; 4] = bytemuck::pod_read_unaligned(px);
             if c[..3].iter().any(|v| !v.is_finite()) {
                 stats.non_finite += 1;
@@ -411,7 +418,7 @@ impl Canvas {
                 stats.empty += 1;
             }
         }
-        stats
+        Ok(stats)
     }
 }
 
@@ -489,13 +496,13 @@ impl Offscreen {
     }
 
     /// The last frame as 8-bit RGBA.
-    pub fn image(&self, gpu: &Gpu) -> image::RgbaImage {
+    pub fn image(&self, gpu: &Gpu) -> Result<image::RgbaImage, GpuWaitError> {
         let canvas = self.canvas.as_ref().expect("draw before reading");
         canvas.capture(gpu, &self.sandbox)
     }
 
     /// NaN, infinite and empty pixels of the last frame.
-    pub fn stats(&self, gpu: &Gpu) -> CanvasStats {
+    pub fn stats(&self, gpu: &Gpu) -> Result<CanvasStats, GpuWaitError> {
         let canvas = self.canvas.as_ref().expect("draw before reading");
         canvas.stats(gpu)
     }
@@ -514,5 +521,9 @@ pub fn render_once(
         std::mem::forget((offscreen, pipeline));
         return Err(format!("{}: {stopped}", compiled.file));
     }
-    Ok((offscreen.image(gpu), offscreen.stats(gpu)))
+    let wait = |e: GpuWaitError| e.to_string();
+    Ok((
+        offscreen.image(gpu).map_err(wait)?,
+        offscreen.stats(gpu).map_err(wait)?,
+    ))
 }

@@ -17,8 +17,9 @@ use std::time::Instant;
 use image::{RgbImage, RgbaImage};
 
 use crate::gpu::{
-    Accumulator, FirstHit, FrameTarget, Gpu, IdRenderer, PipelineError, Pipelines, SceneBuffers,
-    ShaderOptions, ShaderSource, encode_frame, layout::PackedScene, read_texture, render_target,
+    Accumulator, FirstHit, FrameTarget, Gpu, GpuWaitError, IdRenderer, PipelineError, Pipelines,
+    SceneBuffers, ShaderOptions, ShaderSource, encode_frame, layout::PackedScene, read_texture,
+    render_target,
 };
 use crate::reference::{self, PreparedScene, ReferenceOptions};
 use crate::scene::Scene;
@@ -91,7 +92,13 @@ impl GpuVariant {
     /// The image at 1 sample per pixel (the pixel centre) and the first hits.
     /// The robust variant gets camera-relative positions, the naive one the
     /// textbook's world coordinates.
-    pub fn render(&self, gpu: &Gpu, scene: &Scene, width: u32, height: u32) -> GpuRender {
+    pub fn render(
+        &self,
+        gpu: &Gpu,
+        scene: &Scene,
+        width: u32,
+        height: u32,
+    ) -> Result<GpuRender, GpuWaitError> {
         let device = &gpu.device;
         let packed = if self.robust {
             PackedScene::new(scene, width, height)
@@ -124,10 +131,10 @@ impl GpuVariant {
             &target,
         );
         gpu.queue.submit([encoder.finish()]);
-        GpuRender {
-            image: read_texture(gpu, &texture),
-            first_hits: self.ids.render(gpu, scene, width, height),
-        }
+        Ok(GpuRender {
+            image: read_texture(gpu, &texture)?,
+            first_hits: self.ids.render(gpu, scene, width, height)?,
+        })
     }
 }
 
@@ -171,7 +178,13 @@ impl Harness {
 
     /// Renders `scene` (rounded to f32 first, for both sides) with both
     /// variants and the reference, and compares.
-    pub fn measure(&self, gpu: &Gpu, scene: &Scene, width: u32, height: u32) -> Measured {
+    pub fn measure(
+        &self,
+        gpu: &Gpu,
+        scene: &Scene,
+        width: u32,
+        height: u32,
+    ) -> Result<Measured, GpuWaitError> {
         let scene = scenes::round_to_f32(scene);
         let reference = reference_render(&scene, width, height);
         self.compare(gpu, &scene, reference, width, height)
@@ -180,7 +193,13 @@ impl Harness {
     /// Measures an entry: against the reference of its own f32-rounded
     /// scene, or, for a moved scene, against the reference of the exact
     /// answer (the scene before it was moved, in f64).
-    pub fn measure_entry(&self, gpu: &Gpu, entry: &Entry, width: u32, height: u32) -> Measured {
+    pub fn measure_entry(
+        &self,
+        gpu: &Gpu,
+        entry: &Entry,
+        width: u32,
+        height: u32,
+    ) -> Result<Measured, GpuWaitError> {
         match &entry.exact {
             None => self.measure(gpu, &entry.scene, width, height),
             Some(exact) => {
@@ -197,13 +216,13 @@ impl Harness {
         reference: ReferenceRender,
         width: u32,
         height: u32,
-    ) -> Measured {
-        let robust = self.robust.render(gpu, scene, width, height);
-        let naive = self.naive.render(gpu, scene, width, height);
+    ) -> Result<Measured, GpuWaitError> {
+        let robust = self.robust.render(gpu, scene, width, height)?;
+        let naive = self.naive.render(gpu, scene, width, height)?;
         let (robust_cmp, robust_flip) =
             metrics::compare(&reference, &robust.image, &robust.first_hits);
         let (naive_cmp, naive_flip) = metrics::compare(&reference, &naive.image, &naive.first_hits);
-        Measured {
+        Ok(Measured {
             reference,
             robust,
             naive,
@@ -211,7 +230,7 @@ impl Harness {
             naive_cmp,
             robust_flip,
             naive_flip,
-        }
+        })
     }
 }
 
@@ -291,26 +310,26 @@ impl Harness {
         power: i32,
         width: u32,
         height: u32,
-    ) -> Invariance {
+    ) -> Result<Invariance, GpuWaitError> {
         let base = scenes::round_to_f32(scene);
         let big = scenes::round_to_f32(&scenes::scaled(scene, scenes::power_of_ten(power)));
         let reference = reference_render(&big, width, height);
         let mut flips = [0.0; 2];
         let mut shadows = [0.0; 2];
         for (i, variant) in [&self.robust, &self.naive].into_iter().enumerate() {
-            let a = variant.render(gpu, &base, width, height);
-            let b = variant.render(gpu, &big, width, height);
+            let a = variant.render(gpu, &base, width, height)?;
+            let b = variant.render(gpu, &big, width, height)?;
             flips[i] = metrics::flip(&a.image, &b.image).0;
             shadows[i] = metrics::false_shadows(&reference, &b.image).0;
         }
-        Invariance {
+        Ok(Invariance {
             name: name.to_string(),
             factor_power: power,
             robust_flip: flips[0],
             naive_flip: flips[1],
             robust_false_shadow: shadows[0],
             naive_false_shadow: shadows[1],
-        }
+        })
     }
 }
 
@@ -353,7 +372,9 @@ pub fn run(args: &StressArgs) -> Result<(), StressError> {
     let mut rows = Vec::new();
     println!("{}", report::console_header());
     for entry in &entries {
-        let m = harness.measure_entry(&gpu, entry, args.width, args.height);
+        let m = harness
+            .measure_entry(&gpu, entry, args.width, args.height)
+            .map_err(|e| StressError::Runtime(e.to_string()))?;
         let row = report::Row {
             name: entry.name.clone(),
             group: entry.group,
@@ -372,14 +393,11 @@ pub fn run(args: &StressArgs) -> Result<(), StressError> {
             continue;
         };
         for power in [3, -3] {
-            invariance.push(harness.invariance(
-                &gpu,
-                name,
-                &entry.scene,
-                power,
-                args.width,
-                args.height,
-            ));
+            invariance.push(
+                harness
+                    .invariance(&gpu, name, &entry.scene, power, args.width, args.height)
+                    .map_err(|e| StressError::Runtime(e.to_string()))?,
+            );
         }
     }
     let summary = report::series_summary(&rows);
@@ -442,11 +460,7 @@ pub fn panel(m: &Measured) -> RgbImage {
         match hit {
             None => image::Rgb([0, 0, 0]),
             Some((shape, _)) => {
-                let (kind, index) = match shape {
-                    reference::ShapeId::Sphere(i) => (1u32, i as u32),
-                    reference::ShapeId::Plane(i) => (2, i as u32),
-                    reference::ShapeId::Cube(i) => (3, i as u32),
-                };
+                let (kind, index) = FirstHit::id_of(Some(shape));
                 // A fixed bright colour per shape.
                 let k = (kind * 7919 + index * 104_729).wrapping_mul(2_654_435_761);
                 image::Rgb([

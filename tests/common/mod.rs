@@ -1,4 +1,5 @@
-//! Shared by the integration tests: the GPU, and where the scenes are.
+//! Shared by the integration tests: the GPU, the tally of tests that used
+//! it, and where the scenes are.
 //! Each test binary compiles this module and uses only part of it.
 #![allow(dead_code)]
 
@@ -8,25 +9,61 @@ use std::path::{Path, PathBuf};
 
 use raysandbox::gpu::Gpu;
 
-/// The GPU device, or `None` (with a loud message) on a developer machine
-/// without one. In CI (`CI=true`) a missing adapter fails the test instead:
-/// the GPU tests must run there, on lavapipe.
+/// Set to `1` to skip the GPU and window tests on a machine without a Vulkan
+/// driver or Xvfb: an explicit choice of the person running the tests, off by
+/// default and never set by `scripts/test` (README, "Tests").
+pub const SKIP_GPU_TESTS: &str = "RAYSANDBOX_SKIP_GPU_TESTS";
+
+/// A folder in which every GPU or window test leaves one file named after
+/// itself; `scripts/test` sets it and counts the files, so a run that tested
+/// nothing on the GPU cannot look like a green one.
+pub const TALLY_DIR: &str = "RAYSANDBOX_TEST_TALLY";
+
+/// How to get what the GPU and window tests need.
+pub const INSTALL_HINT: &str = "install lavapipe (Mesa's Vulkan driver on the CPU) and the Vulkan \
+     loader with `sudo apt-get install mesa-vulkan-drivers libvulkan1`, or run scripts/test, \
+     which installs them (and Xvfb, xdotool, ImageMagick for the window tests)";
+
+/// Whether the person running the tests opted out of the GPU and window
+/// tests ([`SKIP_GPU_TESTS`] = 1).
+pub fn skipping_gpu_tests() -> bool {
+    std::env::var(SKIP_GPU_TESTS).is_ok_and(|v| v == "1")
+}
+
+/// The GPU device. Without an adapter the test fails with a message saying
+/// how to install one, unless [`SKIP_GPU_TESTS`] is set: then `None`, and the
+/// test returns having tested nothing (it says so on stderr).
 pub fn gpu() -> Option<Gpu> {
+    if skipping_gpu_tests() {
+        eprintln!("!!! {SKIP_GPU_TESTS}=1: skipping this GPU test");
+        return None;
+    }
     match Gpu::headless() {
         Ok(gpu) => {
             eprintln!("adapter: {}", gpu.describe());
+            record("gpu");
             Some(gpu)
         }
-        Err(e) if std::env::var("CI").is_ok_and(|v| v == "true") => {
-            panic!("CI=true and no GPU adapter: {e}")
-        }
-        Err(e) => {
-            eprintln!(
-                "!!! SKIPPING GPU TEST: no adapter ({e}). Run scripts/test to install lavapipe."
-            );
-            None
-        }
+        Err(e) => panic!(
+            "this test needs a GPU adapter and found none: {e}\nTo run it, {INSTALL_HINT}.\n\
+             To skip the GPU and window tests instead, set {SKIP_GPU_TESTS}=1."
+        ),
     }
+}
+
+/// Leaves the file `KIND-BINARY-TEST` in the [`TALLY_DIR`] folder, if there
+/// is one: one file per test however often it asks for the GPU. libtest
+/// names each test's thread after the test.
+pub fn record(kind: &str) {
+    let Some(dir) = std::env::var_os(TALLY_DIR) else {
+        return;
+    };
+    let thread = std::thread::current();
+    let test = thread.name().unwrap_or("main").replace("::", "-");
+    let file = Path::new(&dir).join(format!("{kind}-{}-{test}", env!("CARGO_CRATE_NAME")));
+    std::fs::create_dir_all(&dir)
+        .and_then(|()| std::fs::write(&file, ""))
+        .unwrap_or_else(|e| panic!("{TALLY_DIR}: {}: {e}", file.display()));
 }
 
 /// The project's folder of bundled scenes.
@@ -43,4 +80,18 @@ pub fn toml_files(dir: &Path) -> Vec<PathBuf> {
         .collect();
     files.sort();
     files
+}
+
+/// Copies a folder with its subfolders (the shader folder has `shapes/`).
+pub fn copy_dir(from: &Path, to: &Path) {
+    std::fs::create_dir_all(to).unwrap();
+    for entry in std::fs::read_dir(from).unwrap() {
+        let path = entry.unwrap().path();
+        let target = to.join(path.file_name().unwrap());
+        if path.is_dir() {
+            copy_dir(&path, &target);
+        } else {
+            std::fs::copy(&path, &target).unwrap();
+        }
+    }
 }
