@@ -120,7 +120,8 @@ precision lowp sampler2D;
 uniform float time;
 void main() { gl_FragColor = vec4(time * 0.5, 0.25, 1.0, 1.0); }
 ";
-    let image = render_text(&gpu(), "gles.frag", text);
+    let Some(gpu) = common::gpu() else { return };
+    let image = render_text(&gpu, "gles.frag", text);
     assert_every_pixel(&image, [128, 64, 255], "time 1");
 }
 
@@ -134,7 +135,8 @@ void main() {
     gl_FragColor = vec4(surfacePosition + 0.5, surfaceSize.y * 0.5, 1.0);
 }
 ";
-    let image = render_text(&gpu(), "surface.frag", text);
+    let Some(gpu) = common::gpu() else { return };
+    let image = render_text(&gpu, "surface.frag", text);
     let (w, h) = SIZE;
     let aspect = w as f32 / h as f32;
     for (x, y, p) in image.enumerate_pixels() {
@@ -169,7 +171,8 @@ void mainImage(out vec4 fragColor, in vec2 fragCoord) {
 }
 void main(void) { mainImage(gl_FragColor, gl_FragCoord.xy); }
 ";
-    let image = render_text(&gpu(), "old.frag", text);
+    let Some(gpu) = common::gpu() else { return };
+    let image = render_text(&gpu, "old.frag", text);
     assert_every_pixel(
         &image,
         [128, 64, 128],
@@ -189,6 +192,7 @@ void mainImage(out vec4 c, in vec2 p) {
 #endif
 }
 ";
-    let image = render_text(&gpu(), "branches.glsl", text);
+    let Some(gpu) = common::gpu() else { return };
+    let image = render_text(&gpu, "branches.glsl", text);
     assert_every_pixel(&image, [64, 64, 64], "mainImage at time 1");
 }
