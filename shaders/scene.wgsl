@@ -25,38 +25,11 @@ struct Globals {
     sample_start: u32,       // index of the first sample this pass adds
     sample_count: u32,       // samples per pixel added by this pass
     max_depth: u32,
-    sphere_count: u32,
-    plane_count: u32,
-    cube_count: u32,
     light_count: u32,
     bvh_node_count: u32,     // 0: no bounded shapes (spheres, boxes)
-    output_size: vec2<u32>,  // size of the display target (may exceed `resolution`)
-}
-
-struct Sphere {
-    center: vec3<f32>,
-    radius: f32,
-    material: u32,
     _pad0: u32,
-    _pad1: u32,
-    _pad2: u32,
-}
-
-/// An infinite two-sided plane; `normal` is unit length.
-struct Plane {
-    point: vec3<f32>,
-    material: u32,
-    normal: vec3<f32>,
-    _pad: u32,
-}
-
-/// A box: world = center + rotation * local, local in [-half_size, half_size].
-struct Cube {
-    center: vec3<f32>,
-    material: u32,
-    half_size: vec3<f32>,
-    _pad: u32,
-    rotation: mat3x3<f32>,   // Rz Ry Rx, columns are the box's local axes in the world
+    output_size: vec2<u32>,  // size of the display target (may exceed `resolution`)
+    _pad1: vec2<u32>,
 }
 
 struct Material {
@@ -83,8 +56,10 @@ struct BvhNode {
     count: u32,
 }
 
-/// In `bvh_shapes`: a box index with this bit set, else a sphere index.
-const CUBE_BIT: u32 = 0x80000000u;
+/// An entry of `bvh_shapes`: the shape's KIND_* number in the bits from
+/// KIND_SHIFT up, its index in that kind's array below.
+const KIND_SHIFT: u32 = 24u;
+const INDEX_MASK: u32 = 0xffffffu;
 
 struct Light {
     position: vec3<f32>,
@@ -94,24 +69,23 @@ struct Light {
 }
 
 @group(0) @binding(0) var<uniform> globals: Globals;
-@group(0) @binding(1) var<storage, read> spheres: array<Sphere>;
-@group(0) @binding(2) var<storage, read> planes: array<Plane>;
-@group(0) @binding(3) var<storage, read> cubes: array<Cube>;
-@group(0) @binding(4) var<storage, read> materials: array<Material>;
-@group(0) @binding(5) var<storage, read> lights: array<Light>;
-@group(0) @binding(6) var<storage, read> bvh_nodes: array<BvhNode>;
-@group(0) @binding(7) var<storage, read> bvh_shapes: array<u32>;
+@group(0) @binding(1) var<storage, read> materials: array<Material>;
+@group(0) @binding(2) var<storage, read> lights: array<Light>;
+@group(0) @binding(3) var<storage, read> bvh_nodes: array<BvhNode>;
+@group(0) @binding(4) var<storage, read> bvh_shapes: array<u32>;
+/// How many shapes of each kind, by KIND_* number (entry 0 unused).
+@group(0) @binding(5) var<storage, read> shape_counts: array<u32>;
+// Bindings 6 and up: one array per shape kind (`spheres`, `planes`, ...),
+// generated with the kinds' KIND_* numbers and HAS_* flags from the
+// registry (src/gpu/shaders.rs); their structs are in shaders/shapes/.
 
 // What the scene uses, as pipeline-overridable constants (src/gpu/features.rs):
 // the pipeline for a scene is compiled with false for what it does not use,
 // and the compiler drops the code behind those flags. The defaults (all
 // true) make the generic pipeline, which draws any scene.
-override HAS_SPHERES: bool = true;
-override HAS_PLANES: bool = true;
-override HAS_CUBES: bool = true;
 override HAS_LIGHTS: bool = true;        // shading by lights, shadow rays
 override HAS_MIRRORS: bool = true;       // materials with mirror > 0
 override HAS_TRANSPARENCY: bool = true;  // materials with transparency > 0
 override HAS_CHECKER: bool = true;
 override HAS_LENS: bool = true;          // aperture > 0
-override USE_BVH: bool = true;           // spheres and boxes through the BVH
+override USE_BVH: bool = true;           // bounded shapes through the BVH

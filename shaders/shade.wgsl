@@ -182,7 +182,7 @@ fn trace(primary: Ray) -> vec3<f32> {
         var eta = 1.0;
         if HAS_TRANSPARENCY && m.transparency > 0.0 {
             let cos_i = -dot(ray.dir, ns);
-            if hit.kind == KIND_PLANE || into_surface {
+            if is_thin(hit.kind) || into_surface {
                 f = fresnel(cos_i, 1.0, m.ior);
                 eta = 1.0 / m.ior;
             } else {
@@ -197,7 +197,7 @@ fn trace(primary: Ray) -> vec3<f32> {
         let refracted_weight = job.weight * wt * max(albedo.r, max(albedo.g, albedo.b));
         if HAS_TRANSPARENCY && worth_tracing(child_depth, refracted_weight) && top < STACK_SIZE {
             var dir = ray.dir;             // thin planes pass the ray on unbent
-            if hit.kind != KIND_PLANE {
+            if !is_thin(hit.kind) {
                 dir = refract_dir(ray.dir, ns, eta);
             }
             let origin = offset_ray(hit.point, -ns, hit.error_scale);
@@ -213,12 +213,4 @@ fn trace(primary: Ray) -> vec3<f32> {
         }
     }
     return radiance;
-}
-
-fn material_of(hit: Hit) -> u32 {
-    switch hit.kind {
-        case KIND_SPHERE: { return spheres[hit.index].material; }
-        case KIND_PLANE: { return planes[hit.index].material; }
-        default: { return cubes[hit.index].material; }
-    }
 }

@@ -1,5 +1,5 @@
 //! A bounding volume hierarchy over the bounded shapes of a scene (spheres
-//! and boxes; planes are infinite and stay outside), so that a ray meets a
+//! and boxes, every kind with bounds; planes are infinite and stay outside), so that a ray meets a
 //! few dozen boxes instead of every shape. Built on the CPU whenever the
 //! scene changes, traversed by the reference here and by the shader in
 //! `shaders/intersect.wgsl` (the same tree, packed by `gpu::layout`).
@@ -10,7 +10,7 @@
 
 use glam::DVec3;
 
-use crate::scene::Scene;
+use crate::scene::{Scene, ShapeId};
 
 /// An axis-aligned box.
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -80,13 +80,6 @@ pub fn safe_inverse(d: DVec3) -> DVec3 {
     DVec3::new(inv(d.x), inv(d.y), inv(d.z))
 }
 
-/// A bounded shape: an index into the scene's `spheres` or `cubes`.
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
-pub enum Prim {
-    Sphere(u32),
-    Cube(u32),
-}
-
 /// A node: an inner node (`count == 0`) has its two children at `first` and
 /// `first + 1`; a leaf holds `prims[first .. first + count]`.
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -101,7 +94,7 @@ pub struct Node {
 #[derive(Debug, Clone, PartialEq, Default)]
 pub struct Bvh {
     pub nodes: Vec<Node>,
-    pub prims: Vec<Prim>,
+    pub prims: Vec<ShapeId>,
 }
 
 /// Leaves hold at most this many shapes unless the tree is too deep.
@@ -119,33 +112,14 @@ const BINS: usize = 16;
 /// Cost of visiting a node relative to intersecting one shape.
 const TRAVERSAL_COST: f64 = 1.0;
 
-/// The bounding box of each bounded shape of `scene`.
-pub fn prim_bounds(scene: &Scene) -> Vec<(Prim, Aabb)> {
-    let spheres = scene.spheres.iter().enumerate().map(|(i, s)| {
-        let r = DVec3::splat(s.radius);
-        (
-            Prim::Sphere(i as u32),
-            Aabb {
-                min: s.center - r,
-                max: s.center + r,
-            },
-        )
-    });
-    let cubes = scene.cubes.iter().enumerate().map(|(i, c)| {
-        // The box's extent along each world axis: |R| times the half size.
-        let m = c.rotation_matrix();
-        let h = c.size.edges() * 0.5;
-        let abs = glam::DMat3::from_cols(m.x_axis.abs(), m.y_axis.abs(), m.z_axis.abs());
-        let e = abs * h;
-        (
-            Prim::Cube(i as u32),
-            Aabb {
-                min: c.center - e,
-                max: c.center + e,
-            },
-        )
-    });
-    spheres.chain(cubes).collect()
+/// The bounding box of each bounded shape of `scene` (every kind whose
+/// `Shape::bounds` is not `None`).
+pub fn prim_bounds(scene: &Scene) -> Vec<(ShapeId, Aabb)> {
+    scene
+        .shape_bounds()
+        .into_iter()
+        .map(|(id, [min, max])| (id, Aabb { min, max }))
+        .collect()
 }
 
 impl Bvh {
@@ -168,7 +142,7 @@ impl Bvh {
 
     /// Fills node `node` with `items` (which start at `offset` in the final
     /// prim list), splitting it where the SAH says it pays.
-    fn split(&mut self, node: usize, items: &mut [(Prim, Aabb)], offset: usize, depth: usize) {
+    fn split(&mut self, node: usize, items: &mut [(ShapeId, Aabb)], offset: usize, depth: usize) {
         let bounds = items.iter().fold(Aabb::EMPTY, |b, (_, a)| b.union(*a));
         let leaf = Node {
             bounds,
@@ -205,7 +179,7 @@ impl Bvh {
         o: DVec3,
         d: DVec3,
         mut t_max: f64,
-        mut visit: impl FnMut(Prim, f64) -> Option<f64>,
+        mut visit: impl FnMut(ShapeId, f64) -> Option<f64>,
     ) {
         if self.nodes.is_empty() {
             return;
@@ -253,7 +227,7 @@ fn longest_axis(b: Aabb) -> usize {
 /// The binned SAH split: sorts `items` into two groups along the longest
 /// axis of the centroids and returns the size of the first, or `None` when
 /// keeping them in one leaf is cheaper (or they cannot be told apart).
-fn sah_split(items: &mut [(Prim, Aabb)], bounds: Aabb) -> Option<usize> {
+fn sah_split(items: &mut [(ShapeId, Aabb)], bounds: Aabb) -> Option<usize> {
     let centroids = items.iter().fold(Aabb::EMPTY, |b, (_, a)| {
         let c = a.centroid();
         b.union(Aabb { min: c, max: c })
@@ -300,7 +274,7 @@ fn sah_split(items: &mut [(Prim, Aabb)], bounds: Aabb) -> Option<usize> {
 
 /// Splits at the median centroid along the longest axis (for shapes the
 /// bins cannot separate, e.g. many at the same place).
-fn median_split(items: &mut [(Prim, Aabb)]) -> usize {
+fn median_split(items: &mut [(ShapeId, Aabb)]) -> usize {
     let bounds = items.iter().fold(Aabb::EMPTY, |b, (_, a)| b.union(*a));
     let axis = longest_axis(bounds);
     let mid = items.len() / 2;
@@ -311,7 +285,7 @@ fn median_split(items: &mut [(Prim, Aabb)]) -> usize {
 }
 
 /// Moves the items for which `left` holds to the front; returns their count.
-fn partition(items: &mut [(Prim, Aabb)], left: impl Fn(&Aabb) -> bool) -> usize {
+fn partition(items: &mut [(ShapeId, Aabb)], left: impl Fn(&Aabb) -> bool) -> usize {
     let mut mid = 0;
     for i in 0..items.len() {
         if left(&items[i].1) {
@@ -361,7 +335,7 @@ mod tests {
     fn every_shape_is_in_exactly_one_leaf_inside_its_node_bounds() {
         let scene = spheres_scene(500, 7);
         let bvh = Bvh::build(&scene);
-        let bounds: std::collections::HashMap<Prim, Aabb> =
+        let bounds: std::collections::HashMap<ShapeId, Aabb> =
             prim_bounds(&scene).into_iter().collect();
         let mut seen = std::collections::HashSet::new();
         let mut stack = vec![(0usize, 0usize)];
@@ -393,8 +367,8 @@ mod tests {
     fn rotated_box_bounds_contain_its_corners() {
         let scene = spheres_scene(8, 3);
         for (prim, b) in prim_bounds(&scene) {
-            if let Prim::Cube(i) = prim {
-                let c = &scene.cubes[i as usize];
+            if let ShapeId::Cube(i) = prim {
+                let c = &scene.cubes[i];
                 let m = c.rotation_matrix();
                 let h = c.size.edges() * 0.5;
                 for corner in 0..8 {

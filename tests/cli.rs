@@ -142,10 +142,7 @@ fn broken_shader_folder_is_reported_with_file_and_line() {
     let dir = temp_path("broken_shaders");
     std::fs::create_dir_all(&dir).unwrap();
     let shaders = Path::new(env!("CARGO_MANIFEST_DIR")).join("shaders");
-    for entry in std::fs::read_dir(&shaders).unwrap() {
-        let entry = entry.unwrap();
-        std::fs::copy(entry.path(), dir.join(entry.file_name())).unwrap();
-    }
+    common::copy_dir(&shaders, &dir);
     let shade = dir.join("shade.wgsl");
     let broken =
         std::fs::read_to_string(&shade)

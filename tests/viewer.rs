@@ -128,10 +128,7 @@ fn a_broken_shader_keeps_the_last_good_image_and_the_fix_renders_again() {
     };
     let dir = temp_dir("shaders");
     let shaders = Path::new(env!("CARGO_MANIFEST_DIR")).join("shaders");
-    for entry in std::fs::read_dir(&shaders).unwrap() {
-        let entry = entry.unwrap();
-        std::fs::copy(entry.path(), dir.join(entry.file_name())).unwrap();
-    }
+    common::copy_dir(&shaders, &dir);
     let path = scene_path("whitted");
     let mut viewer = open(
         &display,

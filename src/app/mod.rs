@@ -655,9 +655,5 @@ impl App {
 
 /// Whether two scenes differ at most in camera and render settings.
 fn same_shapes(a: &Scene, b: &Scene) -> bool {
-    a.lights == b.lights
-        && a.materials == b.materials
-        && a.spheres == b.spheres
-        && a.planes == b.planes
-        && a.cubes == b.cubes
+    a.lights == b.lights && a.materials == b.materials && a.same_shapes(b)
 }

@@ -12,13 +12,13 @@
 //! tests; this file only lays out widgets.
 
 mod edit;
+mod shapes;
 mod widgets;
 
 use std::path::PathBuf;
 
 use crate::gpu::{DEFAULT_MAX_SAMPLES, DEFAULT_MIN_WEIGHT};
-use crate::reference::ShapeId;
-use crate::scene::{Camera, CubeSize, Light, Material, RenderSettings, Scene};
+use crate::scene::{Camera, Light, Material, RenderSettings, Scene, ShapeId, ShapeKind};
 use egui::{
     Button, CollapsingHeader, ComboBox, Grid, Key, RichText, Slider, SliderClamping, TextEdit, Ui,
 };
@@ -130,8 +130,8 @@ pub fn show(
         materials_section(ui, scene, state, scale);
     });
     section(ui, "Shapes", false, |ui| shapes_section(ui, scene, state));
-    let normal_in_edit = selected_shape_section(ui, scene, state, scale);
-    edit::normalize_planes(scene, normal_in_edit);
+    let held = selected_shape_section(ui, scene, state, scale);
+    shapes::settle(scene, held);
     actions
 }
 
@@ -602,20 +602,11 @@ fn checker_rows(ui: &mut Ui, m: &mut Material, scale: f64) {
 
 fn shapes_section(ui: &mut Ui, scene: &mut Scene, state: &mut PanelState) {
     ui.horizontal(|ui| {
-        let sphere = ui.button("Add sphere").clicked();
-        let plane = ui.button("Add plane").clicked();
-        let cube = ui.button("Add cube").clicked();
-        let added = if sphere {
-            Some(edit::add_sphere(scene))
-        } else if plane {
-            Some(edit::add_plane(scene))
-        } else if cube {
-            Some(edit::add_cube(scene))
-        } else {
-            None
-        };
-        if added.is_some() {
-            state.selection = added;
+        for &kind in ShapeKind::ALL {
+            let label = format!("Add {}", kind.name().to_lowercase());
+            if ui.button(label).clicked() {
+                state.selection = Some(edit::add_shape(scene, kind));
+            }
         }
     })
     .response
@@ -636,14 +627,15 @@ fn shapes_section(ui: &mut Ui, scene: &mut Scene, state: &mut PanelState) {
     }
 }
 
-/// The editor of the selected shape. Returns the plane whose normal is being
-/// edited, if any, so that it is normalised only once the edit is done.
+/// The editor of the selected shape. Returns the shape if an edit holds one
+/// of its values (a plane's normal being dragged), so that it is made
+/// canonical only once the edit is done.
 fn selected_shape_section(
     ui: &mut Ui,
     scene: &mut Scene,
     state: &mut PanelState,
     scale: f64,
-) -> Option<usize> {
+) -> Option<ShapeId> {
     let reveal = state.selection.is_some() && state.selection != state.shown_selection;
     state.shown_selection = state.selection;
     let title = match state.selection {
@@ -659,7 +651,10 @@ fn selected_shape_section(
                 ui.weak("Click a shape in the view or in the Shapes list.");
                 return None;
             };
-            let normal_in_edit = shape_fields(ui, scene, id, scale);
+            let held = Grid::new("shape")
+                .num_columns(2)
+                .show(ui, |ui| shapes::edit(ui, scene, id, scale))
+                .inner;
             material_combo(ui, scene, id);
             ui.horizontal(|ui| {
                 if ui
@@ -673,7 +668,7 @@ fn selected_shape_section(
                     edit::remove_shape(scene, id, &mut state.selection);
                 }
             });
-            normal_in_edit
+            held.then_some(id)
         });
     if reveal {
         response
@@ -681,94 +676,6 @@ fn selected_shape_section(
             .scroll_to_me(Some(egui::Align::TOP));
     }
     response.body_returned.flatten()
-}
-
-/// The geometry of one shape. Returns the plane index if its normal is being
-/// dragged or typed.
-fn shape_fields(ui: &mut Ui, scene: &mut Scene, id: ShapeId, scale: f64) -> Option<usize> {
-    let speed = 0.005 * scale;
-    let size_speed = 0.002 * scale;
-    let mut normal_in_edit = None;
-    Grid::new("shape").num_columns(2).show(ui, |ui| match id {
-        ShapeId::Sphere(i) => {
-            let Some(sphere) = scene.spheres.get_mut(i) else {
-                return;
-            };
-            field(ui, "center", "Centre (x, y, z)");
-            vec3_row(ui, &mut sphere.center, speed, COORDINATES);
-            ui.end_row();
-            field(ui, "radius", "Radius (> 0)");
-            ui.add(number(
-                &mut sphere.radius,
-                size_speed,
-                MIN_POSITIVE..=VALUE_LIMIT,
-            ));
-            ui.end_row();
-        }
-        ShapeId::Plane(i) => {
-            let Some(plane) = scene.planes.get_mut(i) else {
-                return;
-            };
-            field(ui, "point", "Any point on the plane (x, y, z)");
-            vec3_row(ui, &mut plane.point, speed, COORDINATES);
-            ui.end_row();
-            field(
-                ui,
-                "normal",
-                "Direction the plane faces; made unit length when the edit is done",
-            );
-            let mut normal = plane.normal;
-            let row = vec3_row(ui, &mut normal, 0.01, -VALUE_LIMIT..=VALUE_LIMIT);
-            if row.changed && edit::unit_normal(normal).is_some() {
-                plane.normal = normal;
-            }
-            if row.active {
-                normal_in_edit = Some(i);
-            }
-            ui.end_row();
-        }
-        ShapeId::Cube(i) => {
-            let Some(cube) = scene.cubes.get_mut(i) else {
-                return;
-            };
-            field(ui, "center", "Centre (x, y, z)");
-            vec3_row(ui, &mut cube.center, speed, COORDINATES);
-            ui.end_row();
-            field(
-                ui,
-                "size",
-                "Edge length, or lengths along the cube's own x, y, z",
-            );
-            cube_size_row(ui, &mut cube.size, size_speed);
-            ui.end_row();
-            field(
-                ui,
-                "rotation",
-                "Degrees about the world x, then y, then z axis",
-            );
-            vec3_row(ui, &mut cube.rotation, 0.5, -360.0..=360.0);
-            ui.end_row();
-        }
-    });
-    normal_in_edit
-}
-
-/// One edge length or three, with a toggle between the two forms.
-fn cube_size_row(ui: &mut Ui, size: &mut CubeSize, speed: f64) {
-    ui.vertical(|ui| {
-        let mut per_axis = matches!(size, CubeSize::PerAxis(_));
-        if ui.checkbox(&mut per_axis, "per axis").changed() {
-            *size = edit::toggle_per_axis(*size);
-        }
-        match size {
-            CubeSize::Uniform(s) => {
-                ui.add(number(s, speed, MIN_POSITIVE..=VALUE_LIMIT));
-            }
-            CubeSize::PerAxis(edges) => {
-                vec3_row(ui, edges, speed, MIN_POSITIVE..=VALUE_LIMIT);
-            }
-        }
-    });
 }
 
 /// The shape's material: the default one or any named material.
@@ -866,7 +773,7 @@ mod tests {
             }
             for &id in &ids {
                 ui.push_id(id, |ui| {
-                    assert_eq!(shape_fields(ui, &mut scene, id, 6.0), None);
+                    assert!(!shapes::edit(ui, &mut scene, id, 6.0));
                     material_combo(ui, &mut scene, id);
                 });
             }

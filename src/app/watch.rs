@@ -23,7 +23,8 @@ pub struct Watch {
     _debouncer: Debouncer<notify_debouncer_mini::notify::RecommendedWatcher>,
 }
 
-/// Starts watching `shader_dir` (its `.wgsl` files) and `scene_file`, calling
+/// Starts watching `shader_dir` (its `.wgsl` files and those of its `shapes/`
+/// folder, one per shape kind) and `scene_file`, calling
 /// `notify` from the watcher's thread for every debounced change. Folders are
 /// watched rather than files, because editors often save by writing a new
 /// file and renaming it over the old one, which ends a watch on the file.
@@ -34,8 +35,10 @@ pub fn watch(
 ) -> Result<Watch, String> {
     let shader_dir = shader_dir.map(canonical);
     let scene_file = scene_file.map(canonical);
+    let shape_dir = shader_dir.as_ref().map(|d| d.join("shapes"));
     let (dirs, classify) = {
         let mut dirs: Vec<PathBuf> = shader_dir.iter().cloned().collect();
+        dirs.extend(shape_dir.iter().filter(|d| d.is_dir()).cloned());
         if let Some(parent) = scene_file.as_deref().and_then(Path::parent)
             && !dirs.iter().any(|d| d == parent)
         {
@@ -46,9 +49,9 @@ pub fn watch(
             if scene_file.as_deref() == Some(path.as_path()) {
                 return Some(Change::SceneFile);
             }
-            let in_shader_dir = shader_dir
-                .as_deref()
-                .is_some_and(|d| path.parent() == Some(d));
+            let in_shader_dir = path.parent().is_some_and(|p| {
+                shader_dir.as_deref() == Some(p) || shape_dir.as_deref() == Some(p)
+            });
             (in_shader_dir && path.extension().is_some_and(|e| e == "wgsl"))
                 .then_some(Change::Shaders)
         };

@@ -4,15 +4,15 @@
 //! compiler removes, so a spheres-only scene runs no plane, box, refraction
 //! or checker code at all.
 
-use crate::scene::{Material, Scene};
+use super::shapes::has_flag;
+use crate::scene::{Scene, ShapeKind};
 
 /// What a scene needs from the shader. Every flag that is true for a scene
 /// must be true in the pipeline that draws it; extra flags only cost time.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
 pub struct Features {
-    pub spheres: bool,
-    pub planes: bool,
-    pub cubes: bool,
+    /// The shape kinds present: bit `ShapeKind::number` for each.
+    pub shape_kinds: u32,
     /// Point lights: diffuse and specular terms and shadow rays.
     pub lights: bool,
     /// Materials with a mirror term (reflected rays).
@@ -34,9 +34,7 @@ pub const BVH_MIN_SHAPES: usize = 128;
 impl Features {
     /// The generic pipeline: every feature compiled in.
     pub const ALL: Features = Features {
-        spheres: true,
-        planes: true,
-        cubes: true,
+        shape_kinds: u32::MAX,
         lights: true,
         mirrors: true,
         transparency: true,
@@ -48,25 +46,29 @@ impl Features {
     /// Exactly what `scene` uses: shapes present, materials that shapes use
     /// (a material no shape refers to costs nothing), lights, lens.
     pub fn of(scene: &Scene) -> Features {
-        let used: Vec<&Material> = scene
-            .spheres
+        let ids = scene.shape_ids();
+        let used: Vec<_> = ids
             .iter()
-            .map(|s| s.material.as_deref())
-            .chain(scene.planes.iter().map(|p| p.material.as_deref()))
-            .chain(scene.cubes.iter().map(|c| c.material.as_deref()))
-            .map(|name| scene.material(name))
+            .filter_map(|&id| scene.shape_material(id))
+            .map(|name| scene.material(name.as_deref()))
             .collect();
+        let bounded = ids.iter().filter(|id| id.kind().bounded()).count();
         Features {
-            spheres: !scene.spheres.is_empty(),
-            planes: !scene.planes.is_empty(),
-            cubes: !scene.cubes.is_empty(),
+            shape_kinds: ids
+                .iter()
+                .fold(0, |bits, id| bits | (1 << id.kind().number())),
             lights: !scene.lights.is_empty(),
             mirrors: used.iter().any(|m| m.mirror > 0.0),
             transparency: used.iter().any(|m| m.transparency > 0.0),
             checker: used.iter().any(|m| m.checker.is_some()),
             lens: scene.camera.aperture > 0.0,
-            bvh: scene.spheres.len() + scene.cubes.len() >= BVH_MIN_SHAPES,
+            bvh: bounded >= BVH_MIN_SHAPES,
         }
+    }
+
+    /// Whether shapes of `kind` are present.
+    pub fn has(&self, kind: ShapeKind) -> bool {
+        self.shape_kinds & (1 << kind.number()) != 0
     }
 }
 
@@ -105,14 +107,12 @@ impl ShaderOptions {
         }
     }
 
-    /// The `(name, value)` pairs for `PipelineCompilationOptions::constants`.
-    pub(super) fn constants(&self) -> Vec<(&'static str, f64)> {
+    /// The `(name, value)` pairs for `PipelineCompilationOptions::constants`:
+    /// the fixed flags, then `HAS_<KINDS>` for every shape kind.
+    pub(super) fn constants(&self) -> Vec<(String, f64)> {
         let f = &self.features;
-        [
+        let fixed = [
             ("ROBUST", self.robust),
-            ("HAS_SPHERES", f.spheres),
-            ("HAS_PLANES", f.planes),
-            ("HAS_CUBES", f.cubes),
             ("HAS_LIGHTS", f.lights),
             ("HAS_MIRRORS", f.mirrors),
             ("HAS_TRANSPARENCY", f.transparency),
@@ -120,10 +120,19 @@ impl ShaderOptions {
             ("HAS_LENS", f.lens),
             ("USE_BVH", f.bvh),
         ]
-        .into_iter()
-        .map(|(name, on)| (name, f64::from(u8::from(on))))
-        .collect()
+        .map(|(name, on)| (name.to_string(), on));
+        let kinds = ShapeKind::ALL.iter().map(|&k| (has_flag(k), f.has(k)));
+        fixed
+            .into_iter()
+            .chain(kinds)
+            .map(|(name, on)| (name, f64::from(u8::from(on))))
+            .collect()
     }
+}
+
+/// The constants as wgpu takes them.
+pub(super) fn borrowed(constants: &[(String, f64)]) -> Vec<(&str, f64)> {
+    constants.iter().map(|(n, v)| (n.as_str(), *v)).collect()
 }
 
 #[cfg(test)]
@@ -138,10 +147,11 @@ mod tests {
     #[test]
     fn features_follow_the_scene() {
         let f = Features::of(&bundled_scene("many_spheres"));
-        assert!(f.spheres && f.planes && !f.cubes && f.lights);
-        assert!(f.mirrors && f.transparency && f.checker && !f.lens && f.bvh);
+        let has = |k| f.has(k);
+        assert!(has(ShapeKind::Sphere) && has(ShapeKind::Plane) && !has(ShapeKind::Cube));
+        assert!(f.lights && f.mirrors && f.transparency && f.checker && !f.lens && f.bvh);
         let f = Features::of(&bundled_scene("cornell"));
-        assert!(f.cubes && f.transparency && !f.checker && !f.bvh);
+        assert!(f.has(ShapeKind::Cube) && f.transparency && !f.checker && !f.bvh);
     }
 
     #[test]
@@ -154,7 +164,7 @@ mod tests {
         )
         .unwrap();
         let f = Features::of(&scene);
-        assert!(f.spheres && !f.transparency && !f.mirrors && !f.lights);
+        assert!(f.has(ShapeKind::Sphere) && !f.transparency && !f.mirrors && !f.lights);
     }
 
     #[test]
@@ -171,7 +181,7 @@ mod tests {
         let mut given: Vec<String> = ShaderOptions::default()
             .constants()
             .into_iter()
-            .map(|(n, _)| n.to_string())
+            .map(|(n, _)| n)
             .collect();
         given.sort();
         assert_eq!(declared, given);

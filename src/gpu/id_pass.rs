@@ -6,23 +6,24 @@
 //! colour that is merely a little off.
 
 use super::context::{Gpu, GpuWaitError};
-use super::features::ShaderOptions;
+use super::features::{ShaderOptions, borrowed};
 use super::fullscreen;
 use super::layout::PackedScene;
 use super::offscreen::read_texels;
 use super::shaders::ShaderSource;
 use super::texture::render_target;
 use super::tracer::{PipelineError, SceneBuffers, scene_layout_entries};
-use crate::scene::Scene;
+use crate::scene::{Scene, ShapeId};
 
 const ID_FORMAT: wgpu::TextureFormat = wgpu::TextureFormat::Rgba32Uint;
 
 /// What the ray through one pixel centre hits first.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct FirstHit {
-    /// The shader's `KIND_*`: 0 nothing, 1 sphere, 2 plane, 3 cube.
+    /// The shader's `KIND_*`: 0 nothing, else the kind's
+    /// `ShapeKind::number` (1 sphere, 2 plane, 3 cube, in registry order).
     pub kind: u32,
-    /// Index into the scene's spheres, planes or cubes.
+    /// Index into the array of that kind.
     pub index: u32,
     /// Distance along the (unit) ray; the shader's `T_FAR` on a miss.
     pub t: f32,
@@ -30,9 +31,14 @@ pub struct FirstHit {
 
 impl FirstHit {
     pub const NONE: u32 = 0;
-    pub const SPHERE: u32 = 1;
-    pub const PLANE: u32 = 2;
-    pub const CUBE: u32 = 3;
+
+    /// The kind number and index the shader reports for the reference's
+    /// first hit (`NONE` and 0 for a miss).
+    pub fn id_of(shape: Option<ShapeId>) -> (u32, u32) {
+        shape.map_or((Self::NONE, 0), |id| {
+            (id.kind().number(), id.index() as u32)
+        })
+    }
 }
 
 /// The `fs_id` pipeline, built once and run on any scene at any size.
@@ -82,7 +88,7 @@ impl IdRenderer {
             &pipeline_layout,
             (&module, "vs_fullscreen"),
             (&module, "fs_id"),
-            &constants,
+            &borrowed(&constants),
             ID_FORMAT,
         );
         IdRenderer {

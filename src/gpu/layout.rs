@@ -7,9 +7,9 @@ use bytemuck::{Pod, Zeroable};
 use glam::DVec3;
 
 pub use super::shapes::{Cube, Plane, Sphere};
-use super::shapes::{Frame, PackShape, f32x3};
-use crate::bvh::{Aabb, Bvh, Prim};
-use crate::scene::{self, Scene};
+use super::shapes::{Frame, PackShape, f32x3, kinds, pack_all};
+use crate::bvh::{Aabb, Bvh};
+use crate::scene::{self, Scene, ShapeKind, ShapeList};
 
 #[repr(C)]
 #[derive(Debug, Clone, Copy, PartialEq, Pod, Zeroable)]
@@ -28,12 +28,11 @@ pub struct Globals {
     pub sample_start: u32,
     pub sample_count: u32,
     pub max_depth: u32,
-    pub sphere_count: u32,
-    pub plane_count: u32,
-    pub cube_count: u32,
     pub light_count: u32,
     pub bvh_node_count: u32,
+    pub _pad0: u32,
     pub output_size: [u32; 2],
+    pub _pad1: [u32; 2],
 }
 
 #[repr(C)]
@@ -63,9 +62,10 @@ pub struct BvhNode {
     pub count: u32,
 }
 
-/// Marks a box in the BVH's shape list (else: a sphere); the other bits are
-/// the index into `cubes` or `spheres`.
-pub const CUBE_BIT: u32 = 1 << 31;
+/// An entry of the BVH's shape list is the shape's kind number
+/// (`ShapeKind::number`) shifted up by this, or'ed with its index in the
+/// kind's array (`KIND_SHIFT` in `shaders/scene.wgsl`).
+pub const KIND_SHIFT: u32 = 24;
 
 #[repr(C)]
 #[derive(Debug, Clone, Copy, PartialEq, Pod, Zeroable)]
@@ -86,13 +86,15 @@ pub struct PackedScene {
     /// [`PackedScene::set_view`] writes the camera in the same frame.
     pub frame: Frame,
     pub globals: Globals,
-    pub spheres: Vec<Sphere>,
-    pub planes: Vec<Plane>,
-    pub cubes: Vec<Cube>,
+    /// Every shape kind's array as `u32` words, in the registry order of
+    /// `gpu::shapes` (see [`PackedScene::shapes_of`] for typed access).
+    pub shapes: Vec<Vec<u32>>,
+    /// The number of shapes of each kind, by kind number (entry 0 unused).
+    pub shape_counts: Vec<u32>,
     pub materials: Vec<Material>,
     pub lights: Vec<Light>,
     pub bvh_nodes: Vec<BvhNode>,
-    /// Sphere index, or box index | [`CUBE_BIT`], in leaf order.
+    /// `kind number << KIND_SHIFT | index`, in leaf order.
     pub bvh_prims: Vec<u32>,
 }
 
@@ -120,9 +122,8 @@ impl PackedScene {
         PackedScene {
             frame,
             globals,
-            spheres: non_empty(scene.spheres.iter().map(|s| Sphere::pack(scene, &frame, s))),
-            planes: non_empty(scene.planes.iter().map(|p| Plane::pack(scene, &frame, p))),
-            cubes: non_empty(scene.cubes.iter().map(|c| Cube::pack(scene, &frame, c))),
+            shapes: pack_all(scene, &frame),
+            shape_counts: shape_counts(scene),
             materials: std::iter::once(scene::Material::default())
                 .chain(scene.materials.values().cloned())
                 .map(|m| pack_material(&m, &frame))
@@ -133,12 +134,33 @@ impl PackedScene {
                     .iter()
                     .map(|n| pack_node(n.bounds, n.first, n.count, &frame)),
             ),
-            bvh_prims: non_empty(bvh.prims.iter().map(|p| match *p {
-                Prim::Sphere(i) => i,
-                Prim::Cube(i) => i | CUBE_BIT,
-            })),
+            bvh_prims: non_empty(
+                bvh.prims
+                    .iter()
+                    .map(|id| (id.kind().number() << KIND_SHIFT) | id.index() as u32),
+            ),
         }
     }
+
+    /// The packed shapes of kind `T`, padded to at least one element (the
+    /// count is in [`PackedScene::shape_counts`]).
+    pub fn shapes_of<T: PackShape>(&self) -> &[T] {
+        let kind = <T::Source as ShapeList>::KIND;
+        let position = kinds()
+            .iter()
+            .position(|k| k.kind == kind)
+            .expect("a packed kind is registered");
+        bytemuck::cast_slice(&self.shapes[position])
+    }
+}
+
+/// The number of shapes of every kind, indexed by kind number.
+fn shape_counts(scene: &Scene) -> Vec<u32> {
+    let mut counts = vec![0; ShapeKind::ALL.len() + 1];
+    for id in scene.shape_ids() {
+        counts[id.kind().number() as usize] += 1;
+    }
+    counts
 }
 
 /// A node with its box rounded outwards to f32, so that the box the shader
@@ -199,9 +221,6 @@ impl Globals {
 fn pack_globals(scene: &Scene, width: u32, height: u32, frame: &Frame) -> Globals {
     let mut globals = Globals {
         resolution: [width, height],
-        sphere_count: scene.spheres.len() as u32,
-        plane_count: scene.planes.len() as u32,
-        cube_count: scene.cubes.len() as u32,
         light_count: scene.lights.len() as u32,
         output_size: [width, height],
         ..Zeroable::zeroed()
@@ -298,12 +317,11 @@ mod tests {
                 sample_start,
                 sample_count,
                 max_depth,
-                sphere_count,
-                plane_count,
-                cube_count,
                 light_count,
                 bvh_node_count,
-                output_size
+                _pad0,
+                output_size,
+                _pad1
             }),
             rust_layout!(Sphere {
                 center,
@@ -379,9 +397,9 @@ mod tests {
         let scene = Scene::from_toml_str("[camera]\nfrom = [0, 0, 5]\nto = [0, 0, 0]\n", None)
             .expect("valid scene");
         let packed = PackedScene::new(&scene, 4, 3);
-        assert_eq!(packed.spheres.len(), 1);
+        assert_eq!(packed.shapes_of::<Sphere>().len(), 1);
         assert_eq!(packed.lights.len(), 1);
-        assert_eq!(packed.globals.sphere_count, 0);
+        assert_eq!(packed.shape_counts, [0, 0, 0, 0]);
         assert_eq!(packed.globals.light_count, 0);
         assert_eq!(packed.materials.len(), 1, "the default material only");
         assert_eq!(packed.globals.resolution, [4, 3]);
@@ -409,8 +427,8 @@ mod tests {
         let packed = PackedScene::new(&scene, 4, 3);
         assert_eq!(packed.materials[1].color, [0.0, 0.0, 1.0]);
         assert_eq!(packed.materials[2].color, [1.0, 0.0, 0.0]);
-        assert_eq!(packed.spheres[0].material, 2);
-        assert_eq!(packed.spheres[1].material, 0);
+        assert_eq!(packed.shapes_of::<Sphere>()[0].material, 2);
+        assert_eq!(packed.shapes_of::<Sphere>()[1].material, 0);
         assert_eq!(packed.materials[0].color, [0.8, 0.8, 0.8]);
     }
 
@@ -469,10 +487,19 @@ mod tests {
             (0..3).all(|i| (a[i] - b[i]).abs() <= f32::EPSILON * a[i].abs().max(1.0))
         };
         assert!(close(near.globals.eye, far.globals.eye));
-        assert!(close(near.spheres[0].center, far.spheres[0].center));
-        assert!(close(near.planes[0].point, [0.0, -0.6, 0.0]));
-        assert!(close(near.planes[0].point, far.planes[0].point));
-        assert!(close(near.cubes[0].center, far.cubes[0].center));
+        assert!(close(
+            near.shapes_of::<Sphere>()[0].center,
+            far.shapes_of::<Sphere>()[0].center
+        ));
+        assert!(close(near.shapes_of::<Plane>()[0].point, [0.0, -0.6, 0.0]));
+        assert!(close(
+            near.shapes_of::<Plane>()[0].point,
+            far.shapes_of::<Plane>()[0].point
+        ));
+        assert!(close(
+            near.shapes_of::<Cube>()[0].center,
+            far.shapes_of::<Cube>()[0].center
+        ));
         assert!(close(near.lights[0].position, far.lights[0].position));
         assert!(close(
             near.bvh_nodes[0].bounds_min,
@@ -487,7 +514,10 @@ mod tests {
         // The textbook frame keeps world coordinates.
         let world = PackedScene::in_world(&scene.translated(offset), 4, 3);
         assert_eq!(world.frame, Frame::WORLD);
-        assert_eq!(world.spheres[0].center, [-999999.1, 1000000.7, -999999.0]);
+        assert_eq!(
+            world.shapes_of::<Sphere>()[0].center,
+            [-999999.1, 1000000.7, -999999.0]
+        );
         assert_eq!(world.materials[1].checker_phase, [0.0; 3]);
     }
 
@@ -503,7 +533,7 @@ mod tests {
             rotation = [0, 0, 90]
         "#;
         let scene = Scene::from_toml_str(text, None).expect("valid scene");
-        let cube = PackedScene::new(&scene, 4, 3).cubes[0];
+        let cube = PackedScene::new(&scene, 4, 3).shapes_of::<Cube>()[0];
         assert_eq!(cube.half_size, [1.0, 2.0, 3.0]);
         // Rz(90) maps +x to +y: the first column is the image of +x.
         let x = cube.rotation[0];

@@ -8,8 +8,11 @@
 use std::fmt;
 use std::path::{Path, PathBuf};
 
-/// The shader files in the order they are joined. WGSL resolves names at
-/// module scope in any order, so the order only decides line numbering.
+use super::shapes::{KindInfo, has_flag, kinds};
+
+/// The shader files in the order they are joined, before the shape kinds'
+/// `shapes/<kind>.wgsl` (see `gpu::shapes`). WGSL resolves names at module
+/// scope in any order, so the order only decides line numbering.
 pub const SHADER_FILES: [&str; 5] = [
     "scene.wgsl",
     "camera.wgsl",
@@ -92,8 +95,12 @@ pub const MAX_STACK_SIZE: u32 = crate::scene::MAX_DEPTH + 1;
 /// Name of the part the program writes in front of the shader files.
 const GENERATED: &str = "(generated) specialisation";
 
+/// The binding of the first shape kind's array; the fixed bindings of
+/// `shaders/scene.wgsl` come before it.
+pub const FIRST_SHAPE_BINDING: u32 = 6;
+
 /// The generated part: WGSL constants that cannot be pipeline-overridable
-/// because they size arrays.
+/// because they size arrays, and the glue of the shape kinds.
 fn generated_part(stack_size: u32) -> (String, String) {
     let stack_size = stack_size.clamp(1, MAX_STACK_SIZE);
     (
@@ -102,22 +109,144 @@ fn generated_part(stack_size: u32) -> (String, String) {
             "// Written by raysandbox for the scene being drawn (src/gpu/shaders.rs).\n\
              const STACK_SIZE: u32 = {stack_size}u;\n\
              // The BVH traversal stack, for trees as deep as src/bvh.rs builds them.\n\
-             const BVH_STACK: u32 = {}u;\n",
-            crate::bvh::TRAVERSAL_STACK
+             const BVH_STACK: u32 = {}u;\n{}",
+            crate::bvh::TRAVERSAL_STACK,
+            shape_glue(&kinds())
         ),
     )
+}
+
+/// The WGSL that visits every shape kind of the registry (`gpu::shapes`):
+/// per kind its `KIND_*` number, `HAS_*` flag and array binding, then the
+/// dispatch and loops that call each kind's `hit_<kind>` from
+/// `shaders/shapes/<kind>.wgsl`, the material lookup and the thin test.
+fn shape_glue(kinds: &[KindInfo]) -> String {
+    let mut declarations = String::from("// The shape kinds (src/gpu/shapes/mod.rs).\n");
+    for (i, k) in kinds.iter().enumerate() {
+        declarations += &format!(
+            "const {kind}: u32 = {number}u;\n\
+             override {flag}: bool = true;\n\
+             @group(0) @binding({binding}) var<storage, read> {array}: array<{ty}>;\n",
+            kind = kind_const(k),
+            number = k.kind.number(),
+            flag = has_flag(k.kind),
+            binding = FIRST_SHAPE_BINDING + i as u32,
+            array = k.kind.key(),
+            ty = k.wgsl_struct,
+        );
+    }
+    let (bounded, unbounded): (Vec<&KindInfo>, Vec<&KindInfo>) =
+        kinds.iter().partition(|k| k.kind.bounded());
+    let cases: String = bounded
+        .iter()
+        .map(|k| {
+            format!(
+                "        case {}: {{ if {} {{ return hit_{}(ray, {}[index], index, best); }} }}\n",
+                kind_const(k),
+                has_flag(k.kind),
+                k.name(),
+                k.kind.key()
+            )
+        })
+        .collect();
+    let materials: String = kinds
+        .iter()
+        .map(|k| {
+            format!(
+                "        case {}: {{ return {}[hit.index].material; }}\n",
+                kind_const(k),
+                k.kind.key()
+            )
+        })
+        .collect();
+    let thin: Vec<String> = kinds
+        .iter()
+        .filter(|k| k.kind.thin())
+        .map(|k| format!("kind == {}", kind_const(k)))
+        .collect();
+    let thin = if thin.is_empty() {
+        "false".to_string()
+    } else {
+        thin.join(" || ")
+    };
+    format!(
+        "{declarations}\n\
+         /// The hit of one bounded shape, by kind number and index (BVH leaves).\n\
+         fn hit_bounded(kind: u32, index: u32, ray: Ray, best: Hit) -> Hit {{\n\
+         \x20   switch kind {{\n{cases}\
+         \x20       default: {{}}\n\
+         \x20   }}\n\
+         \x20   return best;\n\
+         }}\n\n\
+         /// The unbounded shapes (planes), in a loop.\n\
+         fn hit_unbounded_loop(ray: Ray, best_in: Hit, any: bool) -> Hit {{\n\
+         \x20   var best = best_in;\n{}\
+         \x20   return best;\n\
+         }}\n\n\
+         /// The bounded shapes in a loop (USE_BVH = false: the lecture's loop,\n\
+         /// and the baseline of the BVH's speed-up).\n\
+         fn hit_bounded_loop(ray: Ray, best_in: Hit, any: bool) -> Hit {{\n\
+         \x20   var best = best_in;\n{}\
+         \x20   return best;\n\
+         }}\n\n\
+         /// The material slot of the shape hit.\n\
+         fn material_of(hit: Hit) -> u32 {{\n\
+         \x20   switch hit.kind {{\n{materials}\
+         \x20       default: {{ return 0u; }}\n\
+         \x20   }}\n\
+         }}\n\n\
+         /// Thin shapes (planes) have no inside: a ray through one always\n\
+         /// enters, and refraction passes it on unbent.\n\
+         fn is_thin(kind: u32) -> bool {{\n\
+         \x20   return {thin};\n\
+         }}\n",
+        kind_loops(&unbounded),
+        kind_loops(&bounded),
+    )
+}
+
+/// `KIND_SPHERE`.
+fn kind_const(k: &KindInfo) -> String {
+    format!("KIND_{}", k.name().to_uppercase())
+}
+
+/// One loop per kind over all its shapes; with `any`, the first hit ends it.
+fn kind_loops(kinds: &[&KindInfo]) -> String {
+    kinds
+        .iter()
+        .map(|k| {
+            format!(
+                "    if {flag} {{\n\
+                 \x20       for (var i = 0u; i < shape_counts[{kind}]; i++) {{\n\
+                 \x20           best = hit_{name}(ray, {array}[i], i, best);\n\
+                 \x20           if any && best.kind != KIND_NONE {{\n\
+                 \x20               return best;\n\
+                 \x20           }}\n\
+                 \x20       }}\n\
+                 \x20   }}\n",
+                flag = has_flag(k.kind),
+                kind = kind_const(k),
+                name = k.name(),
+                array = k.kind.key(),
+            )
+        })
+        .collect()
 }
 
 impl ShaderSource {
     /// The shader files compiled into the binary.
     pub fn embedded() -> Self {
+        let files = SHADER_FILES
+            .iter()
+            .zip(EMBEDDED)
+            .map(|(name, text)| (format!("shaders/{name}"), text.to_string()));
+        let shapes = kinds()
+            .into_iter()
+            .map(|k| (format!("shaders/{}", k.file()), k.wgsl.to_string()));
         Self::join(
-            std::iter::once(generated_part(MAX_STACK_SIZE)).chain(
-                SHADER_FILES
-                    .iter()
-                    .zip(EMBEDDED)
-                    .map(|(name, text)| (format!("shaders/{name}"), text.to_string())),
-            ),
+            std::iter::once(generated_part(MAX_STACK_SIZE))
+                .chain(files)
+                .chain(shapes),
         )
     }
 
@@ -131,10 +260,16 @@ impl ShaderSource {
         )
     }
 
-    /// Reads the shader files from `dir` (for hot reload and `--shaders`).
+    /// Reads the shader files from `dir` (for hot reload and `--shaders`):
+    /// [`SHADER_FILES`], then `shapes/<kind>.wgsl` for every shape kind.
     pub fn from_dir(dir: &Path) -> Result<Self, ShaderError> {
-        let mut files = Vec::with_capacity(SHADER_FILES.len());
-        for name in SHADER_FILES {
+        let shape_files = kinds().iter().map(KindInfo::file).collect::<Vec<_>>();
+        let names = SHADER_FILES
+            .iter()
+            .map(|s| s.to_string())
+            .chain(shape_files);
+        let mut files = Vec::new();
+        for name in names {
             let path: PathBuf = dir.join(name);
             let text = std::fs::read_to_string(&path).map_err(|e| ShaderError {
                 file: path.display().to_string(),

@@ -8,10 +8,10 @@
 
 use wgpu::util::DeviceExt;
 
-use super::features::ShaderOptions;
+use super::features::{ShaderOptions, borrowed};
 use super::fullscreen;
 use super::layout::PackedScene;
-use super::shaders::{ShaderError, ShaderSource};
+use super::shaders::{FIRST_SHAPE_BINDING, ShaderError, ShaderSource};
 use super::texture::render_target;
 
 /// Where the radiance sum is kept: full f32 precision, so 1000s of samples
@@ -78,6 +78,7 @@ impl Pipelines {
             bind_group_layouts: &[Some(&scene_layout), Some(&accum_layout)],
             immediate_size: 0,
         });
+        let trace_constants = options.constants();
         let pass = |entry: &str, format, constants: &[(&str, f64)]| {
             fullscreen::pipeline(
                 device,
@@ -99,7 +100,7 @@ impl Pipelines {
             })
             .collect();
         Pipelines {
-            trace: pass("fs_trace", ACCUM_FORMAT, &options.constants()),
+            trace: pass("fs_trace", ACCUM_FORMAT, &borrowed(&trace_constants)),
             display,
             scene_layout,
             accum_layout,
@@ -115,24 +116,28 @@ impl Pipelines {
     }
 }
 
-/// Binding 0: the globals uniform; 1..=7: spheres, planes, cubes, materials,
-/// lights, BVH nodes and BVH shape list as read-only storage buffers (the
-/// order of `scene.wgsl`).
-pub(super) fn scene_layout_entries() -> [wgpu::BindGroupLayoutEntry; 8] {
-    std::array::from_fn(|i| wgpu::BindGroupLayoutEntry {
-        binding: i as u32,
-        visibility: wgpu::ShaderStages::FRAGMENT,
-        ty: wgpu::BindingType::Buffer {
-            ty: if i == 0 {
-                wgpu::BufferBindingType::Uniform
-            } else {
-                wgpu::BufferBindingType::Storage { read_only: true }
+/// Binding 0: the globals uniform; 1..=5: materials, lights, BVH nodes, BVH
+/// shape list and shape counts; from [`FIRST_SHAPE_BINDING`] on, one array
+/// per shape kind in the registry order of `gpu::shapes` (all read-only
+/// storage buffers, the order of `scene.wgsl` and of the generated WGSL).
+pub(super) fn scene_layout_entries() -> Vec<wgpu::BindGroupLayoutEntry> {
+    let count = FIRST_SHAPE_BINDING as usize + super::shapes::kinds().len();
+    (0..count)
+        .map(|i| wgpu::BindGroupLayoutEntry {
+            binding: i as u32,
+            visibility: wgpu::ShaderStages::FRAGMENT,
+            ty: wgpu::BindingType::Buffer {
+                ty: if i == 0 {
+                    wgpu::BufferBindingType::Uniform
+                } else {
+                    wgpu::BufferBindingType::Storage { read_only: true }
+                },
+                has_dynamic_offset: false,
+                min_binding_size: None,
             },
-            has_dynamic_offset: false,
-            min_binding_size: None,
-        },
-        count: None,
-    })
+            count: None,
+        })
+        .collect()
 }
 
 /// The scene in GPU buffers, with the CPU copy it was made from.
@@ -166,15 +171,18 @@ impl SceneBuffers {
                 usage: wgpu::BufferUsages::STORAGE,
             })
         };
-        let buffers = [
-            storage("spheres", bytemuck::cast_slice(&packed.spheres)),
-            storage("planes", bytemuck::cast_slice(&packed.planes)),
-            storage("cubes", bytemuck::cast_slice(&packed.cubes)),
+        let fixed = [
             storage("materials", bytemuck::cast_slice(&packed.materials)),
             storage("lights", bytemuck::cast_slice(&packed.lights)),
             storage("bvh nodes", bytemuck::cast_slice(&packed.bvh_nodes)),
             storage("bvh shapes", bytemuck::cast_slice(&packed.bvh_prims)),
+            storage("shape counts", bytemuck::cast_slice(&packed.shape_counts)),
         ];
+        let shapes = packed
+            .shapes
+            .iter()
+            .map(|words| storage("shapes", bytemuck::cast_slice(words)));
+        let buffers: Vec<wgpu::Buffer> = fixed.into_iter().chain(shapes).collect();
         let entries: Vec<wgpu::BindGroupEntry> = std::iter::once(&globals)
             .chain(&buffers)
             .enumerate()

@@ -9,18 +9,22 @@
 //! - `camera.rs`: the basis and the camera rays, thin lens included;
 //! - `sampling.rs`: where the samples of a pixel go;
 //! - `ray.rs`: rays and the offset of secondary rays;
-//! - `intersect.rs`: spheres, planes, boxes, nearest hit and shadow hits;
+//! - `hit.rs`: what a hit reports, and constructions the hit tests share;
+//! - `shapes/`: one file per shape kind, its f64 hit test;
+//! - `intersect.rs`: the nearest hit and shadow hits over the scene;
 //! - `shade.rs`: Whitted's recursive shading;
 //! - `output.rs`: exposure, sRGB and 8 bits.
 //!
 //! Here: the scene prepared for tracing, and the renderers over it.
 
 mod camera;
+mod hit;
 pub mod intersect;
 mod output;
 pub mod ray;
 mod sampling;
 mod shade;
+pub mod shapes;
 
 use glam::{DVec2, DVec3};
 use rayon::prelude::*;
@@ -61,10 +65,10 @@ pub struct PreparedScene {
     /// The default material, then the scene's materials in file order: the
     /// same slots as `Scene::material_slot` and the GPU buffers.
     materials: Vec<Material>,
-    spheres: Vec<intersect::Sphere>,
-    planes: Vec<intersect::Plane>,
-    cubes: Vec<intersect::Cube>,
-    /// Spheres and boxes in a bounding volume hierarchy.
+    shapes: shapes::Shapes,
+    /// The shapes without bounds (planes), tested in a loop.
+    unbounded: Vec<ShapeId>,
+    /// The bounded shapes (spheres, boxes) in a bounding volume hierarchy.
     bvh: Bvh,
     background: DVec3,
     ambient: DVec3,
@@ -110,7 +114,6 @@ impl PreparedScene {
         let materials = std::iter::once(Material::default())
             .chain(scene.materials.values().cloned())
             .collect();
-        let slot = |name: &Option<String>| scene.material_slot(name.as_deref()) as usize;
         Self {
             frame_origin,
             bvh: Bvh::build(scene),
@@ -124,26 +127,8 @@ impl PreparedScene {
                 })
                 .collect(),
             materials,
-            spheres: scene
-                .spheres
-                .iter()
-                .map(|s| intersect::Sphere::new(s.center, s.radius, slot(&s.material)))
-                .collect(),
-            // Loading normalises plane normals already; `Plane::new` does it
-            // again for scenes built by hand.
-            planes: scene
-                .planes
-                .iter()
-                .map(|p| intersect::Plane::new(p.point, p.normal, slot(&p.material)))
-                .collect(),
-            cubes: scene
-                .cubes
-                .iter()
-                .map(|c| {
-                    let (edges, rotation) = (c.size.edges(), c.rotation_matrix());
-                    intersect::Cube::new(c.center, edges, rotation, slot(&c.material))
-                })
-                .collect(),
+            shapes: shapes::Shapes::new(scene),
+            unbounded: scene.unbounded_shapes(),
             background: scene.render.background,
             ambient: scene.render.ambient,
             max_depth: scene.render.max_depth,
@@ -155,12 +140,7 @@ impl PreparedScene {
 
     /// The material of a shape.
     fn material(&self, shape: ShapeId) -> &Material {
-        let slot = match shape {
-            ShapeId::Sphere(i) => self.spheres[i].material,
-            ShapeId::Plane(i) => self.planes[i].material,
-            ShapeId::Cube(i) => self.cubes[i].material,
-        };
-        &self.materials[slot]
+        &self.materials[self.shapes.material(shape)]
     }
 }
 

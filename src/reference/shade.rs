@@ -51,7 +51,7 @@ fn shade(
     if depth >= scene.max_depth {
         return radiance;
     }
-    let thin = matches!(shape, ShapeId::Plane(_));
+    let thin = shape.is_thin();
     let split = split(m, d, hit.n, ns, entering, thin);
     let traced = |child_weight: f64| child_weight > 0.0 && child_weight >= scene.min_weight;
 

@@ -5,7 +5,7 @@ use std::fmt;
 
 /// One step down from a table or an array.
 #[derive(Debug, Clone, PartialEq, Eq)]
-pub(super) enum Step {
+pub enum Step {
     Key(String),
     Index(usize),
 }
@@ -14,7 +14,7 @@ pub(super) enum Step {
 /// docs/scene-format.md writes keys in error messages: `spheres[2].radius`, `materials.glass.ior`,
 /// with array indices counted from 0.
 #[derive(Debug, Clone, Default, PartialEq, Eq)]
-pub(super) struct KeyPath(Vec<Step>);
+pub struct KeyPath(Vec<Step>);
 
 impl KeyPath {
     /// This path followed by the table key `key`.

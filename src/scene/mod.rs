@@ -9,6 +9,7 @@ mod document;
 mod error;
 mod key_path;
 mod parse;
+mod shapes;
 #[cfg(test)]
 mod tests;
 mod validate;
@@ -21,25 +22,211 @@ use indexmap::IndexMap;
 use serde::{Deserialize, Serialize};
 
 pub use error::SceneError;
+pub use shapes::{Cube, CubeSize, Plane, Shape, Sphere, for_each_shape_kind};
 
-/// A whole scene file. Every section but `camera` is optional.
-#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
-#[serde(deny_unknown_fields)]
-pub struct Scene {
-    #[serde(default)]
-    pub render: RenderSettings,
-    pub camera: Camera,
-    #[serde(default, skip_serializing_if = "Vec::is_empty")]
-    pub lights: Vec<Light>,
-    /// Named materials, in file order (the order also fixes GPU indices).
-    #[serde(default, skip_serializing_if = "IndexMap::is_empty")]
-    pub materials: IndexMap<String, Material>,
-    #[serde(default, skip_serializing_if = "Vec::is_empty")]
-    pub spheres: Vec<Sphere>,
-    #[serde(default, skip_serializing_if = "Vec::is_empty")]
-    pub planes: Vec<Plane>,
-    #[serde(default, skip_serializing_if = "Vec::is_empty")]
-    pub cubes: Vec<Cube>,
+/// Writes the [`Scene`] struct, [`ShapeKind`], [`ShapeId`] and the methods
+/// that visit every shape kind, from the registry [`for_each_shape_kind!`].
+macro_rules! scene_with_shapes {
+    ($($kind:ident: $field:ident),* $(,)?) => {
+        /// A whole scene file. Every section but `camera` is optional; the
+        /// shape arrays follow the registry of `scene::shapes`.
+        #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+        #[serde(deny_unknown_fields)]
+        pub struct Scene {
+            #[serde(default)]
+            pub render: RenderSettings,
+            pub camera: Camera,
+            #[serde(default, skip_serializing_if = "Vec::is_empty")]
+            pub lights: Vec<Light>,
+            /// Named materials, in file order (the order also fixes GPU indices).
+            #[serde(default, skip_serializing_if = "IndexMap::is_empty")]
+            pub materials: IndexMap<String, Material>,
+            $(
+                #[serde(default, skip_serializing_if = "Vec::is_empty")]
+                pub $field: Vec<$kind>,
+            )*
+        }
+
+        /// A shape kind, in registry order.
+        #[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
+        pub enum ShapeKind {
+            $($kind,)*
+        }
+
+        impl ShapeKind {
+            /// Every kind, in registry order.
+            pub const ALL: &[ShapeKind] = &[$(ShapeKind::$kind),*];
+
+            /// The kind's name in lists: "Sphere".
+            pub fn name(self) -> &'static str {
+                match self {
+                    $(ShapeKind::$kind => stringify!($kind),)*
+                }
+            }
+
+            /// The scene file's array of tables: "spheres".
+            pub fn key(self) -> &'static str {
+                match self {
+                    $(ShapeKind::$kind => stringify!($field),)*
+                }
+            }
+
+            /// Whether shapes of this kind have bounds ([`Shape::BOUNDED`]).
+            pub fn bounded(self) -> bool {
+                match self {
+                    $(ShapeKind::$kind => <$kind as Shape>::BOUNDED,)*
+                }
+            }
+
+            /// Whether shapes of this kind are thin ([`Shape::THIN`]).
+            pub fn thin(self) -> bool {
+                match self {
+                    $(ShapeKind::$kind => <$kind as Shape>::THIN,)*
+                }
+            }
+
+            /// The number the shader reports for this kind (`KIND_*`, 0 is
+            /// "nothing"): the position in the registry, from 1.
+            pub fn number(self) -> u32 {
+                self as u32 + 1
+            }
+        }
+
+        /// Which shape of the scene: its kind and its index in that kind's array.
+        #[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
+        pub enum ShapeId {
+            $($kind(usize),)*
+        }
+
+        impl ShapeId {
+            pub fn kind(self) -> ShapeKind {
+                match self {
+                    $(ShapeId::$kind(_) => ShapeKind::$kind,)*
+                }
+            }
+
+            /// The index in the kind's array.
+            pub fn index(self) -> usize {
+                match self {
+                    $(ShapeId::$kind(i) => i,)*
+                }
+            }
+
+            /// Whether the shape is thin ([`Shape::THIN`]).
+            pub fn is_thin(self) -> bool {
+                self.kind().thin()
+            }
+
+            /// The shape of kind `kind` at `index`.
+            pub fn new(kind: ShapeKind, index: usize) -> ShapeId {
+                match kind {
+                    $(ShapeKind::$kind => ShapeId::$kind(index),)*
+                }
+            }
+        }
+
+        $(
+            impl ShapeList for $kind {
+                const KIND: ShapeKind = ShapeKind::$kind;
+
+                fn list(scene: &Scene) -> &[Self] {
+                    &scene.$field
+                }
+
+                fn list_mut(scene: &mut Scene) -> &mut Vec<Self> {
+                    &mut scene.$field
+                }
+            }
+        )*
+
+        impl Scene {
+            /// Every shape, kind by kind in registry order.
+            pub fn shape_ids(&self) -> Vec<ShapeId> {
+                let mut ids = Vec::with_capacity(self.shape_count());
+                $(ids.extend((0..self.$field.len()).map(ShapeId::$kind));)*
+                ids
+            }
+
+            /// Number of shapes of every kind together.
+            pub fn shape_count(&self) -> usize {
+                0 $(+ self.$field.len())*
+            }
+
+            /// The material name of a shape, `None` if there is no such shape.
+            pub fn shape_material(&self, id: ShapeId) -> Option<&Option<String>> {
+                match id {
+                    $(ShapeId::$kind(i) => self.$field.get(i).map(Shape::material),)*
+                }
+            }
+
+            pub fn shape_material_mut(&mut self, id: ShapeId) -> Option<&mut Option<String>> {
+                match id {
+                    $(ShapeId::$kind(i) => self.$field.get_mut(i).map(Shape::material_mut),)*
+                }
+            }
+
+            /// The bounding box of every shape of a bounded kind (all but planes).
+            pub fn shape_bounds(&self) -> Vec<(ShapeId, [DVec3; 2])> {
+                let mut bounds = Vec::new();
+                $(if <$kind as Shape>::BOUNDED {
+                    bounds.extend(self.$field.iter().enumerate().map(|(i, s)| (ShapeId::$kind(i), s.bounds())));
+                })*
+                bounds
+            }
+
+            /// The shapes of unbounded kinds (planes), in registry order.
+            pub fn unbounded_shapes(&self) -> Vec<ShapeId> {
+                let mut ids = Vec::new();
+                $(if !<$kind as Shape>::BOUNDED {
+                    ids.extend((0..self.$field.len()).map(ShapeId::$kind));
+                })*
+                ids
+            }
+
+            /// Removes a shape; returns whether it existed.
+            pub fn remove_shape(&mut self, id: ShapeId) -> bool {
+                match id {
+                    $(ShapeId::$kind(i) if i < self.$field.len() => {
+                        self.$field.remove(i);
+                        true
+                    })*
+                    _ => false,
+                }
+            }
+
+            /// Whether the shapes of two scenes are equal, kind by kind.
+            pub fn same_shapes(&self, other: &Scene) -> bool {
+                true $(&& self.$field == other.$field)*
+            }
+
+            /// "2 spheres, 1 planes, 0 cubes": the count of every kind.
+            fn shape_summary(&self) -> String {
+                let counts = [$(format!("{} {}", self.$field.len(), stringify!($field))),*];
+                counts.join(", ")
+            }
+
+            /// Moves every shape by `offset`.
+            fn translate_shapes(&mut self, offset: DVec3) {
+                $(self.$field.iter_mut().for_each(|s| s.translate(offset));)*
+            }
+
+            /// Validates every shape, kind by kind in registry order.
+            fn validate_shapes(&mut self, root: &key_path::KeyPath) -> validate::Check {
+                $(for (i, shape) in self.$field.iter_mut().enumerate() {
+                    shape.validate(&root.key(stringify!($field)).index(i), &self.materials)?;
+                })*
+                Ok(())
+            }
+        }
+    };
+}
+for_each_shape_kind!(scene_with_shapes);
+
+/// The array of one shape kind in a scene.
+pub trait ShapeList: Shape + Sized {
+    const KIND: ShapeKind;
+    fn list(scene: &Scene) -> &[Self];
+    fn list_mut(scene: &mut Scene) -> &mut Vec<Self>;
 }
 
 /// Deepest secondary ray a scene may ask for (`max_depth` in
@@ -172,67 +359,6 @@ pub struct Checker {
     pub size: f64,
 }
 
-#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
-#[serde(deny_unknown_fields)]
-pub struct Sphere {
-    pub center: DVec3,
-    pub radius: f64,
-    #[serde(default, skip_serializing_if = "Option::is_none")]
-    pub material: Option<String>,
-}
-
-/// An infinite, two-sided, thin plane. `normal` is unit length after loading.
-#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
-#[serde(deny_unknown_fields)]
-pub struct Plane {
-    pub point: DVec3,
-    pub normal: DVec3,
-    #[serde(default, skip_serializing_if = "Option::is_none")]
-    pub material: Option<String>,
-}
-
-/// A box: `center + Rz(rz) Ry(ry) Rx(rx) p_local` for `p_local` in the box of
-/// edge lengths `size` centred at the origin.
-#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
-#[serde(deny_unknown_fields)]
-pub struct Cube {
-    pub center: DVec3,
-    pub size: CubeSize,
-    /// Degrees about the world x, y, z axes, applied in that order.
-    #[serde(default)]
-    pub rotation: DVec3,
-    #[serde(default, skip_serializing_if = "Option::is_none")]
-    pub material: Option<String>,
-}
-
-/// `size = 1` (a cube) or `size = [x, y, z]` (a box).
-#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
-#[serde(untagged)]
-pub enum CubeSize {
-    Uniform(f64),
-    PerAxis(DVec3),
-}
-
-impl CubeSize {
-    /// Edge lengths along the local x, y, z axes.
-    pub fn edges(self) -> DVec3 {
-        match self {
-            CubeSize::Uniform(s) => DVec3::splat(s),
-            CubeSize::PerAxis(v) => v,
-        }
-    }
-}
-
-impl Cube {
-    /// The rotation matrix `Rz(rz) Ry(ry) Rx(rx)` (docs/rendering-model.md, "Shapes"), in f64.
-    pub fn rotation_matrix(&self) -> glam::DMat3 {
-        let r = self.rotation * (std::f64::consts::PI / 180.0);
-        glam::DMat3::from_rotation_z(r.z)
-            * glam::DMat3::from_rotation_y(r.y)
-            * glam::DMat3::from_rotation_x(r.x)
-    }
-}
-
 impl Scene {
     /// Parses and validates a scene from TOML text. `origin` names the file in
     /// error messages (it is not read).
@@ -272,30 +398,15 @@ impl Scene {
         for light in &mut s.lights {
             light.position += offset;
         }
-        for sphere in &mut s.spheres {
-            sphere.center += offset;
-        }
-        for plane in &mut s.planes {
-            plane.point += offset;
-        }
-        for cube in &mut s.cubes {
-            cube.center += offset;
-        }
+        s.translate_shapes(offset);
         s
-    }
-
-    /// Number of shapes of every kind together.
-    pub fn shape_count(&self) -> usize {
-        self.spheres.len() + self.planes.len() + self.cubes.len()
     }
 
     /// A one-line summary for `raysandbox check`.
     pub fn summary(&self) -> String {
         format!(
-            "{} spheres, {} planes, {} cubes, {} materials, {} lights",
-            self.spheres.len(),
-            self.planes.len(),
-            self.cubes.len(),
+            "{}, {} materials, {} lights",
+            self.shape_summary(),
             self.materials.len(),
             self.lights.len()
         )

@@ -1,8 +1,8 @@
 //! Loading a scene: the pipeline from text to a checked [`Scene`], and the
 //! rules of docs/rendering-model.md and docs/scene-format.md that serde cannot express:
 //! ranges, finiteness, distinct camera points, non-zero directions and known
-//! material names. The one change made on load is also here: plane normals
-//! become unit length.
+//! material names. Each shape kind checks its own fields (`scene::shapes`)
+//! with the helpers here.
 
 use std::path::Path;
 
@@ -12,10 +12,7 @@ use indexmap::IndexMap;
 use super::document::Document;
 use super::key_path::KeyPath;
 use super::parse;
-use super::{
-    Camera, Cube, CubeSize, Light, MAX_DEPTH, Material, Plane, RenderSettings, Scene, SceneError,
-    Sphere,
-};
+use super::{Camera, Light, MAX_DEPTH, Material, RenderSettings, Scene, SceneError};
 
 /// How far from 1 the squared length of a plane normal may be for it to count
 /// as unit length already. `normalize` lands within a few ulps of 1.
@@ -35,7 +32,7 @@ fn load(text: &str) -> Result<Scene, SceneError> {
 
 /// A broken rule: which value, and what is wrong with it. The line is looked
 /// up later, from the path, in the document.
-struct Issue {
+pub struct Issue {
     path: KeyPath,
     message: String,
 }
@@ -49,24 +46,24 @@ impl Issue {
     }
 }
 
-type Check = Result<(), Issue>;
+pub type Check = Result<(), Issue>;
 
 /// A range a number must lie in; every number must also be finite.
-struct Rule {
+pub(super) struct Rule {
     holds: fn(f64) -> bool,
     /// How a message states the rule: "must be {text}".
     text: &'static str,
 }
 
-const FINITE: Rule = Rule {
+pub(super) const FINITE: Rule = Rule {
     holds: |_| true,
     text: "finite",
 };
-const NON_NEGATIVE: Rule = Rule {
+pub(super) const NON_NEGATIVE: Rule = Rule {
     holds: |x| x >= 0.0,
     text: ">= 0",
 };
-const POSITIVE: Rule = Rule {
+pub(super) const POSITIVE: Rule = Rule {
     holds: |x| x > 0.0,
     text: "> 0",
 };
@@ -87,16 +84,7 @@ fn validate(scene: &mut Scene) -> Check {
     for (name, material) in &scene.materials {
         self::material(material, &root.key("materials").key(name))?;
     }
-    for (i, sphere) in scene.spheres.iter().enumerate() {
-        self::sphere(sphere, &root.key("spheres").index(i), &scene.materials)?;
-    }
-    for (i, plane) in scene.planes.iter_mut().enumerate() {
-        self::plane(plane, &root.key("planes").index(i), &scene.materials)?;
-    }
-    for (i, cube) in scene.cubes.iter().enumerate() {
-        self::cube(cube, &root.key("cubes").index(i), &scene.materials)?;
-    }
-    Ok(())
+    scene.validate_shapes(&root)
 }
 
 fn render(r: &RenderSettings, path: &KeyPath) -> Check {
@@ -168,34 +156,9 @@ fn material(m: &Material, path: &KeyPath) -> Check {
     }
 }
 
-fn sphere(s: &Sphere, path: &KeyPath, materials: &IndexMap<String, Material>) -> Check {
-    vector(&path.key("center"), s.center, &FINITE)?;
-    number(&path.key("radius"), s.radius, &POSITIVE)?;
-    material_name(path, s.material.as_deref(), materials)
-}
-
-/// Checks a plane and makes its normal unit length (docs/rendering-model.md, "Shapes").
-fn plane(p: &mut Plane, path: &KeyPath, materials: &IndexMap<String, Material>) -> Check {
-    vector(&path.key("point"), p.point, &FINITE)?;
-    vector(&path.key("normal"), p.normal, &FINITE)?;
-    direction(&path.key("normal"), p.normal)?;
-    p.normal = unit(p.normal);
-    material_name(path, p.material.as_deref(), materials)
-}
-
-fn cube(c: &Cube, path: &KeyPath, materials: &IndexMap<String, Material>) -> Check {
-    vector(&path.key("center"), c.center, &FINITE)?;
-    match c.size {
-        CubeSize::Uniform(size) => number(&path.key("size"), size, &POSITIVE)?,
-        CubeSize::PerAxis(size) => vector(&path.key("size"), size, &POSITIVE)?,
-    }
-    vector(&path.key("rotation"), c.rotation, &FINITE)?;
-    material_name(path, c.material.as_deref(), materials)
-}
-
 /// A shape's material must be defined; the message lists the names that are,
 /// in file order, since the usual cause is a typo.
-fn material_name(
+pub(super) fn material_name(
     shape: &KeyPath,
     name: Option<&str>,
     materials: &IndexMap<String, Material>,
@@ -214,7 +177,7 @@ fn material_name(
 }
 
 /// A finite number that satisfies `rule`.
-fn number(path: &KeyPath, x: f64, rule: &Rule) -> Check {
+pub(super) fn number(path: &KeyPath, x: f64, rule: &Rule) -> Check {
     if x.is_finite() && (rule.holds)(x) {
         return Ok(());
     }
@@ -226,7 +189,7 @@ fn number(path: &KeyPath, x: f64, rule: &Rule) -> Check {
 }
 
 /// Each component checked as a [`number`], named `path[i]`.
-fn vector(path: &KeyPath, v: DVec3, rule: &Rule) -> Check {
+pub(super) fn vector(path: &KeyPath, v: DVec3, rule: &Rule) -> Check {
     v.to_array()
         .into_iter()
         .enumerate()
@@ -236,7 +199,7 @@ fn vector(path: &KeyPath, v: DVec3, rule: &Rule) -> Check {
 /// A direction must have a length, and one that f64 can normalise: a
 /// length that under- or overflows when squared would turn into NaN in the
 /// renderers.
-fn direction(path: &KeyPath, v: DVec3) -> Check {
+pub(super) fn direction(path: &KeyPath, v: DVec3) -> Check {
     let message = if v == DVec3::ZERO {
         "must be non-zero"
     } else if v.try_normalize().is_none() {
@@ -253,7 +216,7 @@ fn direction(path: &KeyPath, v: DVec3) -> Check {
 /// `n` at unit length. A vector that is unit length up to rounding is kept bit
 /// for bit: normalising again can move the last bit, and a saved scene must
 /// load back equal to the one that was saved.
-fn unit(n: DVec3) -> DVec3 {
+pub(super) fn unit(n: DVec3) -> DVec3 {
     if (n.length_squared() - 1.0).abs() <= UNIT_TOLERANCE {
         n
     } else {

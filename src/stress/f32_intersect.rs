@@ -1,4 +1,4 @@
-//! The shader's intersection routines (`shaders/intersect.wgsl`) and ray
+//! The shader's intersection routines (`shaders/shapes/*.wgsl`) and ray
 //! offset (`offset_ray` in `shaders/shade.wgsl`) ported line by line to Rust
 //! in f32, robust and naive, for the property tests: proptest cannot run on
 //! the GPU, and the port lets it search millions of cases on the CPU. The

@@ -99,12 +99,7 @@ pub fn flip(reference: &RgbaImage, test: &RgbaImage) -> (f64, RgbImage) {
 
 /// The shader's kind and index of a reference shape.
 fn kind_index(hit: Option<(ShapeId, f64)>) -> (u32, u32) {
-    match hit {
-        None => (FirstHit::NONE, 0),
-        Some((ShapeId::Sphere(i), _)) => (FirstHit::SPHERE, i as u32),
-        Some((ShapeId::Plane(i), _)) => (FirstHit::PLANE, i as u32),
-        Some((ShapeId::Cube(i), _)) => (FirstHit::CUBE, i as u32),
-    }
+    FirstHit::id_of(hit.map(|(id, _)| id))
 }
 
 /// Whether pixel `(i, j)` lies within one pixel of a silhouette of the
@@ -198,6 +193,7 @@ pub fn difference_image(reference: &RgbaImage, test: &RgbaImage, gain: u32) -> R
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::scene::ShapeKind;
 
     fn hit(kind: u32, index: u32) -> FirstHit {
         FirstHit {
@@ -216,7 +212,7 @@ mod tests {
         let mut gpu: Vec<FirstHit> = reference
             .iter()
             .map(|r| match r {
-                Some(_) => hit(FirstHit::SPHERE, 0),
+                Some(_) => hit(ShapeKind::Sphere.number(), 0),
                 None => hit(FirstHit::NONE, 7),
             })
             .collect();
@@ -226,11 +222,11 @@ mod tests {
             "miss ignores index"
         );
         // A wrong pixel at the edge (2 or 3) is in the band.
-        gpu[3] = hit(FirstHit::SPHERE, 0);
+        gpu[3] = hit(ShapeKind::Sphere.number(), 0);
         assert_eq!(id_mismatch(&reference, &gpu, 6, 1), 0.0);
         // Two away from the edge it counts, as does a wrong index.
-        gpu[5] = hit(FirstHit::SPHERE, 0);
-        gpu[0] = hit(FirstHit::SPHERE, 1);
+        gpu[5] = hit(ShapeKind::Sphere.number(), 0);
+        gpu[0] = hit(ShapeKind::Sphere.number(), 1);
         assert_eq!(id_mismatch(&reference, &gpu, 6, 1), 2.0 / 6.0);
     }
 

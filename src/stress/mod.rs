@@ -460,11 +460,7 @@ pub fn panel(m: &Measured) -> RgbImage {
         match hit {
             None => image::Rgb([0, 0, 0]),
             Some((shape, _)) => {
-                let (kind, index) = match shape {
-                    reference::ShapeId::Sphere(i) => (1u32, i as u32),
-                    reference::ShapeId::Plane(i) => (2, i as u32),
-                    reference::ShapeId::Cube(i) => (3, i as u32),
-                };
+                let (kind, index) = FirstHit::id_of(Some(shape));
                 // A fixed bright colour per shape.
                 let k = (kind * 7919 + index * 104_729).wrapping_mul(2_654_435_761);
                 image::Rgb([

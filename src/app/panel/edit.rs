@@ -5,17 +5,12 @@
 
 use glam::DVec3;
 
-use crate::reference::ShapeId;
-use crate::scene::{Camera, Checker, Cube, CubeSize, Light, Material, Plane, Scene, Sphere};
+use super::shapes::{self, Placement};
+use crate::scene::{Camera, Checker, Light, Material, Scene, ShapeId, ShapeKind};
 
 /// Smallest value the panel writes into a field that must be > 0 (radius,
 /// exposure, ior...): the rendering model only asks for > 0, and a drag must not stop at 0.
 pub(super) const MIN_POSITIVE: f64 = 1e-6;
-
-/// How far from 1 the squared length of a normal may be for it to count as
-/// unit length already (as the scene loader does): normalising it again could
-/// move its last bit, and the app would then see a change that is none.
-const UNIT_TOLERANCE: f64 = 8.0 * f64::EPSILON;
 
 /// The typical length of the scene, the distance from the eye to the target:
 /// drag speeds and the sizes of new shapes scale with it, so the panel feels
@@ -148,187 +143,83 @@ pub(super) fn add_light(scene: &mut Scene) {
     });
 }
 
-/// Every shape, spheres first, then planes, then cubes (the order of the
-/// scene file).
+/// Every shape, kind by kind in registry order (the order of the scene
+/// file).
 pub(super) fn shape_ids(scene: &Scene) -> impl Iterator<Item = ShapeId> + use<> {
-    let spheres = (0..scene.spheres.len()).map(ShapeId::Sphere);
-    let planes = (0..scene.planes.len()).map(ShapeId::Plane);
-    let cubes = (0..scene.cubes.len()).map(ShapeId::Cube);
-    spheres.chain(planes).chain(cubes)
+    scene.shape_ids().into_iter()
 }
 
 /// The material a shape names, `None` for the default material or a shape
 /// that does not exist.
 pub(super) fn shape_material(scene: &Scene, id: ShapeId) -> Option<&str> {
-    let slot = match id {
-        ShapeId::Sphere(i) => scene.spheres.get(i).map(|s| &s.material),
-        ShapeId::Plane(i) => scene.planes.get(i).map(|p| &p.material),
-        ShapeId::Cube(i) => scene.cubes.get(i).map(|c| &c.material),
-    };
-    slot.and_then(|name| name.as_deref())
+    scene.shape_material(id).and_then(|name| name.as_deref())
 }
 
 /// The material slot of a shape, if the shape exists.
 pub(super) fn shape_material_mut(scene: &mut Scene, id: ShapeId) -> Option<&mut Option<String>> {
-    match id {
-        ShapeId::Sphere(i) => scene.spheres.get_mut(i).map(|s| &mut s.material),
-        ShapeId::Plane(i) => scene.planes.get_mut(i).map(|p| &mut p.material),
-        ShapeId::Cube(i) => scene.cubes.get_mut(i).map(|c| &mut c.material),
-    }
+    scene.shape_material_mut(id)
 }
 
 /// The name of a shape in lists and headers: "Sphere 0 (glass)".
 pub(super) fn shape_label(scene: &Scene, id: ShapeId) -> String {
-    let (kind, index) = match id {
-        ShapeId::Sphere(i) => ("Sphere", i),
-        ShapeId::Plane(i) => ("Plane", i),
-        ShapeId::Cube(i) => ("Cube", i),
-    };
     let material = shape_material(scene, id).unwrap_or("default");
-    format!("{kind} {index} ({material})")
+    format!("{} {} ({material})", id.kind().name(), id.index())
 }
 
 /// The selection if it names an existing shape, else `None`: the app may swap
 /// the scene (open a file) or pick a shape without knowing the lists.
 pub(super) fn checked_selection(scene: &Scene, selection: Option<ShapeId>) -> Option<ShapeId> {
-    selection.filter(|&id| shape_exists(scene, id))
+    selection.filter(|&id| scene.shape_material(id).is_some())
 }
 
-/// Whether `id` indexes an element of its list.
-fn shape_exists(scene: &Scene, id: ShapeId) -> bool {
-    match id {
-        ShapeId::Sphere(i) => i < scene.spheres.len(),
-        ShapeId::Plane(i) => i < scene.planes.len(),
-        ShapeId::Cube(i) => i < scene.cubes.len(),
+/// Where new shapes go in this scene's view.
+fn placement(scene: &Scene) -> Placement {
+    let (right, up) = camera_frame(&scene.camera);
+    Placement {
+        target: scene.camera.to,
+        right,
+        up,
+        scale: scene_scale(scene),
     }
 }
 
-/// Appends a sphere beside the target, a tenth of the scene scale in radius.
-pub(super) fn add_sphere(scene: &mut Scene) -> ShapeId {
-    let scale = scene_scale(scene);
-    let (right, _) = camera_frame(&scene.camera);
-    scene.spheres.push(Sphere {
-        center: scene.camera.to + right * (0.25 * scale),
-        radius: 0.1 * scale,
-        material: None,
-    });
-    ShapeId::Sphere(scene.spheres.len() - 1)
-}
-
-/// Appends a floor: a plane facing the camera's up, a little below the target.
-pub(super) fn add_plane(scene: &mut Scene) -> ShapeId {
-    let scale = scene_scale(scene);
-    let (_, up) = camera_frame(&scene.camera);
-    scene.planes.push(Plane {
-        point: scene.camera.to - up * (0.2 * scale),
-        normal: up,
-        material: None,
-    });
-    ShapeId::Plane(scene.planes.len() - 1)
-}
-
-/// Appends an unrotated cube beside the target (left of it, where a new
-/// sphere does not go).
-pub(super) fn add_cube(scene: &mut Scene) -> ShapeId {
-    let scale = scene_scale(scene);
-    let (right, _) = camera_frame(&scene.camera);
-    scene.cubes.push(Cube {
-        center: scene.camera.to - right * (0.25 * scale),
-        size: CubeSize::Uniform(0.15 * scale),
-        rotation: DVec3::ZERO,
-        material: None,
-    });
-    ShapeId::Cube(scene.cubes.len() - 1)
+/// Appends a new shape of `kind` near the target (each kind's
+/// `EditShape::new_near`); returns its id.
+pub(super) fn add_shape(scene: &mut Scene, kind: ShapeKind) -> ShapeId {
+    let at = placement(scene);
+    shapes::add(scene, kind, &at)
 }
 
 /// Copies the selected shape to the end of its list, moved to the right of
 /// the view by its own size (a plane: along its normal) so that both stay
 /// visible, and selects the copy.
 pub(super) fn duplicate_selected(scene: &mut Scene, selection: &mut Option<ShapeId>) {
-    let (right, _) = camera_frame(&scene.camera);
-    let scale = scene_scale(scene);
-    let copy = match checked_selection(scene, *selection) {
-        Some(ShapeId::Sphere(i)) => {
-            let mut sphere = scene.spheres[i].clone();
-            sphere.center += right * (2.0 * sphere.radius);
-            scene.spheres.push(sphere);
-            ShapeId::Sphere(scene.spheres.len() - 1)
-        }
-        Some(ShapeId::Plane(i)) => {
-            let mut plane = scene.planes[i].clone();
-            plane.point += plane.normal * (0.1 * scale);
-            scene.planes.push(plane);
-            ShapeId::Plane(scene.planes.len() - 1)
-        }
-        Some(ShapeId::Cube(i)) => {
-            let mut cube = scene.cubes[i].clone();
-            cube.center += right * cube.size.edges().max_element();
-            scene.cubes.push(cube);
-            ShapeId::Cube(scene.cubes.len() - 1)
-        }
-        None => return,
+    let at = placement(scene);
+    let Some(id) = checked_selection(scene, *selection) else {
+        return;
     };
-    *selection = Some(copy);
+    if let Some(copy) = shapes::duplicate(scene, id, &at) {
+        *selection = Some(copy);
+    }
 }
 
 /// Removes a shape. The selection follows the shape it named (the indices
 /// after the removed one shift down by one) and is cleared if that shape was
 /// the one removed. A shape that does not exist is ignored.
 pub(super) fn remove_shape(scene: &mut Scene, id: ShapeId, selection: &mut Option<ShapeId>) {
-    if !shape_exists(scene, id) {
+    if !scene.remove_shape(id) {
         return;
-    }
-    match id {
-        ShapeId::Sphere(i) => drop(scene.spheres.remove(i)),
-        ShapeId::Plane(i) => drop(scene.planes.remove(i)),
-        ShapeId::Cube(i) => drop(scene.cubes.remove(i)),
     }
     *selection = selection.and_then(|selected| selection_after_removal(selected, id));
 }
 
 fn selection_after_removal(selected: ShapeId, removed: ShapeId) -> Option<ShapeId> {
-    use ShapeId::{Cube, Plane, Sphere};
-    match (selected, removed) {
-        _ if selected == removed => None,
-        (Sphere(s), Sphere(r)) if s > r => Some(Sphere(s - 1)),
-        (Plane(s), Plane(r)) if s > r => Some(Plane(s - 1)),
-        (Cube(s), Cube(r)) if s > r => Some(Cube(s - 1)),
-        _ => Some(selected),
-    }
-}
-
-/// Switches a cube between one edge length and three. Going back to one keeps
-/// the longest edge, so the cube encloses the box it was.
-pub(super) fn toggle_per_axis(size: CubeSize) -> CubeSize {
-    match size {
-        CubeSize::Uniform(s) => CubeSize::PerAxis(DVec3::splat(s)),
-        CubeSize::PerAxis(v) => CubeSize::Uniform(v.max_element()),
-    }
-}
-
-/// A direction the renderers can use as a plane normal: unit length, and
-/// kept bit for bit if it is already. `None` for a zero (or unnormalisable)
-/// vector, which the panel never writes.
-pub(super) fn unit_normal(n: DVec3) -> Option<DVec3> {
-    if (n.length_squared() - 1.0).abs() <= UNIT_TOLERANCE {
-        Some(n)
+    if selected == removed {
+        None
+    } else if selected.kind() == removed.kind() && selected.index() > removed.index() {
+        Some(ShapeId::new(selected.kind(), selected.index() - 1))
     } else {
-        n.try_normalize()
-    }
-}
-
-/// Makes every plane normal unit length again, except the one being edited
-/// (`editing`): while the user drags or types a component the raw numbers
-/// stay, so the field does not jump under the cursor; once the edit is done
-/// (or the editor closes) the normal is normalised, as the renderers expect.
-pub(super) fn normalize_planes(scene: &mut Scene, editing: Option<usize>) {
-    for (i, plane) in scene.planes.iter_mut().enumerate() {
-        if Some(i) == editing {
-            continue;
-        }
-        if let Some(n) = unit_normal(plane.normal) {
-            plane.normal = n;
-        }
+        Some(selected)
     }
 }
 
@@ -521,7 +412,10 @@ mod tests {
     #[test]
     fn new_shapes_are_valid_and_near_the_target() {
         let mut s = scene();
-        let ids = [add_sphere(&mut s), add_plane(&mut s), add_cube(&mut s)];
+        let ids: Vec<ShapeId> = ShapeKind::ALL
+            .iter()
+            .map(|&k| add_shape(&mut s, k))
+            .collect();
         assert_eq!(
             ids,
             [ShapeId::Sphere(3), ShapeId::Plane(1), ShapeId::Cube(1)]
@@ -543,7 +437,7 @@ mod tests {
     fn new_shapes_survive_a_degenerate_camera_up() {
         let mut s = scene();
         s.camera.up = DVec3::new(0.0, -1.5, -6.0); // parallel to the view
-        add_sphere(&mut s);
+        add_shape(&mut s, ShapeKind::Sphere);
         add_light(&mut s);
         assert!(s.spheres.last().unwrap().center.is_finite());
         assert!(s.lights.last().unwrap().position.is_finite());
@@ -555,23 +449,11 @@ mod tests {
         s.planes.push(s.planes[0].clone());
         s.planes[0].normal = DVec3::new(0.0, 2.0, 0.0);
         s.planes[1].normal = DVec3::new(3.0, 0.0, 4.0);
-        normalize_planes(&mut s, Some(0));
+        shapes::settle(&mut s, Some(ShapeId::Plane(0)));
         assert_eq!(s.planes[0].normal, DVec3::new(0.0, 2.0, 0.0));
         assert!((s.planes[1].normal - DVec3::new(0.6, 0.0, 0.8)).length() < 1e-15);
-        normalize_planes(&mut s, None);
+        shapes::settle(&mut s, None);
         assert_eq!(s.planes[0].normal, DVec3::Y);
-        assert_eq!(unit_normal(DVec3::ZERO), None);
-        assert_eq!(unit_normal(DVec3::splat(1e-300)), None);
-    }
-
-    #[test]
-    fn cube_size_toggles_keep_positive_edges() {
-        let uniform = CubeSize::Uniform(2.0);
-        let per_axis = toggle_per_axis(uniform);
-        assert_eq!(per_axis, CubeSize::PerAxis(DVec3::splat(2.0)));
-        assert_eq!(toggle_per_axis(per_axis), uniform);
-        let boxed = CubeSize::PerAxis(DVec3::new(1.0, 3.0, 2.0));
-        assert_eq!(toggle_per_axis(boxed), CubeSize::Uniform(3.0));
     }
 
     #[test]

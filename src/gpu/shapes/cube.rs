@@ -1,4 +1,4 @@
-//! A rotated box as `shaders/scene.wgsl` reads it.
+//! A rotated box as `shaders/shapes/cube.wgsl` reads it.
 
 use bytemuck::{Pod, Zeroable};
 use glam::DVec3;
@@ -19,6 +19,7 @@ pub struct Cube {
 
 impl PackShape for Cube {
     type Source = scene::Cube;
+    const WGSL: &'static str = include_str!("../../../shaders/shapes/cube.wgsl");
 
     fn pack(scene: &Scene, frame: &Frame, c: &scene::Cube) -> Self {
         let m = c.rotation_matrix();

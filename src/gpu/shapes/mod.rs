@@ -1,12 +1,14 @@
 //! One file per shape kind: the `#[repr(C)]` twin of the kind's WGSL struct
-//! (field for field, same names) and how one scene shape is packed into it.
-//! Adding a kind here is one file plus one line in [`for_each_packed_shape!`]
-//! (see docs/implementation.md, "Adding a shape kind").
+//! (field for field, same names), how one scene shape is packed into it, and
+//! the kind's WGSL file (`shaders/shapes/<kind>.wgsl`). Adding a kind here is
+//! one file plus one line in [`for_each_packed_shape!`] (see
+//! docs/implementation.md, "Adding a shape kind"); the buffers, bindings,
+//! counts, feature flags and WGSL loops follow from [`kinds`].
 
 use bytemuck::{Pod, Zeroable};
 use glam::DVec3;
 
-use crate::scene::{Camera, Scene};
+use crate::scene::{Camera, Scene, ShapeKind, ShapeList};
 
 mod cube;
 mod plane;
@@ -63,7 +65,11 @@ impl Frame {
 /// A GPU struct packed from one scene shape of its kind.
 pub trait PackShape: Pod + Zeroable {
     /// The scene's description of one shape of this kind.
-    type Source;
+    type Source: ShapeList;
+
+    /// The kind's WGSL: its struct and `hit_<kind>` (embedded; hot reload
+    /// reads `shapes/<kind>.wgsl` of the shader folder instead).
+    const WGSL: &'static str;
 
     /// Packs `shape`; `scene` resolves its material name to a slot, `frame`
     /// says where positions are measured from.
@@ -74,4 +80,95 @@ pub trait PackShape: Pod + Zeroable {
 /// shader reads. Positions go through [`Frame::point`] instead.
 pub(crate) fn f32x3(v: DVec3) -> [f32; 3] {
     v.as_vec3().to_array()
+}
+
+/// A packed kind as the shader composer and the buffers see it.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct KindInfo {
+    pub kind: ShapeKind,
+    /// The WGSL struct name, e.g. `Sphere`.
+    pub wgsl_struct: &'static str,
+    /// The embedded `shaders/shapes/<kind>.wgsl`.
+    pub wgsl: &'static str,
+}
+
+impl KindInfo {
+    /// `sphere`: the kind's WGSL file stem and the suffix of `hit_<name>`.
+    pub fn name(&self) -> String {
+        self.kind.name().to_lowercase()
+    }
+
+    /// The file of the shader folder that holds its WGSL.
+    pub fn file(&self) -> String {
+        format!("shapes/{}.wgsl", self.name())
+    }
+}
+
+/// The name of a kind's pipeline flag (`override` in WGSL): `HAS_SPHERES`.
+pub fn has_flag(kind: ShapeKind) -> String {
+    format!("HAS_{}", kind.key().to_uppercase())
+}
+
+/// Every packed kind, in registry order (which is also the order of their
+/// buffers' bindings, from `FIRST_SHAPE_BINDING`).
+pub fn kinds() -> Vec<KindInfo> {
+    let mut kinds = Vec::new();
+    macro_rules! info {
+        ($t:ident, $wgsl:literal) => {
+            kinds.push(KindInfo {
+                kind: <<$t as PackShape>::Source as ShapeList>::KIND,
+                wgsl_struct: $wgsl,
+                wgsl: <$t as PackShape>::WGSL,
+            });
+        };
+    }
+    for_each_packed_shape!(info);
+    kinds
+}
+
+/// The shapes of one kind packed as `u32` words (every packed struct is
+/// made of 4-byte fields), at least one zeroed element, since a storage
+/// buffer may not be empty.
+pub fn pack_kind<T: PackShape>(scene: &Scene, frame: &Frame) -> Vec<u32> {
+    let mut shapes: Vec<T> = T::Source::list(scene)
+        .iter()
+        .map(|s| T::pack(scene, frame, s))
+        .collect();
+    if shapes.is_empty() {
+        shapes.push(T::zeroed());
+    }
+    bytemuck::cast_slice(&shapes).to_vec()
+}
+
+/// Every kind's buffer contents, in registry order.
+pub fn pack_all(scene: &Scene, frame: &Frame) -> Vec<Vec<u32>> {
+    let mut buffers = Vec::new();
+    macro_rules! pack {
+        ($t:ident, $wgsl:literal) => {
+            buffers.push(pack_kind::<$t>(scene, frame));
+        };
+    }
+    for_each_packed_shape!(pack);
+    buffers
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// A scene kind without a packed twin would never reach the GPU.
+    #[test]
+    fn every_scene_kind_is_packed_once() {
+        let packed: Vec<ShapeKind> = kinds().iter().map(|k| k.kind).collect();
+        for kind in ShapeKind::ALL {
+            let times = packed.iter().filter(|k| *k == kind).count();
+            assert_eq!(
+                times,
+                1,
+                "{} is packed {times} times in gpu/shapes",
+                kind.name()
+            );
+        }
+        assert_eq!(packed.len(), ShapeKind::ALL.len());
+    }
 }

@@ -1,4 +1,4 @@
-//! An infinite plane as `shaders/scene.wgsl` reads it.
+//! An infinite plane as `shaders/shapes/plane.wgsl` reads it.
 
 use bytemuck::{Pod, Zeroable};
 
@@ -16,6 +16,7 @@ pub struct Plane {
 
 impl PackShape for Plane {
     type Source = scene::Plane;
+    const WGSL: &'static str = include_str!("../../../shaders/shapes/plane.wgsl");
 
     fn pack(scene: &Scene, frame: &Frame, p: &scene::Plane) -> Self {
         Plane {

@@ -1,4 +1,4 @@
-//! A sphere as `shaders/scene.wgsl` reads it.
+//! A sphere as `shaders/shapes/sphere.wgsl` reads it.
 
 use bytemuck::{Pod, Zeroable};
 
@@ -18,6 +18,7 @@ pub struct Sphere {
 
 impl PackShape for Sphere {
     type Source = scene::Sphere;
+    const WGSL: &'static str = include_str!("../../../shaders/shapes/sphere.wgsl");
 
     fn pack(scene: &Scene, frame: &Frame, s: &scene::Sphere) -> Self {
         Sphere {

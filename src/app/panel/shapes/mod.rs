@@ -1,0 +1,88 @@
+//! The editor of every shape kind, one file each (the kinds of
+//! `scene::shapes`): where a new shape goes, where its duplicate goes, and
+//! its rows in the "Selected" grid. The functions below visit every kind
+//! through the registry `for_each_shape_kind!`, so a kind without an
+//! editor does not compile.
+
+mod cube;
+mod plane;
+mod sphere;
+
+use egui::Ui;
+use glam::DVec3;
+
+use crate::scene::{self, Scene, Shape, ShapeId, ShapeKind};
+
+/// Where new shapes go and how big they are: from the view, so that a new
+/// shape appears in sight and at the size of the scene.
+pub(super) struct Placement {
+    /// The camera target.
+    pub target: DVec3,
+    /// The view's right and up directions, unit length.
+    pub right: DVec3,
+    pub up: DVec3,
+    /// The scene scale (`edit::scene_scale`).
+    pub scale: f64,
+}
+
+/// The panel's view of one shape kind.
+pub(super) trait EditShape: Shape {
+    /// A new shape near the target ("Add <kind>").
+    fn new_near(at: &Placement) -> Self;
+
+    /// The copy "Duplicate" makes, moved so that both stay visible.
+    fn beside(&self, at: &Placement) -> Self;
+
+    /// Its rows in the editor grid (a `Grid` of two columns). Returns true
+    /// while a value is being dragged or typed that [`EditShape::settle`]
+    /// must leave alone until the edit is done.
+    fn edit(&mut self, ui: &mut Ui, scale: f64) -> bool;
+
+    /// Makes values canonical again once no edit holds them (a plane's
+    /// normal becomes unit length, as the renderers expect).
+    fn settle(&mut self) {}
+}
+
+macro_rules! editors {
+    ($($kind:ident: $field:ident),* $(,)?) => {
+        /// Appends a new shape of `kind`; returns its id.
+        pub(super) fn add(scene: &mut Scene, kind: ShapeKind, at: &Placement) -> ShapeId {
+            match kind {
+                $(ShapeKind::$kind => {
+                    scene.$field.push(<scene::$kind as EditShape>::new_near(at));
+                    ShapeId::$kind(scene.$field.len() - 1)
+                })*
+            }
+        }
+
+        /// Appends a copy of shape `id` beside it; returns the copy's id,
+        /// `None` if there is no such shape.
+        pub(super) fn duplicate(scene: &mut Scene, id: ShapeId, at: &Placement) -> Option<ShapeId> {
+            match id {
+                $(ShapeId::$kind(i) => {
+                    let copy = scene.$field.get(i)?.beside(at);
+                    scene.$field.push(copy);
+                    Some(ShapeId::$kind(scene.$field.len() - 1))
+                })*
+            }
+        }
+
+        /// The editor rows of shape `id`; true while an edit holds a value
+        /// (see [`EditShape::edit`]).
+        pub(super) fn edit(ui: &mut Ui, scene: &mut Scene, id: ShapeId, scale: f64) -> bool {
+            match id {
+                $(ShapeId::$kind(i) => scene.$field.get_mut(i).is_some_and(|s| s.edit(ui, scale)),)*
+            }
+        }
+
+        /// [`EditShape::settle`] on every shape but `held`.
+        pub(super) fn settle(scene: &mut Scene, held: Option<ShapeId>) {
+            $(for (i, shape) in scene.$field.iter_mut().enumerate() {
+                if held != Some(ShapeId::$kind(i)) {
+                    shape.settle();
+                }
+            })*
+        }
+    };
+}
+crate::scene::for_each_shape_kind!(editors);

@@ -1,0 +1,52 @@
+//! A ray's hit on a surface, and the two constructions that several shapes'
+//! hit tests share (docs/implementation.md, "Intersections").
+
+use glam::DVec3;
+
+use super::ray::Ray;
+
+/// A point where a ray meets a surface.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Hit {
+    /// Distance along the (unit) ray direction.
+    pub t: f64,
+    /// The hit point.
+    pub p: DVec3,
+    /// Outward unit normal at `p`: for a plane the declared normal.
+    pub n: DVec3,
+    /// The magnitude of the numbers that computing `p` involved and that a
+    /// later test of a ray from `p` against the same shape will involve (for
+    /// a box its position and size, for a plane its point; for a sphere see
+    /// [`hit_sphere`]): the rounding error of `p` along the normal, and of
+    /// that test, is a few eps times the larger of this and `|p|`. It sizes
+    /// the offset of secondary rays (`offset_ray`).
+    pub error_scale: f64,
+}
+
+/// The foot of the perpendicular from `anchor` to the ray, relative to the
+/// anchor, and its ray parameter `s` (`o + s d = anchor + g`, `g`
+/// perpendicular to `d`; the shader's `foot`). The decomposition behind
+/// Hearn and Baker's discriminant: intersecting from the foot keeps the
+/// numbers at the size of the shape however far the origin is, and one
+/// Gram-Schmidt step removes the error of `f + s d` along `d`.
+pub fn foot(ray: &Ray, anchor: DVec3) -> (DVec3, f64) {
+    let f = ray.origin - anchor;
+    let s = -f.dot(ray.dir);
+    let g0 = f + s * ray.dir;
+    (g0 - g0.dot(ray.dir) * ray.dir, s)
+}
+
+/// The unit axis along the largest component of `v`, with its sign:
+/// `sign(v_i) e_i`, x before y before z on a tie, +1 for 0 (the shader's
+/// `major_axis`).
+pub fn major_axis(v: DVec3) -> DVec3 {
+    let a = v.abs();
+    let e = if a.x >= a.y && a.x >= a.z {
+        DVec3::X
+    } else if a.y >= a.z {
+        DVec3::Y
+    } else {
+        DVec3::Z
+    };
+    if v.dot(e) >= 0.0 { e } else { -e }
+}

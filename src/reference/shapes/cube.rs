@@ -1,0 +1,217 @@
+//! A rotated box for the f64 tracer (docs/rendering-model.md, "Shapes").
+
+use glam::{DMat3, DVec3};
+
+use super::{Prepare, Trace};
+use crate::reference::hit::{Hit, foot};
+use crate::reference::ray::Ray;
+use crate::scene;
+
+/// A box `center + rotation * p_local` for `p_local` in `[-half, half]`.
+#[derive(Debug, Clone)]
+pub struct Cube {
+    pub center: DVec3,
+    /// Half the edge lengths, along the local axes.
+    pub half: DVec3,
+    /// `Rz Ry Rx`: local to world.
+    pub rotation: DMat3,
+    /// Its transpose (= inverse): world to local.
+    pub inverse: DMat3,
+    pub material: usize,
+    /// `|center|_max + |half|`, see [`Hit::error_scale`].
+    pub error_scale: f64,
+}
+
+impl Cube {
+    /// A box of edge lengths `edges` turned by the rotation matrix `rotation`.
+    pub fn new(center: DVec3, edges: DVec3, rotation: DMat3, material: usize) -> Self {
+        let half = 0.5 * edges;
+        Self {
+            center,
+            half,
+            rotation,
+            // A rotation's inverse is its transpose.
+            inverse: rotation.transpose(),
+            material,
+            error_scale: center.abs().max_element() + half.length(),
+        }
+    }
+}
+
+impl Prepare for scene::Cube {
+    type Traced = Cube;
+
+    fn prepare(&self, material: usize) -> Cube {
+        Cube::new(
+            self.center,
+            self.size.edges(),
+            self.rotation_matrix(),
+            material,
+        )
+    }
+}
+
+impl Trace for Cube {
+    fn hit(&self, ray: &Ray, t_max: f64, robust: bool) -> Option<Hit> {
+        if robust {
+            hit_cube(self, ray, t_max)
+        } else {
+            hit_cube_naive(self, ray, t_max)
+        }
+    }
+
+    fn material(&self) -> usize {
+        self.material
+    }
+}
+
+/// `eps = 2^-53`, half the f64 machine epsilon (the unit roundoff).
+const UNIT_ROUNDOFF: f64 = f64::EPSILON / 2.0;
+/// pbrt-v4's `gamma(3) = 3 eps / (1 - 3 eps)`: a bound on the relative error
+/// of three rounded operations.
+const GAMMA_3: f64 = 3.0 * UNIT_ROUNDOFF / (1.0 - 3.0 * UNIT_ROUNDOFF);
+
+/// The box hit with `0 < t < t_max`: the entry face, or the exit face for a
+/// ray that starts inside.
+///
+/// The ray is taken into the box frame (`o' = R^T (o - center)`,
+/// `d' = R^T d`), where the box is the intersection of the three slabs
+/// `|x_i| <= h_i` (Kay and Kajiya; Williams et al. 2005). The ray is inside
+/// slab `i` for `t` between `(-h_i - o'_i) / d'_i` and `(h_i - o'_i) / d'_i`;
+/// it is inside the box from `t_near`, the largest entry, to `t_far`, the
+/// smallest exit. Why the details:
+/// - from an origin more than 16 half edges away the test starts at the foot
+///   of the perpendicular from the centre ([`foot`]), at ray parameter `s`,
+///   so that the far origin is not rotated into the box frame as a large,
+///   rounded vector; from nearby at the origin (`s = 0`), so that a face in a
+///   plane gets exactly the plane's `t`;
+/// - an axis with `d'_i = 0` is a branch (inside the slab for all `t`, or
+///   never) instead of dividing by zero into inf and NaN;
+/// - each exit is widened by `2 gamma(3)` of its size as in pbrt-v4
+///   (`t_far *= 1 + 2 gamma(3)`, written for either sign), so rounding
+///   cannot make a ray through an edge or corner miss (`t_near > t_far`);
+/// - on a tie between axes the lowest axis (x, then y, then z) wins, the same
+///   choice as the shader;
+/// - the hit point is re-projected onto the face (its local coordinate on the
+///   face's axis set to exactly `±h_i`), so that its error does not grow with
+///   the distance the ray travelled; the offset of secondary rays relies on
+///   that (see `offset_ray`).
+pub fn hit_cube(cube: &Cube, ray: &Ray, t_max: f64) -> Option<Hit> {
+    // From far away (16 half edges) the test starts at the foot of the
+    // perpendicular from the centre, at ray parameter s; from nearby at the
+    // origin (s = 0), where a face in a plane gets exactly the plane's t.
+    let mut rel = ray.origin - cube.center;
+    let mut s = 0.0;
+    if rel.abs().max_element() > 16.0 * cube.half.max_element() {
+        (rel, s) = foot(ray, cube.center);
+    }
+    let o = cube.inverse * rel;
+    let d = cube.inverse * ray.dir;
+    let (mut t_near, mut near_axis) = (f64::NEG_INFINITY, 0);
+    let (mut t_far, mut far_axis) = (f64::INFINITY, 0);
+    for i in 0..3 {
+        let h = cube.half[i];
+        if d[i] == 0.0 {
+            if o[i].abs() > h {
+                return None;
+            }
+            continue;
+        }
+        let t_minus = (-h - o[i]) / d[i];
+        let t_plus = (h - o[i]) / d[i];
+        let (enter, exit) = if d[i] > 0.0 {
+            (t_minus, t_plus)
+        } else {
+            (t_plus, t_minus)
+        };
+        let exit = exit + 2.0 * GAMMA_3 * exit.abs();
+        if enter > t_near {
+            (t_near, near_axis) = (enter, i);
+        }
+        if exit < t_far {
+            (t_far, far_axis) = (exit, i);
+        }
+    }
+    if t_near > t_far {
+        return None;
+    }
+    // Entry face: normal against the ray, -sign(d'_i) e_i. Exit face (ray
+    // starting inside): normal along the ray, sign(d'_i) e_i. The ray
+    // parameter is s + the one from where the test started.
+    let (t_local, axis, sign) = if s + t_near > 0.0 && s + t_near < t_max {
+        (t_near, near_axis, -d[near_axis].signum())
+    } else if s + t_far > 0.0 && s + t_far < t_max {
+        (t_far, far_axis, d[far_axis].signum())
+    } else {
+        return None;
+    };
+    let t = s + t_local;
+    // Re-project onto the face, as for the sphere: o + t d is off by the
+    // rounding of t times |d|, which grows with the distance travelled.
+    let mut p_local = o + t_local * d;
+    p_local[axis] = sign * cube.half[axis];
+    Some(Hit {
+        t,
+        p: cube.center + cube.rotation * p_local,
+        n: sign * cube.rotation.col(axis),
+        error_scale: cube.error_scale,
+    })
+}
+
+/// WGSL's `sign`: -1, 0 or +1 (Rust's `signum` gives +1 for +0).
+fn wgsl_sign(x: f64) -> f64 {
+    if x > 0.0 {
+        1.0
+    } else if x < 0.0 {
+        -1.0
+    } else {
+        0.0
+    }
+}
+
+/// The plain slab test as usually taught (the naive variant, the shader's
+/// `hit_cube_naive`): `inv = 1 / d'_i`, the entry and exit of every slab with
+/// no special case for `d'_i = 0` (IEEE gives inf and, for an origin on a
+/// slab plane, `0 * inf = NaN`, which `f64::min`/`max` then skip), no
+/// widening of the far bound, and the hit point `o + t d`, not re-projected.
+pub fn hit_cube_naive(cube: &Cube, ray: &Ray, t_max: f64) -> Option<Hit> {
+    let o = cube.inverse * (ray.origin - cube.center);
+    let d = cube.inverse * ray.dir;
+    let h = cube.half;
+    let inv = DVec3::ONE / d;
+    let ta = (-h - o) * inv;
+    let tb = (h - o) * inv;
+    let lo = ta.min(tb);
+    let hi = ta.max(tb);
+    let (mut t_near, mut near_axis) = (lo.x, 0);
+    for i in 1..3 {
+        if lo[i] > t_near {
+            (t_near, near_axis) = (lo[i], i);
+        }
+    }
+    let (mut t_far, mut far_axis) = (hi.x, 0);
+    for i in 1..3 {
+        if hi[i] < t_far {
+            (t_far, far_axis) = (hi[i], i);
+        }
+    }
+    if t_near > t_far {
+        return None;
+    }
+    let (t, axis, side) = if t_near <= 0.0 {
+        (t_far, far_axis, 1.0)
+    } else {
+        (t_near, near_axis, -1.0)
+    };
+    if t <= 0.0 || t >= t_max {
+        return None;
+    }
+    let mut n_local = DVec3::ZERO;
+    n_local[axis] = side * wgsl_sign(d[axis]);
+    Some(Hit {
+        t,
+        p: ray.at(t),
+        n: cube.rotation * n_local,
+        error_scale: 0.0,
+    })
+}

@@ -1,0 +1,69 @@
+//! The f64 hit test of every shape kind, one file each (the kinds of
+//! `scene::shapes`): the shape in the form the test reads, its robust
+//! routine and the lecture's naive one. [`Shapes`] holds a prepared scene's
+//! shapes, kind by kind, from the registry `for_each_shape_kind!`.
+
+pub mod cube;
+pub mod plane;
+pub mod sphere;
+
+use std::fmt::Debug;
+
+use super::hit::Hit;
+use super::ray::Ray;
+use crate::scene::{self, Scene, Shape, ShapeId};
+
+/// A scene shape kind made ready for the tracer.
+pub trait Prepare: Shape {
+    /// The shape as its hit test reads it (matrices computed once, ...).
+    type Traced: Trace;
+
+    /// `material` is the shape's slot in `PreparedScene::materials`.
+    fn prepare(&self, material: usize) -> Self::Traced;
+}
+
+/// The hit test of one prepared shape.
+pub trait Trace: Debug + Clone {
+    /// The hit with `0 < t < t_max`: the robust routine
+    /// (docs/implementation.md) or, with `robust = false`, the lecture's.
+    fn hit(&self, ray: &Ray, t_max: f64, robust: bool) -> Option<Hit>;
+
+    /// The slot of its material.
+    fn material(&self) -> usize;
+}
+
+macro_rules! prepared_shapes {
+    ($($kind:ident: $field:ident),* $(,)?) => {
+        /// Every shape of a scene, prepared, kind by kind.
+        #[derive(Debug, Clone)]
+        pub struct Shapes {
+            $($field: Vec<<scene::$kind as Prepare>::Traced>,)*
+        }
+
+        impl Shapes {
+            /// Prepares every shape of a validated scene (a material name
+            /// that validation would have rejected falls back to the default).
+            pub fn new(scene: &Scene) -> Self {
+                let slot = |name: &Option<String>| scene.material_slot(name.as_deref()) as usize;
+                Shapes {
+                    $($field: scene.$field.iter().map(|s| s.prepare(slot(s.material()))).collect(),)*
+                }
+            }
+
+            /// The hit of shape `id` with `0 < t < t_max`.
+            pub fn hit(&self, id: ShapeId, ray: &Ray, t_max: f64, robust: bool) -> Option<Hit> {
+                match id {
+                    $(ShapeId::$kind(i) => self.$field[i].hit(ray, t_max, robust),)*
+                }
+            }
+
+            /// The material slot of shape `id`.
+            pub fn material(&self, id: ShapeId) -> usize {
+                match id {
+                    $(ShapeId::$kind(i) => self.$field[i].material(),)*
+                }
+            }
+        }
+    };
+}
+crate::scene::for_each_shape_kind!(prepared_shapes);

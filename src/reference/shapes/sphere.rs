@@ -1,0 +1,160 @@
+//! A sphere for the f64 tracer (docs/rendering-model.md, "Shapes").
+
+use glam::DVec3;
+
+use super::{Prepare, Trace};
+use crate::reference::hit::{Hit, foot, major_axis};
+use crate::reference::ray::Ray;
+use crate::scene;
+
+/// A sphere; `material` indexes `PreparedScene::materials`.
+#[derive(Debug, Clone)]
+pub struct Sphere {
+    pub center: DVec3,
+    pub radius: f64,
+    pub material: usize,
+}
+
+impl Sphere {
+    pub fn new(center: DVec3, radius: f64, material: usize) -> Self {
+        Self {
+            center,
+            radius,
+            material,
+        }
+    }
+}
+
+impl Prepare for scene::Sphere {
+    type Traced = Sphere;
+
+    fn prepare(&self, material: usize) -> Sphere {
+        Sphere::new(self.center, self.radius, material)
+    }
+}
+
+impl Trace for Sphere {
+    fn hit(&self, ray: &Ray, t_max: f64, robust: bool) -> Option<Hit> {
+        if robust {
+            hit_sphere(self, ray, t_max)
+        } else {
+            hit_sphere_naive(self, ray, t_max)
+        }
+    }
+
+    fn material(&self) -> usize {
+        self.material
+    }
+}
+
+/// The sphere hit nearest to the ray origin with `0 < t < t_max`.
+///
+/// Numerics (docs/implementation.md, docs/accuracy.md; Haines, Günther and
+/// Akenine-Möller, "Precision Improvements for Ray/Sphere Intersection", Ray
+/// Tracing Gems ch. 7): with unit `d` and `f = o - c` the quadratic is
+/// `t^2 + 2 b t + c = 0`, `b = f.d`. The textbook discriminant `b^2 - c`
+/// cancels catastrophically for small spheres far away; the equivalent
+/// `r^2 - |g|^2` with `g = f - b d` (Hearn and Baker) measures the squared
+/// distance from the centre to the ray directly. The roots come from
+/// `q = -(b + sign(b) sqrt(disc))` as `q` and `c / q`, which never subtracts
+/// nearly equal numbers (Press et al., Numerical Recipes 5.6).
+///
+/// Refinements for scenes with large numbers, the same as the shader's:
+/// - `g` is perpendicular to `d`, so one Gram-Schmidt step (`g -= (g.d) d`)
+///   removes the rounding error of `f - b d` along `d`;
+/// - `c = |f|^2 - r^2` is formed as `(f - r u).(f + r u) = |s|^2 + 2 r s.u`
+///   with `u` the major axis of `f` and `s = o - (centre + r u)`, the origin
+///   relative to the sphere's nearest pole: on a huge ground sphere `f` is
+///   rounded at the scale of the radius, `s` is not;
+/// - with `c` that accurate, the textbook `b^2 - c` has the rounding error
+///   `eps (b^2 + |c|)` against `eps r^2` for `r^2 - |g|^2`; the smaller wins
+///   (near a huge sphere, e.g. at its horizon, the first);
+/// - the normal is `normalize(g -+ sqrt(disc) d)` (`f + t d` for the near and
+///   the far root, `t = -b -+ sqrt(disc)`), and the hit point is `o + t d`
+///   when those numbers are smaller than the centre's, else the re-projection
+///   `centre + r n`.
+///
+/// From inside (`c < 0`) the roots have opposite signs and the far one is
+/// hit. `error_scale` is the size of the numbers the hit point and a later
+/// test against this sphere involve (see [`Hit::error_scale`]).
+pub fn hit_sphere(sphere: &Sphere, ray: &Ray, t_max: f64) -> Option<Hit> {
+    let (d, r, centre) = (ray.dir, sphere.radius, sphere.center);
+    let f = ray.origin - centre;
+    let b = f.dot(d);
+    let g = foot(ray, centre).0;
+    let u = major_axis(f);
+    let from_pole = ray.origin - (centre + r * u);
+    let c = from_pole.length_squared() + 2.0 * r * from_pole.dot(u);
+    // Of the discriminant's two forms, the one with the smaller rounding
+    // error: eps r^2 for r^2 - |g|^2, eps (b^2 + |c|) for b^2 - c.
+    let disc = if b * b + c.abs() < r * r {
+        b * b - c
+    } else {
+        r * r - g.length_squared()
+    };
+    if disc < 0.0 || r * r == 0.0 {
+        return None;
+    }
+    let h = disc.sqrt();
+    let sign_b = if b >= 0.0 { 1.0 } else { -1.0 }; // sign(0) = +1
+    let q = -(b + sign_b * h);
+    if q == 0.0 {
+        return None;
+    }
+    let (t0, t1) = (c / q, q);
+    let (near, far) = if t0 <= t1 { (t0, t1) } else { (t1, t0) };
+    // The near root is -b - sqrt(disc), the far one -b + sqrt(disc).
+    let (t, along) = if near > 0.0 && near < t_max {
+        (near, -h)
+    } else if far > 0.0 && far < t_max {
+        (far, h)
+    } else {
+        return None;
+    };
+    let n = (g + along * d).normalize();
+    let ray_scale = ray.origin.abs().max_element() + t;
+    let centre_scale = centre.abs().max_element() + r;
+    let p = if ray_scale < centre_scale {
+        ray.at(t)
+    } else {
+        centre + r * n
+    };
+    let pole_scale = (centre + r * major_axis(n)).abs().max_element();
+    Some(Hit {
+        t,
+        p,
+        n,
+        error_scale: pole_scale.max(ray_scale.min(centre_scale)),
+    })
+}
+
+/// The lecture's sphere (the naive variant, `ReferenceOptions::robust =
+/// false`, the shader's `hit_sphere_naive`): `a t^2 + b t + c = 0` with
+/// `a = d.d`, `b = 2 f.d`, `c = f.f - r^2`, `disc = b^2 - 4ac` and
+/// `t = (-b -+ sqrt(disc)) / 2a`; the hit point `o + t d` and the normal
+/// `(p - c) / r`, as on the slides.
+pub fn hit_sphere_naive(sphere: &Sphere, ray: &Ray, t_max: f64) -> Option<Hit> {
+    let d = ray.dir;
+    let f = ray.origin - sphere.center;
+    let a = d.dot(d);
+    let b = 2.0 * f.dot(d);
+    let c = f.dot(f) - sphere.radius * sphere.radius;
+    let disc = b * b - 4.0 * a * c;
+    if disc < 0.0 {
+        return None;
+    }
+    let mut t = (-b - disc.sqrt()) / (2.0 * a);
+    if t <= 0.0 {
+        t = (-b + disc.sqrt()) / (2.0 * a);
+    }
+    if t <= 0.0 || t >= t_max {
+        return None;
+    }
+    let p = ray.at(t);
+    Some(Hit {
+        t,
+        p,
+        n: (p - sphere.center) / sphere.radius,
+        error_scale: 0.0,
+    })
+}

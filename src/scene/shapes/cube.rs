@@ -1,0 +1,82 @@
+//! `[[cubes]]`: a box, possibly rotated (docs/scene-format.md).
+
+use glam::{DMat3, DVec3};
+use indexmap::IndexMap;
+use serde::{Deserialize, Serialize};
+
+use super::Shape;
+use crate::scene::Material;
+use crate::scene::key_path::KeyPath;
+use crate::scene::validate::{Check, FINITE, POSITIVE, material_name, number, vector};
+
+/// A box: `center + Rz(rz) Ry(ry) Rx(rx) p_local` for `p_local` in the box of
+/// edge lengths `size` centred at the origin.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct Cube {
+    pub center: DVec3,
+    pub size: CubeSize,
+    /// Degrees about the world x, y, z axes, applied in that order.
+    #[serde(default)]
+    pub rotation: DVec3,
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub material: Option<String>,
+}
+
+/// `size = 1` (a cube) or `size = [x, y, z]` (a box).
+#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
+#[serde(untagged)]
+pub enum CubeSize {
+    Uniform(f64),
+    PerAxis(DVec3),
+}
+
+impl CubeSize {
+    /// Edge lengths along the local x, y, z axes.
+    pub fn edges(self) -> DVec3 {
+        match self {
+            CubeSize::Uniform(s) => DVec3::splat(s),
+            CubeSize::PerAxis(v) => v,
+        }
+    }
+}
+
+impl Cube {
+    /// The rotation matrix `Rz(rz) Ry(ry) Rx(rx)` (docs/rendering-model.md, "Shapes"), in f64.
+    pub fn rotation_matrix(&self) -> DMat3 {
+        let r = self.rotation * (std::f64::consts::PI / 180.0);
+        DMat3::from_rotation_z(r.z) * DMat3::from_rotation_y(r.y) * DMat3::from_rotation_x(r.x)
+    }
+}
+
+impl Shape for Cube {
+    fn validate(&mut self, path: &KeyPath, materials: &IndexMap<String, Material>) -> Check {
+        vector(&path.key("center"), self.center, &FINITE)?;
+        match self.size {
+            CubeSize::Uniform(size) => number(&path.key("size"), size, &POSITIVE)?,
+            CubeSize::PerAxis(size) => vector(&path.key("size"), size, &POSITIVE)?,
+        }
+        vector(&path.key("rotation"), self.rotation, &FINITE)?;
+        material_name(path, self.material.as_deref(), materials)
+    }
+
+    fn translate(&mut self, offset: DVec3) {
+        self.center += offset;
+    }
+
+    fn material(&self) -> &Option<String> {
+        &self.material
+    }
+
+    fn material_mut(&mut self) -> &mut Option<String> {
+        &mut self.material
+    }
+
+    /// The box's extent along each world axis: |R| times the half size.
+    fn bounds(&self) -> [DVec3; 2] {
+        let m = self.rotation_matrix();
+        let abs = DMat3::from_cols(m.x_axis.abs(), m.y_axis.abs(), m.z_axis.abs());
+        let e = abs * (self.size.edges() * 0.5);
+        [self.center - e, self.center + e]
+    }
+}

@@ -1,0 +1,66 @@
+//! The shape kinds of a scene, one file each: the serde struct of one shape
+//! (its TOML table, docs/scene-format.md), its validation and its moves.
+//! A kind is registered by one line in [`for_each_shape_kind!`], which the
+//! other layers (BVH, reference, GPU, panel) expand to visit every kind, so a
+//! kind that one of them does not handle is a compile error there (see
+//! docs/implementation.md, "Adding a shape kind").
+
+mod cube;
+mod plane;
+mod sphere;
+
+pub use cube::{Cube, CubeSize};
+pub use plane::Plane;
+pub use sphere::Sphere;
+
+use glam::DVec3;
+use indexmap::IndexMap;
+
+use super::Material;
+use super::key_path::KeyPath;
+use super::validate::Check;
+
+/// The registry of shape kinds: calls `$m!` once with the whole list, as
+/// `Kind: field` pairs (the Rust type and the scene's array of tables, in
+/// the order of the scene file). The order also fixes the kind numbers the
+/// GPU reports (`ShapeKind::number`).
+#[macro_export]
+#[doc(hidden)]
+macro_rules! for_each_shape_kind {
+    ($m:ident) => {
+        $m! {
+            Sphere: spheres,
+            Plane: planes,
+            Cube: cubes,
+        }
+    };
+}
+pub use for_each_shape_kind;
+
+/// What every shape kind of the scene provides.
+pub trait Shape: Clone {
+    /// Checks the rules of docs/rendering-model.md that serde cannot express
+    /// (ranges, finiteness, known material names); `path` names the shape in
+    /// messages. May make values canonical (a plane's unit normal).
+    fn validate(&mut self, path: &KeyPath, materials: &IndexMap<String, Material>) -> Check;
+
+    /// Moves the shape by `offset` (`Scene::translated`).
+    fn translate(&mut self, offset: DVec3);
+
+    /// The name of its material; `None` is the default material.
+    fn material(&self) -> &Option<String>;
+
+    fn material_mut(&mut self) -> &mut Option<String>;
+
+    /// Whether shapes of this kind have bounds. An unbounded kind (planes)
+    /// stays out of the BVH; renderers test its shapes in a loop.
+    const BOUNDED: bool = true;
+
+    /// The world-space bounding box `[min, max]` of a bounded shape.
+    fn bounds(&self) -> [DVec3; 2];
+
+    /// A thin shape (a plane) has no inside: a ray through it always
+    /// enters, and refraction passes it on unbent (docs/rendering-model.md,
+    /// "Materials").
+    const THIN: bool = false;
+}
