@@ -16,36 +16,10 @@ use raysandbox::stress::{metrics, scenes};
 const WIDTH: u32 = 320;
 const HEIGHT: u32 = 180;
 
-/// The silhouette of an implicit sphere, zoomed: rays near the edge meet
-/// the sphere at two nearly equal t (a near double root of f along the ray).
-const TANGENT_SPHERE: &str = r#"
-[render]
-max_depth = 2
-background = [0.05, 0.07, 0.12]
-
-[camera]
-from = [0, 0, 6]
-to = [1, 0.3, 0]
-fov = 4
-
-[[lights]]
-position = [3, 4, 5]
-
-[materials.ball]
-color = [0.85, 0.3, 0.2]
-specular = 0.4
-shininess = 50
-checker = { color = [0.9, 0.9, 0.9], size = 0.05 }
-
-[[implicits]]
-f = "x^2 + y^2 + z^2 - 1"
-bounds = [[-1.2, -1.2, -1.2], [1.2, 1.2, 1.2]]
-material = "ball"
-
-[[planes]]
-point = [0, 0, -3]
-normal = [0, 0, 1]
-"#;
+/// The implicit sphere's stress scene: its silhouette, zoomed.
+fn tangent_sphere_text() -> &'static str {
+    scenes::text("implicit_tangent_sphere").expect("a stress scene")
+}
 
 fn cases() -> Vec<(String, Scene, f64)> {
     let bundled = |name: &str| Scene::from_toml_str(bundled::text(name).unwrap(), None).unwrap();
@@ -67,7 +41,7 @@ fn cases() -> Vec<(String, Scene, f64)> {
         ("julia_zoom".into(), scenes::load("julia_zoom"), 0.02),
         (
             "implicit_tangent_sphere".into(),
-            Scene::from_toml_str(TANGENT_SPHERE, None).unwrap(),
+            scenes::load("implicit_tangent_sphere"),
             0.01,
         ),
     ]
@@ -101,9 +75,9 @@ fn gpu_matches_the_reference_within_the_flip_budgets() {
 /// sphere, an independent answer, on the near-tangent view.
 #[test]
 fn the_implicit_sphere_matches_the_closed_form_sphere() {
-    let implicit = Scene::from_toml_str(TANGENT_SPHERE, None).unwrap();
+    let implicit = scenes::load("implicit_tangent_sphere");
     let closed_form = Scene::from_toml_str(
-        &TANGENT_SPHERE.replace(
+        &tangent_sphere_text().replace(
             "[[implicits]]\nf = \"x^2 + y^2 + z^2 - 1\"\nbounds = [[-1.2, -1.2, -1.2], [1.2, 1.2, 1.2]]",
             "[[spheres]]\ncenter = [0, 0, 0]\nradius = 1",
         ),

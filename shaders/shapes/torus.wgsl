@@ -45,7 +45,9 @@ fn quartic_at(k: Quartic, slope: bool, u: f32) -> f32 {
 }
 
 /// The root in (a, b] when the ends differ in sign (or the far one is 0),
-/// by bisection until the bracket cannot shrink; T_FAR when there is none.
+/// by bisection until the bracket cannot shrink or 32 halvings (the bracket
+/// is then 2^-32 of its start, below f32's precision of the answer); T_FAR
+/// when there is none.
 fn quartic_bracketed(k: Quartic, slope: bool, a_in: f32, b_in: f32) -> f32 {
     var a = a_in;
     var b = b_in;
@@ -55,7 +57,7 @@ fn quartic_bracketed(k: Quartic, slope: bool, a_in: f32, b_in: f32) -> f32 {
         return T_FAR;
     }
     let a_negative = ga < 0.0;
-    for (var i = 0; i < 64; i++) {
+    for (var i = 0; i < 32; i++) {
         let mid = 0.5 * (a + b);
         if mid <= a || mid >= b {
             break;

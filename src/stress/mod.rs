@@ -72,20 +72,34 @@ pub struct GpuVariant {
     pipelines: Pipelines,
     ids: IdRenderer,
     robust: bool,
+    /// Kept to build pipelines for a scene's own implicit functions.
+    source: ShaderSource,
 }
 
 const IMAGE_FORMAT: wgpu::TextureFormat = wgpu::TextureFormat::Rgba8Unorm;
 
 impl GpuVariant {
     pub fn new(gpu: &Gpu, source: &ShaderSource, robust: bool) -> Result<Self, PipelineError> {
+        Self::with_functions(gpu, source, robust, Vec::new())
+    }
+
+    /// The variant with `functions` (a scene's implicit functions) compiled in.
+    fn with_functions(
+        gpu: &Gpu,
+        source: &ShaderSource,
+        robust: bool,
+        functions: Vec<String>,
+    ) -> Result<Self, PipelineError> {
         let options = ShaderOptions {
             robust,
+            functions,
             ..ShaderOptions::default()
         };
         Ok(GpuVariant {
             pipelines: Pipelines::new(&gpu.device, source, &[IMAGE_FORMAT], &options)?,
             ids: IdRenderer::new(gpu, source, &options)?,
             robust,
+            source: source.clone(),
         })
     }
 
@@ -93,6 +107,23 @@ impl GpuVariant {
     /// The robust variant gets camera-relative positions, the naive one the
     /// textbook's world coordinates.
     pub fn render(
+        &self,
+        gpu: &Gpu,
+        scene: &Scene,
+        width: u32,
+        height: u32,
+    ) -> Result<GpuRender, GpuWaitError> {
+        // A scene with its own functions needs pipelines with them compiled in.
+        let functions = crate::gpu::shapes::implicit::functions(scene);
+        if !functions.is_empty() {
+            let own = Self::with_functions(gpu, &self.source, self.robust, functions)
+                .map_err(|e| GpuWaitError::Lost(format!("the scene's functions: {e}")))?;
+            return own.render_with_these_pipelines(gpu, scene, width, height);
+        }
+        self.render_with_these_pipelines(gpu, scene, width, height)
+    }
+
+    fn render_with_these_pipelines(
         &self,
         gpu: &Gpu,
         scene: &Scene,

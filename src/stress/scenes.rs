@@ -61,6 +61,7 @@ stress_scenes!(
     "torus_from_far",
     "torus_inner_equator",
     "julia_zoom",
+    "implicit_tangent_sphere",
 );
 
 /// The TOML text of a stress scene.
