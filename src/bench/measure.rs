@@ -38,6 +38,45 @@ pub fn frame_time(
     ))
 }
 
+/// Two pipelines timed on the same scene, frame for frame in turn (A, B, A,
+/// B, ...) after a warm-up render of each: the median time of each, and the
+/// median of the per-pair ratios B / A. Taking turns exposes both to the same
+/// load of a shared machine, and the pair's ratio cancels what drifts
+/// between pairs, so the ratio is steadier than the ratio of the medians.
+pub fn paired_frame_times(
+    gpu: &Gpu,
+    options: [&ShaderOptions; 2],
+    scene: &Scene,
+    size: (u32, u32),
+    frames: u32,
+) -> Result<([Duration; 2], f64), String> {
+    let source = ShaderSource::embedded();
+    let wait = |e: crate::gpu::GpuWaitError| e.to_string();
+    let mut renderers = Vec::new();
+    for o in options {
+        let mut r = OffscreenRenderer::new(gpu, &source, o, scene, size.0, size.1)
+            .map_err(|e| e.to_string())?;
+        r.render(gpu, 1).map_err(wait)?;
+        renderers.push(r);
+    }
+    let mut times = [Vec::new(), Vec::new()];
+    let mut ratios = Vec::new();
+    for _ in 0..frames.max(1) {
+        let a = renderers[0].render(gpu, 1).map_err(wait)?;
+        let b = renderers[1].render(gpu, 1).map_err(wait)?;
+        ratios.push(b.as_secs_f64() / a.as_secs_f64().max(1e-9));
+        times[0].push(a);
+        times[1].push(b);
+    }
+    ratios.sort_by(f64::total_cmp);
+    let median = |mut t: Vec<Duration>| {
+        t.sort();
+        t[t.len() / 2]
+    };
+    let [a, b] = times;
+    Ok(([median(a), median(b)], ratios[ratios.len() / 2]))
+}
+
 /// How many times the largest sample count measured the converged reference
 /// traces: its own error is then well below that of every measured render.
 pub const REFERENCE_FACTOR: u32 = 8;

@@ -33,6 +33,7 @@ pub struct BenchArgs {
 
 /// What one run sweeps.
 struct Plan {
+    quick: bool,
     scenes: Vec<&'static str>,
     size: (u32, u32),
     spp: Vec<u32>,
@@ -47,6 +48,7 @@ impl Plan {
     fn new(quick: bool) -> Plan {
         if quick {
             return Plan {
+                quick,
                 scenes: vec!["whitted", "mirror_cube"],
                 size: (96, 54),
                 spp: vec![1, 8, 16],
@@ -58,18 +60,34 @@ impl Plan {
             };
         }
         Plan {
+            quick,
             scenes: bundled::names(),
-            // Small enough that the full sweep (with 10 timed frames per
-            // point, up to 64 samples) finishes in about 20 minutes on two
-            // CPU cores with lavapipe.
+            // Small enough that the full sweep (with 5 timed frames per
+            // point, up to 64 samples, the reference at 512) finishes in
+            // about a quarter of an hour on two CPU cores with lavapipe.
             size: (160, 90),
-            // 1..16, what a class demo uses, and the viewer's refinement limit beyond.
+            // 1..16, what a class demo uses, then 32 and 64.
             spp: vec![1, 2, 4, 8, 16, 32, 64],
-            depths: (1..=8).collect(),
+            // Depth doubling: where more bounces stop paying shows between
+            // neighbours, at half the renders of every depth.
+            depths: vec![1, 2, 4, 8],
             min_weights: vec![0.0, 1e-3, 1e-2, 5e-2],
             scales: vec![0.5, 1.0],
             sphere_counts: (0..=7).map(|k| 4usize.pow(k)).collect(),
             scaling_size: (160, 90),
+        }
+    }
+
+    /// The scenes timed only specialised against generic: the stress scenes
+    /// (`assets/scenes/stress/`) in the full sweep, none in the quick one.
+    fn pipeline_only_scenes(&self) -> Vec<&'static str> {
+        if self.quick {
+            Vec::new()
+        } else {
+            crate::stress::scenes::SCENES
+                .iter()
+                .map(|(name, _)| *name)
+                .collect()
         }
     }
 
@@ -174,6 +192,8 @@ pub struct PipelineRow {
     pub scene: String,
     pub specialized_ms: f64,
     pub generic_ms: f64,
+    /// The median over frame pairs of generic / specialised time.
+    pub ratio: f64,
 }
 
 #[derive(Debug, Clone)]
@@ -230,6 +250,7 @@ pub fn run(args: &BenchArgs) -> Result<(), BenchError> {
         .iter()
         .map(|(_, s)| plan.points(s).len() + 3)
         .sum::<usize>()
+        + plan.pipeline_only_scenes().len()
         + plan.sphere_counts.len();
     let bar = ProgressBar::new(steps as u64).with_style(
         ProgressStyle::with_template("{bar:40} {pos}/{len} {elapsed_precise} {msg}")
@@ -272,6 +293,12 @@ pub fn run(args: &BenchArgs) -> Result<(), BenchError> {
         bar.set_message(format!("{name}: specialised and generic"));
         pipelines.push(pipeline_row(&gpu, name, scene, plan.size, args.frames)?);
         bar.inc(2);
+    }
+    for name in plan.pipeline_only_scenes() {
+        bar.set_message(format!("{name}: specialised and generic"));
+        let scene = crate::stress::scenes::load(name);
+        pipelines.push(pipeline_row(&gpu, name, &scene, plan.size, args.frames)?);
+        bar.inc(1);
     }
     let mut scaling = Vec::new();
     for &n in &plan.sphere_counts {
@@ -359,6 +386,8 @@ fn error_row(
     })
 }
 
+/// Specialised against generic on one scene at 1 sample per pixel, frame
+/// for frame in turn (`measure::paired_frame_times`).
 fn pipeline_row(
     gpu: &Gpu,
     name: &str,
@@ -366,15 +395,16 @@ fn pipeline_row(
     size: (u32, u32),
     frames: u32,
 ) -> Result<PipelineRow, BenchError> {
-    let time = |options: ShaderOptions| {
-        measure::frame_time(gpu, &options, scene, size, 1, frames)
-            .map(|(t, _)| ms(t))
-            .map_err(BenchError::Failed)
-    };
+    let specialised = ShaderOptions::for_scene(scene);
+    let generic = ShaderOptions::default();
+    let ([s, g], ratio) =
+        measure::paired_frame_times(gpu, [&specialised, &generic], scene, size, frames)
+            .map_err(BenchError::Failed)?;
     Ok(PipelineRow {
         scene: name.to_string(),
-        specialized_ms: time(ShaderOptions::for_scene(scene))?,
-        generic_ms: time(ShaderOptions::default())?,
+        specialized_ms: ms(s),
+        generic_ms: ms(g),
+        ratio,
     })
 }
 
@@ -519,10 +549,7 @@ fn write_outputs(
         let _ = writeln!(
             csv,
             "{},{:.4},{:.4},{:.4}",
-            r.scene,
-            r.specialized_ms,
-            r.generic_ms,
-            r.generic_ms / r.specialized_ms
+            r.scene, r.specialized_ms, r.generic_ms, r.ratio
         );
     }
     write("specialized_vs_generic.csv", csv)?;
@@ -651,17 +678,16 @@ fn write_outputs(
     );
     let _ = writeln!(
         md,
-        "| scene | specialised (ms) | generic (ms) | generic / specialised |"
+        "Median frame times of the two pipelines rendered in turn, and the median over \
+         those frame pairs of generic / specialised; the bundled scenes, then the stress scenes.\n\n\
+         | scene | specialised (ms) | generic (ms) | generic / specialised |"
     );
     let _ = writeln!(md, "| --- | --- | --- | --- |");
     for r in pipelines {
         let _ = writeln!(
             md,
             "| {} | {:.2} | {:.2} | {:.2} |",
-            r.scene,
-            r.specialized_ms,
-            r.generic_ms,
-            r.generic_ms / r.specialized_ms
+            r.scene, r.specialized_ms, r.generic_ms, r.ratio
         );
     }
     let _ = writeln!(
@@ -728,9 +754,15 @@ mod tests {
         for spp in [1, 2, 4, 8, 16] {
             assert!(points.iter().any(|p| p.spp == spp));
         }
-        for depth in 1..=8 {
+        for depth in [1, 2, 4, 8] {
             assert!(points.iter().any(|p| p.depth == depth));
         }
+        assert_eq!(plan.reference_spp(), 512);
+        assert_eq!(plan.convergence_pair(), (32, 64));
+        assert_eq!(
+            plan.pipeline_only_scenes().len(),
+            crate::stress::scenes::SCENES.len()
+        );
         for mw in [0.0, 1e-3, 1e-2, 5e-2] {
             assert!(points.iter().any(|p| p.min_weight == mw));
         }
