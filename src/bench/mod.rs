@@ -263,12 +263,14 @@ pub fn run(args: &BenchArgs) -> Result<(), BenchError> {
     for (name, scene) in &scenes {
         bar.set_message(format!("{name}: converged reference"));
         let reference = ConvergedReference::render(scene, plan.size, plan.reference_spp());
-        bar.println(format!(
-            "{name}: reference {} spp, its halves differ by RMSE {:.5}: noise floor {:.5}",
-            reference.spp,
-            reference.halves_rmse,
-            reference.noise_floor()
-        ));
+        bar.suspend(|| {
+            println!(
+                "{name}: reference {} spp, its halves differ by RMSE {:.5}: noise floor {:.5}",
+                reference.spp,
+                reference.halves_rmse,
+                reference.noise_floor()
+            )
+        });
         references.push(ReferenceRow {
             scene: name.clone(),
             spp: reference.spp,
