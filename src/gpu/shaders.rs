@@ -405,13 +405,18 @@ impl ShaderSource {
     }
 
     /// Parses the joined source as a GLSL fragment shader (naga's GLSL front
-    /// end: `#version 450`, Vulkan-style resources) and validates it. Errors
+    /// end: `#version 450`, Vulkan-style resources), with each of `defines`
+    /// defined as a macro (`1`), and validates it. Errors
     /// are located like WGSL errors: naga's spans are byte offsets of the
     /// joined text, mapped back to the part they fall in.
     pub fn validate_glsl_fragment(
         &self,
+        defines: &[&str],
     ) -> Result<(naga::Module, naga::valid::ModuleInfo), ShaderError> {
-        let options = naga::front::glsl::Options::from(naga::ShaderStage::Fragment);
+        let mut options = naga::front::glsl::Options::from(naga::ShaderStage::Fragment);
+        for name in defines {
+            options.defines.insert(name.to_string(), "1".to_string());
+        }
         let parsed = self.without_panics(|| {
             naga::front::glsl::Frontend::default().parse(&options, &self.joined)
         })?;
