@@ -398,7 +398,7 @@ fn pipeline_row(
     frames: u32,
 ) -> Result<PipelineRow, BenchError> {
     let specialised = ShaderOptions::for_scene(scene);
-    let generic = ShaderOptions::default();
+    let generic = ShaderOptions::generic(scene);
     let ([s, g], ratio) =
         measure::paired_frame_times(gpu, [&specialised, &generic], scene, size, frames)
             .map_err(BenchError::Failed)?;
