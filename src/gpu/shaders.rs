@@ -474,13 +474,11 @@ impl ShaderSource {
 
     /// Parses the joined source as a GLSL fragment shader (naga's GLSL front
     /// end: `#version 450`, Vulkan-style resources), with each of `defines`
-    /// defined as a macro (`1`), and validates it. Errors
+    /// defined as a macro (`1`). Validate the module with
+    /// [`Self::validate_module`], after any repairs. Errors
     /// are located like WGSL errors: naga's spans are byte offsets of the
     /// joined text, mapped back to the part they fall in.
-    pub fn validate_glsl_fragment(
-        &self,
-        defines: &[&str],
-    ) -> Result<(naga::Module, naga::valid::ModuleInfo), ShaderError> {
+    pub fn parse_glsl_fragment(&self, defines: &[&str]) -> Result<naga::Module, ShaderError> {
         let mut options = naga::front::glsl::Options::from(naga::ShaderStage::Fragment);
         for name in defines {
             options.defines.insert(name.to_string(), "1".to_string());
@@ -488,11 +486,10 @@ impl ShaderSource {
         let parsed = self.without_panics(|| {
             naga::front::glsl::Frontend::default().parse(&options, &self.joined)
         })?;
-        let module = parsed.map_err(|errors| match errors.errors.first() {
+        parsed.map_err(|errors| match errors.errors.first() {
             Some(e) => self.locate(e.meta, e.kind.to_string(), String::new()),
             None => self.locate(naga::Span::default(), errors.to_string(), String::new()),
-        })?;
-        self.validate_module(module)
+        })
     }
 
     /// The file, line and column of a span of the joined source (for errors
