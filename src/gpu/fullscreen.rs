@@ -52,6 +52,34 @@ pub fn pass(
     bind_groups: &[&wgpu::BindGroup],
     target: &wgpu::TextureView,
 ) {
+    encode(
+        encoder,
+        pipeline,
+        bind_groups,
+        target,
+        wgpu::LoadOp::Clear(wgpu::Color::BLACK),
+    );
+}
+
+/// Like [`pass`], but drawing over what `target` holds: the pixels the
+/// fragment shader discards keep their colour (e.g. the selection outline
+/// over the traced image).
+pub fn pass_over(
+    encoder: &mut wgpu::CommandEncoder,
+    pipeline: &wgpu::RenderPipeline,
+    bind_groups: &[&wgpu::BindGroup],
+    target: &wgpu::TextureView,
+) {
+    encode(encoder, pipeline, bind_groups, target, wgpu::LoadOp::Load);
+}
+
+fn encode(
+    encoder: &mut wgpu::CommandEncoder,
+    pipeline: &wgpu::RenderPipeline,
+    bind_groups: &[&wgpu::BindGroup],
+    target: &wgpu::TextureView,
+    load: wgpu::LoadOp<wgpu::Color>,
+) {
     let mut pass = encoder.begin_render_pass(&wgpu::RenderPassDescriptor {
         label: None,
         color_attachments: &[Some(wgpu::RenderPassColorAttachment {
@@ -59,7 +87,7 @@ pub fn pass(
             depth_slice: None,
             resolve_target: None,
             ops: wgpu::Operations {
-                load: wgpu::LoadOp::Clear(wgpu::Color::BLACK),
+                load,
                 store: wgpu::StoreOp::Store,
             },
         })],
