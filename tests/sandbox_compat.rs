@@ -196,3 +196,36 @@ void mainImage(out vec4 c, in vec2 p) {
     let image = render_text(&gpu, "branches.glsl", text);
     assert_every_pixel(&image, [64, 64, 64], "mainImage at time 1");
 }
+
+#[test]
+fn webgl_constructs_naga_lacks_are_rewritten_and_errors_keep_the_users_columns() {
+    // mat2(vec4), `const in` parameters, a prototype with unnamed parameters.
+    let text = "\
+float half_of(const in float, float);
+void mainImage(out vec4 c, in vec2 p) {
+    mat2 m = mat2(vec4(0.5, 0.0, 0.0, 0.25));
+    vec2 v = m * vec2(1.0, 1.0);
+    c = vec4(v, half_of(1.0, 0.0), 1.0);
+}
+float half_of(const in float x, float unused) { return x * 0.5 + unused; }
+";
+    let Some(gpu) = common::gpu() else { return };
+    let image = render_text(&gpu, "gaps.glsl", text);
+    assert_every_pixel(
+        &image,
+        [128, 64, 128],
+        "mat2 columns (0.5, 0) and (0, 0.25)",
+    );
+    // A mistake after a rewritten call on the same line: the user's column.
+    let broken = text.replace(
+        "    vec2 v = m",
+        "    vec2 v = mat2(vec4(1.0)) * lenght(p) * m",
+    );
+    let e = raysandbox::sandbox::compile("gaps.glsl", &broken).expect_err("lenght");
+    let line = broken.lines().nth(3).unwrap();
+    assert_eq!(
+        (e.line, e.column as usize),
+        (4, line.find("lenght").unwrap() + 1),
+        "{e}"
+    );
+}

@@ -14,9 +14,9 @@ use std::fmt::Write as _;
 use std::path::Path;
 
 use super::params::{self, ParamSet, ParamSpec, ParamType, Scalar};
-use super::repair;
 use super::scan::{self, Kind, Scan, Token};
 use super::uniforms::WGSL_STRUCT;
+use super::{gaps, repair};
 use crate::gpu::{ShaderError, ShaderSource};
 
 /// Which kind of shader the file is.
@@ -890,18 +890,33 @@ fn compile_glsl(name: &str, scan: &Scan) -> Result<Compiled, ShaderError> {
         .to_string(),
         _ => String::new(),
     };
+    let bridged = gaps::bridge(scan, rewrite.text);
+    if bridged.uses_mat2 {
+        prelude.push_str(gaps::MAT2_OVERLOADS);
+    }
     let mut parts = vec![
         (PRELUDE_NAME.to_string(), prelude),
-        (name.to_string(), rewrite.text),
+        (name.to_string(), bridged.text.clone()),
     ];
     if !epilogue.is_empty() {
         parts.push((EPILOGUE_NAME.to_string(), epilogue));
     }
     let source = ShaderSource::from_parts(parts);
-    let (mut module, _) = source.validate_glsl_fragment(GLSL_DEFINES)?;
+    // Errors in the user's text are at the rewritten column: move it back.
+    let at_users_column = |mut e: ShaderError| {
+        if e.file == name && e.line > 0 {
+            e.column = bridged.original_column(scan, e.line, e.column);
+        }
+        e
+    };
+    let (mut module, _) = source
+        .validate_glsl_fragment(GLSL_DEFINES)
+        .map_err(at_users_column)?;
     repair::spill_pointer_arguments(&mut module);
-    let (module, info) = source.validate_module(module)?;
-    source.check_translation(&module, &info)?;
+    let (module, info) = source.validate_module(module).map_err(at_users_column)?;
+    source
+        .check_translation(&module, &info)
+        .map_err(at_users_column)?;
     let params = read_params(&module, name, scan, |member| {
         let decl = user_params.iter().find(|d| d.name == member)?;
         Some((decl.offset, decl.initializer.clone()))

@@ -6,6 +6,7 @@
 //! | module | what |
 //! | --- | --- |
 //! | `compose` | language and style, the preludes, the GLSL rewrite, validation |
+//! | `gaps` | small source rewrites for what naga's GLSL front end does not take |
 //! | `params` | annotations, values, the bytes the GPU reads, the sidecar file |
 //! | `uniforms` | the per-frame values (time, mouse, resolution, date) |
 //! | `clock` | pause, resume, restart, step |
@@ -21,6 +22,7 @@
 pub mod clock;
 pub mod compose;
 pub mod constants;
+mod gaps;
 pub mod params;
 pub mod render;
 mod repair;
