@@ -44,6 +44,12 @@ pub fn pipeline(
     })
 }
 
+/// The `ENCODE_SRGB` constant of the passes that write to `format`: false
+/// for an `*Srgb` format, whose hardware conversion encodes.
+pub fn encode_srgb(format: wgpu::TextureFormat) -> (&'static str, f64) {
+    ("ENCODE_SRGB", if format.is_srgb() { 0.0 } else { 1.0 })
+}
+
 /// Encodes one full-screen pass into `target` (cleared first) with the bind
 /// groups bound in order from group 0.
 pub fn pass(

@@ -6,17 +6,15 @@
 //! colour that is merely a little off.
 
 use super::context::{Gpu, GpuWaitError};
-use super::features::{ShaderOptions, borrowed};
+use super::features::ShaderOptions;
 use super::fullscreen;
 use super::layout::PackedScene;
 use super::offscreen::read_texels;
+use super::outline::{ID_FORMAT, id_pipeline};
 use super::shaders::ShaderSource;
 use super::texture::render_target;
 use super::tracer::{PipelineError, SceneBuffers, scene_layout_entries};
 use crate::scene::{Scene, ShapeId};
-
-/// The id image: (kind, index, bits of t, 1) per pixel.
-pub(super) const ID_FORMAT: wgpu::TextureFormat = wgpu::TextureFormat::Rgba32Uint;
 
 /// What the ray through one pixel centre hits first.
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -40,31 +38,6 @@ impl FirstHit {
             (id.kind().number(), id.index() as u32)
         })
     }
-}
-
-/// The `fs_id` pass of `module` into an [`ID_FORMAT`] target, reading the
-/// scene bind group of `scene_layout` (group 0). `options` sets the
-/// pipeline constants, as for the image it goes with.
-pub(super) fn id_pipeline(
-    device: &wgpu::Device,
-    module: &wgpu::ShaderModule,
-    scene_layout: &wgpu::BindGroupLayout,
-    options: &ShaderOptions,
-) -> wgpu::RenderPipeline {
-    let pipeline_layout = device.create_pipeline_layout(&wgpu::PipelineLayoutDescriptor {
-        label: Some("id pass"),
-        bind_group_layouts: &[Some(scene_layout)],
-        immediate_size: 0,
-    });
-    let constants = options.constants();
-    fullscreen::pipeline(
-        device,
-        &pipeline_layout,
-        (module, "vs_fullscreen"),
-        (module, "fs_id"),
-        &borrowed(&constants),
-        ID_FORMAT,
-    )
 }
 
 /// The `fs_id` pipeline, built once and run on any scene at any size.

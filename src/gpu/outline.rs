@@ -6,16 +6,43 @@
 
 use wgpu::util::DeviceExt;
 
-use super::features::ShaderOptions;
+use super::features::{ShaderOptions, borrowed};
 use super::fullscreen;
-use super::id_pass::{ID_FORMAT, id_pipeline};
 use super::layout::Selection;
 use super::texture::render_target;
-use super::tracer::encode_srgb;
 
 /// The outline colour, sRGB-encoded: an orange that none of the bundled
 /// scenes' materials comes close to, as in Blender.
 pub const OUTLINE_COLOR: [u8; 3] = [255, 153, 0];
+
+/// The id image: (kind, index, bits of t, 1) per pixel.
+pub(super) const ID_FORMAT: wgpu::TextureFormat = wgpu::TextureFormat::Rgba32Uint;
+
+/// The `fs_id` pass of `module` into an [`ID_FORMAT`] target, reading the
+/// scene bind group of `scene_layout` (group 0). `options` sets the
+/// pipeline constants, as for the image it goes with. Also the pass of
+/// `IdRenderer`, which reads its image back.
+pub(super) fn id_pipeline(
+    device: &wgpu::Device,
+    module: &wgpu::ShaderModule,
+    scene_layout: &wgpu::BindGroupLayout,
+    options: &ShaderOptions,
+) -> wgpu::RenderPipeline {
+    let pipeline_layout = device.create_pipeline_layout(&wgpu::PipelineLayoutDescriptor {
+        label: Some("id pass"),
+        bind_group_layouts: &[Some(scene_layout)],
+        immediate_size: 0,
+    });
+    let constants = options.constants();
+    fullscreen::pipeline(
+        device,
+        &pipeline_layout,
+        (module, "vs_fullscreen"),
+        (module, "fs_id"),
+        &borrowed(&constants),
+        ID_FORMAT,
+    )
+}
 
 /// The passes of one shader source: the id pass into the id image, and the
 /// outline pass for each output format.
@@ -74,7 +101,7 @@ impl OutlinePipelines {
                     &pipeline_layout,
                     (module, "vs_fullscreen"),
                     (module, "fs_outline"),
-                    &[encode_srgb(format)],
+                    &[fullscreen::encode_srgb(format)],
                     format,
                 );
                 (format, pipeline)

@@ -117,7 +117,12 @@ impl Pipelines {
         };
         let display = output_formats
             .iter()
-            .map(|&format| (format, pass("fs_display", format, &[encode_srgb(format)])))
+            .map(|&format| {
+                (
+                    format,
+                    pass("fs_display", format, &[fullscreen::encode_srgb(format)]),
+                )
+            })
             .collect();
         Pipelines {
             trace: pass("fs_trace", ACCUM_FORMAT, &borrowed(&trace_constants)),
@@ -142,12 +147,6 @@ impl Pipelines {
             .map(|(_, p)| p)
             .unwrap_or_else(|| panic!("no display pipeline was built for {format:?}"))
     }
-}
-
-/// The `ENCODE_SRGB` constant of the passes that write to `format`: false
-/// for an `*Srgb` format, whose hardware conversion encodes.
-pub(super) fn encode_srgb(format: wgpu::TextureFormat) -> (&'static str, f64) {
-    ("ENCODE_SRGB", if format.is_srgb() { 0.0 } else { 1.0 })
 }
 
 /// Binding 0: the globals uniform; 1..=5: materials, lights, BVH nodes, BVH
