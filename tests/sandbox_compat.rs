@@ -229,3 +229,37 @@ float half_of(const in float x, float unused) { return x * 0.5 + unused; }
         "{e}"
     );
 }
+
+#[test]
+fn a_function_may_call_one_defined_below_it_through_a_prototype() {
+    // naga adds `a` where its prototype is, but its definition calls `c`,
+    // defined later: the functions are reordered for the validator.
+    let text = "\
+uniform float time;
+float a(float x);
+float b(float x) { return a(x) * 2.0; }
+void main() { gl_FragColor = vec4(vec3(b(time * 0.25)), 1.0); }
+float c(float x) { return x * 0.5; }
+float a(float x) { return c(x) + 0.125; }
+";
+    let Some(gpu) = common::gpu() else { return };
+    let image = render_text(&gpu, "order.frag", text);
+    assert_every_pixel(&image, [128, 128, 128], "(0.25 / 2 + 0.125) * 2");
+}
+
+#[test]
+fn a_glsl_sandbox_port_of_a_shadertoy_shader_stays_glsl_sandbox() {
+    // mainImage and main, with GLSL Sandbox's uniforms and its own defines
+    // of the Shadertoy names.
+    let text = "\
+uniform float time;
+uniform vec2 resolution;
+#define iGlobalTime time
+#define iResolution resolution
+void mainImage(out vec4 c, in vec2 p) { c = vec4(p / iResolution.xy, iGlobalTime * 0.5, 1.0); }
+void main() { mainImage(gl_FragColor, gl_FragCoord.xy); }
+";
+    let compiled =
+        raysandbox::sandbox::compile("port.frag", text).unwrap_or_else(|e| panic!("{e}"));
+    assert_eq!(compiled.style, raysandbox::sandbox::Style::GlslSandbox);
+}

@@ -365,7 +365,11 @@ impl SandboxApp {
         if size.width > 0 && size.height > 0 {
             surface.configure(&gpu.device, &config);
         }
-        let sandbox = SandboxGpu::new(&gpu.device, &[format, EXPORT_FORMAT]);
+        let sandbox = SandboxGpu::new(
+            &gpu.device,
+            &[format, EXPORT_FORMAT],
+            self.options.nan_color,
+        );
         let builder = sandbox.builder(&gpu.device);
         let canvas = Canvas::new(
             &gpu,

@@ -74,7 +74,7 @@ impl Features {
 
 /// Values for the shader's pipeline-overridable constants: the variants of
 /// one source.
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
+#[derive(Debug, Clone, PartialEq, Eq, Hash)]
 pub struct ShaderOptions {
     /// The robust intersection and offset routines (true) or the lecture's
     /// textbook versions (false), to show what the robust ones fix.
@@ -84,6 +84,10 @@ pub struct ShaderOptions {
     /// pipeline constant: WGSL sizes arrays only with `const`s, so it is
     /// written into the source, see `ShaderSource::with_stack_size`).
     pub stack_size: u32,
+    /// The scene's distinct implicit functions (`gpu::shapes::implicit::functions`),
+    /// compiled into the source (see `ShaderSource::with_functions`): a
+    /// pipeline per distinct set.
+    pub functions: Vec<String>,
 }
 
 impl Default for ShaderOptions {
@@ -93,17 +97,28 @@ impl Default for ShaderOptions {
             robust: true,
             features: Features::ALL,
             stack_size: super::shaders::MAX_STACK_SIZE,
+            functions: Vec::new(),
         }
     }
 }
 
 impl ShaderOptions {
+    /// Robust and generic, with `scene`'s implicit functions (which no
+    /// pipeline can do without: they are the scene's own code).
+    pub fn generic(scene: &Scene) -> Self {
+        ShaderOptions {
+            functions: super::shapes::implicit::functions(scene),
+            ..ShaderOptions::default()
+        }
+    }
+
     /// The robust pipeline specialised for `scene`.
     pub fn for_scene(scene: &Scene) -> Self {
         ShaderOptions {
             robust: true,
             features: Features::of(scene),
             stack_size: scene.render.max_depth + 1,
+            functions: super::shapes::implicit::functions(scene),
         }
     }
 

@@ -73,7 +73,9 @@ impl Pipelines {
         options: &ShaderOptions,
         outline: bool,
     ) -> Result<Self, PipelineError> {
-        let source = &source.with_stack_size(options.stack_size);
+        let source = &source
+            .with_stack_size(options.stack_size)
+            .with_functions(&options.functions);
         source.validate()?;
         let scope = device.push_error_scope(wgpu::ErrorFilter::Validation);
         let pipelines = Self::build(device, source, output_formats, options, outline);

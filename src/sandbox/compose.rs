@@ -720,6 +720,17 @@ fn initializer_values(tokens: &[Token]) -> Vec<f64> {
     values
 }
 
+/// Whether a top-level `uniform` declares one of `names`.
+fn declares_uniform(tokens: &[Token], names: &[&str]) -> bool {
+    tokens.iter().enumerate().any(|(i, t)| {
+        t.is("uniform")
+            && tokens[i + 1..]
+                .iter()
+                .take_while(|n| !n.is(";"))
+                .any(|n| names.contains(&n.text))
+    })
+}
+
 /// Macros defined before the user's GLSL, as WebGL defines them: shaders
 /// written `#ifdef GL_ES precision mediump float; #endif` expect it.
 const GLSL_DEFINES: &[&str] = &["GL_ES"];
@@ -775,9 +786,11 @@ fn glsl_sandbox_surface(resolution: &str, position: bool, size: bool) -> String 
 fn compile_glsl(name: &str, scan: &Scan) -> Result<Compiled, ShaderError> {
     let tokens = &scan.tokens;
     // A file with `mainImage` is Shadertoy's, also with a `main()` of its own
-    // that calls it (as exports for other sites have).
+    // that calls it (as exports for other sites have), unless it declares
+    // GLSL Sandbox's uniforms: then it is a port to GLSL Sandbox.
     let user_main = find_pair(tokens, "main", "(").is_some();
-    let style = if find_pair(tokens, "mainImage", "(").is_some() {
+    let sandbox_port = user_main && declares_uniform(tokens, &["time", "resolution", "mouse"]);
+    let style = if find_pair(tokens, "mainImage", "(").is_some() && !sandbox_port {
         Style::Shadertoy
     } else if user_main {
         Style::GlslSandbox
@@ -870,7 +883,14 @@ fn compile_glsl(name: &str, scan: &Scan) -> Result<Compiled, ShaderError> {
     if let Some(output) = rewrite.output {
         let _ = writeln!(prelude, "#define {output} rsb_frag_color");
     }
-    let used = |word: &str| tokens.iter().any(|t| t.is(word));
+    // Names the file uses and does not `#define` itself.
+    let used = |word: &str| {
+        tokens.iter().any(|t| t.is(word))
+            && !tokens.iter().any(|t| {
+                t.kind == Kind::Directive
+                    && t.text[1..].split_whitespace().take(2).eq(["define", word])
+            })
+    };
     match style {
         Style::Shadertoy => prelude.push_str(&old_shadertoy_names(&used)),
         _ => prelude.push_str(&glsl_sandbox_surface(
@@ -909,9 +929,10 @@ fn compile_glsl(name: &str, scan: &Scan) -> Result<Compiled, ShaderError> {
         }
         e
     };
-    let (mut module, _) = source
-        .validate_glsl_fragment(GLSL_DEFINES)
+    let mut module = source
+        .parse_glsl_fragment(GLSL_DEFINES)
         .map_err(at_users_column)?;
+    repair::define_before_use(&mut module);
     repair::spill_pointer_arguments(&mut module);
     let (module, info) = source.validate_module(module).map_err(at_users_column)?;
     source

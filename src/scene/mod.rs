@@ -22,7 +22,10 @@ use indexmap::IndexMap;
 use serde::{Deserialize, Serialize};
 
 pub use error::SceneError;
-pub use shapes::{Cube, CubeSize, Plane, Shape, Sphere, for_each_shape_kind};
+pub use shapes::{
+    Cube, CubeSize, Implicit, Julia, Placement, Plane, Shape, Sphere, Torus, for_each_shape_kind,
+    implicit, julia,
+};
 
 /// Writes the [`Scene`] struct, [`ShapeKind`], [`ShapeId`] and the methods
 /// that visit every shape kind, from the registry [`for_each_shape_kind!`].
@@ -85,6 +88,13 @@ macro_rules! scene_with_shapes {
                 }
             }
 
+            /// Whether shapes of this kind are opaque ([`Shape::OPAQUE`]).
+            pub fn opaque(self) -> bool {
+                match self {
+                    $(ShapeKind::$kind => <$kind as Shape>::OPAQUE,)*
+                }
+            }
+
             /// The number the shader reports for this kind (`KIND_*`, 0 is
             /// "nothing"): the position in the registry, from 1.
             pub fn number(self) -> u32 {
@@ -115,6 +125,11 @@ macro_rules! scene_with_shapes {
             /// Whether the shape is thin ([`Shape::THIN`]).
             pub fn is_thin(self) -> bool {
                 self.kind().thin()
+            }
+
+            /// Whether the shape is opaque ([`Shape::OPAQUE`]).
+            pub fn is_opaque(self) -> bool {
+                self.kind().opaque()
             }
 
             /// The shape of kind `kind` at `index`.

@@ -38,7 +38,7 @@ pub struct Issue {
 }
 
 impl Issue {
-    fn new(path: &KeyPath, message: String) -> Self {
+    pub(super) fn new(path: &KeyPath, message: String) -> Self {
         Self {
             path: path.clone(),
             message,

@@ -5,8 +5,12 @@
 //! editor does not compile.
 
 mod cube;
+mod implicit;
+mod julia;
+mod placed;
 mod plane;
 mod sphere;
+mod torus;
 
 use egui::Ui;
 use glam::DVec3;
