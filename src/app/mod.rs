@@ -208,6 +208,11 @@ impl ApplicationHandler<UserEvent> for App {
                 gfx.window.request_redraw();
             }
             WindowEvent::RedrawRequested => self.redraw(event_loop),
+            WindowEvent::DroppedFile(path) => {
+                // A file dropped on the window opens as the panel's "Open" does.
+                self.panel_action(PanelAction::Open(path));
+                self.request_redraw();
+            }
             _ => {
                 if response.repaint {
                     gfx.window.request_redraw();

@@ -24,7 +24,7 @@ pub use shaders::{ShaderError, ShaderSource};
 pub use texture::render_target;
 pub use timer::{GpuTimer, Timing};
 pub use tracer::{
-    Accumulator, DEFAULT_MAX_SAMPLES, DEFAULT_MIN_WEIGHT, FrameTarget, PipelineError, Pipelines,
-    SceneBuffers, encode_frame,
+    Accumulator, DEFAULT_MAX_SAMPLES, DEFAULT_MIN_WEIGHT, DEFAULT_RENDER_SAMPLES, FrameTarget,
+    PipelineError, Pipelines, SceneBuffers, encode_frame,
 };
 pub use viewport::{EXPORT_FORMAT, FrameStatus, Viewport};
