@@ -114,7 +114,17 @@ impl Gpu {
             label: Some("raysandbox"),
             // Timestamp queries time frames where the adapter has them.
             required_features: adapter.features() & TIMER_FEATURES,
-            required_limits: wgpu::Limits::default(),
+            // Every shape kind binds one or two storage buffers: ask for as
+            // many as the adapter has (lavapipe: far more than the default
+            // 8), and for its largest buffers (big meshes).
+            required_limits: wgpu::Limits {
+                max_storage_buffers_per_shader_stage: adapter
+                    .limits()
+                    .max_storage_buffers_per_shader_stage,
+                max_storage_buffer_binding_size: adapter.limits().max_storage_buffer_binding_size,
+                max_buffer_size: adapter.limits().max_buffer_size,
+                ..wgpu::Limits::default()
+            },
             ..Default::default()
         }))
         .map_err(|e| GpuError::NoDevice {

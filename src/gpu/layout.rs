@@ -6,8 +6,8 @@
 use bytemuck::{Pod, Zeroable};
 use glam::DVec3;
 
-pub use super::shapes::{Cube, Plane, Sphere};
-use super::shapes::{Frame, PackShape, f32x3, kinds, pack_all};
+pub use super::shapes::{Cube, Mesh, Plane, Sphere};
+use super::shapes::{Frame, PackShape, buffer_position, f32x3, pack_all, round_out};
 use crate::bvh::{Aabb, Bvh};
 use crate::scene::{self, Scene, ShapeKind, ShapeList};
 
@@ -86,8 +86,9 @@ pub struct PackedScene {
     /// [`PackedScene::set_view`] writes the camera in the same frame.
     pub frame: Frame,
     pub globals: Globals,
-    /// Every shape kind's array as `u32` words, in the registry order of
-    /// `gpu::shapes` (see [`PackedScene::shapes_of`] for typed access).
+    /// Every shape kind's buffers as `u32` words, in the registry order of
+    /// `gpu::shapes`, a kind's second buffer after its own (see
+    /// [`PackedScene::shapes_of`] for typed access).
     pub shapes: Vec<Vec<u32>>,
     /// The number of shapes of each kind, by kind number (entry 0 unused).
     pub shape_counts: Vec<u32>,
@@ -145,11 +146,7 @@ impl PackedScene {
     /// The packed shapes of kind `T`, padded to at least one element (the
     /// count is in [`PackedScene::shape_counts`]).
     pub fn shapes_of<T: PackShape>(&self) -> &[T] {
-        let kind = <T::Source as ShapeList>::KIND;
-        let position = kinds()
-            .iter()
-            .position(|k| k.kind == kind)
-            .expect("a packed kind is registered");
+        let position = buffer_position(<T::Source as ShapeList>::KIND);
         bytemuck::cast_slice(&self.shapes[position])
     }
 }
@@ -163,22 +160,14 @@ fn shape_counts(scene: &Scene) -> Vec<u32> {
     counts
 }
 
-/// A node with its box rounded outwards to f32, so that the box the shader
-/// tests always holds the shapes inside it (rounding to nearest could cut a
-/// sliver off a shape, and rays through that sliver would miss it).
+/// A node with its box, relative to the frame, rounded outwards to f32
+/// ([`round_out`]).
 fn pack_node(bounds: Aabb, first: u32, count: u32, frame: &Frame) -> BvhNode {
-    let down = |x: f64| {
-        let f = x as f32;
-        if f64::from(f) > x { f.next_down() } else { f }
-    };
-    let up = |x: f64| {
-        let f = x as f32;
-        if f64::from(f) < x { f.next_up() } else { f }
-    };
+    let (bounds_min, bounds_max) = round_out(bounds.min - frame.origin, bounds.max - frame.origin);
     BvhNode {
-        bounds_min: (bounds.min - frame.origin).to_array().map(down),
+        bounds_min,
         first,
-        bounds_max: (bounds.max - frame.origin).to_array().map(up),
+        bounds_max,
         count,
     }
 }
@@ -344,6 +333,16 @@ mod tests {
                 _pad,
                 rotation
             }),
+            rust_layout!(Mesh {
+                to_local,
+                origin,
+                material,
+                normal_to_world,
+                node_start,
+                tri_start,
+                normal_start,
+                error_scale
+            }),
             rust_layout!(Material {
                 color,
                 diffuse,
@@ -399,7 +398,7 @@ mod tests {
         let packed = PackedScene::new(&scene, 4, 3);
         assert_eq!(packed.shapes_of::<Sphere>().len(), 1);
         assert_eq!(packed.lights.len(), 1);
-        assert_eq!(packed.shape_counts, [0, 0, 0, 0]);
+        assert_eq!(packed.shape_counts, [0; 5]);
         assert_eq!(packed.globals.light_count, 0);
         assert_eq!(packed.materials.len(), 1, "the default material only");
         assert_eq!(packed.globals.resolution, [4, 3]);

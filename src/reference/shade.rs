@@ -43,9 +43,11 @@ fn shade(
     let d = ray.dir;
     // Closed shapes: the ray enters where it meets the outward normal head on.
     let entering = d.dot(hit.n) < 0.0;
-    // The shading normal faces the ray, whichever side was hit.
-    let ns = if entering { hit.n } else { -hit.n };
-    let albedo = albedo(m, hit.p + scene.frame_origin, hit.n, scene.robust);
+    // The shading normal faces the ray, whichever side was hit; secondary
+    // rays start off the surface along the geometric normal.
+    let ns = if entering { hit.shading } else { -hit.shading };
+    let ng = if entering { hit.n } else { -hit.n };
+    let albedo = albedo(m, hit.p + scene.frame_origin, hit.n, scene.options.robust);
     let mut radiance = local(scene, m, albedo, hit, ns, d);
 
     if depth >= scene.max_depth {
@@ -57,13 +59,13 @@ fn shade(
 
     let reflected_weight = weight * split.wr;
     if traced(reflected_weight) {
-        let child = Ray::new(offset(scene, hit, ns), reflect(d, ns));
+        let child = Ray::new(offset(scene, hit, ng), reflect(d, ns));
         radiance += split.wr * trace(scene, &child, depth + 1, reflected_weight);
     }
     if let Some(dir) = split.transmitted {
         let refracted_weight = weight * split.wt * albedo.max_element();
         if traced(refracted_weight) {
-            let child = Ray::new(offset(scene, hit, -ns), dir);
+            let child = Ray::new(offset(scene, hit, -ng), dir);
             radiance += split.wt * albedo * trace(scene, &child, depth + 1, refracted_weight);
         }
     }
@@ -109,10 +111,12 @@ fn local(
 }
 
 /// Whether a shape lies between the hit point and the light: the shadow ray
-/// starts at `p` offset to the lit side `ns` and is blocked by any hit with
-/// `0 < t < |L - o|` (classic Whitted shadows: glass blocks fully too).
+/// starts at `p` offset to the lit side `ns` (along the geometric normal on
+/// that side) and is blocked by any hit with `0 < t < |L - o|` (classic
+/// Whitted shadows: glass blocks fully too).
 fn in_shadow(scene: &PreparedScene, hit: &Hit, ns: DVec3, light: DVec3) -> bool {
-    let origin = offset(scene, hit, ns);
+    let ng = if hit.n.dot(ns) >= 0.0 { hit.n } else { -hit.n };
+    let origin = offset(scene, hit, ng);
     let distance = (light - origin).length();
     // Nothing fits strictly between a light and itself.
     distance > 0.0 && any_hit(scene, &Ray::new(origin, light - origin), distance)
@@ -122,7 +126,7 @@ fn in_shadow(scene: &PreparedScene, hit: &Hit, ns: DVec3, light: DVec3) -> bool 
 /// the scale-aware [`offset_ray`], or the fixed textbook offset in the naive
 /// variant.
 fn offset(scene: &PreparedScene, hit: &Hit, n: DVec3) -> DVec3 {
-    if scene.robust {
+    if scene.options.robust {
         offset_ray(hit.p, n, hit.error_scale)
     } else {
         offset_ray_naive(hit.p, n)

@@ -8,6 +8,7 @@ pub mod bundled;
 mod document;
 mod error;
 mod key_path;
+mod mesh_file;
 mod parse;
 mod shapes;
 #[cfg(test)]
@@ -22,7 +23,11 @@ use indexmap::IndexMap;
 use serde::{Deserialize, Serialize};
 
 pub use error::SceneError;
-pub use shapes::{Cube, CubeSize, Plane, Shape, Sphere, for_each_shape_kind};
+pub use mesh_file::Geometry;
+pub use shapes::{
+    Cube, CubeSize, Loaded, Mesh, Plane, Shape, Sphere, TriangleTest, for_each_shape_kind,
+    rotation_degrees,
+};
 
 /// Writes the [`Scene`] struct, [`ShapeKind`], [`ShapeId`] and the methods
 /// that visit every shape kind, from the registry [`for_each_shape_kind!`].
@@ -211,9 +216,10 @@ macro_rules! scene_with_shapes {
             }
 
             /// Validates every shape, kind by kind in registry order.
-            fn validate_shapes(&mut self, root: &key_path::KeyPath) -> validate::Check {
+            fn validate_shapes(&mut self, root: &key_path::KeyPath, base: Option<&Path>) -> validate::Check {
+                let context = shapes::Context { materials: &self.materials, base };
                 $(for (i, shape) in self.$field.iter_mut().enumerate() {
-                    shape.validate(&root.key(stringify!($field)).index(i), &self.materials)?;
+                    shape.validate(&root.key(stringify!($field)).index(i), &context)?;
                 })*
                 Ok(())
             }
@@ -404,8 +410,14 @@ impl Scene {
 
     /// A one-line summary for `raysandbox check`.
     pub fn summary(&self) -> String {
+        let triangles: usize = self.meshes.iter().map(|m| m.geometry.0.triangles.len()).sum();
+        let triangles = if self.meshes.is_empty() {
+            String::new()
+        } else {
+            format!(" ({triangles} triangles)")
+        };
         format!(
-            "{}, {} materials, {} lights",
+            "{}{triangles}, {} materials, {} lights",
             self.shape_summary(),
             self.materials.len(),
             self.lights.len()

@@ -21,10 +21,14 @@ pub(super) fn deserialize(doc: &Document<'_>) -> Result<Scene, SceneError> {
 
 /// glam reads the first three numbers of an array and ignores the rest, so
 /// `to = [0, 1, 0, 5]` would load without a word. Every array of numbers in
-/// a scene is a vector, and a vector has three.
+/// a scene is a vector (or a triangle's three indices), and a vector has
+/// three. (A mesh's `positions` is an array of such arrays.)
 fn check_vector_lengths(doc: &Document<'_>) -> Result<(), SceneError> {
     let wrong_length = |node: &Node<'_>| match node.get_ref() {
-        DeValue::Array(items) => items.len() != 3 && !items.iter().all(|v| v.get_ref().is_table()),
+        DeValue::Array(items) => {
+            let nested = |v: &Node<'_>| v.get_ref().is_table() || v.get_ref().is_array();
+            items.len() != 3 && !items.iter().any(nested)
+        }
         _ => false,
     };
     match doc.find(wrong_length) {

@@ -1054,7 +1054,7 @@ mod properties {
             let cubes = cubes.into_iter().map(|(center, size, rotation, m)| {
                 Cube { center, size, rotation, material: pick(&names, m) }
             }).collect();
-            Scene { render, camera, lights, materials, spheres, planes, cubes }
+            Scene { render, camera, lights, materials, spheres, planes, cubes, meshes: Vec::new() }
         }
     }
 

@@ -4,12 +4,14 @@
 //! shapes, kind by kind, from the registry `for_each_shape_kind!`.
 
 pub mod cube;
+pub mod mesh;
 pub mod plane;
 pub mod sphere;
 
 use std::fmt::Debug;
 
 use super::hit::Hit;
+use super::ReferenceOptions;
 use super::ray::Ray;
 use crate::scene::{self, Scene, Shape, ShapeId};
 
@@ -25,8 +27,9 @@ pub trait Prepare: Shape {
 /// The hit test of one prepared shape.
 pub trait Trace: Debug + Clone {
     /// The hit with `0 < t < t_max`: the robust routine
-    /// (docs/implementation.md) or, with `robust = false`, the lecture's.
-    fn hit(&self, ray: &Ray, t_max: f64, robust: bool) -> Option<Hit>;
+    /// (docs/implementation.md) or, with `options.robust = false`, the
+    /// lecture's; triangles by `options.triangles`.
+    fn hit(&self, ray: &Ray, t_max: f64, options: &ReferenceOptions) -> Option<Hit>;
 
     /// The slot of its material.
     fn material(&self) -> usize;
@@ -51,9 +54,9 @@ macro_rules! prepared_shapes {
             }
 
             /// The hit of shape `id` with `0 < t < t_max`.
-            pub fn hit(&self, id: ShapeId, ray: &Ray, t_max: f64, robust: bool) -> Option<Hit> {
+            pub fn hit(&self, id: ShapeId, ray: &Ray, t_max: f64, options: &ReferenceOptions) -> Option<Hit> {
                 match id {
-                    $(ShapeId::$kind(i) => self.$field[i].hit(ray, t_max, robust),)*
+                    $(ShapeId::$kind(i) => self.$field[i].hit(ray, t_max, options),)*
                 }
             }
 
