@@ -219,7 +219,11 @@ impl<P: Copy + Send> Bvh<P> {
             let first = n.first as usize;
             1 + level(nodes, first).max(level(nodes, first + 1))
         }
-        if self.nodes.is_empty() { 0 } else { level(&self.nodes, 0) }
+        if self.nodes.is_empty() {
+            0
+        } else {
+            level(&self.nodes, 0)
+        }
     }
 
     /// Fills node `node` with `items` (which start at `offset` in the final

@@ -20,6 +20,7 @@ struct Mesh {
     origin: vec3<f32>,            // `translate`, relative to the frame origin
     material: u32,
     normal_to_world: mat3x3<f32>, // transpose of to_local
+    to_world: mat3x3<f32>,        // R diag(scale)
     node_start: u32,
     tri_start: u32,
     normal_start: u32,
@@ -207,6 +208,9 @@ fn hit_mesh(ray: Ray, m: Mesh, index: u32, best: Hit) -> Hit {
             shading = normalize(s);
         }
     }
-    let p = ray.origin + t_best * ray.dir;
+    // The point from the weights, as the reference computes it: on the
+    // triangle up to the rounding of the vertices, whatever t's error.
+    let local_p = weights.x * p0 + weights.y * data_vec3(v + 1u) + weights.z * data_vec3(v + 2u);
+    let p = m.origin + m.to_world * local_p;
     return Hit(t_best, p, n, KIND_MESH, index, m.error_scale, shading);
 }

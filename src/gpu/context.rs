@@ -118,9 +118,8 @@ impl Gpu {
             // many as the adapter has (lavapipe: far more than the default
             // 8), and for its largest buffers (big meshes).
             required_limits: wgpu::Limits {
-                max_storage_buffers_per_shader_stage: adapter
-                    .limits()
-                    .max_storage_buffers_per_shader_stage,
+                max_storage_buffers_per_shader_stage:
+                    adapter.limits().max_storage_buffers_per_shader_stage,
                 max_storage_buffer_binding_size: adapter.limits().max_storage_buffer_binding_size,
                 max_buffer_size: adapter.limits().max_buffer_size,
                 ..wgpu::Limits::default()

@@ -126,7 +126,10 @@ impl ShaderOptions {
         ]
         .map(|(name, on)| (name.to_string(), on));
         let kinds = ShapeKind::ALL.iter().map(|&k| (has_flag(k), f.has(k)));
-        let triangles = ("TRIANGLE_TEST".to_string(), f64::from(self.triangles.number()));
+        let triangles = (
+            "TRIANGLE_TEST".to_string(),
+            f64::from(self.triangles.number()),
+        );
         fixed
             .into_iter()
             .chain(kinds)

@@ -338,6 +338,7 @@ mod tests {
                 origin,
                 material,
                 normal_to_world,
+                to_world,
                 node_start,
                 tri_start,
                 normal_start,

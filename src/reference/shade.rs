@@ -54,7 +54,7 @@ fn shade(
         return radiance;
     }
     let thin = shape.is_thin();
-    let split = split(m, d, hit.n, ns, entering, thin);
+    let split = split(m, d, ns, entering, thin);
     let traced = |child_weight: f64| child_weight > 0.0 && child_weight >= scene.min_weight;
 
     let reflected_weight = weight * split.wr;
@@ -198,7 +198,7 @@ struct Split {
 /// the ray goes straight on (a sheet of glass shifts it sideways by its
 /// thickness, which is zero). F is only computed where `kt > 0`, so a
 /// material without transparency mirrors with exactly `kr`.
-fn split(m: &Material, d: DVec3, n: DVec3, ns: DVec3, entering: bool, thin: bool) -> Split {
+fn split(m: &Material, d: DVec3, ns: DVec3, entering: bool, thin: bool) -> Split {
     let (kr, kt) = (m.mirror, m.transparency);
     if kt <= 0.0 {
         return Split {
@@ -212,7 +212,15 @@ fn split(m: &Material, d: DVec3, n: DVec3, ns: DVec3, entering: bool, thin: bool
     } else {
         (m.ior, 1.0)
     };
-    let f = fresnel(d.dot(n).abs(), n1, n2);
+    // The angle to the shading normal, as for the mirror direction (`ns`
+    // faces the ray; a smooth normal that turns away reflects fully, as
+    // the shader's `fresnel` does for cos_i <= 0).
+    let cos_i = -d.dot(ns);
+    let f = if cos_i <= 0.0 {
+        1.0
+    } else {
+        fresnel(cos_i, n1, n2)
+    };
     let wt = kt * (1.0 - f);
     let transmitted = if wt <= 0.0 {
         None
@@ -373,33 +381,19 @@ mod tests {
     fn split_rules() {
         let d = DVec3::new(0.0, -1.0, 0.0);
         // kt = 0: F is not involved, wr = kr exactly.
-        let s = split(&material(0.3, 0.0), d, DVec3::Y, DVec3::Y, true, false);
+        let s = split(&material(0.3, 0.0), d, DVec3::Y, true, false);
         assert_eq!((s.wr, s.wt, s.transmitted), (0.3, 0.0, None));
         // Entering glass head on: F = 0.04.
-        let s = split(&material(0.1, 0.5), d, DVec3::Y, DVec3::Y, true, false);
+        let s = split(&material(0.1, 0.5), d, DVec3::Y, true, false);
         assert!((s.wr - (0.1 + 0.5 * 0.04)).abs() < 1e-15);
         assert!((s.wt - 0.5 * 0.96).abs() < 1e-15);
         assert!((s.transmitted.unwrap() - d).length() < 1e-15);
         // Leaving a closed shape obliquely past the critical angle: TIR.
         let oblique = DVec3::new(1.0, 1.0, 0.0).normalize();
-        let s = split(
-            &material(0.0, 1.0),
-            oblique,
-            DVec3::Y,
-            -DVec3::Y,
-            false,
-            false,
-        );
+        let s = split(&material(0.0, 1.0), oblique, -DVec3::Y, false, false);
         assert_eq!((s.wr, s.wt, s.transmitted), (1.0, 0.0, None));
         // A thin plane: F as for entering even from the back, ray unbent.
-        let s = split(
-            &material(0.0, 1.0),
-            oblique,
-            DVec3::Y,
-            -DVec3::Y,
-            false,
-            true,
-        );
+        let s = split(&material(0.0, 1.0), oblique, -DVec3::Y, false, true);
         let f = fresnel(oblique.y, 1.0, 1.5);
         assert!(f > 0.04 && f < 1.0);
         assert_eq!((s.wr, s.wt, s.transmitted), (f, 1.0 - f, Some(oblique)));

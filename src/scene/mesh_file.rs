@@ -67,7 +67,9 @@ pub fn from_arrays(
     }
     if !normals.is_empty() && normals.len() != positions.len() {
         let (n, p) = (normals.len(), positions.len());
-        return Err(format!("normals: one per position, got {n} for {p} positions"));
+        return Err(format!(
+            "normals: one per position, got {n} for {p} positions"
+        ));
     }
     let raw = Raw {
         positions: positions.to_vec(),
@@ -103,7 +105,11 @@ fn prepare(raw: Raw, smooth: bool) -> Result<Geometry, String> {
     }
     let normals = match (smooth, raw.normals.is_empty()) {
         (false, _) => Vec::new(),
-        (true, false) => raw.normals.iter().map(|v| v.normalize_or(DVec3::Y)).collect(),
+        (true, false) => raw
+            .normals
+            .iter()
+            .map(|v| v.normalize_or(DVec3::Y))
+            .collect(),
         (true, true) => area_weighted_normals(&raw.positions, &triangles),
     };
     Ok(Geometry {
@@ -138,7 +144,11 @@ fn area_weighted_normals(positions: &[DVec3], triangles: &[[u32; 3]]) -> Vec<DVe
 /// fan-triangulated, other records ignored. Errors start with the line.
 fn read_obj(bytes: &[u8]) -> Result<Raw, String> {
     let text = std::str::from_utf8(bytes).map_err(|e| {
-        let line = bytes[..e.valid_up_to()].iter().filter(|&&b| b == b'\n').count() + 1;
+        let line = bytes[..e.valid_up_to()]
+            .iter()
+            .filter(|&&b| b == b'\n')
+            .count()
+            + 1;
         format!("{line}: not a text file (invalid UTF-8)")
     })?;
     if let Some((line, message)) = obj_problem(text) {
@@ -245,7 +255,11 @@ fn face_problem<'a>(words: impl Iterator<Item = &'a str>, vertices: i64) -> Opti
         let Ok(index) = first.parse::<i64>() else {
             return Some(format!("face vertex {word:?} is not an index"));
         };
-        let resolved = if index < 0 { vertices + index } else { index - 1 };
+        let resolved = if index < 0 {
+            vertices + index
+        } else {
+            index - 1
+        };
         if index == 0 || resolved < 0 || resolved >= vertices {
             return Some(format!(
                 "face vertex index {index} out of range ({vertices} vertices so far)"
@@ -274,13 +288,15 @@ fn read_ply(bytes: &[u8]) -> Result<Raw, String> {
     };
     let has_normals = vertices.first().is_some_and(|v| v.contains_key("nx"));
     for (i, v) in vertices.iter().enumerate() {
-        let p = ply_vector(v, ["x", "y", "z"]).ok_or(format!(" vertex {i}: needs numbers x, y, z"))?;
+        let p =
+            ply_vector(v, ["x", "y", "z"]).ok_or(format!(" vertex {i}: needs numbers x, y, z"))?;
         if !p.is_finite() {
             return Err(format!(" vertex {i}: coordinates must be finite, got {p}"));
         }
         raw.positions.push(p);
         if has_normals {
-            let n = ply_vector(v, ["nx", "ny", "nz"]).ok_or(format!(" vertex {i}: needs nx, ny, nz"))?;
+            let n = ply_vector(v, ["nx", "ny", "nz"])
+                .ok_or(format!(" vertex {i}: needs nx, ny, nz"))?;
             raw.normals.push(n);
         }
     }
@@ -295,9 +311,14 @@ fn read_ply(bytes: &[u8]) -> Result<Raw, String> {
         }
         for k in 1..list.len() - 1 {
             let t = [list[0], list[k], list[k + 1]];
-            if let Some(&bad) = t.iter().find(|&&v| v < 0 || v as usize >= raw.positions.len()) {
+            if let Some(&bad) = t
+                .iter()
+                .find(|&&v| v < 0 || v as usize >= raw.positions.len())
+            {
                 let n = raw.positions.len();
-                return Err(format!(" face {i}: vertex index {bad} out of range ({n} vertices)"));
+                return Err(format!(
+                    " face {i}: vertex index {bad} out of range ({n} vertices)"
+                ));
             }
             raw.triangles.push(t.map(|v| v as u32));
         }

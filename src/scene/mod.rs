@@ -410,7 +410,11 @@ impl Scene {
 
     /// A one-line summary for `raysandbox check`.
     pub fn summary(&self) -> String {
-        let triangles: usize = self.meshes.iter().map(|m| m.geometry.0.triangles.len()).sum();
+        let triangles: usize = self
+            .meshes
+            .iter()
+            .map(|m| m.geometry.0.triangles.len())
+            .sum();
         let triangles = if self.meshes.is_empty() {
             String::new()
         } else {

@@ -418,7 +418,12 @@ mod tests {
             .collect();
         assert_eq!(
             ids,
-            [ShapeId::Sphere(3), ShapeId::Plane(1), ShapeId::Cube(1)]
+            [
+                ShapeId::Sphere(3),
+                ShapeId::Plane(1),
+                ShapeId::Cube(1),
+                ShapeId::Mesh(0)
+            ]
         );
         let scale = scene_scale(&s);
         assert!(s.spheres[3].radius > 0.0);

@@ -206,7 +206,10 @@ pub fn buffer_position(kind: ShapeKind) -> usize {
 
 /// How many buffers the shape kinds bind.
 pub fn buffer_count() -> usize {
-    kinds().iter().map(|k| 1 + usize::from(k.data.is_some())).sum()
+    kinds()
+        .iter()
+        .map(|k| 1 + usize::from(k.data.is_some()))
+        .sum()
 }
 
 #[cfg(test)]

@@ -3,8 +3,8 @@
 use glam::{DMat3, DVec3};
 
 use super::{Prepare, Trace};
-use crate::reference::hit::{Hit, foot};
 use crate::reference::ReferenceOptions;
+use crate::reference::hit::{Hit, foot};
 use crate::reference::ray::Ray;
 use crate::scene;
 
@@ -151,7 +151,12 @@ pub fn hit_cube(cube: &Cube, ray: &Ray, t_max: f64) -> Option<Hit> {
     // rounding of t times |d|, which grows with the distance travelled.
     let mut p_local = o + t_local * d;
     p_local[axis] = sign * cube.half[axis];
-    Some(Hit::new(t, cube.center + cube.rotation * p_local, sign * cube.rotation.col(axis), cube.error_scale))
+    Some(Hit::new(
+        t,
+        cube.center + cube.rotation * p_local,
+        sign * cube.rotation.col(axis),
+        cube.error_scale,
+    ))
 }
 
 /// WGSL's `sign`: -1, 0 or +1 (Rust's `signum` gives +1 for +0).

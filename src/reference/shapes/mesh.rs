@@ -157,11 +157,7 @@ pub fn hit_cramer(ray: &Ray, [p0, p1, p2]: [DVec3; 3], t_max: f64) -> Option<Tri
 /// (JGT 1997): the same system as [`hit_cramer`], with the determinants
 /// written as scalar triple products that share two cross products,
 /// `p = d x e2` and `q = s x e1`, and early exits on the barycentrics.
-pub fn hit_moller_trumbore(
-    ray: &Ray,
-    [p0, p1, p2]: [DVec3; 3],
-    t_max: f64,
-) -> Option<TriangleHit> {
+pub fn hit_moller_trumbore(ray: &Ray, [p0, p1, p2]: [DVec3; 3], t_max: f64) -> Option<TriangleHit> {
     let (e1, e2) = (p1 - p0, p2 - p0);
     let p = ray.dir.cross(e2);
     let det = e1.dot(p);

@@ -10,8 +10,8 @@ pub mod sphere;
 
 use std::fmt::Debug;
 
-use super::hit::Hit;
 use super::ReferenceOptions;
+use super::hit::Hit;
 use super::ray::Ray;
 use crate::scene::{self, Scene, Shape, ShapeId};
 

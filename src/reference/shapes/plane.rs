@@ -3,8 +3,8 @@
 use glam::DVec3;
 
 use super::{Prepare, Trace};
-use crate::reference::hit::{Hit, foot};
 use crate::reference::ReferenceOptions;
+use crate::reference::hit::{Hit, foot};
 use crate::reference::ray::Ray;
 use crate::scene;
 

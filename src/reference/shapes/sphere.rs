@@ -3,8 +3,8 @@
 use glam::DVec3;
 
 use super::{Prepare, Trace};
-use crate::reference::hit::{Hit, foot, major_axis};
 use crate::reference::ReferenceOptions;
+use crate::reference::hit::{Hit, foot, major_axis};
 use crate::reference::ray::Ray;
 use crate::scene;
 
@@ -121,7 +121,12 @@ pub fn hit_sphere(sphere: &Sphere, ray: &Ray, t_max: f64) -> Option<Hit> {
         centre + r * n
     };
     let pole_scale = (centre + r * major_axis(n)).abs().max_element();
-    Some(Hit::new(t, p, n, pole_scale.max(ray_scale.min(centre_scale))))
+    Some(Hit::new(
+        t,
+        p,
+        n,
+        pole_scale.max(ray_scale.min(centre_scale)),
+    ))
 }
 
 /// The lecture's sphere (the naive variant, `ReferenceOptions::robust =

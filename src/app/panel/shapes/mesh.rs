@@ -46,7 +46,11 @@ impl EditShape for Mesh {
         field(ui, "translate", "Where the mesh's origin goes (x, y, z)");
         vec3_row(ui, &mut self.translate, 0.005 * scale, COORDINATES);
         ui.end_row();
-        field(ui, "scale", "One factor, or factors along the mesh's own x, y, z");
+        field(
+            ui,
+            "scale",
+            "One factor, or factors along the mesh's own x, y, z",
+        );
         size_row(ui, &mut self.scale, 0.002 * scale);
         ui.end_row();
         field(

@@ -108,4 +108,3 @@ pub(super) fn size_row(ui: &mut Ui, size: &mut CubeSize, speed: f64) {
         }
     });
 }
-
