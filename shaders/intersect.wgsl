@@ -169,3 +169,44 @@ fn hit_scene(ray: Ray, t_max: f32) -> Hit {
 fn occluded(ray: Ray, t_max: f32) -> bool {
     return hit_shapes(ray, no_hit(t_max), true).kind != KIND_NONE;
 }
+
+/// A ray in a placed shape's local coordinates (the implicit surfaces:
+/// torus, user function, Julia set; docs/implementation.md, "Implicit
+/// surfaces"): local points q + u d, measured from the foot of the
+/// perpendicular from the shape's centre, world parameter t = s + scale u.
+struct LocalRay {
+    q: vec3<f32>,
+    d: vec3<f32>,
+    s: f32,
+    scale: f32,
+}
+
+/// world = center + scale * rotation * local.
+fn local_ray(ray: Ray, center: vec3<f32>, scale: f32, rotation: mat3x3<f32>) -> LocalRay {
+    let f = foot(ray, center);
+    let inverse = transpose(rotation);
+    return LocalRay(inverse * f.g / scale, inverse * ray.dir, f.s, scale);
+}
+
+/// The local parameter of world parameter t.
+fn local_u(l: LocalRay, t: f32) -> f32 {
+    return (t - l.s) / l.scale;
+}
+
+/// The hit at local parameter u with the local (not necessarily unit)
+/// normal n, or `best` when u is not inside ray.t_min < t < best.t. A normal
+/// that is zero or not finite falls back to -d.
+fn placed_hit(ray: Ray, best: Hit, l: LocalRay, u: f32, n: vec3<f32>, center: vec3<f32>, rotation: mat3x3<f32>, kind: u32, index: u32, error_scale: f32) -> Hit {
+    let t = l.s + l.scale * u;
+    if !(t > ray.t_min && t < best.t) {
+        return best;
+    }
+    let world_n = rotation * n;
+    let len = length(world_n);
+    var normal = -ray.dir;
+    if len > 1e-30 && len < 1e30 {
+        normal = world_n / len;
+    }
+    let p = center + l.scale * (rotation * (l.q + u * l.d));
+    return surface_hit(t, p, normal, kind, index, error_scale);
+}

@@ -17,10 +17,19 @@ fn offset_ray(p: vec3<f32>, n: vec3<f32>, error_scale: f32) -> vec3<f32> {
     if !ROBUST {
         return p + NAIVE_OFFSET * n;
     }
-    const OFFSET_ULPS: f32 = 8.0 * 1.1920929e-7;   // 8 * 2^-23
     const MIN_SCALE: f32 = 1.0 / 32.0;
     let scale = max(max3(abs(p)), max(error_scale, MIN_SCALE));
     return p + (OFFSET_ULPS * scale) * n;
+}
+
+/// 8 units in the last place of f32: 8 * 2^-23.
+const OFFSET_ULPS: f32 = 8.0 * 1.1920929e-7;
+
+/// The error_scale for which offset_ray moves a point (at least) `distance`
+/// off its surface: for shapes whose rule names the distance (the Julia
+/// set's 2 epsilon, an implicit surface's root tolerance).
+fn offset_scale_for(distance: f32) -> f32 {
+    return distance / OFFSET_ULPS;
 }
 
 /// The textbook offset of secondary and shadow rays (ROBUST = false): a
@@ -173,7 +182,10 @@ fn trace(primary: Ray) -> vec3<f32> {
             radiance += job.throughput * globals.background;
             continue;
         }
-        let m = materials[material_of(hit)];
+        var m = materials[material_of(hit)];
+        if is_opaque(hit.kind) {
+            m.transparency = 0.0;
+        }
         let into_surface = dot(ray.dir, hit.normal) < 0.0;
         // Shading (lighting, mirror) by the shading normal facing the ray;
         // secondary rays leave along the geometric one.

@@ -273,7 +273,7 @@ fn render(args: &RenderArgs) -> Result<(), Failure> {
         println!("adapter: {}", gpu.describe());
         let mut options = match args.pipeline {
             PipelineKind::Specialized => ShaderOptions::for_scene(&scene),
-            PipelineKind::Generic => ShaderOptions::default(),
+            PipelineKind::Generic => ShaderOptions::generic(&scene),
         };
         if args.bvh == Switch::Off {
             options.features.bvh = false;

@@ -139,12 +139,15 @@ fn run_on_gpu(gpu: &Gpu, functions: &[Function], points: &[[f32; 4]]) -> Vec<Gpu
         ));
     }
     let harness = format!(
-        "@group(0) @binding(0) var<storage, read> points: array<vec4<f32>>;\n\
+        "// A pipeline constant, as the tracer has: wgpu then runs naga's\n\
+         // override processing over the functions too.\n\
+         override ENABLED: bool = false;\n\
+         @group(0) @binding(0) var<storage, read> points: array<vec4<f32>>;\n\
          @group(0) @binding(1) var<storage, read_write> results: array<vec4<f32>>;\n\
          @compute @workgroup_size(64)\n\
          fn run(@builtin(global_invocation_id) id: vec3<u32>) {{\n\
          let i = id.x;\n\
-         if i >= arrayLength(&points) {{ return; }}\n\
+         if i >= arrayLength(&points) || !ENABLED {{ return; }}\n\
          let p = points[i].xyz;\n\
          var value = 0.0f;\n\
          var dual = vec4<f32>(0.0f);\n\
@@ -167,7 +170,10 @@ fn run_on_gpu(gpu: &Gpu, functions: &[Function], points: &[[f32; 4]]) -> Vec<Gpu
         layout: None,
         module: &module,
         entry_point: Some("run"),
-        compilation_options: Default::default(),
+        compilation_options: wgpu::PipelineCompilationOptions {
+            constants: &[("ENABLED", 1.0)],
+            ..Default::default()
+        },
         cache: None,
     });
     let input = device.create_buffer_init(&wgpu::util::BufferInitDescriptor {

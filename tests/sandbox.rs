@@ -12,7 +12,7 @@ use image::RgbaImage;
 use raysandbox::compare::diff_images;
 use raysandbox::gpu::{Gpu, render_image};
 use raysandbox::sandbox::{
-    Control, FrameUniforms, Offscreen, Session, Style, compile_file, render_file,
+    Control, FrameUniforms, NanColor, Offscreen, Session, Style, compile_file, render_file,
 };
 use raysandbox::scene::Scene;
 
@@ -361,7 +361,7 @@ fn annotations_become_controls_and_values_survive_a_reload() {
 }
 
 #[test]
-fn a_shader_that_writes_nan_gets_a_warning_and_magenta_pixels() {
+fn a_shader_that_writes_nan_gets_a_warning_and_black_or_magenta_pixels() {
     let Some(gpu) = common::gpu() else { return };
     let dir = temp_dir("nan");
     let nan = write(
@@ -372,7 +372,22 @@ fn a_shader_that_writes_nan_gets_a_warning_and_magenta_pixels() {
     let (image, stats) = render_file(&gpu, &nan, SIZE, 1.0, None).unwrap();
     assert_eq!(stats.non_finite, stats.pixels);
     assert!(stats.warning().unwrap().contains("NaN"), "{stats:?}");
-    assert_eq!(image.get_pixel(0, 0).0, [255, 0, 255, 255]);
+    assert_eq!(
+        image.get_pixel(0, 0).0,
+        [0, 0, 0, 255],
+        "black, as browsers show NaN"
+    );
+    let compiled = compile_file(&nan).unwrap();
+    let mut offscreen = Offscreen::with_nan_color(&gpu, NanColor::Magenta);
+    let pipeline = offscreen.builder(&gpu).build(&compiled).unwrap();
+    let frame = FrameUniforms::at(1.0, 0, SIZE);
+    offscreen
+        .draw(&gpu, &pipeline, &compiled.params, &frame)
+        .unwrap();
+    assert_eq!(
+        offscreen.image(&gpu).unwrap().get_pixel(0, 0).0,
+        [255, 0, 255, 255]
+    );
     let silent = write(
         &dir,
         "silent.glsl",

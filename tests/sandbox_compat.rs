@@ -106,3 +106,160 @@ fn a_headless_frame_that_never_ends_is_stopped_with_exit_status_2() {
     assert!(!out.exists());
     std::fs::remove_dir_all(&dir).unwrap();
 }
+
+#[test]
+fn gl_es_is_defined_and_precision_statements_for_any_type_are_accepted() {
+    let text = "\
+#ifdef GL_ES
+precision mediump float;
+precision lowp sampler2D;
+#endif
+#ifndef GL_ES
+#error GL_ES is not defined
+#endif
+uniform float time;
+void main() { gl_FragColor = vec4(time * 0.5, 0.25, 1.0, 1.0); }
+";
+    let Some(gpu) = common::gpu() else { return };
+    let image = render_text(&gpu, "gles.frag", text);
+    assert_every_pixel(&image, [128, 64, 255], "time 1");
+}
+
+#[test]
+fn surface_position_spans_the_plane_glsl_sandbox_shows() {
+    // At rest the plane's part shown is 1 high, centred on the origin.
+    let text = "\
+varying vec2 surfacePosition;
+uniform vec2 surfaceSize;
+void main() {
+    gl_FragColor = vec4(surfacePosition + 0.5, surfaceSize.y * 0.5, 1.0);
+}
+";
+    let Some(gpu) = common::gpu() else { return };
+    let image = render_text(&gpu, "surface.frag", text);
+    let (w, h) = SIZE;
+    let aspect = w as f32 / h as f32;
+    for (x, y, p) in image.enumerate_pixels() {
+        let u = (x as f32 + 0.5) / w as f32 - 0.5;
+        let v = (h as f32 - y as f32 - 0.5) / h as f32 - 0.5;
+        let expected =
+            [u * aspect + 0.5, v + 0.5, 0.5].map(|c| (c.clamp(0.0, 1.0) * 255.0).round());
+        for c in 0..3 {
+            let d = (f32::from(p.0[c]) - expected[c]).abs();
+            assert!(
+                d <= 1.0,
+                "pixel ({x}, {y}) is {:?}, expected {expected:?}",
+                p.0
+            );
+        }
+    }
+}
+
+#[test]
+fn old_shadertoy_names_and_a_main_of_the_files_own_work() {
+    // An export for other sites: the uniforms declared, a `main` calling
+    // `mainImage`, the names from before 2017.
+    let text = "\
+uniform vec3 iResolution;
+uniform float iGlobalTime;
+uniform float iChannelTime[4];
+uniform float iSampleRate;
+uniform vec4 iDate;
+void mainImage(out vec4 fragColor, in vec2 fragCoord) {
+    float year = iDate.x > 2000.0 ? 1.0 : 0.0;
+    fragColor = vec4(iGlobalTime * 0.5, iChannelTime[1] * 0.25, iSampleRate / 88200.0, year);
+}
+void main(void) { mainImage(gl_FragColor, gl_FragCoord.xy); }
+";
+    let Some(gpu) = common::gpu() else { return };
+    let image = render_text(&gpu, "old.frag", text);
+    assert_every_pixel(
+        &image,
+        [128, 64, 128],
+        "iGlobalTime 1, iChannelTime 1, 44100 Hz",
+    );
+}
+
+#[test]
+fn the_style_is_read_from_the_preprocessor_branch_taken() {
+    let text = "\
+#ifdef SOMETHING_NOT_DEFINED
+void main() {
+    gl_FragColor = vec4(1.0);
+#else
+void mainImage(out vec4 c, in vec2 p) {
+    c = vec4(iTime * 0.25);
+#endif
+}
+";
+    let Some(gpu) = common::gpu() else { return };
+    let image = render_text(&gpu, "branches.glsl", text);
+    assert_every_pixel(&image, [64, 64, 64], "mainImage at time 1");
+}
+
+#[test]
+fn webgl_constructs_naga_lacks_are_rewritten_and_errors_keep_the_users_columns() {
+    // mat2(vec4), `const in` parameters, a prototype with unnamed parameters.
+    let text = "\
+float half_of(const in float, float);
+void mainImage(out vec4 c, in vec2 p) {
+    mat2 m = mat2(vec4(0.5, 0.0, 0.0, 0.25));
+    vec2 v = m * vec2(1.0, 1.0);
+    c = vec4(v, half_of(1.0, 0.0), 1.0);
+}
+float half_of(const in float x, float unused) { return x * 0.5 + unused; }
+";
+    let Some(gpu) = common::gpu() else { return };
+    let image = render_text(&gpu, "gaps.glsl", text);
+    assert_every_pixel(
+        &image,
+        [128, 64, 128],
+        "mat2 columns (0.5, 0) and (0, 0.25)",
+    );
+    // A mistake after a rewritten call on the same line: the user's column.
+    let broken = text.replace(
+        "    vec2 v = m",
+        "    vec2 v = mat2(vec4(1.0)) * lenght(p) * m",
+    );
+    let e = raysandbox::sandbox::compile("gaps.glsl", &broken).expect_err("lenght");
+    let line = broken.lines().nth(3).unwrap();
+    assert_eq!(
+        (e.line, e.column as usize),
+        (4, line.find("lenght").unwrap() + 1),
+        "{e}"
+    );
+}
+
+#[test]
+fn a_function_may_call_one_defined_below_it_through_a_prototype() {
+    // naga adds `a` where its prototype is, but its definition calls `c`,
+    // defined later: the functions are reordered for the validator.
+    let text = "\
+uniform float time;
+float a(float x);
+float b(float x) { return a(x) * 2.0; }
+void main() { gl_FragColor = vec4(vec3(b(time * 0.25)), 1.0); }
+float c(float x) { return x * 0.5; }
+float a(float x) { return c(x) + 0.125; }
+";
+    let Some(gpu) = common::gpu() else { return };
+    let image = render_text(&gpu, "order.frag", text);
+    assert_every_pixel(&image, [128, 128, 128], "(0.25 / 2 + 0.125) * 2");
+}
+
+#[test]
+fn a_glsl_sandbox_port_of_a_shadertoy_shader_stays_glsl_sandbox() {
+    // mainImage and main, with GLSL Sandbox's uniforms and its own defines
+    // of the Shadertoy names.
+    let text = "\
+uniform float time;
+uniform vec2 resolution;
+#define iGlobalTime time
+#define iResolution resolution
+void mainImage(out vec4 c, in vec2 p) { c = vec4(p / iResolution.xy, iGlobalTime * 0.5, 1.0); }
+void main() { mainImage(gl_FragColor, gl_FragCoord.xy); }
+";
+    let compiled =
+        raysandbox::sandbox::compile("port.frag", text).unwrap_or_else(|e| panic!("{e}"));
+    assert_eq!(compiled.style, raysandbox::sandbox::Style::GlslSandbox);
+}

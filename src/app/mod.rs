@@ -320,25 +320,26 @@ impl App {
     fn ensure_pipelines(&mut self) {
         let Some(gfx) = &mut self.gfx else { return };
         let wanted = ShaderOptions::for_scene(&self.doc.scene);
-        if gfx.pipelines.current == Some(wanted) {
+        if gfx.pipelines.current.as_ref() == Some(&wanted) {
             return;
         }
         let device = gfx.gpu.device.clone();
         let formats = [gfx.viewport.surface_format(), crate::gpu::EXPORT_FORMAT];
         let proxy = self.proxy.clone();
+        let options = wanted.clone();
         let spawn = move |source: ShaderSource, generation| {
             std::thread::spawn(move || {
                 let result =
-                    Pipelines::new(&device, &source, &formats, &wanted).map_err(|e| e.to_string());
+                    Pipelines::new(&device, &source, &formats, &options).map_err(|e| e.to_string());
                 let built = pipelines::Built {
                     generation,
-                    options: wanted,
+                    options,
                     result,
                 };
                 let _ = proxy.send_event(UserEvent::PipelinesBuilt(Box::new(built)));
             });
         };
-        if let Some(pipelines) = gfx.pipelines.get_or_build(wanted, spawn) {
+        if let Some(pipelines) = gfx.pipelines.get_or_build(wanted.clone(), spawn) {
             gfx.viewport.set_pipelines(&gfx.gpu, pipelines);
             gfx.pipelines.current = Some(wanted);
             if std::mem::take(&mut self.reload_pending) {

@@ -32,7 +32,7 @@ impl PipelineCache {
         PipelineCache {
             source,
             generation: 0,
-            built: HashMap::from([(options, first)]),
+            built: HashMap::from([(options.clone(), first)]),
             in_flight: HashSet::new(),
             current: Some(options),
         }
@@ -57,7 +57,7 @@ impl PipelineCache {
         if let Some(pipelines) = self.built.get(&options) {
             return Some(pipelines.clone());
         }
-        if self.in_flight.insert(options) {
+        if self.in_flight.insert(options.clone()) {
             spawn(self.source.clone(), self.generation);
         }
         None

@@ -31,7 +31,7 @@ use crate::sandbox::{
 };
 
 /// The sandbox window's keyboard shortcuts, for the help window.
-pub const SHORTCUTS: [(&str, &str); 9] = [
+pub const SHORTCUTS: [(&str, &str); 10] = [
     ("Space", "pause / resume the clock"),
     ("R", "restart: time and frame back to 0"),
     ("Right arrow", "step one frame (1/60 s), paused"),
@@ -39,6 +39,7 @@ pub const SHORTCUTS: [(&str, &str); 9] = [
         "Mouse over the image",
         "iMouse / u.mouse (drag), mouse (hover)",
     ),
+    ("Wheel / right drag", "zoom / pan surfacePosition"),
     ("P", "screenshot of the image next to the shader file"),
     ("Ctrl+S", "save the parameters to FILE.params.toml"),
     ("H", "show or hide the panel"),
@@ -169,6 +170,43 @@ struct Mouse {
     just_clicked: bool,
     /// The pointer over the image, in [0, 1]², y up (no click needed).
     uv: [f32; 2],
+    surface: Surface,
+}
+
+/// GLSL Sandbox's surface: the part of the plane the image shows, for
+/// `surfacePosition` and `surfaceSize`. The wheel zooms about the pointer,
+/// a right drag pans, as on glslsandbox.com.
+#[derive(Debug, Clone, Copy, PartialEq)]
+struct Surface {
+    center: [f32; 2],
+    height: f32,
+}
+
+impl Default for Surface {
+    fn default() -> Self {
+        Surface {
+            center: [0.0; 2],
+            height: 1.0,
+        }
+    }
+}
+
+impl Surface {
+    /// Zooms by `factor` (< 1 zooms in) keeping the plane's point under the
+    /// pointer (`uv`, in [0, 1]²) where it is; `aspect` is width / height.
+    fn zoom(&mut self, factor: f32, uv: [f32; 2], aspect: f32) {
+        let offset = [(uv[0] - 0.5) * aspect, uv[1] - 0.5];
+        for (c, o) in self.center.iter_mut().zip(offset) {
+            *c += o * self.height * (1.0 - factor);
+        }
+        self.height = (self.height * factor).clamp(1e-6, 1e6);
+    }
+
+    /// Moves the plane with the pointer, which moved by `delta_uv`.
+    fn pan(&mut self, delta_uv: [f32; 2], aspect: f32) {
+        self.center[0] -= delta_uv[0] * aspect * self.height;
+        self.center[1] -= delta_uv[1] * self.height;
+    }
 }
 
 impl Mouse {
@@ -327,7 +365,11 @@ impl SandboxApp {
         if size.width > 0 && size.height > 0 {
             surface.configure(&gpu.device, &config);
         }
-        let sandbox = SandboxGpu::new(&gpu.device, &[format, EXPORT_FORMAT]);
+        let sandbox = SandboxGpu::new(
+            &gpu.device,
+            &[format, EXPORT_FORMAT],
+            self.options.nan_color,
+        );
         let builder = sandbox.builder(&gpu.device);
         let canvas = Canvas::new(
             &gpu,
@@ -715,9 +757,9 @@ impl SandboxApp {
                 time_delta: tick.delta as f32,
                 frame: tick.frame,
                 frame_rate: tick.rate as f32,
-                _pad0: 0.0,
+                surface_height: self.mouse.surface.height,
                 mouse_uv: self.mouse.uv,
-                _pad1: [0.0; 2],
+                surface_center: self.mouse.surface.center,
             };
             let pipeline = self.session.pipeline().expect("checked above");
             let timer = gfx.timer.as_ref();
@@ -882,6 +924,21 @@ fn view_input(
         mouse.position = position;
     }
     mouse.down = down;
+    let aspect = canvas.0.max(1) as f32 / canvas.1.max(1) as f32;
+    if response.hovered() {
+        let scroll = ui.input(|i| i.smooth_scroll_delta.y);
+        if scroll != 0.0 {
+            mouse.surface.zoom(0.998_f32.powf(scroll), mouse.uv, aspect);
+        }
+    }
+    if response.dragged_by(egui::PointerButton::Secondary) {
+        let delta = response.drag_delta() * ppp;
+        let delta_uv = [
+            delta.x / window.0.max(1) as f32,
+            -delta.y / window.1.max(1) as f32,
+        ];
+        mouse.surface.pan(delta_uv, aspect);
+    }
     *mouse != before
 }
 
@@ -918,6 +975,7 @@ mod tests {
             down: true,
             just_clicked: true,
             uv: [0.0; 2],
+            surface: Surface::default(),
         };
         assert_eq!(
             mouse.shadertoy(),
@@ -933,6 +991,20 @@ mod tests {
         );
         mouse.down = false;
         assert_eq!(mouse.shadertoy(), [30.0, 40.0, -10.0, -20.0], "released");
+    }
+
+    #[test]
+    fn the_surface_zooms_about_the_pointer_and_pans_with_it() {
+        let mut surface = Surface::default();
+        // The plane's point under the pointer at uv (0.75, 0.5), aspect 2.
+        let under = |s: &Surface| s.center[0] + (0.75 - 0.5) * 2.0 * s.height;
+        let before = under(&surface);
+        surface.zoom(0.5, [0.75, 0.5], 2.0);
+        assert_eq!(surface.height, 0.5);
+        assert!((under(&surface) - before).abs() < 1e-6, "{surface:?}");
+        let mut panned = Surface::default();
+        panned.pan([0.25, -0.5], 2.0);
+        assert_eq!(panned.center, [-0.5, 0.5], "the plane follows the pointer");
     }
 
     #[test]

@@ -318,7 +318,7 @@ fn pipeline_row(
     Ok(PipelineRow {
         scene: name.to_string(),
         specialized_ms: time(ShaderOptions::for_scene(scene))?,
-        generic_ms: time(ShaderOptions::default())?,
+        generic_ms: time(ShaderOptions::generic(scene))?,
     })
 }
 

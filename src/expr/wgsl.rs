@@ -177,7 +177,7 @@ impl Emitter {
     /// The dual number of `node` (a `vec4<f32>` expression or name).
     fn dual(&mut self, node: &Node) -> String {
         match &node.op {
-            Op::Number(c) => self.let_(format!("vec4<f32>({}, 0.0f, 0.0f, 0.0f)", literal(*c))),
+            Op::Number(c) => format!("vec4<f32>({}, 0.0f, 0.0f, 0.0f)", literal(*c)),
             Op::Var(axis) => format!("d{}", ["x", "y", "z"][*axis]),
             Op::Unary(Unary::Neg, a) => {
                 let a = self.dual(a);

@@ -66,6 +66,22 @@ pub enum GpuWaitError {
 /// running after ten is taken to be stuck.
 pub const WAIT_LIMIT: Duration = Duration::from_secs(600);
 
+/// Storage buffers the shader binds in one stage: the fixed ones of
+/// `shaders/scene.wgsl` and one per shape kind. WebGPU's default allows 8;
+/// lavapipe and desktop GPUs offer far more.
+pub const STORAGE_BUFFERS_NEEDED: u32 = 16;
+
+/// The default limits, with as many storage buffers per stage as the
+/// scene's shape kinds need (when the adapter has them; otherwise device
+/// creation names the limit).
+fn required_limits(adapter: &wgpu::Adapter) -> wgpu::Limits {
+    let offered = adapter.limits().max_storage_buffers_per_shader_stage;
+    wgpu::Limits {
+        max_storage_buffers_per_shader_stage: STORAGE_BUFFERS_NEEDED.min(offered).max(8),
+        ..wgpu::Limits::default()
+    }
+}
+
 impl Gpu {
     /// A device for offscreen rendering. Honours `WGPU_BACKEND` and
     /// `WGPU_ADAPTER_NAME`; otherwise tries Vulkan, Metal and DX12 first and
@@ -114,16 +130,7 @@ impl Gpu {
             label: Some("raysandbox"),
             // Timestamp queries time frames where the adapter has them.
             required_features: adapter.features() & TIMER_FEATURES,
-            // Every shape kind binds one or two storage buffers: ask for as
-            // many as the adapter has (lavapipe: far more than the default
-            // 8), and for its largest buffers (big meshes).
-            required_limits: wgpu::Limits {
-                max_storage_buffers_per_shader_stage:
-                    adapter.limits().max_storage_buffers_per_shader_stage,
-                max_storage_buffer_binding_size: adapter.limits().max_storage_buffer_binding_size,
-                max_buffer_size: adapter.limits().max_buffer_size,
-                ..wgpu::Limits::default()
-            },
+            required_limits: required_limits(&adapter),
             ..Default::default()
         }))
         .map_err(|e| GpuError::NoDevice {

@@ -74,7 +74,7 @@ impl Features {
 
 /// Values for the shader's pipeline-overridable constants: the variants of
 /// one source.
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
+#[derive(Debug, Clone, PartialEq, Eq, Hash)]
 pub struct ShaderOptions {
     /// The robust intersection and offset routines (true) or the lecture's
     /// textbook versions (false), to show what the robust ones fix.
@@ -86,6 +86,10 @@ pub struct ShaderOptions {
     pub stack_size: u32,
     /// The ray-triangle test of meshes (`TRIANGLE_TEST`).
     pub triangles: TriangleTest,
+    /// The scene's distinct implicit functions (`gpu::shapes::implicit::functions`),
+    /// compiled into the source (see `ShaderSource::with_functions`): a
+    /// pipeline per distinct set.
+    pub functions: Vec<String>,
 }
 
 impl Default for ShaderOptions {
@@ -96,11 +100,21 @@ impl Default for ShaderOptions {
             features: Features::ALL,
             stack_size: super::shaders::MAX_STACK_SIZE,
             triangles: TriangleTest::default(),
+            functions: Vec::new(),
         }
     }
 }
 
 impl ShaderOptions {
+    /// Robust and generic, with `scene`'s implicit functions (which no
+    /// pipeline can do without: they are the scene's own code).
+    pub fn generic(scene: &Scene) -> Self {
+        ShaderOptions {
+            functions: super::shapes::implicit::functions(scene),
+            ..ShaderOptions::default()
+        }
+    }
+
     /// The robust pipeline specialised for `scene`.
     pub fn for_scene(scene: &Scene) -> Self {
         ShaderOptions {
@@ -108,6 +122,7 @@ impl ShaderOptions {
             features: Features::of(scene),
             stack_size: scene.render.max_depth + 1,
             triangles: TriangleTest::default(),
+            functions: super::shapes::implicit::functions(scene),
         }
     }
 

@@ -6,7 +6,7 @@
 use bytemuck::{Pod, Zeroable};
 use glam::DVec3;
 
-pub use super::shapes::{Cube, Mesh, Plane, Sphere};
+pub use super::shapes::{Cube, Implicit, Julia, Mesh, Plane, Sphere, Torus};
 use super::shapes::{Frame, PackShape, buffer_position, f32x3, pack_all, round_out};
 use crate::bvh::{Aabb, Bvh};
 use crate::scene::{self, Scene, ShapeKind, ShapeList};
@@ -333,6 +333,38 @@ mod tests {
                 _pad,
                 rotation
             }),
+            rust_layout!(Torus {
+                center,
+                scale,
+                rotation,
+                major,
+                minor,
+                material,
+                _pad
+            }),
+            rust_layout!(Implicit {
+                center,
+                scale,
+                rotation,
+                bounds_min,
+                function,
+                bounds_max,
+                steps,
+                material,
+                _pad0,
+                _pad1,
+                _pad2
+            }),
+            rust_layout!(Julia {
+                center,
+                scale,
+                rotation,
+                c,
+                slice,
+                iterations,
+                epsilon,
+                material
+            }),
             rust_layout!(Mesh {
                 to_local,
                 origin,
@@ -399,7 +431,7 @@ mod tests {
         let packed = PackedScene::new(&scene, 4, 3);
         assert_eq!(packed.shapes_of::<Sphere>().len(), 1);
         assert_eq!(packed.lights.len(), 1);
-        assert_eq!(packed.shape_counts, [0; 5]);
+        assert!(packed.shape_counts.iter().all(|&n| n == 0));
         assert_eq!(packed.globals.light_count, 0);
         assert_eq!(packed.materials.len(), 1, "the default material only");
         assert_eq!(packed.globals.resolution, [4, 3]);

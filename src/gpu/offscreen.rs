@@ -225,7 +225,7 @@ pub fn render_image(
     let mut renderer = OffscreenRenderer::new(
         gpu,
         &ShaderSource::embedded(),
-        &ShaderOptions::default(),
+        &ShaderOptions::generic(scene),
         scene,
         width,
         height,

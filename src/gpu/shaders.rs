@@ -95,6 +95,44 @@ pub const MAX_STACK_SIZE: u32 = crate::scene::MAX_DEPTH + 1;
 /// Name of the part the program writes in front of the shader files.
 const GENERATED: &str = "(generated) specialisation";
 
+/// Name of the part that holds the implicit surfaces' functions.
+const FUNCTIONS: &str = "(generated) implicit functions";
+
+/// The scene's functions of x, y, z as WGSL (`src/expr`): `implicit_<i>`
+/// and its dual twin per function, and the two functions
+/// `shaders/shapes/implicit.wgsl` calls, which pick one by index. A function
+/// that does not parse (a scene that failed validation never gets here)
+/// becomes the constant 1: no surface.
+fn functions_part(functions: &[String]) -> (String, String) {
+    let mut text = String::from(
+        "// The scene's implicit functions, written by raysandbox (src/gpu/shaders.rs).\n",
+    );
+    let mut values = String::new();
+    let mut gradients = String::new();
+    for (i, source) in functions.iter().enumerate() {
+        let f = crate::expr::Function::parse(source)
+            .unwrap_or_else(|_| crate::expr::Function::parse("1").expect("a constant parses"));
+        text += &f.to_wgsl(&format!("implicit_{i}"));
+        values += &format!("        case {i}u: {{ return implicit_{i}(p); }}\n");
+        gradients += &format!("        case {i}u: {{ return implicit_{i}_dual(p).yzw; }}\n");
+    }
+    text += &format!(
+        "\n/// f(p) of the scene's function number `function`.\n\
+         fn implicit_value(function: u32, p: vec3<f32>) -> f32 {{\n\
+         \x20   switch function {{\n{values}\
+         \x20       default: {{ return 1.0; }}\n\
+         \x20   }}\n\
+         }}\n\n\
+         /// grad f(p), exact (dual numbers).\n\
+         fn implicit_gradient(function: u32, p: vec3<f32>) -> vec3<f32> {{\n\
+         \x20   switch function {{\n{gradients}\
+         \x20       default: {{ return vec3(0.0); }}\n\
+         \x20   }}\n\
+         }}\n"
+    );
+    (FUNCTIONS.to_string(), text)
+}
+
 /// The binding of the first shape kind's array; the fixed bindings of
 /// `shaders/scene.wgsl` come before it.
 pub const FIRST_SHAPE_BINDING: u32 = 6;
@@ -176,6 +214,16 @@ fn shape_glue(kinds: &[KindInfo]) -> String {
     } else {
         thin.join(" || ")
     };
+    let opaque: Vec<String> = kinds
+        .iter()
+        .filter(|k| k.kind.opaque())
+        .map(|k| format!("kind == {}", kind_const(k)))
+        .collect();
+    let opaque = if opaque.is_empty() {
+        "false".to_string()
+    } else {
+        opaque.join(" || ")
+    };
     format!(
         "{declarations}\n\
          /// The hit of one bounded shape, by kind number and index (BVH leaves).\n\
@@ -206,6 +254,11 @@ fn shape_glue(kinds: &[KindInfo]) -> String {
          /// enters, and refraction passes it on unbent.\n\
          fn is_thin(kind: u32) -> bool {{\n\
          \x20   return {thin};\n\
+         }}\n\n\
+         /// Opaque shapes (Julia sets) let no light through: their\n\
+         /// material's transparency counts as 0.\n\
+         fn is_opaque(kind: u32) -> bool {{\n\
+         \x20   return {opaque};\n\
          }}\n",
         kind_loops(&unbounded),
         kind_loops(&bounded),
@@ -253,7 +306,8 @@ impl ShaderSource {
         Self::join(
             std::iter::once(generated_part(MAX_STACK_SIZE))
                 .chain(files)
-                .chain(shapes),
+                .chain(shapes)
+                .chain([functions_part(&[])]),
         )
     }
 
@@ -289,8 +343,22 @@ impl ShaderSource {
             files.push((path.display().to_string(), text));
         }
         Ok(Self::join(
-            std::iter::once(generated_part(MAX_STACK_SIZE)).chain(files),
+            std::iter::once(generated_part(MAX_STACK_SIZE))
+                .chain(files)
+                .chain([functions_part(&[])]),
         ))
+    }
+
+    /// The same source with `functions` (the scene's distinct implicit
+    /// functions, `gpu::shapes::implicit::functions`) compiled to WGSL in
+    /// place of the previous ones.
+    pub fn with_functions(&self, functions: &[String]) -> Self {
+        let files = self.parts().filter(|(name, _)| *name != FUNCTIONS);
+        Self::join(
+            files
+                .map(|(name, text)| (name.to_string(), text.to_string()))
+                .chain([functions_part(functions)]),
+        )
     }
 
     fn join(files: impl IntoIterator<Item = (String, String)>) -> Self {
@@ -412,21 +480,23 @@ impl ShaderSource {
     }
 
     /// Parses the joined source as a GLSL fragment shader (naga's GLSL front
-    /// end: `#version 450`, Vulkan-style resources) and validates it. Errors
+    /// end: `#version 450`, Vulkan-style resources), with each of `defines`
+    /// defined as a macro (`1`). Validate the module with
+    /// [`Self::validate_module`], after any repairs. Errors
     /// are located like WGSL errors: naga's spans are byte offsets of the
     /// joined text, mapped back to the part they fall in.
-    pub fn validate_glsl_fragment(
-        &self,
-    ) -> Result<(naga::Module, naga::valid::ModuleInfo), ShaderError> {
-        let options = naga::front::glsl::Options::from(naga::ShaderStage::Fragment);
+    pub fn parse_glsl_fragment(&self, defines: &[&str]) -> Result<naga::Module, ShaderError> {
+        let mut options = naga::front::glsl::Options::from(naga::ShaderStage::Fragment);
+        for name in defines {
+            options.defines.insert(name.to_string(), "1".to_string());
+        }
         let parsed = self.without_panics(|| {
             naga::front::glsl::Frontend::default().parse(&options, &self.joined)
         })?;
-        let module = parsed.map_err(|errors| match errors.errors.first() {
+        parsed.map_err(|errors| match errors.errors.first() {
             Some(e) => self.locate(e.meta, e.kind.to_string(), String::new()),
             None => self.locate(naga::Span::default(), errors.to_string(), String::new()),
-        })?;
-        self.validate_module(module)
+        })
     }
 
     /// The file, line and column of a span of the joined source (for errors

@@ -48,7 +48,9 @@ impl Pipelines {
         output_formats: &[wgpu::TextureFormat],
         options: &ShaderOptions,
     ) -> Result<Self, PipelineError> {
-        let source = &source.with_stack_size(options.stack_size);
+        let source = &source
+            .with_stack_size(options.stack_size)
+            .with_functions(&options.functions);
         source.validate()?;
         let scope = device.push_error_scope(wgpu::ErrorFilter::Validation);
         let pipelines = Self::build(device, source, output_formats, options);

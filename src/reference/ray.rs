@@ -63,6 +63,13 @@ pub fn offset_ray(p: DVec3, n: DVec3, error_scale: f64) -> DVec3 {
     p + (OFFSET_ULPS * scale) * n
 }
 
+/// The `error_scale` for which [`offset_ray`] moves a point (at least)
+/// `distance` off its surface: for a shape whose rule names the distance,
+/// the Julia set's `2 epsilon` (docs/rendering-model.md, "Implicit surfaces").
+pub fn offset_ray_scale(distance: f64) -> f64 {
+    distance / OFFSET_ULPS
+}
+
 /// The textbook offset (the naive variant, `ReferenceOptions::robust =
 /// false`, the shader's `NAIVE_OFFSET`): a fixed `1e-3` along `n`, whatever
 /// the size of the scene.

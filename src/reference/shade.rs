@@ -54,6 +54,16 @@ fn shade(
         return radiance;
     }
     let thin = shape.is_thin();
+    let opaque;
+    let m = if shape.is_opaque() {
+        opaque = Material {
+            transparency: 0.0,
+            ..m.clone()
+        };
+        &opaque
+    } else {
+        m
+    };
     let split = split(m, d, ns, entering, thin);
     let traced = |child_weight: f64| child_weight > 0.0 && child_weight >= scene.min_weight;
 

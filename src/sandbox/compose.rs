@@ -14,9 +14,9 @@ use std::fmt::Write as _;
 use std::path::Path;
 
 use super::params::{self, ParamSet, ParamSpec, ParamType, Scalar};
-use super::repair;
 use super::scan::{self, Kind, Scan, Token};
 use super::uniforms::WGSL_STRUCT;
+use super::{gaps, repair};
 use crate::gpu::{ShaderError, ShaderSource};
 
 /// Which kind of shader the file is.
@@ -97,6 +97,8 @@ pub fn compile(name: &str, text: &str) -> Result<Compiled, ShaderError> {
     let result = if wgsl {
         compile_wgsl(name, text, &scan)
     } else {
+        let mut scan = Scan::new(text);
+        scan.drop_inactive_branches(GLSL_DEFINES);
         compile_glsl(name, &scan)
     };
     result.map_err(|mut e| {
@@ -399,7 +401,8 @@ const GLSL_BOOL_PREFIX: &str = "rsb_bool_";
 
 /// A `uniform` declaration at the top level of the user's GLSL.
 struct UniformDecl<'a> {
-    type_name: &'a str,
+    /// The type as written, with `[N]` for an array (`vec3[4]`).
+    type_name: String,
     name: &'a str,
     /// Byte offset of the name in the user's text.
     offset: usize,
@@ -418,8 +421,16 @@ fn standard_uniforms(style: Style) -> &'static [(&'static str, &'static str)] {
             ("iFrameRate", "float"),
             ("iMouse", "vec4"),
             ("iDate", "vec4"),
+            ("iGlobalTime", "float"),
+            ("iSampleRate", "float"),
+            ("iChannelTime", "float[4]"),
         ],
-        _ => &[("time", "float"), ("mouse", "vec2"), ("resolution", "vec2")],
+        _ => &[
+            ("time", "float"),
+            ("mouse", "vec2"),
+            ("resolution", "vec2"),
+            ("surfaceSize", "vec2"),
+        ],
     }
 }
 
@@ -437,9 +448,9 @@ fn glsl_frame_block(style: Style, declared: &[&str]) -> String {
             ("float", "iTimeDelta"),
             ("int", "iFrame"),
             ("float", "iFrameRate"),
-            ("float", "rsb_pad0"),
+            ("float", "rsb_surface_height"),
             ("vec2", "rsb_mouse_uv"),
-            ("vec2", "rsb_pad1"),
+            ("vec2", "rsb_surface_center"),
         ]
         .iter()
         .map(|(t, n)| (*t, n.to_string()))
@@ -461,9 +472,9 @@ fn glsl_frame_block(style: Style, declared: &[&str]) -> String {
             ("float", "rsb_time_delta".into()),
             ("int", "rsb_frame".into()),
             ("float", "rsb_frame_rate".into()),
-            ("float", "rsb_pad0".into()),
+            ("float", "rsb_surface_height".into()),
             ("vec2", named("mouse")),
-            ("vec2", "rsb_pad1".into()),
+            ("vec2", "rsb_surface_center".into()),
         ]
     };
     let mut text = String::from("layout(set = 0, binding = 0) uniform RsbFrame {\n");
@@ -502,6 +513,8 @@ struct GlslRewrite<'a> {
     uniforms: Vec<UniformDecl<'a>>,
     /// The name of a user-declared `out vec4 NAME;` (GLSL ES 3.0 style).
     output: Option<&'a str>,
+    /// `varying vec2 surfacePosition;` was declared (and blanked).
+    surface_position: bool,
 }
 
 fn rewrite_glsl<'a>(name: &str, scan: &Scan<'a>) -> Result<GlslRewrite<'a>, ShaderError> {
@@ -509,6 +522,7 @@ fn rewrite_glsl<'a>(name: &str, scan: &Scan<'a>) -> Result<GlslRewrite<'a>, Shad
     let mut text = scan.text.to_string();
     let mut uniforms = Vec::new();
     let mut output = None;
+    let mut surface_position = false;
     let (mut braces, mut parens) = (0i32, 0i32);
     let mut i = 0;
     while i < tokens.len() {
@@ -550,6 +564,24 @@ fn rewrite_glsl<'a>(name: &str, scan: &Scan<'a>) -> Result<GlslRewrite<'a>, Shad
             (from..tokens.len()).find(|&k| tokens[k].is(";") || tokens[k].is("{"))
         };
         match t.text {
+            "precision" => {
+                // `precision mediump float;`, also for sampler types naga
+                // rejects: meaningless in Vulkan GLSL, blanked.
+                if let Some(end) = (i..tokens.len()).find(|&k| tokens[k].is(";")) {
+                    scan::blank(&mut text, t.start..tokens[end].end());
+                    i = end + 1;
+                    continue;
+                }
+            }
+            "varying" if is_surface_position(&tokens[i + 1..]) => {
+                let end = (i..tokens.len())
+                    .find(|&k| tokens[k].is(";"))
+                    .expect("checked");
+                scan::blank(&mut text, t.start..tokens[end].end());
+                surface_position = true;
+                i = end + 1;
+                continue;
+            }
             "varying" | "attribute" => {
                 return Err(error_at(
                     name,
@@ -557,7 +589,8 @@ fn rewrite_glsl<'a>(name: &str, scan: &Scan<'a>) -> Result<GlslRewrite<'a>, Shad
                     t.start,
                     format!(
                         "`{}` inputs do not exist here: the sandbox draws one full-screen \
-                         triangle; use gl_FragCoord.xy / resolution",
+                         triangle; use gl_FragCoord.xy / resolution (of GLSL Sandbox's, \
+                         `varying vec2 surfacePosition;` is provided)",
                         t.text
                     ),
                 ));
@@ -590,13 +623,15 @@ fn rewrite_glsl<'a>(name: &str, scan: &Scan<'a>) -> Result<GlslRewrite<'a>, Shad
                         ));
                     }
                     j += 1;
-                    if tokens.get(j).is_some_and(|t| t.is("[")) {
-                        return Err(error_at(
-                            name,
-                            scan,
-                            n.start,
-                            format!("uniform arrays are not supported (`{}`)", n.text),
-                        ));
+                    let mut declared_type = type_name.to_string();
+                    // `[N]`: an array (only the standard iChannelTime is one).
+                    while j < end && tokens[j].is("[") {
+                        while j < end && !tokens[j].is("]") {
+                            declared_type.push_str(tokens[j].text);
+                            j += 1;
+                        }
+                        declared_type.push(']');
+                        j += 1;
                     }
                     let mut initializer = None;
                     if tokens.get(j).is_some_and(|t| t.is("=")) {
@@ -613,7 +648,7 @@ fn rewrite_glsl<'a>(name: &str, scan: &Scan<'a>) -> Result<GlslRewrite<'a>, Shad
                         initializer = Some(initializer_values(&tokens[from..j]));
                     }
                     uniforms.push(UniformDecl {
-                        type_name,
+                        type_name: declared_type,
                         name: n.text,
                         offset: n.start,
                         initializer,
@@ -649,7 +684,19 @@ fn rewrite_glsl<'a>(name: &str, scan: &Scan<'a>) -> Result<GlslRewrite<'a>, Shad
         text,
         uniforms,
         output,
+        surface_position,
     })
+}
+
+/// `[precision] vec2 surfacePosition;` (after `varying`): GLSL Sandbox's
+/// position on the plane, which the prelude provides.
+fn is_surface_position(tokens: &[Token]) -> bool {
+    let mut k = 0;
+    while tokens.get(k).is_some_and(|t| PRECISION.contains(&t.text)) {
+        k += 1;
+    }
+    let texts: Vec<&str> = tokens.iter().skip(k).take(3).map(|t| t.text).collect();
+    texts == ["vec2", "surfacePosition", ";"]
 }
 
 /// The numbers of an initializer: `1.5`, `-2`, `vec3(1.0, 0.5, 0.2)`, `true`.
@@ -673,12 +720,80 @@ fn initializer_values(tokens: &[Token]) -> Vec<f64> {
     values
 }
 
+/// Whether a top-level `uniform` declares one of `names`.
+fn declares_uniform(tokens: &[Token], names: &[&str]) -> bool {
+    tokens.iter().enumerate().any(|(i, t)| {
+        t.is("uniform")
+            && tokens[i + 1..]
+                .iter()
+                .take_while(|n| !n.is(";"))
+                .any(|n| names.contains(&n.text))
+    })
+}
+
+/// Macros defined before the user's GLSL, as WebGL defines them: shaders
+/// written `#ifdef GL_ES precision mediump float; #endif` expect it.
+const GLSL_DEFINES: &[&str] = &["GL_ES"];
+
+/// Shadertoy's names from before 2017, defined when the file uses them:
+/// `iGlobalTime` (now `iTime`), `iChannelTime` (each channel's playback
+/// time: the clock, as channels here are still images), `iSampleRate`.
+fn old_shadertoy_names(used: &dyn Fn(&str) -> bool) -> String {
+    let mut text = String::new();
+    if used("iGlobalTime") {
+        text.push_str("#define iGlobalTime iTime\n");
+    }
+    if used("iChannelTime") {
+        text.push_str(
+            "float[4] rsb_channel_time() { return float[4](iTime, iTime, iTime, iTime); }\n\
+             #define iChannelTime rsb_channel_time()\n",
+        );
+    }
+    if used("iSampleRate") {
+        text.push_str("#define iSampleRate 44100.0\n");
+    }
+    text
+}
+
+/// GLSL Sandbox's `surfacePosition` (the pixel's point on a plane the
+/// viewer pans and zooms, y up) and `surfaceSize` (the size of the part
+/// shown), where the file declares them. glslsandbox.com interpolates the
+/// corners of that rectangle over the screen; so does this, per pixel.
+fn glsl_sandbox_surface(resolution: &str, position: bool, size: bool) -> String {
+    if !position && !size {
+        return String::new();
+    }
+    let mut text = format!(
+        "vec2 rsb_surface_size() {{\n\
+         \x20   return vec2(rsb_surface_height * {resolution}.x / {resolution}.y, rsb_surface_height);\n\
+         }}\n"
+    );
+    if size {
+        text.push_str("#define surfaceSize rsb_surface_size()\n");
+    }
+    if position {
+        let _ = write!(
+            text,
+            "vec2 rsb_surface_position() {{\n\
+             \x20   return rsb_surface_center + (rsb_frag_coord().xy / {resolution} - 0.5) * rsb_surface_size();\n\
+             }}\n\
+             #define surfacePosition rsb_surface_position()\n"
+        );
+    }
+    text
+}
+
 fn compile_glsl(name: &str, scan: &Scan) -> Result<Compiled, ShaderError> {
     let tokens = &scan.tokens;
-    let style = if find_pair(tokens, "main", "(").is_some() {
-        Style::GlslSandbox
-    } else if find_pair(tokens, "mainImage", "(").is_some() {
+    // A file with `mainImage` is Shadertoy's, also with a `main()` of its own
+    // that calls it (as exports for other sites have), unless it declares
+    // GLSL Sandbox's uniforms: then it is a port to GLSL Sandbox.
+    let user_main = find_pair(tokens, "main", "(").is_some();
+    let sandbox_port = user_main && declares_uniform(tokens, &["time", "resolution", "mouse"]);
+    let style = if find_pair(tokens, "mainImage", "(").is_some() && !sandbox_port {
         Style::Shadertoy
+    } else if user_main {
+        Style::GlslSandbox
     } else {
         return Err(whole_file_error(
             name,
@@ -695,6 +810,8 @@ fn compile_glsl(name: &str, scan: &Scan) -> Result<Compiled, ShaderError> {
     for decl in &rewrite.uniforms {
         match standard.iter().find(|(n, _)| *n == decl.name) {
             Some((n, t)) if *t == decl.type_name => declared.push(*n),
+            // Old exports declare it `uniform float iChannelTime[4];` or so.
+            Some((n, t)) if t.starts_with(decl.type_name.as_str()) => declared.push(*n),
             Some((n, t)) => {
                 return Err(error_at(
                     name,
@@ -707,7 +824,7 @@ fn compile_glsl(name: &str, scan: &Scan) -> Result<Compiled, ShaderError> {
                     ),
                 ));
             }
-            None => match glsl_param_type(decl.type_name) {
+            None => match glsl_param_type(&decl.type_name) {
                 Some(_) => user_params.push(decl),
                 None => {
                     return Err(error_at(
@@ -766,7 +883,24 @@ fn compile_glsl(name: &str, scan: &Scan) -> Result<Compiled, ShaderError> {
     if let Some(output) = rewrite.output {
         let _ = writeln!(prelude, "#define {output} rsb_frag_color");
     }
+    // Names the file uses and does not `#define` itself.
+    let used = |word: &str| {
+        tokens.iter().any(|t| t.is(word))
+            && !tokens.iter().any(|t| {
+                t.kind == Kind::Directive
+                    && t.text[1..].split_whitespace().take(2).eq(["define", word])
+            })
+    };
+    match style {
+        Style::Shadertoy => prelude.push_str(&old_shadertoy_names(&used)),
+        _ => prelude.push_str(&glsl_sandbox_surface(
+            resolution,
+            rewrite.surface_position,
+            declared.contains(&"surfaceSize"),
+        )),
+    }
     let epilogue = match style {
+        Style::Shadertoy if user_main => String::new(),
         Style::Shadertoy => "\n// raysandbox epilogue (Shadertoy style)\n\
              void main() {\n\
              \x20   vec4 color = vec4(0.0);\n\
@@ -776,18 +910,34 @@ fn compile_glsl(name: &str, scan: &Scan) -> Result<Compiled, ShaderError> {
         .to_string(),
         _ => String::new(),
     };
+    let bridged = gaps::bridge(scan, rewrite.text);
+    if bridged.uses_mat2 {
+        prelude.push_str(gaps::MAT2_OVERLOADS);
+    }
     let mut parts = vec![
         (PRELUDE_NAME.to_string(), prelude),
-        (name.to_string(), rewrite.text),
+        (name.to_string(), bridged.text.clone()),
     ];
     if !epilogue.is_empty() {
         parts.push((EPILOGUE_NAME.to_string(), epilogue));
     }
     let source = ShaderSource::from_parts(parts);
-    let (mut module, _) = source.validate_glsl_fragment()?;
+    // Errors in the user's text are at the rewritten column: move it back.
+    let at_users_column = |mut e: ShaderError| {
+        if e.file == name && e.line > 0 {
+            e.column = bridged.original_column(scan, e.line, e.column);
+        }
+        e
+    };
+    let mut module = source
+        .parse_glsl_fragment(GLSL_DEFINES)
+        .map_err(at_users_column)?;
+    repair::define_before_use(&mut module);
     repair::spill_pointer_arguments(&mut module);
-    let (module, info) = source.validate_module(module)?;
-    source.check_translation(&module, &info)?;
+    let (module, info) = source.validate_module(module).map_err(at_users_column)?;
+    source
+        .check_translation(&module, &info)
+        .map_err(at_users_column)?;
     let params = read_params(&module, name, scan, |member| {
         let decl = user_params.iter().find(|d| d.name == member)?;
         Some((decl.offset, decl.initializer.clone()))

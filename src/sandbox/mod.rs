@@ -6,6 +6,7 @@
 //! | module | what |
 //! | --- | --- |
 //! | `compose` | language and style, the preludes, the GLSL rewrite, validation |
+//! | `gaps` | small source rewrites for what naga's GLSL front end does not take |
 //! | `params` | annotations, values, the bytes the GPU reads, the sidecar file |
 //! | `uniforms` | the per-frame values (time, mouse, resolution, date) |
 //! | `clock` | pause, resume, restart, step |
@@ -21,6 +22,7 @@
 pub mod clock;
 pub mod compose;
 pub mod constants;
+mod gaps;
 pub mod params;
 pub mod render;
 mod repair;
@@ -35,7 +37,7 @@ use std::time::Instant;
 pub use compose::{Compiled, Style, compile, compile_file};
 pub use constants::SourceParams;
 pub use params::{Control, ParamSet, ParamSpec};
-pub use render::{CanvasStats, Offscreen, render_once};
+pub use render::{CanvasStats, NanColor, Offscreen, render_once};
 pub use session::{ReloadError, Session};
 pub use uniforms::FrameUniforms;
 
@@ -75,6 +77,10 @@ pub struct ShaderArgs {
     /// shaders on weak GPUs.
     #[arg(long, default_value_t = 1.0, value_parser = parse_scale)]
     pub scale: f32,
+    /// How NaN and infinite pixels are drawn: black as in browsers (so as
+    /// the shader's author saw it), or magenta to find them.
+    #[arg(long, value_enum, default_value_t = NanColor::Black)]
+    pub nan_color: NanColor,
     /// Print one line per event (ready, shader-reloaded, shader-error, ...)
     /// on stdout, for scripts and tests that drive the window.
     #[arg(long, hide = true)]
@@ -163,6 +169,7 @@ pub fn run_headless(args: &ShaderArgs) -> Result<(), SandboxError> {
         args.time,
         args.fps,
         count,
+        args.nan_color,
         |k, image, stats| {
             let path = match (out_dir, &args.render) {
                 (Some(dir), _) => dir.join(format!("frame-{k:05}.png")),
@@ -231,9 +238,10 @@ fn render_sequence<E>(
     time: f64,
     fps: f64,
     count: u32,
+    nan: NanColor,
     mut each: impl FnMut(u32, image::RgbaImage, CanvasStats) -> Result<(), E>,
 ) -> Result<(), RenderError<E>> {
-    let mut offscreen = Offscreen::new(gpu);
+    let mut offscreen = Offscreen::with_nan_color(gpu, nan);
     let pipeline = offscreen
         .builder(gpu)
         .build(compiled)

@@ -1,7 +1,8 @@
 //! The sandbox on the GPU: the user's fragment shader draws into a canvas
 //! (an `Rgba32Float` texture at the render resolution, so NaN and values
 //! above 1 survive for the checks), and a display pass scales the canvas to
-//! the window or the PNG, showing NaN and infinities as magenta.
+//! the window or the PNG, showing NaN and infinities black (as browsers do)
+//! or magenta ([`NanColor`]).
 
 use std::borrow::Cow;
 
@@ -38,6 +39,9 @@ fn vs_display(@builtin(vertex_index) i: u32) -> VertexOut {
 
 @group(0) @binding(0) var canvas: texture_2d<f32>;
 
+/// NaN and infinite pixels are drawn magenta instead of black.
+override NAN_MAGENTA: bool = false;
+
 /// True for an *Srgb target, which encodes by itself: the shader's values
 /// are display values (as on Shadertoy), so they are decoded first.
 override DECODE_SRGB: bool = false;
@@ -58,7 +62,7 @@ fn fs_display(in: VertexOut) -> @location(0) vec4<f32> {
     let texel = min(vec2<u32>(at), size - 1u);
     let c = textureLoad(canvas, texel, 0).rgb;
     if any(!is_finite(c)) {
-        return vec4(1.0, 0.0, 1.0, 1.0);
+        return select(vec4(0.0, 0.0, 0.0, 1.0), vec4(1.0, 0.0, 1.0, 1.0), NAN_MAGENTA);
     }
     var rgb = clamp(c, vec3(0.0), vec3(1.0));
     if DECODE_SRGB {
@@ -90,9 +94,20 @@ pub struct PipelineBuilder {
     vertex: wgpu::ShaderModule,
 }
 
+/// How NaN and infinite pixels are shown. Browsers (so Shadertoy and GLSL
+/// Sandbox) show them black, which is what the author saw; magenta makes
+/// them stand out. Either way the checks warn about them.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default, clap::ValueEnum)]
+pub enum NanColor {
+    #[default]
+    Black,
+    Magenta,
+}
+
 impl SandboxGpu {
-    /// Builds the shared parts, with a display pass for each of `formats`.
-    pub fn new(device: &wgpu::Device, formats: &[wgpu::TextureFormat]) -> Self {
+    /// Builds the shared parts, with a display pass for each of `formats`
+    /// that shows NaN pixels in `nan`.
+    pub fn new(device: &wgpu::Device, formats: &[wgpu::TextureFormat], nan: NanColor) -> Self {
         let uniform = |binding| wgpu::BindGroupLayoutEntry {
             binding,
             visibility: wgpu::ShaderStages::FRAGMENT,
@@ -130,12 +145,13 @@ impl SandboxGpu {
             .iter()
             .map(|&format| {
                 let decode = if format.is_srgb() { 1.0 } else { 0.0 };
+                let magenta = if nan == NanColor::Magenta { 1.0 } else { 0.0 };
                 let pipeline = fullscreen::pipeline(
                     device,
                     &layout,
                     (&display_module, "vs_display"),
                     (&display_module, "fs_display"),
-                    &[("DECODE_SRGB", decode)],
+                    &[("DECODE_SRGB", decode), ("NAN_MAGENTA", magenta)],
                     format,
                 );
                 (format, pipeline)
@@ -215,14 +231,16 @@ impl CanvasStats {
         }
         if self.non_finite == self.pixels {
             return Some(
-                "every pixel is NaN or infinite (shown magenta): check divisions by zero, \
-                 sqrt/log/pow of negative numbers and normalize(vec(0))"
+                "every pixel is NaN or infinite (drawn black, magenta with --nan-color \
+                 magenta): check divisions by zero, sqrt/log/pow of negative numbers and \
+                 normalize(vec(0))"
                     .into(),
             );
         }
         if self.non_finite > 0 {
             return Some(format!(
-                "{:.1}% of the pixels are NaN or infinite (shown magenta)",
+                "{:.1}% of the pixels are NaN or infinite (drawn black, magenta with \
+                 --nan-color magenta)",
                 100.0 * self.non_finite as f64 / self.pixels as f64
             ));
         }
@@ -454,9 +472,14 @@ pub struct Offscreen {
 }
 
 impl Offscreen {
+    /// Shows NaN pixels black, as browsers do.
     pub fn new(gpu: &Gpu) -> Self {
+        Self::with_nan_color(gpu, NanColor::Black)
+    }
+
+    pub fn with_nan_color(gpu: &Gpu, nan: NanColor) -> Self {
         Offscreen {
-            sandbox: SandboxGpu::new(&gpu.device, &[EXPORT_FORMAT]),
+            sandbox: SandboxGpu::new(&gpu.device, &[EXPORT_FORMAT], nan),
             canvas: None,
         }
     }

@@ -1,8 +1,13 @@
 //! Repairs of the naga module that work around bugs of naga's own, so that
 //! shaders real people write run (docs/sandbox.md, "What runs").
 //!
-//! The one repair so far: **pointer arguments into a vector, array or
-//! struct.** GLSL passes `out`/`inout` arguments by reference, so naga's
+//! **Functions called before their definition.** A prototype
+//! (`float f(float x);`) lets a function be called above its definition.
+//! naga's GLSL front end adds the function where the prototype is, but
+//! wgpu and naga's validator want every function after the ones it calls.
+//! The repair puts the functions in that order.
+//!
+//! **Pointer arguments into a vector, array or struct.** GLSL passes `out`/`inout` arguments by reference, so naga's
 //! GLSL front end turns `f(p.x)` (with `void f(inout float x)`) into a call
 //! whose argument is a pointer to `p`'s first component. naga's SPIR-V writer
 //! only knows pointers to whole variables as call arguments and panics on
@@ -12,6 +17,109 @@
 //! is copied back after the call.
 
 use naga::{Block, Expression, Function, Handle, LocalVariable, Span, Statement, Type, TypeInner};
+
+/// Reorders `module.functions` so that every function comes after the
+/// functions it calls (GLSL has no recursion, so there is such an order).
+pub fn define_before_use(module: &mut naga::Module) {
+    let count = module.functions.len();
+    let callees: Vec<Vec<usize>> = module
+        .functions
+        .iter()
+        .map(|(_, f)| {
+            let mut found = Vec::new();
+            calls_in(&f.body, &mut found);
+            found
+        })
+        .collect();
+    let mut order = Vec::with_capacity(count);
+    let mut state = vec![0u8; count]; // 0 new, 1 being visited, 2 placed
+    fn place(f: usize, callees: &[Vec<usize>], state: &mut [u8], order: &mut Vec<usize>) {
+        if state[f] != 0 {
+            return;
+        }
+        state[f] = 1;
+        for &g in &callees[f] {
+            place(g, callees, state, order);
+        }
+        state[f] = 2;
+        order.push(f);
+    }
+    for f in 0..count {
+        place(f, &callees, &mut state, &mut order);
+    }
+    if order.iter().enumerate().all(|(i, &f)| i == f) {
+        return;
+    }
+    let mut old: Vec<Option<(Function, Span)>> = module
+        .functions
+        .drain()
+        .map(|(_, f, span)| Some((f, span)))
+        .collect();
+    let mut new_handle = vec![None; count];
+    for &f in &order {
+        let (function, span) = old[f].take().expect("each function placed once");
+        new_handle[f] = Some(module.functions.append(function, span));
+    }
+    let renumber = |h: Handle<Function>| new_handle[h.index()].expect("every function placed");
+    let functions = module
+        .functions
+        .iter_mut()
+        .map(|(_, f)| f)
+        .chain(module.entry_points.iter_mut().map(|e| &mut e.function));
+    for function in functions {
+        for (_, expression) in function.expressions.iter_mut() {
+            if let Expression::CallResult(callee) = expression {
+                *callee = renumber(*callee);
+            }
+        }
+        renumber_calls(&mut function.body, &renumber);
+    }
+}
+
+/// The indices of the functions called in `block`.
+fn calls_in(block: &Block, found: &mut Vec<usize>) {
+    for statement in block.iter() {
+        match statement {
+            Statement::Call { function, .. } => found.push(function.index()),
+            Statement::Block(b) => calls_in(b, found),
+            Statement::If { accept, reject, .. } => {
+                calls_in(accept, found);
+                calls_in(reject, found);
+            }
+            Statement::Switch { cases, .. } => cases.iter().for_each(|c| calls_in(&c.body, found)),
+            Statement::Loop {
+                body, continuing, ..
+            } => {
+                calls_in(body, found);
+                calls_in(continuing, found);
+            }
+            _ => {}
+        }
+    }
+}
+
+fn renumber_calls(block: &mut Block, renumber: &impl Fn(Handle<Function>) -> Handle<Function>) {
+    for statement in block.iter_mut() {
+        match statement {
+            Statement::Call { function, .. } => *function = renumber(*function),
+            Statement::Block(b) => renumber_calls(b, renumber),
+            Statement::If { accept, reject, .. } => {
+                renumber_calls(accept, renumber);
+                renumber_calls(reject, renumber);
+            }
+            Statement::Switch { cases, .. } => cases
+                .iter_mut()
+                .for_each(|c| renumber_calls(&mut c.body, renumber)),
+            Statement::Loop {
+                body, continuing, ..
+            } => {
+                renumber_calls(body, renumber);
+                renumber_calls(continuing, renumber);
+            }
+            _ => {}
+        }
+    }
+}
 
 /// For every function, the pointee type of each parameter passed by pointer.
 type PointerParams = Vec<Vec<Option<Handle<Type>>>>;

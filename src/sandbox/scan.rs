@@ -132,6 +132,70 @@ impl<'a> Scan<'a> {
         scan
     }
 
+    /// Drops the tokens of preprocessor branches that are not taken, so
+    /// that `#ifdef A void main() { #else void mainImage(...) { #endif`
+    /// reads as one function. `defined` are the macros defined before the
+    /// text; `#define`s in taken branches add to them. `#if`/`#elif` with
+    /// an expression other than `0`, `1` or `[!]defined(NAME)` count as
+    /// true: then the first branch is read. The directives themselves stay.
+    pub fn drop_inactive_branches(&mut self, defined: &[&str]) {
+        let mut defined: Vec<String> = defined.iter().map(|d| d.to_string()).collect();
+        // Per open `#if`: (this branch is taken, a branch of it was taken).
+        let mut open: Vec<(bool, bool)> = Vec::new();
+        let mut kept = Vec::with_capacity(self.tokens.len());
+        for token in std::mem::take(&mut self.tokens) {
+            let active = open.iter().all(|(taken, _)| *taken);
+            if token.kind != Kind::Directive {
+                if active {
+                    kept.push(token);
+                }
+                continue;
+            }
+            let body = token.text[1..].split("//").next().unwrap_or_default();
+            let mut words = body.split_whitespace();
+            let keyword = words.next().unwrap_or_default();
+            let rest: String = words.collect::<Vec<_>>().join(" ");
+            let first_word = rest.split_whitespace().next().unwrap_or_default();
+            match keyword {
+                "ifdef" => {
+                    let taken = defined.iter().any(|d| d == first_word);
+                    open.push((taken, taken));
+                }
+                "ifndef" => {
+                    let taken = !defined.iter().any(|d| d == first_word);
+                    open.push((taken, taken));
+                }
+                "if" => {
+                    let taken = condition(&rest, &defined);
+                    open.push((taken, taken));
+                }
+                "elif" => {
+                    if let Some((taken, any)) = open.last_mut() {
+                        *taken = !*any && condition(&rest, &defined);
+                        *any |= *taken;
+                    }
+                }
+                "else" => {
+                    if let Some((taken, any)) = open.last_mut() {
+                        *taken = !*any;
+                        *any = true;
+                    }
+                }
+                "endif" => {
+                    open.pop();
+                }
+                "define" if active => {
+                    let name = first_word.split('(').next().unwrap_or_default();
+                    defined.push(name.to_string());
+                }
+                "undef" if active => defined.retain(|d| *d != first_word),
+                _ => {}
+            }
+            kept.push(token);
+        }
+        self.tokens = kept;
+    }
+
     fn at_line_start(&self, offset: usize) -> bool {
         let start = self.line_starts[self.line_index(offset)];
         self.text[start..offset].trim().is_empty()
@@ -221,6 +285,29 @@ impl<'a> Scan<'a> {
     }
 }
 
+/// The value of a preprocessor condition as far as it can be told without
+/// evaluating it: `0`, `1`, `defined(NAME)`, `defined NAME`, `!defined(NAME)`;
+/// anything else counts as true.
+fn condition(expression: &str, defined: &[String]) -> bool {
+    let compact: String = expression.chars().filter(|c| !c.is_whitespace()).collect();
+    let (negated, rest) = match compact.strip_prefix('!') {
+        Some(rest) => (true, rest),
+        None => (false, compact.as_str()),
+    };
+    let value = match rest {
+        "0" => false,
+        "1" => true,
+        _ => match rest.strip_prefix("defined") {
+            Some(name) => {
+                let name = name.trim_start_matches('(').trim_end_matches(')');
+                defined.iter().any(|d| d == name)
+            }
+            None => return true,
+        },
+    };
+    value != negated
+}
+
 /// Replaces `text[range]` with spaces, keeping newlines, so that every byte
 /// offset (and so every line and column) of the rest of the text is unchanged.
 pub fn blank(text: &mut String, range: std::ops::Range<usize>) {
@@ -278,6 +365,54 @@ mod tests {
         assert_eq!(above, [" @color", " the tint"]);
         let same: Vec<&str> = scan.comments_for_line(6).iter().map(|c| c.body).collect();
         assert_eq!(same, [" @checkbox"]);
+    }
+
+    #[test]
+    fn untaken_preprocessor_branches_are_dropped() {
+        let text = "\
+#ifdef GL_ES
+precision mediump float;
+#else
+#error no
+#endif
+#define SHADERTOY
+#ifndef SHADERTOY
+void main() {
+#elif defined(SHADERTOY) // the one taken
+void mainImage(out vec4 c, in vec2 p) {
+#else
+void other() {
+#endif
+    c = vec4(1.0);
+}
+#if 0
+}
+#endif
+";
+        let mut scan = Scan::new(text);
+        scan.drop_inactive_branches(&["GL_ES"]);
+        let code: Vec<&str> = scan
+            .tokens
+            .iter()
+            .filter(|t| t.kind != Kind::Directive)
+            .map(|t| t.text)
+            .collect();
+        let joined = code.join(" ");
+        assert!(
+            joined.starts_with("precision mediump float ; void mainImage"),
+            "{joined}"
+        );
+        assert!(!joined.contains("main ("), "{joined}");
+        assert!(!joined.contains("other"), "{joined}");
+        assert_eq!(code.iter().filter(|t| **t == "}").count(), 1, "{joined}");
+        // The directives stay, taken or not (11 of them).
+        assert_eq!(
+            scan.tokens
+                .iter()
+                .filter(|t| t.kind == Kind::Directive)
+                .count(),
+            11
+        );
     }
 
     #[test]

@@ -29,11 +29,15 @@ pub struct FrameUniforms {
     pub frame: u32,
     /// Frames per second, averaged over the last frames.
     pub frame_rate: f32,
-    pub _pad0: f32,
+    /// GLSL Sandbox's surface (`surfacePosition`, `surfaceSize`): the height
+    /// of the part of the plane the image shows, 1 until the wheel zooms.
+    pub surface_height: f32,
     /// The pointer position in [0, 1]², y up, following the pointer without
     /// a click (GLSL Sandbox's `mouse`).
     pub mouse_uv: [f32; 2],
-    pub _pad1: [f32; 2],
+    /// The point of the plane at the image's centre, (0, 0) until a right
+    /// drag pans.
+    pub surface_center: [f32; 2],
 }
 
 /// Size of [`FrameUniforms`] in bytes.
@@ -52,9 +56,9 @@ impl FrameUniforms {
             time_delta: 1.0 / 60.0,
             frame,
             frame_rate: 60.0,
-            _pad0: 0.0,
+            surface_height: 1.0,
             mouse_uv: [0.0; 2],
-            _pad1: [0.0; 2],
+            surface_center: [0.0; 2],
         }
     }
 }
@@ -70,9 +74,9 @@ struct Uniforms {
     time_delta: f32,         // seconds since the previous frame
     frame: u32,              // frames since the clock started
     frame_rate: f32,         // frames per second
-    _pad0: f32,
+    surface_height: f32,     // GLSL Sandbox's surface: height of the plane shown (1, the wheel zooms)
     mouse_uv: vec2<f32>,     // pointer position in [0, 1], y up (GLSL Sandbox's `mouse`)
-    _pad1: vec2<f32>,
+    surface_center: vec2<f32>, // GLSL Sandbox's surface: the plane's point at the centre (right drag pans)
 }
 ";
 

@@ -2,7 +2,7 @@
 //! viewer runs from any directory.
 
 /// (name, TOML text) of each bundled scene; the first is the default.
-const SCENES: [(&str, &str); 6] = [
+const SCENES: [(&str, &str); 10] = [
     ("whitted", include_str!("../../assets/scenes/whitted.toml")),
     ("cornell", include_str!("../../assets/scenes/cornell.toml")),
     (
@@ -20,6 +20,16 @@ const SCENES: [(&str, &str); 6] = [
     (
         "many_spheres",
         include_str!("../../assets/scenes/many_spheres.toml"),
+    ),
+    (
+        "thin_lens",
+        include_str!("../../assets/scenes/thin_lens.toml"),
+    ),
+    ("torus", include_str!("../../assets/scenes/torus.toml")),
+    ("julia", include_str!("../../assets/scenes/julia.toml")),
+    (
+        "implicits",
+        include_str!("../../assets/scenes/implicits.toml"),
     ),
 ];
 

@@ -79,7 +79,10 @@ impl<'t> Document<'t> {
 
     /// The first value for which `pred` holds, searching depth first with
     /// the keys of a table in the order toml keeps them (by name).
-    pub(super) fn find(&self, pred: impl Fn(&Node<'t>) -> bool) -> Option<(KeyPath, &Node<'t>)> {
+    pub(super) fn find(
+        &self,
+        pred: impl Fn(&KeyPath, &Node<'t>) -> bool,
+    ) -> Option<(KeyPath, &Node<'t>)> {
         find_node(&self.root, KeyPath::default(), &pred)
     }
 
@@ -183,9 +186,9 @@ fn find_in_table(table: &DeTable<'_>, span: &Range<usize>, path: &KeyPath) -> Op
 fn find_node<'a, 't>(
     node: &'a Node<'t>,
     path: KeyPath,
-    pred: &impl Fn(&Node<'t>) -> bool,
+    pred: &impl Fn(&KeyPath, &Node<'t>) -> bool,
 ) -> Option<(KeyPath, &'a Node<'t>)> {
-    if pred(node) {
+    if pred(&path, node) {
         return Some((path, node));
     }
     match node.get_ref() {

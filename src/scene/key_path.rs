@@ -31,6 +31,11 @@ impl KeyPath {
         &self.0
     }
 
+    /// Whether the last step is the table key `key`.
+    pub(super) fn ends_with_key(&self, key: &str) -> bool {
+        matches!(self.0.last(), Some(Step::Key(k)) if k == key)
+    }
+
     /// True for the document itself, which has no name in messages.
     pub(super) fn is_root(&self) -> bool {
         self.0.is_empty()

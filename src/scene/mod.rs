@@ -25,8 +25,8 @@ use serde::{Deserialize, Serialize};
 pub use error::SceneError;
 pub use mesh_file::Geometry;
 pub use shapes::{
-    Cube, CubeSize, Loaded, Mesh, Plane, Shape, Sphere, TriangleTest, for_each_shape_kind,
-    rotation_degrees,
+    Cube, CubeSize, Implicit, Julia, Loaded, Mesh, Placement, Plane, Shape, Sphere, Torus,
+    TriangleTest, for_each_shape_kind, implicit, julia, rotation_degrees,
 };
 
 /// Writes the [`Scene`] struct, [`ShapeKind`], [`ShapeId`] and the methods
@@ -90,6 +90,13 @@ macro_rules! scene_with_shapes {
                 }
             }
 
+            /// Whether shapes of this kind are opaque ([`Shape::OPAQUE`]).
+            pub fn opaque(self) -> bool {
+                match self {
+                    $(ShapeKind::$kind => <$kind as Shape>::OPAQUE,)*
+                }
+            }
+
             /// The number the shader reports for this kind (`KIND_*`, 0 is
             /// "nothing"): the position in the registry, from 1.
             pub fn number(self) -> u32 {
@@ -120,6 +127,11 @@ macro_rules! scene_with_shapes {
             /// Whether the shape is thin ([`Shape::THIN`]).
             pub fn is_thin(self) -> bool {
                 self.kind().thin()
+            }
+
+            /// Whether the shape is opaque ([`Shape::OPAQUE`]).
+            pub fn is_opaque(self) -> bool {
+                self.kind().opaque()
             }
 
             /// The shape of kind `kind` at `index`.

@@ -21,13 +21,17 @@ pub(super) fn deserialize(doc: &Document<'_>) -> Result<Scene, SceneError> {
 
 /// glam reads the first three numbers of an array and ignores the rest, so
 /// `to = [0, 1, 0, 5]` would load without a word. Every array of numbers in
-/// a scene is a vector (or a triangle's three indices), and a vector has
-/// three. (A mesh's `positions` is an array of such arrays.)
+/// a scene is a vector, and a vector has three; but for a Julia set's `c`, a
+/// quaternion of four (serde checks that length), and arrays of vectors (an
+/// implicit surface's `bounds`, whose vectors are checked one by one).
 fn check_vector_lengths(doc: &Document<'_>) -> Result<(), SceneError> {
-    let wrong_length = |node: &Node<'_>| match node.get_ref() {
+    let wrong_length = |path: &KeyPath, node: &Node<'_>| match node.get_ref() {
         DeValue::Array(items) => {
-            let nested = |v: &Node<'_>| v.get_ref().is_table() || v.get_ref().is_array();
-            items.len() != 3 && !items.iter().any(nested)
+            let of_tables_or_arrays = items
+                .iter()
+                .all(|v| v.get_ref().is_table() || v.get_ref().is_array());
+            let quaternion = path.to_string().starts_with("julias[") && path.ends_with_key("c");
+            items.len() != 3 && !of_tables_or_arrays && !quaternion
         }
         _ => false,
     };

@@ -951,7 +951,8 @@ mod properties {
     use proptest::sample::Index;
 
     use super::super::{
-        Camera, Checker, Cube, CubeSize, Light, Material, Plane, RenderSettings, Scene, Sphere,
+        Camera, Checker, Cube, CubeSize, Implicit, Julia, Light, Material, Plane, RenderSettings,
+        Scene, Sphere, Torus,
     };
     use super::FULL;
 
@@ -1049,6 +1050,12 @@ mod properties {
                 (vec3(finite()), direction(), any::<Option<Index>>()), 0..3),
             cubes in proptest::collection::vec(
                 (vec3(finite()), cube_size(), vec3(finite()), any::<Option<Index>>()), 0..3),
+            tori in proptest::collection::vec(
+                (positive(), vec3(finite()), positive(), any::<Option<Index>>()), 0..2),
+            implicits in proptest::collection::vec(
+                (0..3usize, vec3(finite()), 1..1000u32, any::<Option<Index>>()), 0..2),
+            julias in proptest::collection::vec(
+                (-0.5..0.5f64, 1..=64u32, positive(), any::<Option<Index>>()), 0..2),
         ) -> Scene {
             let materials: IndexMap<String, Material> = materials.into_iter().collect();
             let names: Vec<String> = materials.keys().cloned().collect();
@@ -1061,7 +1068,35 @@ mod properties {
             let cubes = cubes.into_iter().map(|(center, size, rotation, m)| {
                 Cube { center, size, rotation, material: pick(&names, m) }
             }).collect();
-            Scene { render, camera, lights, materials, spheres, planes, cubes, meshes: Vec::new() }
+            let tori = tori.into_iter().map(|(major, translate, scale, m)| Torus {
+                major_radius: major,
+                minor_radius: 0.5 * major,
+                translate,
+                scale,
+                rotation: DVec3::new(10.0, 20.0, 30.0),
+                material: pick(&names, m),
+            }).collect();
+            let implicits = implicits.into_iter().map(|(which, translate, steps, m)| Implicit {
+                f: ["x^2 + y^2 + z^2 - 1", "sin(x) * cos(y) - z", "max(abs(x), y) - 0.5"][which]
+                    .to_string(),
+                bounds: [DVec3::splat(-1.0), DVec3::new(1.0, 2.0, 3.0)],
+                steps,
+                translate,
+                scale: 2.0,
+                rotation: DVec3::ZERO,
+                material: pick(&names, m),
+            }).collect();
+            let julias = julias.into_iter().map(|(c, iterations, epsilon, m)| Julia {
+                c: [c, -c, 0.5 * c, 0.25],
+                slice: c,
+                iterations,
+                epsilon,
+                translate: DVec3::ZERO,
+                scale: 1.0,
+                rotation: DVec3::ZERO,
+                material: pick(&names, m),
+            }).collect();
+            Scene { render, camera, lights, materials, spheres, planes, cubes, tori, implicits, julias, meshes: Vec::new() }
         }
     }
 

@@ -422,6 +422,9 @@ mod tests {
                 ShapeId::Sphere(3),
                 ShapeId::Plane(1),
                 ShapeId::Cube(1),
+                ShapeId::Torus(0),
+                ShapeId::Implicit(0),
+                ShapeId::Julia(0),
                 ShapeId::Mesh(0)
             ]
         );

@@ -11,14 +11,21 @@ use glam::DVec3;
 use crate::scene::{Camera, Scene, ShapeKind, ShapeList};
 
 mod cube;
+pub mod implicit;
+mod julia;
 mod mesh;
+mod placed;
 mod plane;
 mod sphere;
+mod torus;
 
 pub use cube::Cube;
+pub use implicit::Implicit;
+pub use julia::Julia;
 pub use mesh::Mesh;
 pub use plane::Plane;
 pub use sphere::Sphere;
+pub use torus::Torus;
 
 /// The registry of packed shape kinds: calls `$m!` with `(Rust type, WGSL
 /// struct name)` for every kind, so that code that must visit every kind
@@ -30,6 +37,9 @@ macro_rules! for_each_packed_shape {
         $m!(Sphere, "Sphere");
         $m!(Plane, "Plane");
         $m!(Cube, "Cube");
+        $m!(Torus, "Torus");
+        $m!(Implicit, "Implicit");
+        $m!(Julia, "Julia");
         $m!(Mesh, "Mesh");
     };
 }

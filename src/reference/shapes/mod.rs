@@ -4,9 +4,13 @@
 //! shapes, kind by kind, from the registry `for_each_shape_kind!`.
 
 pub mod cube;
+pub mod implicit;
+pub mod julia;
 pub mod mesh;
+pub mod placed;
 pub mod plane;
 pub mod sphere;
+pub mod torus;
 
 use std::fmt::Debug;
 

@@ -6,14 +6,22 @@
 //! docs/implementation.md, "Adding a shape kind").
 
 mod cube;
+pub mod implicit;
+pub mod julia;
 mod mesh;
+mod placement;
 mod plane;
 mod sphere;
+mod torus;
 
 pub use cube::{Cube, CubeSize};
+pub use implicit::Implicit;
+pub use julia::Julia;
 pub use mesh::{Loaded, Mesh, TriangleTest};
+pub use placement::Placement;
 pub use plane::Plane;
 pub use sphere::Sphere;
+pub use torus::Torus;
 
 use std::path::Path;
 
@@ -36,6 +44,9 @@ macro_rules! for_each_shape_kind {
             Sphere: spheres,
             Plane: planes,
             Cube: cubes,
+            Torus: tori,
+            Implicit: implicits,
+            Julia: julias,
             Mesh: meshes,
         }
     };
@@ -82,4 +93,9 @@ pub trait Shape: Clone {
     /// enters, and refraction passes it on unbent (docs/rendering-model.md,
     /// "Materials").
     const THIN: bool = false;
+
+    /// An opaque shape (a Julia set, whose inside has no distance estimate)
+    /// lets no light through: its material's transparency counts as 0
+    /// (docs/rendering-model.md, "Implicit surfaces").
+    const OPAQUE: bool = false;
 }

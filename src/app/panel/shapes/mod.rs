@@ -5,9 +5,13 @@
 //! editor does not compile.
 
 mod cube;
+mod implicit;
+mod julia;
 mod mesh;
+mod placed;
 mod plane;
 mod sphere;
+mod torus;
 
 use egui::Ui;
 use glam::DVec3;

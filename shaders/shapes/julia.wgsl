@@ -1,0 +1,74 @@
+// shapes/julia.wgsl: the quaternion Julia set (docs/rendering-model.md,
+// "Implicit surfaces"; Crane 2005). The f64 twin is
+// src/reference/shapes/julia.rs. Buffer, KIND_JULIA, HAS_JULIAS and the loops
+// are generated (src/gpu/shaders.rs).
+
+/// A Julia set placed by world = center + scale * rotation * local.
+struct Julia {
+    center: vec3<f32>,
+    scale: f32,
+    rotation: mat3x3<f32>,
+    c: vec4<f32>,            // real, i, j, k
+    slice: f32,
+    iterations: u32,
+    epsilon: f32,            // local units
+    material: u32,
+}
+
+/// The distance estimate at local point p: z <- z^2 + c from z = (p, slice),
+/// dz <- 2 |z| dz, then 0.5 |z| ln|z| / dz. dz is held below 1e30 (8^64 would
+/// overflow an f32): past that the estimate is below any epsilon anyway.
+fn julia_distance(s: Julia, p: vec3<f32>) -> f32 {
+    var z = vec4(p, s.slice);
+    var dz = 1.0;
+    for (var i = 0u; i < s.iterations; i++) {
+        dz = min(dz * 2.0 * length(z), 1e30);
+        z = vec4(z.x * z.x - dot(z.yzw, z.yzw), 2.0 * z.x * z.yzw) + s.c;
+        if length(z) > 4.0 {
+            break;
+        }
+    }
+    let r = length(z);
+    return 0.5 * r * log(r) / dz;
+}
+
+/// grad DE by central differences with step epsilon.
+fn julia_normal(s: Julia, p: vec3<f32>) -> vec3<f32> {
+    let e = s.epsilon;
+    return vec3(
+        julia_distance(s, p + vec3(e, 0.0, 0.0)) - julia_distance(s, p - vec3(e, 0.0, 0.0)),
+        julia_distance(s, p + vec3(0.0, e, 0.0)) - julia_distance(s, p - vec3(0.0, e, 0.0)),
+        julia_distance(s, p + vec3(0.0, 0.0, e)) - julia_distance(s, p - vec3(0.0, 0.0, e)),
+    );
+}
+
+/// Sphere tracing from where the ray enters the sphere |p| < 2 (or from its
+/// start inside it) to the first point with DE < epsilon; leaving the sphere
+/// or 1024 steps is a miss. Rays leaving the surface start 2 epsilon off it:
+/// the error_scale for which offset_ray moves them that far.
+fn hit_julia(ray: Ray, s: Julia, index: u32, best: Hit) -> Hit {
+    let l = local_ray(ray, s.center, s.scale, s.rotation);
+    let qq = dot(l.q, l.q);
+    if qq >= 4.0 {
+        return best;
+    }
+    let h = sqrt(4.0 - qq);
+    let end = min(h, local_u(l, best.t));
+    var u = max(-h, local_u(l, ray.t_min));
+    for (var i = 0u; i < 1024u; i++) {
+        if u > end {
+            return best;
+        }
+        let p = l.q + u * l.d;
+        let de = julia_distance(s, p);
+        if de < s.epsilon {
+            let error_scale = max(
+                offset_scale_for(2.0 * s.epsilon * s.scale),
+                max3(abs(s.center)) + 2.0 * s.scale,
+            );
+            return placed_hit(ray, best, l, u, julia_normal(s, p), s.center, s.rotation, KIND_JULIA, index, error_scale);
+        }
+        u += de;
+    }
+    return best;
+}

@@ -1,0 +1,39 @@
+//! A quaternion Julia set as `shaders/shapes/julia.wgsl` reads it.
+
+use bytemuck::{Pod, Zeroable};
+
+use super::{Frame, PackShape, placed};
+use crate::scene::{self, Scene};
+
+#[repr(C)]
+#[derive(Debug, Clone, Copy, PartialEq, Pod, Zeroable)]
+pub struct Julia {
+    pub center: [f32; 3],
+    pub scale: f32,
+    /// `mat3x3<f32>`: three columns, each padded to 16 bytes.
+    pub rotation: [[f32; 4]; 3],
+    pub c: [f32; 4],
+    pub slice: f32,
+    pub iterations: u32,
+    pub epsilon: f32,
+    pub material: u32,
+}
+
+impl PackShape for Julia {
+    type Source = scene::Julia;
+    const WGSL: &'static str = include_str!("../../../shaders/shapes/julia.wgsl");
+
+    fn pack(scene: &Scene, frame: &Frame, j: &scene::Julia) -> Self {
+        let placement = j.placement();
+        Julia {
+            center: frame.point(placement.translate),
+            scale: placement.scale as f32,
+            rotation: placed::rotation_columns(&placement),
+            c: j.c.map(|x| x as f32),
+            slice: j.slice as f32,
+            iterations: j.iterations,
+            epsilon: j.epsilon as f32,
+            material: scene.material_slot(j.material.as_deref()),
+        }
+    }
+}

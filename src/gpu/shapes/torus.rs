@@ -1,0 +1,37 @@
+//! A torus as `shaders/shapes/torus.wgsl` reads it.
+
+use bytemuck::{Pod, Zeroable};
+
+use super::{Frame, PackShape, placed};
+use crate::scene::{self, Scene};
+
+#[repr(C)]
+#[derive(Debug, Clone, Copy, PartialEq, Pod, Zeroable)]
+pub struct Torus {
+    pub center: [f32; 3],
+    pub scale: f32,
+    /// `mat3x3<f32>`: three columns, each padded to 16 bytes.
+    pub rotation: [[f32; 4]; 3],
+    pub major: f32,
+    pub minor: f32,
+    pub material: u32,
+    pub _pad: u32,
+}
+
+impl PackShape for Torus {
+    type Source = scene::Torus;
+    const WGSL: &'static str = include_str!("../../../shaders/shapes/torus.wgsl");
+
+    fn pack(scene: &Scene, frame: &Frame, t: &scene::Torus) -> Self {
+        let placement = t.placement();
+        Torus {
+            center: frame.point(placement.translate),
+            scale: placement.scale as f32,
+            rotation: placed::rotation_columns(&placement),
+            major: t.major_radius as f32,
+            minor: t.minor_radius as f32,
+            material: scene.material_slot(t.material.as_deref()),
+            _pad: 0,
+        }
+    }
+}

@@ -1,0 +1,124 @@
+//! A quaternion Julia set for the f64 tracer (docs/rendering-model.md,
+//! "Implicit surfaces": Crane 2005, distance-estimated sphere tracing).
+
+use glam::{DVec3, DVec4};
+
+use super::placed::Placed;
+use super::{Prepare, Trace};
+use crate::reference::ReferenceOptions;
+use crate::reference::hit::Hit;
+use crate::reference::ray::{Ray, offset_ray_scale};
+use crate::scene;
+
+/// The set, its iteration and the sphere tracer's settings.
+#[derive(Debug, Clone)]
+pub struct Julia {
+    pub placed: Placed,
+    /// The constant c: real, i, j, k.
+    pub c: DVec4,
+    /// The fourth coordinate of the 3-D slice.
+    pub slice: f64,
+    pub iterations: u32,
+    /// Distance at which a point counts as on the surface, local units.
+    pub epsilon: f64,
+    pub material: usize,
+}
+
+/// Radius of the sphere that holds the set (|c| <= 2), local units.
+pub const BOUND: f64 = 2.0;
+
+/// Steps of sphere tracing before the ray counts as a miss.
+pub const MAX_STEPS: u32 = 1024;
+
+/// Where |z| counts as escaped.
+const ESCAPE: f64 = 4.0;
+
+impl Prepare for scene::Julia {
+    type Traced = Julia;
+
+    fn prepare(&self, material: usize) -> Julia {
+        Julia {
+            placed: Placed::new(&self.placement()),
+            c: DVec4::from_array(self.c),
+            slice: self.slice,
+            iterations: self.iterations,
+            epsilon: self.epsilon,
+            material,
+        }
+    }
+}
+
+impl Trace for Julia {
+    fn hit(&self, ray: &Ray, t_max: f64, _options: &ReferenceOptions) -> Option<Hit> {
+        hit_julia(self, ray, t_max)
+    }
+
+    fn material(&self) -> usize {
+        self.material
+    }
+}
+
+/// `z^2` for the quaternion `z = (a, v)`: `(a^2 - v.v, 2 a v)`.
+fn square(z: DVec4) -> DVec4 {
+    let (a, v) = (z.x, DVec3::new(z.y, z.z, z.w));
+    let w = 2.0 * a * v;
+    DVec4::new(a * a - v.length_squared(), w.x, w.y, w.z)
+}
+
+/// The distance estimate at local point `p`: iterate `z <- z^2 + c` from
+/// `z = (p, slice)` with the derivative's length `dz <- 2 |z| dz`, then
+/// `0.5 |z| ln|z| / dz` (Crane 2005, after Hart et al. 1989).
+pub fn distance(julia: &Julia, p: DVec3) -> f64 {
+    let mut z = DVec4::new(p.x, p.y, p.z, julia.slice);
+    let mut dz = 1.0;
+    for _ in 0..julia.iterations {
+        dz *= 2.0 * z.length();
+        z = square(z) + julia.c;
+        if z.length() > ESCAPE {
+            break;
+        }
+    }
+    let r = z.length();
+    0.5 * r * r.ln() / dz
+}
+
+/// Sphere tracing from where the ray enters the bounding sphere (or from
+/// its origin inside it): the first point with `DE < epsilon` with
+/// `0 < t < t_max`.
+pub fn hit_julia(julia: &Julia, ray: &Ray, t_max: f64) -> Option<Hit> {
+    let local = julia.placed.local(ray);
+    let qq = local.q.length_squared();
+    if qq >= BOUND * BOUND {
+        return None;
+    }
+    let h = (BOUND * BOUND - qq).sqrt();
+    let end = h.min(local.u(t_max));
+    let mut u = (-h).max(local.u(0.0));
+    for _ in 0..MAX_STEPS {
+        if u > end {
+            return None;
+        }
+        let de = distance(julia, local.at(u));
+        if de < julia.epsilon {
+            let p = local.at(u);
+            // Secondary rays start 2 epsilon off the surface (the rendering
+            // model): the scale that makes offset_ray move them that far.
+            let error_scale = offset_ray_scale(2.0 * julia.epsilon * julia.placed.scale)
+                .max(julia.placed.error_scale(BOUND));
+            let hit = julia.placed.hit(&local, u, normal(julia, p), error_scale);
+            return (hit.t > 0.0 && hit.t < t_max).then_some(hit);
+        }
+        u += de;
+    }
+    None
+}
+
+/// `grad DE` by central differences with step epsilon (DE is not smooth
+/// enough for more; the rendering model allows it here).
+pub fn normal(julia: &Julia, p: DVec3) -> DVec3 {
+    let e = julia.epsilon;
+    DVec3::from_array(
+        [DVec3::X, DVec3::Y, DVec3::Z]
+            .map(|axis| distance(julia, p + e * axis) - distance(julia, p - e * axis)),
+    )
+}

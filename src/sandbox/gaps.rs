@@ -1,0 +1,219 @@
+//! Small source rewrites for WebGL GLSL that naga's GLSL front end does not
+//! take (docs/sandbox.md, "Front-end gaps"). Each is local to one line:
+//!
+//! - `const` in a parameter list (`float f(const in float x)`): blanked;
+//! - a matrix built from one argument (`mat2(vec4)`, which naga rejects):
+//!   `mat2(` becomes `rsb_mat2(`, overloads the prelude adds;
+//! - a prototype with unnamed parameters (`float f(float);`, which naga
+//!   ignores): each gets a name, `float f(float rsb_p0);`.
+//!
+//! Blanking keeps every offset. An insertion moves the rest of its line to
+//! the right, never to another line, and [`Bridged::original_column`] moves
+//! an error's column back, so errors show the user's line and column.
+
+use super::scan::{self, Kind, Scan, Token};
+
+/// The overloads behind `rsb_mat2(...)`, for the prelude.
+pub const MAT2_OVERLOADS: &str = "\
+// mat2(x) with one argument, as WebGL GLSL allows it (docs/sandbox.md).
+mat2 rsb_mat2(vec4 v) { return mat2(v.xy, v.zw); }
+mat2 rsb_mat2(float s) { return mat2(s); }
+mat2 rsb_mat2(mat2 m) { return m; }
+mat2 rsb_mat2(mat3 m) { return mat2(m); }
+mat2 rsb_mat2(mat4 m) { return mat2(m); }
+";
+
+/// The user's text after the rewrites.
+pub struct Bridged {
+    pub text: String,
+    /// `mat2(` calls were renamed: the prelude needs [`MAT2_OVERLOADS`].
+    pub uses_mat2: bool,
+    /// (offset in the original text, inserted text), in order.
+    insertions: Vec<(usize, String)>,
+}
+
+/// Qualifiers that may come before a parameter's type.
+const PARAMETER_QUALIFIERS: [&str; 8] = [
+    "const", "in", "out", "inout", "lowp", "mediump", "highp", "precise",
+];
+
+/// Applies the rewrites to `text`, the user's text already blanked by the
+/// GLSL rewrite (same offsets as `scan.text`).
+pub fn bridge(scan: &Scan, mut text: String) -> Bridged {
+    let tokens = &scan.tokens;
+    let mut insertions: Vec<(usize, String)> = Vec::new();
+    let mut uses_mat2 = false;
+    let (mut braces, mut parens) = (0i32, 0i32);
+    for (i, t) in tokens.iter().enumerate() {
+        match t.text {
+            "{" => braces += 1,
+            "}" => braces -= 1,
+            "(" => parens += 1,
+            ")" => parens -= 1,
+            "const" if braces == 0 && parens > 0 => scan::blank(&mut text, t.start..t.end()),
+            "mat2" if single_argument(tokens, i + 1) => {
+                insertions.push((t.start, "rsb_".to_string()));
+                uses_mat2 = true;
+            }
+            _ => {}
+        }
+        if braces == 0 && parens == 0 && t.kind == Kind::Ident {
+            name_prototype_parameters(tokens, i, &mut insertions);
+        }
+    }
+    insertions.sort_by_key(|(offset, _)| *offset);
+    for (offset, inserted) in insertions.iter().rev() {
+        text.insert_str(*offset, inserted);
+    }
+    Bridged {
+        text,
+        uses_mat2,
+        insertions,
+    }
+}
+
+/// `(` at `open` starts a call with exactly one argument.
+fn single_argument(tokens: &[Token], open: usize) -> bool {
+    if !tokens.get(open).is_some_and(|t| t.is("(")) {
+        return false;
+    }
+    let mut depth = 0;
+    for t in &tokens[open..] {
+        match t.text {
+            "(" | "[" => depth += 1,
+            ")" | "]" => {
+                depth -= 1;
+                if depth == 0 {
+                    return true;
+                }
+            }
+            "," if depth == 1 => return false,
+            _ => {}
+        }
+    }
+    false
+}
+
+/// If the identifier at `name` starts a prototype `NAME(...);` (at the top
+/// level), names its unnamed parameters.
+fn name_prototype_parameters(tokens: &[Token], name: usize, out: &mut Vec<(usize, String)>) {
+    if name == 0 || tokens[name - 1].kind != Kind::Ident {
+        return;
+    }
+    let open = name + 1;
+    if !tokens.get(open).is_some_and(|t| t.is("(")) {
+        return;
+    }
+    let Some(close) = (open..tokens.len()).find(|&k| tokens[k].is(")")) else {
+        return;
+    };
+    if !tokens.get(close + 1).is_some_and(|t| t.is(";")) {
+        return;
+    }
+    let mut from = open + 1;
+    let mut index = 0;
+    while from < close {
+        let to = (from..close).find(|&k| tokens[k].is(",")).unwrap_or(close);
+        let words: Vec<&Token> = tokens[from..to]
+            .iter()
+            .filter(|t| t.kind == Kind::Ident && !PARAMETER_QUALIFIERS.contains(&t.text))
+            .collect();
+        if let [only] = words[..]
+            && !only.is("void")
+            && tokens[to - 1] == *only
+        {
+            out.push((only.end(), format!(" rsb_p{index}")));
+        }
+        index += 1;
+        from = to + 1;
+    }
+}
+
+impl Bridged {
+    /// The column in the user's own line of `column` in the rewritten
+    /// `line` (both 1-based); a column inside inserted text maps to where
+    /// the insertion is.
+    pub fn original_column(&self, scan: &Scan, line: u32, column: u32) -> u32 {
+        let Some(line_start) = scan.offset_of(line, 1) else {
+            return column;
+        };
+        let line_end = line_start + scan.line_text(line).len();
+        let mut at = (column as usize).saturating_sub(1);
+        let mut shift = 0;
+        for (offset, inserted) in &self.insertions {
+            if *offset < line_start || *offset > line_end {
+                continue;
+            }
+            let inserted_at = offset - line_start + shift;
+            if at >= inserted_at + inserted.len() {
+                shift += inserted.len();
+            } else if at >= inserted_at {
+                at = inserted_at;
+                break;
+            }
+        }
+        (at - shift) as u32 + 1
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn bridged(text: &str) -> (Bridged, Scan<'_>) {
+        let scan = Scan::new(text);
+        (bridge(&scan, text.to_string()), scan)
+    }
+
+    #[test]
+    fn const_parameters_lose_const_and_keep_their_offsets() {
+        let text = "float f(const in float x, const vec2 y) { const float z = 1.0; return z; }";
+        let (b, _) = bridged(text);
+        assert_eq!(b.text.len(), text.len());
+        assert!(
+            b.text
+                .starts_with("float f(      in float x,       vec2 y)")
+        );
+        assert!(b.text.contains("{ const float z"), "{}", b.text);
+    }
+
+    #[test]
+    fn one_argument_mat2_calls_are_renamed_others_are_not() {
+        let (b, _) =
+            bridged("mat2 m = mat2(cos(a + vec4(0, 1, 2, 3))); mat2 n = mat2(1.0, 0.0, 0.0, 1.0);");
+        assert_eq!(
+            b.text,
+            "mat2 m = rsb_mat2(cos(a + vec4(0, 1, 2, 3))); mat2 n = mat2(1.0, 0.0, 0.0, 1.0);"
+        );
+        assert!(b.uses_mat2);
+    }
+
+    #[test]
+    fn unnamed_prototype_parameters_get_names() {
+        let (b, _) = bridged(
+            "float k(in float, vec2 p, vec3);\nvoid f(void);\nfloat k(in float a, vec2 p, vec3 c) { return a; }",
+        );
+        assert_eq!(
+            b.text.lines().collect::<Vec<_>>(),
+            [
+                "float k(in float rsb_p0, vec2 p, vec3 rsb_p2);",
+                "void f(void);",
+                "float k(in float a, vec2 p, vec3 c) { return a; }"
+            ]
+        );
+    }
+
+    #[test]
+    fn columns_after_an_insertion_map_back_to_the_users_line() {
+        let text = "void f() {\n    mat2 m = mat2(v) * oops;\n}";
+        let (b, scan) = bridged(text);
+        let rewritten = b.text.lines().nth(1).unwrap();
+        let oops = rewritten.find("oops").unwrap() as u32 + 1;
+        let original = text.lines().nth(1).unwrap().find("oops").unwrap() as u32 + 1;
+        assert_eq!(b.original_column(&scan, 2, oops), original);
+        // Before the insertion nothing moves; inside it, the call's start.
+        assert_eq!(b.original_column(&scan, 2, 5), 5);
+        assert_eq!(b.original_column(&scan, 2, 16), 14);
+        assert_eq!(b.original_column(&scan, 1, 3), 3);
+    }
+}

@@ -1,0 +1,91 @@
+//! `[[implicits]]`: a user's surface `f(x, y, z) = 0` (docs/scene-format.md,
+//! "Implicit surfaces").
+
+use glam::DVec3;
+use serde::{Deserialize, Serialize};
+
+use super::placement::{Placement, one};
+use super::{Context, Shape};
+use crate::expr::Function;
+use crate::scene::key_path::KeyPath;
+use crate::scene::validate::{Check, FINITE, Issue, material_name, vector};
+
+/// The surface where `f` changes sign, looked for inside the local box
+/// `bounds`; the outside is where `f > 0`.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct Implicit {
+    /// The function of x, y, z, in the syntax of docs/scene-format.md.
+    pub f: String,
+    /// `[[xmin, ymin, zmin], [xmax, ymax, zmax]]`, local coordinates.
+    pub bounds: [DVec3; 2],
+    #[serde(default = "default_steps")]
+    pub steps: u32,
+    #[serde(default)]
+    pub translate: DVec3,
+    #[serde(default = "one")]
+    pub scale: f64,
+    #[serde(default)]
+    pub rotation: DVec3,
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub material: Option<String>,
+}
+
+/// Most samples along a ray.
+pub const MAX_STEPS: u32 = 4096;
+
+fn default_steps() -> u32 {
+    256
+}
+
+impl Implicit {
+    pub fn placement(&self) -> Placement {
+        Placement {
+            translate: self.translate,
+            scale: self.scale,
+            rotation: self.rotation,
+        }
+    }
+}
+
+impl Shape for Implicit {
+    fn validate(&mut self, path: &KeyPath, context: &Context) -> Check {
+        Function::parse(&self.f).map_err(|e| Issue::new(&path.key("f"), e.to_string()))?;
+        let bounds = path.key("bounds");
+        vector(&bounds.index(0), self.bounds[0], &FINITE)?;
+        vector(&bounds.index(1), self.bounds[1], &FINITE)?;
+        for (axis, name) in ["x", "y", "z"].into_iter().enumerate() {
+            let (lo, hi) = (self.bounds[0][axis], self.bounds[1][axis]);
+            if lo >= hi {
+                return Err(Issue::new(
+                    &bounds,
+                    format!("min {name} must be < max {name}, got {lo} and {hi}"),
+                ));
+            }
+        }
+        if !(1..=MAX_STEPS).contains(&self.steps) {
+            return Err(Issue::new(
+                &path.key("steps"),
+                format!("must be 1..={MAX_STEPS}, got {}", self.steps),
+            ));
+        }
+        self.placement().validate(path)?;
+        material_name(path, self.material.as_deref(), context.materials)
+    }
+
+    fn translate(&mut self, offset: DVec3) {
+        self.translate += offset;
+    }
+
+    fn material(&self) -> &Option<String> {
+        &self.material
+    }
+
+    fn material_mut(&mut self) -> &mut Option<String> {
+        &mut self.material
+    }
+
+    fn bounds(&self) -> [DVec3; 2] {
+        self.placement().bounds(self.bounds)
+    }
+}

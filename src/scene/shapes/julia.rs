@@ -1,0 +1,100 @@
+//! `[[julias]]`: a quaternion Julia set (docs/scene-format.md, "Implicit
+//! surfaces"; Crane 2005).
+
+use glam::{DVec3, DVec4};
+use serde::{Deserialize, Serialize};
+
+use super::placement::{Placement, one};
+use super::{Context, Shape};
+use crate::scene::key_path::KeyPath;
+use crate::scene::validate::{Check, FINITE, Issue, POSITIVE, material_name, number};
+
+/// The set of quaternions whose orbit under `z <- z^2 + c` stays bounded,
+/// cut by the slice `w = slice`.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct Julia {
+    /// Real, i, j, k; `|c| <= 2`.
+    pub c: [f64; 4],
+    #[serde(default)]
+    pub slice: f64,
+    #[serde(default = "default_iterations")]
+    pub iterations: u32,
+    #[serde(default = "default_epsilon")]
+    pub epsilon: f64,
+    #[serde(default)]
+    pub translate: DVec3,
+    #[serde(default = "one")]
+    pub scale: f64,
+    #[serde(default)]
+    pub rotation: DVec3,
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub material: Option<String>,
+}
+
+/// Most iterations a Julia set may ask for.
+pub const MAX_ITERATIONS: u32 = 64;
+
+fn default_iterations() -> u32 {
+    10
+}
+
+fn default_epsilon() -> f64 {
+    1e-3
+}
+
+impl Julia {
+    pub fn placement(&self) -> Placement {
+        Placement {
+            translate: self.translate,
+            scale: self.scale,
+            rotation: self.rotation,
+        }
+    }
+}
+
+impl Shape for Julia {
+    fn validate(&mut self, path: &KeyPath, context: &Context) -> Check {
+        let c_path = path.key("c");
+        for (i, &x) in self.c.iter().enumerate() {
+            number(&c_path.index(i), x, &FINITE)?;
+        }
+        let length = DVec4::from_array(self.c).length();
+        if length > 2.0 {
+            return Err(Issue::new(
+                &c_path,
+                format!("|c| must be <= 2, got {length}"),
+            ));
+        }
+        number(&path.key("slice"), self.slice, &FINITE)?;
+        if !(1..=MAX_ITERATIONS).contains(&self.iterations) {
+            return Err(Issue::new(
+                &path.key("iterations"),
+                format!("must be 1..={MAX_ITERATIONS}, got {}", self.iterations),
+            ));
+        }
+        number(&path.key("epsilon"), self.epsilon, &POSITIVE)?;
+        self.placement().validate(path)?;
+        material_name(path, self.material.as_deref(), context.materials)
+    }
+
+    fn translate(&mut self, offset: DVec3) {
+        self.translate += offset;
+    }
+
+    fn material(&self) -> &Option<String> {
+        &self.material
+    }
+
+    fn material_mut(&mut self) -> &mut Option<String> {
+        &mut self.material
+    }
+
+    const OPAQUE: bool = true;
+
+    /// The sphere of radius 2 that holds the set.
+    fn bounds(&self) -> [DVec3; 2] {
+        self.placement()
+            .bounds([DVec3::splat(-2.0), DVec3::splat(2.0)])
+    }
+}

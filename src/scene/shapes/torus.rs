@@ -1,0 +1,72 @@
+//! `[[tori]]`: a torus (docs/scene-format.md, "Implicit surfaces").
+
+use glam::DVec3;
+use serde::{Deserialize, Serialize};
+
+use super::placement::{Placement, one};
+use super::{Context, Shape};
+use crate::scene::key_path::KeyPath;
+use crate::scene::validate::{Check, Issue, POSITIVE, material_name, number};
+
+/// The tube of radius `minor_radius` around the circle of radius
+/// `major_radius` about the local y axis.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct Torus {
+    pub major_radius: f64,
+    pub minor_radius: f64,
+    #[serde(default)]
+    pub translate: DVec3,
+    #[serde(default = "one")]
+    pub scale: f64,
+    #[serde(default)]
+    pub rotation: DVec3,
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub material: Option<String>,
+}
+
+impl Torus {
+    pub fn placement(&self) -> Placement {
+        Placement {
+            translate: self.translate,
+            scale: self.scale,
+            rotation: self.rotation,
+        }
+    }
+}
+
+impl Shape for Torus {
+    fn validate(&mut self, path: &KeyPath, context: &Context) -> Check {
+        number(&path.key("major_radius"), self.major_radius, &POSITIVE)?;
+        number(&path.key("minor_radius"), self.minor_radius, &POSITIVE)?;
+        if self.minor_radius >= self.major_radius {
+            return Err(Issue::new(
+                &path.key("minor_radius"),
+                format!(
+                    "must be < major_radius ({}), got {}",
+                    self.major_radius, self.minor_radius
+                ),
+            ));
+        }
+        self.placement().validate(path)?;
+        material_name(path, self.material.as_deref(), context.materials)
+    }
+
+    fn translate(&mut self, offset: DVec3) {
+        self.translate += offset;
+    }
+
+    fn material(&self) -> &Option<String> {
+        &self.material
+    }
+
+    fn material_mut(&mut self) -> &mut Option<String> {
+        &mut self.material
+    }
+
+    fn bounds(&self) -> [DVec3; 2] {
+        let (big, r) = (self.major_radius + self.minor_radius, self.minor_radius);
+        self.placement()
+            .bounds([DVec3::new(-big, -r, -big), DVec3::new(big, r, big)])
+    }
+}
