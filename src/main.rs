@@ -78,8 +78,9 @@ struct RenderArgs {
     width: u32,
     #[arg(long, default_value_t = 720, value_parser = clap::value_parser!(u32).range(1..=16384))]
     height: u32,
-    /// Samples per pixel (the R4 sequence, see docs/implementation.md).
-    #[arg(long, default_value_t = 1, value_parser = clap::value_parser!(u32).range(1..=65536))]
+    /// Samples per pixel (the R4 sequence, see docs/implementation.md); the
+    /// default is chosen from `raysandbox bench` (docs/performance.md).
+    #[arg(long, default_value_t = raysandbox::gpu::DEFAULT_RENDER_SAMPLES, value_parser = clap::value_parser!(u32).range(1..=65536))]
     spp: u32,
     /// Render with the f64 CPU reference instead of the GPU.
     #[arg(long)]

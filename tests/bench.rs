@@ -7,7 +7,7 @@ mod common;
 use std::path::Path;
 use std::process::Command;
 
-use raysandbox::bench::{ERROR_COLUMNS, PIPELINE_COLUMNS, SCALING_COLUMNS};
+use raysandbox::bench::{ERROR_COLUMNS, PIPELINE_COLUMNS, REFERENCE_COLUMNS, SCALING_COLUMNS};
 
 fn check_csv(path: &Path, columns: &str, text_columns: usize) -> usize {
     let text = std::fs::read_to_string(path).unwrap_or_else(|e| panic!("{}: {e}", path.display()));
@@ -55,11 +55,36 @@ fn quick_bench_writes_csv_markdown_and_plots() {
         2
     );
     assert_eq!(check_csv(&out.join("scaling.csv"), SCALING_COLUMNS, 0), 3);
+    assert_eq!(
+        check_csv(&out.join("reference.csv"), REFERENCE_COLUMNS, 1),
+        2
+    );
+    // The reference shares no sample with the renders: the error falls with
+    // the samples as averaging predicts, by 1.2 to 2 times from 8 to 16 (a
+    // reference made of the renders' own samples shows 10 times and more).
+    let rows = std::fs::read_to_string(out.join("time_vs_error.csv")).unwrap();
+    let rmse = |scene: &str, spp: &str| -> f64 {
+        rows.lines()
+            .map(|l| l.split(',').collect::<Vec<_>>())
+            .filter(|c| c[0] == scene && c[1] == spp && c[3] == "0" && c[4] == "1")
+            .map(|c| (c[2].parse::<u32>().unwrap(), c[6].parse::<f64>().unwrap()))
+            .max_by_key(|(depth, _)| *depth)
+            .unwrap_or_else(|| panic!("no {scene} row at {spp} spp"))
+            .1
+    };
+    for scene in ["whitted", "mirror_cube"] {
+        let ratio = rmse(scene, "8") / rmse(scene, "16");
+        assert!(
+            (1.2..=2.1).contains(&ratio),
+            "{scene}: 8 -> 16 spp divides the error by {ratio:.2}"
+        );
+    }
     let report = std::fs::read_to_string(out.join("results.md")).unwrap();
     for needle in [
         "adapter:",
         "CPU:",
         "Pareto",
+        "noise floor",
         "Specialised against generic",
         "Scaling",
     ] {

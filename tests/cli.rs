@@ -219,3 +219,82 @@ fn sizes_beyond_the_gpu_or_zero_exit_2_naming_the_limit() {
     }
     assert!(!Path::new(png).exists(), "nothing is written");
 }
+
+/// Bad input in the implicit surfaces (docs/scene-format.md, "Implicit
+/// surfaces"): exit status 2, and the message names the file, the key and,
+/// for a function, the column in it.
+#[test]
+fn bad_implicit_surfaces_exit_2_naming_key_and_column() {
+    let camera = "[camera]\nfrom = [0, 0, 5]\nto = [0, 0, 0]\n\n";
+    let implicit = |f: &str, bounds: &str, extra: &str| {
+        format!("{camera}[[implicits]]\nf = \"{f}\"\nbounds = {bounds}\n{extra}")
+    };
+    let box_ = "[[-1, -1, -1], [1, 1, 1]]";
+    let julia = |c: &str, extra: &str| format!("{camera}[[julias]]\nc = {c}\n{extra}");
+    let torus = |major: &str, minor: &str| {
+        format!("{camera}[[tori]]\nmajor_radius = {major}\nminor_radius = {minor}\n")
+    };
+    let cases = [
+        (
+            implicit("x + foo(y)", box_, ""),
+            vec!["implicits[0].f", "column 5", "unknown function `foo`"],
+        ),
+        (
+            implicit("(x + 1", box_, ""),
+            vec!["implicits[0].f", "column 1", "unbalanced parenthesis"],
+        ),
+        (
+            implicit("x * y) - 1", box_, ""),
+            vec!["implicits[0].f", "column 6", "unbalanced parenthesis"],
+        ),
+        (
+            implicit("x", "[[-1, 2, -1], [1, 1, 1]]", ""),
+            vec!["implicits[0].bounds", "min y must be < max y"],
+        ),
+        (
+            implicit("x", box_, "steps = 0\n"),
+            vec!["implicits[0].steps", "1..="],
+        ),
+        (
+            implicit("x", "[[-1, -1, -1], [1, nan, 1]]", ""),
+            vec!["implicits[0].bounds[1]", "finite"],
+        ),
+        (
+            julia("[2, 1, 0, 0]", ""),
+            vec!["julias[0].c", "|c| must be <= 2"],
+        ),
+        (
+            julia("[0.2, 0.1, 0, 0]", "iterations = 0\n"),
+            vec!["julias[0].iterations", "1..=64"],
+        ),
+        (
+            julia("[0.2, nan, 0, 0]", ""),
+            vec!["julias[0].c[1]", "finite"],
+        ),
+        (
+            julia("[0.2, 0.1, 0, 0]", "epsilon = -1e-3\n"),
+            vec!["julias[0].epsilon", "> 0"],
+        ),
+        (torus("1", "nan"), vec!["tori[0].minor_radius"]),
+        (
+            torus("1", "1.5"),
+            vec!["tori[0].minor_radius", "must be < major_radius"],
+        ),
+    ];
+    for (i, (scene, words)) in cases.iter().enumerate() {
+        let path = write_scene(&format!("bad_implicit_{i}.toml"), scene);
+        let out = raysandbox(&["check", path.to_str().unwrap()]);
+        let stderr = text(&out.stderr);
+        assert_eq!(out.status.code(), Some(2), "{scene}\n{stderr}");
+        assert!(
+            stderr.contains(&format!("bad_implicit_{i}.toml")),
+            "{stderr}"
+        );
+        for word in words {
+            assert!(
+                stderr.contains(word),
+                "{scene}\nexpected {word:?} in: {stderr}"
+            );
+        }
+    }
+}

@@ -9,7 +9,7 @@ use std::path::{Path, PathBuf};
 
 use image::RgbaImage;
 use raysandbox::gpu::Gpu;
-use raysandbox::sandbox::render_file;
+use raysandbox::sandbox::{Checked, check_file, render_file};
 
 const SIZE: (u32, u32) = (32, 18);
 
@@ -262,4 +262,88 @@ void main() { mainImage(gl_FragColor, gl_FragCoord.xy); }
     let compiled =
         raysandbox::sandbox::compile("port.frag", text).unwrap_or_else(|e| panic!("{e}"));
     assert_eq!(compiled.style, raysandbox::sandbox::Style::GlslSandbox);
+}
+
+/// What the first line of a suite file expects: `None` for `pass`, else the
+/// start of the error's first line after the file name.
+fn expectation(path: &Path) -> Option<String> {
+    let text = std::fs::read_to_string(path).unwrap();
+    let first = text.lines().next().unwrap_or_default();
+    let expect = first
+        .strip_prefix("// expect: ")
+        .unwrap_or_else(|| panic!("{}: no `// expect:` line", path.display()));
+    match expect {
+        "pass" => None,
+        _ => Some(
+            expect
+                .strip_prefix("error ")
+                .unwrap_or_else(|| panic!("{}: `pass` or `error ...`", path.display()))
+                .to_string(),
+        ),
+    }
+}
+
+#[test]
+fn the_compatibility_suite_gives_the_expected_result_per_file() {
+    let Some(gpu) = common::gpu() else { return };
+    let dir = Path::new(env!("CARGO_MANIFEST_DIR")).join("tests/shaders/compat");
+    let mut files: Vec<PathBuf> = std::fs::read_dir(&dir)
+        .unwrap()
+        .map(|e| e.unwrap().path())
+        .filter(|p| p.extension().is_some_and(|e| e != "md"))
+        .collect();
+    files.sort();
+    assert!(files.len() >= 10, "{files:?}");
+    let mut wrong = Vec::new();
+    for path in &files {
+        let verdict = check_file(&gpu, path, SIZE, 1.0);
+        let name = path.display().to_string();
+        match (expectation(path), verdict) {
+            (None, Ok(())) => {}
+            (Some(expected), Err(Checked::Failed(error))) => {
+                let first = error.lines().next().unwrap_or_default();
+                let after_name = first.strip_prefix(&format!("{name}:")).unwrap_or(first);
+                if !after_name.trim_start().starts_with(&expected) {
+                    wrong.push(format!("{name}: expected `{expected}`, got `{first}`"));
+                }
+            }
+            (expected, verdict) => {
+                wrong.push(format!("{name}: expected {expected:?}, got {verdict:?}"))
+            }
+        }
+    }
+    assert!(wrong.is_empty(), "{}", wrong.join("\n"));
+}
+
+#[test]
+fn check_all_prints_a_verdict_per_file_and_the_totals() {
+    if common::gpu().is_none() {
+        return;
+    }
+    let dir = Path::new(env!("CARGO_MANIFEST_DIR")).join("tests/shaders/compat");
+    let output = std::process::Command::new(env!("CARGO_BIN_EXE_raysandbox"))
+        .args(["shader", "--check-all", dir.to_str().unwrap()])
+        .output()
+        .expect("run raysandbox");
+    let stdout = String::from_utf8_lossy(&output.stdout);
+    assert_eq!(
+        output.status.code(),
+        Some(2),
+        "some files are broken on purpose"
+    );
+    assert!(stdout.contains("6 of 10 pass (60.0%), 4 fail"), "{stdout}");
+    let typo = stdout
+        .lines()
+        .find(|l| l.contains("broken_typo.frag"))
+        .unwrap();
+    assert!(
+        typo.starts_with("FAIL  ") && typo.ends_with(":6:15: error: Unknown function 'lenght'"),
+        "{typo}"
+    );
+    assert!(
+        stdout
+            .lines()
+            .any(|l| l.starts_with("pass  ") && l.ends_with("surface.frag")),
+        "{stdout}"
+    );
 }

@@ -10,8 +10,9 @@ use std::time::Duration;
 
 use common::xwindow::{Display, Window, crop};
 use raysandbox::compare::diff_images;
-use raysandbox::gpu::render_image;
-use raysandbox::scene::Scene;
+use raysandbox::gpu::{OUTLINE_COLOR, render_image};
+use raysandbox::reference;
+use raysandbox::scene::{Scene, ShapeId};
 
 const WIDTH: u32 = 800;
 const HEIGHT: u32 = 450;
@@ -118,6 +119,99 @@ fn clicking_an_object_selects_it_in_the_panel() {
     assert_eq!(viewer.wait_for("selected"), "Some(Sphere(0))");
     viewer.click((560, 20));
     assert_eq!(viewer.wait_for("selected"), "None");
+}
+
+/// Squared distance (in pixels, up to `reach`) from each pixel to the
+/// nearest pixel where `inside` holds; `reach + 1` when none is that close.
+fn squared_distances(inside: &[bool], (w, h): (u32, u32), reach: i64) -> Vec<i64> {
+    let r = (reach as f64).sqrt().ceil() as i64;
+    let (w, h) = (i64::from(w), i64::from(h));
+    let mut out = vec![reach + 1; inside.len()];
+    for y in 0..h {
+        for x in 0..w {
+            for dy in -r..=r {
+                for dx in -r..=r {
+                    let (u, v) = (x + dx, y + dy);
+                    let d = dx * dx + dy * dy;
+                    let i = (y * w + x) as usize;
+                    if (0..w).contains(&u)
+                        && (0..h).contains(&v)
+                        && d < out[i]
+                        && inside[(v * w + u) as usize]
+                    {
+                        out[i] = d;
+                    }
+                }
+            }
+        }
+    }
+    out
+}
+
+#[test]
+fn the_picked_object_is_outlined_around_its_silhouette() {
+    let _serial = serial();
+    let Some(display) = Display::start() else {
+        return;
+    };
+    let path = scene_path("whitted");
+    let mut viewer = open(&display, &[path.to_str().unwrap()]);
+    let before = viewer.capture();
+    viewer.click((560, 200));
+    assert_eq!(viewer.wait_for("selected"), "Some(Sphere(0))");
+    let after = viewer.capture();
+
+    // Where the glass sphere is, from the reference's first hits.
+    let scene = Scene::load(&path).unwrap();
+    let hits = reference::first_hits(&reference::PreparedScene::new(&scene), WIDTH, HEIGHT);
+    let sphere: Vec<bool> = hits
+        .iter()
+        .map(|h| matches!(h, Some((ShapeId::Sphere(0), _))))
+        .collect();
+    // The band is 2 px wide, then a dark ring; the GPU's silhouette may
+    // differ from the reference's by a pixel.
+    let distance = squared_distances(&sphere, (WIDTH, HEIGHT), 16);
+    let (x0, y0, w, h) = VIEW;
+    let (mut changed, mut changed_away, mut next_to, mut next_to_outlined) = (0, 0, 0, 0);
+    for y in y0..y0 + h {
+        for x in x0..x0 + w {
+            let d = distance[(y * WIDTH + x) as usize];
+            let now = after.get_pixel(x, y);
+            if now != before.get_pixel(x, y) {
+                changed += 1;
+                if d == 0 || d > 16 {
+                    changed_away += 1;
+                }
+            }
+            if d == 1 {
+                next_to += 1;
+                if now.0[..3] == OUTLINE_COLOR {
+                    next_to_outlined += 1;
+                }
+            }
+        }
+    }
+    println!(
+        "changed {changed} pixels, {changed_away} away from the silhouette; \
+         {next_to_outlined} of {next_to} pixels next to it outlined"
+    );
+    assert!(changed > 500, "no outline drawn: {changed} pixels changed");
+    assert!(
+        changed_away * 100 <= changed,
+        "{changed_away} of {changed} changed pixels are not around the sphere"
+    );
+    assert!(
+        next_to > 300 && next_to_outlined * 100 >= next_to * 95,
+        "{next_to_outlined} of {next_to} pixels next to the sphere are outlined"
+    );
+
+    viewer.click((560, 20));
+    assert_eq!(viewer.wait_for("selected"), "None");
+    assert_eq!(
+        diff_images(&crop(&before, VIEW), &crop(&viewer.capture(), VIEW)).max_abs,
+        0,
+        "the outline is gone with the selection"
+    );
 }
 
 #[test]

@@ -34,6 +34,10 @@ use ui::{Command, Editor, Status, ViewInput};
 
 pub use sandbox_window::run_sandbox;
 
+/// Width of the selection outline in logical pixels (scaled by the window's
+/// DPI factor).
+const OUTLINE_WIDTH: f64 = 2.0;
+
 /// How the viewer was started (the `view` subcommand's options).
 #[derive(Debug, Clone, Default)]
 pub struct ViewerOptions {
@@ -204,6 +208,11 @@ impl ApplicationHandler<UserEvent> for App {
                 gfx.window.request_redraw();
             }
             WindowEvent::RedrawRequested => self.redraw(event_loop),
+            WindowEvent::DroppedFile(path) => {
+                // A file dropped on the window opens as the panel's "Open" does.
+                self.panel_action(PanelAction::Open(path));
+                self.request_redraw();
+            }
             _ => {
                 if response.repaint {
                     gfx.window.request_redraw();
@@ -226,7 +235,7 @@ impl App {
         let formats = Viewport::output_formats(&gpu, &surface);
         let source = self.shader_params.apply(&self.shaders);
         let options = ShaderOptions::for_scene(&self.doc.scene);
-        let pipelines = Pipelines::new(&gpu.device, &source, &formats, &options)
+        let pipelines = Pipelines::with_outline(&gpu.device, &source, &formats, &options)
             .map_err(|e| ViewerError::Shader(e.to_string()))?;
         let cache = pipelines::PipelineCache::new(source, options, pipelines.clone());
         let size = window.inner_size();
@@ -329,8 +338,8 @@ impl App {
         let options = wanted.clone();
         let spawn = move |source: ShaderSource, generation| {
             std::thread::spawn(move || {
-                let result =
-                    Pipelines::new(&device, &source, &formats, &options).map_err(|e| e.to_string());
+                let result = Pipelines::with_outline(&device, &source, &formats, &options)
+                    .map_err(|e| e.to_string());
                 let built = pipelines::Built {
                     generation,
                     options,
@@ -424,12 +433,16 @@ impl App {
         for command in commands {
             self.execute(command, event_loop);
         }
-        self.apply_view_input(&input);
+        let picked = self.apply_view_input(&input);
         if self.doc.scene != before || self.editor.view.min_weight != view_before {
             self.scene_changed(Some(&before));
         }
         self.update_title();
         self.paint(egui_output, input.dragging);
+        if picked {
+            // Once the frame with its outline is on screen.
+            self.event(&format!("selected {:?}", self.editor.panel.selection));
+        }
     }
 
     /// Runs the egui frame: returns what to do and what to paint.
@@ -573,9 +586,10 @@ impl App {
         }
     }
 
-    /// Mouse input over the image moves the camera or picks an object.
-    fn apply_view_input(&mut self, input: &ViewInput) {
-        let Some(gfx) = &self.gfx else { return };
+    /// Mouse input over the image moves the camera or picks an object;
+    /// returns whether it picked.
+    fn apply_view_input(&mut self, input: &ViewInput) -> bool {
+        let Some(gfx) = &self.gfx else { return false };
         let size = gfx.window.inner_size();
         let camera = &mut self.doc.scene.camera;
         if input.dragging || input.zoom != 0.0 {
@@ -593,11 +607,11 @@ impl App {
             let scene = reference::PreparedScene::new(&self.doc.scene);
             let hit = reference::pick(&scene, size.width, size.height, x, y);
             self.editor.panel.selection = hit.map(|(id, _)| id);
-            self.event(&format!("selected {:?}", self.editor.panel.selection));
             if let (Some((_, point)), Some(_)) = (hit, input.double_click) {
                 orbit::recenter(&mut self.doc.scene.camera, point);
             }
         }
+        click.is_some()
     }
 
     fn update_title(&mut self) {
@@ -622,6 +636,9 @@ impl App {
             gfx.viewport.set_scale(&gfx.gpu, scale);
             self.was_dragging = dragging;
         }
+        let outline_width = (OUTLINE_WIDTH * gfx.window.scale_factor()).round() as u32;
+        gfx.viewport
+            .set_selection(&gfx.gpu, self.editor.panel.selection, outline_width);
         let max_samples = if dragging {
             1
         } else {

@@ -5,8 +5,11 @@
 use std::path::{Path, PathBuf};
 use std::time::Duration;
 
-use notify_debouncer_mini::notify::RecursiveMode;
-use notify_debouncer_mini::{DebounceEventResult, Debouncer, new_debouncer};
+use notify_debouncer_mini::notify::event::{AccessKind, AccessMode, Event, EventKind};
+use notify_debouncer_mini::notify::{
+    self, EventHandler, RecommendedWatcher, RecursiveMode, Watcher, WatcherKind,
+};
+use notify_debouncer_mini::{Config, DebounceEventResult, Debouncer, new_debouncer_opt};
 
 /// What changed on disk.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
@@ -20,7 +23,46 @@ const DEBOUNCE: Duration = Duration::from_millis(150);
 
 /// Keeps the watch alive; dropping it stops watching.
 pub struct Watch {
-    _debouncer: Debouncer<notify_debouncer_mini::notify::RecommendedWatcher>,
+    _debouncer: Debouncer<ChangeWatcher>,
+}
+
+/// The platform's watcher, without the events of a file being opened or
+/// read: the viewer reads the files it watches when they change, and on
+/// Linux each read would be reported as a new change and start the reload
+/// again, for ever.
+pub struct ChangeWatcher(RecommendedWatcher);
+
+/// Whether `event` only says that a file was opened or read, not written.
+fn is_read_only(event: &Event) -> bool {
+    matches!(
+        event.kind,
+        EventKind::Access(
+            AccessKind::Read | AccessKind::Open(_) | AccessKind::Close(AccessMode::Read)
+        )
+    )
+}
+
+impl Watcher for ChangeWatcher {
+    fn new<F: EventHandler>(mut handler: F, config: notify::Config) -> notify::Result<Self> {
+        let filtered = move |event: notify::Result<Event>| {
+            if !event.as_ref().is_ok_and(is_read_only) {
+                handler.handle_event(event);
+            }
+        };
+        RecommendedWatcher::new(filtered, config).map(ChangeWatcher)
+    }
+
+    fn watch(&mut self, path: &Path, mode: RecursiveMode) -> notify::Result<()> {
+        self.0.watch(path, mode)
+    }
+
+    fn unwatch(&mut self, path: &Path) -> notify::Result<()> {
+        self.0.unwatch(path)
+    }
+
+    fn kind() -> WatcherKind {
+        RecommendedWatcher::kind()
+    }
 }
 
 /// Starts watching `shader_dir` (its `.wgsl` files and those of its `shapes/`
@@ -57,7 +99,8 @@ pub fn watch(
         };
         (dirs, classify)
     };
-    let mut debouncer = new_debouncer(DEBOUNCE, move |result: DebounceEventResult| match result {
+    let config = Config::default().with_timeout(DEBOUNCE);
+    let handler = move |result: DebounceEventResult| match result {
         Ok(events) => {
             let mut changes: Vec<Change> =
                 events.iter().filter_map(|e| classify(&e.path)).collect();
@@ -69,8 +112,9 @@ pub fn watch(
             }
         }
         Err(e) => log::warn!("file watch: {e}"),
-    })
-    .map_err(|e| format!("cannot watch files: {e}"))?;
+    };
+    let mut debouncer = new_debouncer_opt::<_, ChangeWatcher>(config, handler)
+        .map_err(|e| format!("cannot watch files: {e}"))?;
     for dir in &dirs {
         debouncer
             .watcher()
@@ -152,6 +196,16 @@ mod tests {
         assert!(
             rx.recv_timeout(Duration::from_millis(600)).is_err(),
             "unrelated files are ignored"
+        );
+        // What the viewer does on a change: it reads the files again.
+        assert_eq!(std::fs::read_to_string(&scene).unwrap(), "b");
+        assert_eq!(
+            std::fs::read_to_string(shaders.join("main.wgsl")).unwrap(),
+            "b"
+        );
+        assert!(
+            rx.recv_timeout(Duration::from_millis(600)).is_err(),
+            "reading a watched file is not a change"
         );
         std::fs::remove_dir_all(&dir).unwrap();
     }

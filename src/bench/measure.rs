@@ -38,13 +38,100 @@ pub fn frame_time(
     ))
 }
 
-/// The converged reference: 64 samples per pixel, max_depth 16,
-/// min_weight 0, whatever the scene file says.
-pub fn converged_reference(scene: &Scene, size: (u32, u32)) -> RgbaImage {
-    let mut scene = scene.clone();
-    scene.render.max_depth = 16;
-    scene.render.min_weight = 0.0;
-    reference::render_rgba8(&scene, size.0, size.1, 64)
+/// Two pipelines timed on the same scene, frame for frame in turn (A, B, A,
+/// B, ...) after a warm-up render of each: the median time of each, and the
+/// median of the per-pair ratios B / A. Taking turns exposes both to the same
+/// load of a shared machine, and the pair's ratio cancels what drifts
+/// between pairs, so the ratio is steadier than the ratio of the medians.
+pub fn paired_frame_times(
+    gpu: &Gpu,
+    options: [&ShaderOptions; 2],
+    scene: &Scene,
+    size: (u32, u32),
+    frames: u32,
+) -> Result<([Duration; 2], f64), String> {
+    let source = ShaderSource::embedded();
+    let wait = |e: crate::gpu::GpuWaitError| e.to_string();
+    let mut renderers = Vec::new();
+    for o in options {
+        let mut r = OffscreenRenderer::new(gpu, &source, o, scene, size.0, size.1)
+            .map_err(|e| e.to_string())?;
+        r.render(gpu, 1).map_err(wait)?;
+        renderers.push(r);
+    }
+    let mut times = [Vec::new(), Vec::new()];
+    let mut ratios = Vec::new();
+    for _ in 0..frames.max(1) {
+        let a = renderers[0].render(gpu, 1).map_err(wait)?;
+        let b = renderers[1].render(gpu, 1).map_err(wait)?;
+        ratios.push(b.as_secs_f64() / a.as_secs_f64().max(1e-9));
+        times[0].push(a);
+        times[1].push(b);
+    }
+    ratios.sort_by(f64::total_cmp);
+    let median = |mut t: Vec<Duration>| {
+        t.sort();
+        t[t.len() / 2]
+    };
+    let [a, b] = times;
+    Ok(([median(a), median(b)], ratios[ratios.len() / 2]))
+}
+
+/// How many times the largest sample count measured the converged reference
+/// traces: its own error is then well below that of every measured render.
+pub const REFERENCE_FACTOR: u32 = 8;
+
+/// The two Cranley-Patterson rotations of the R4 sequence (see
+/// `reference::render_linear_rotated`) the reference's halves are traced
+/// with: fixed pseudo-random shifts, so runs repeat, and far from zero and
+/// from each other, so neither half shares a sample with the unrotated
+/// sequence of the GPU renders (checked by a test) or with the other half.
+pub const REFERENCE_SHIFTS: [[f64; 4]; 2] = [
+    [0.2731, 0.6158, 0.4127, 0.7346],
+    [0.8623, 0.1547, 0.5391, 0.3089],
+];
+
+/// The converged reference of one scene: the f64 renderer, max_depth 16,
+/// min_weight 0, whatever the scene file says, with samples that no GPU
+/// render has (both halves rotated), and how far it is from converged.
+pub struct ConvergedReference {
+    pub image: RgbaImage,
+    /// Samples per pixel, both halves together.
+    pub spp: u32,
+    /// RMSE between the two halves (each `spp / 2` samples, traced with
+    /// different rotations): two independent estimates of the same image.
+    pub halves_rmse: f64,
+}
+
+impl ConvergedReference {
+    /// Traces `spp` samples per pixel in two halves with the two
+    /// [`REFERENCE_SHIFTS`] and averages them.
+    pub fn render(scene: &Scene, size: (u32, u32), spp: u32) -> Self {
+        let mut scene = scene.clone();
+        scene.render.max_depth = 16;
+        scene.render.min_weight = 0.0;
+        let prepared = reference::PreparedScene::new(&scene);
+        let half = (spp / 2).max(1);
+        let [a, b] = REFERENCE_SHIFTS
+            .map(|shift| reference::render_linear_rotated(&prepared, size.0, size.1, half, shift));
+        let exposure = scene.render.exposure;
+        let image_of = |linear: &[DVec3]| reference::to_rgba8(linear, size.0, size.1, exposure);
+        let mean: Vec<DVec3> = a.iter().zip(&b).map(|(a, b)| (a + b) / 2.0).collect();
+        ConvergedReference {
+            image: image_of(&mean),
+            spp: 2 * half,
+            halves_rmse: error(&image_of(&a), &image_of(&b)).0,
+        }
+    }
+
+    /// The reference's own RMSE, estimated from its halves: each half's
+    /// error is about `halves_rmse / sqrt 2` (two independent errors add in
+    /// squares), and averaging two halves divides it by at least `sqrt 2`
+    /// (exactly so for independent random samples; quasi-random ones
+    /// converge faster), so the mean's error is at most `halves_rmse / 2`.
+    pub fn noise_floor(&self) -> f64 {
+        self.halves_rmse / 2.0
+    }
 }
 
 /// RMSE (channels in [0, 1]) and PSNR (dB) of `image`, shown at the size of
@@ -146,6 +233,41 @@ mod tests {
                     .spheres
                     .iter()
                     .all(|s| (s.center.y - s.radius).abs() < 1e-12)
+            );
+        }
+    }
+
+    /// The reference's samples are no GPU render's: every rotated sample of
+    /// both halves (up to 8 x 1024 per pixel) is at least 1e-4 away, in some
+    /// component, from every sample the GPU traces up to 1024 per pixel, and
+    /// from every sample of the other half.
+    #[test]
+    fn reference_halves_share_no_sample_with_the_renders_or_each_other() {
+        let n = 1024;
+        let gpu: Vec<[f64; 4]> = (0..n).map(reference::r4).collect();
+        let halves: Vec<Vec<[f64; 4]>> = REFERENCE_SHIFTS
+            .iter()
+            .map(|&shift| {
+                (0..REFERENCE_FACTOR * n / 2)
+                    .map(|k| reference::r4_rotated(k, shift))
+                    .collect()
+            })
+            .collect();
+        let apart = |a: &[f64; 4], b: &[f64; 4]| {
+            a.iter().zip(b).any(|(x, y)| {
+                let d = (x - y).rem_euclid(1.0);
+                d.min(1.0 - d) > 1e-4
+            })
+        };
+        for half in &halves {
+            for s in half {
+                assert!(gpu.iter().all(|g| apart(s, g)), "{s:?} is a GPU sample");
+            }
+        }
+        for a in &halves[0] {
+            assert!(
+                halves[1].iter().all(|b| apart(a, b)),
+                "{a:?} in both halves"
             );
         }
     }

@@ -13,6 +13,7 @@ use indicatif::{ProgressBar, ProgressStyle};
 
 use crate::gpu::{DEFAULT_MAX_SAMPLES, DEFAULT_MIN_WEIGHT, Gpu, ShaderOptions, Timing};
 use crate::scene::{Scene, bundled};
+use measure::{ConvergedReference, REFERENCE_FACTOR};
 
 pub use measure::sphere_field;
 
@@ -32,6 +33,7 @@ pub struct BenchArgs {
 
 /// What one run sweeps.
 struct Plan {
+    quick: bool,
     scenes: Vec<&'static str>,
     size: (u32, u32),
     spp: Vec<u32>,
@@ -46,9 +48,10 @@ impl Plan {
     fn new(quick: bool) -> Plan {
         if quick {
             return Plan {
+                quick,
                 scenes: vec!["whitted", "mirror_cube"],
                 size: (96, 54),
-                spp: vec![1, 4, 64],
+                spp: vec![1, 8, 16],
                 depths: vec![1, 4],
                 min_weights: vec![0.0, 1e-2],
                 scales: vec![0.5, 1.0],
@@ -57,18 +60,51 @@ impl Plan {
             };
         }
         Plan {
+            quick,
             scenes: bundled::names(),
-            // Small enough that the full sweep (with 10 timed frames per
-            // point, up to 64 samples) finishes in about 20 minutes on two
-            // CPU cores with lavapipe.
+            // Small enough that the full sweep (with 5 timed frames per
+            // point, up to 64 samples, the reference at 512) finishes in
+            // about a quarter of an hour on two CPU cores with lavapipe.
             size: (160, 90),
-            // 1..16, what a class demo uses, and the viewer's refinement limit beyond.
+            // 1..16, what a class demo uses, then 32 and 64.
             spp: vec![1, 2, 4, 8, 16, 32, 64],
-            depths: (1..=8).collect(),
+            // Depth doubling: where more bounces stop paying shows between
+            // neighbours, at half the renders of every depth.
+            depths: vec![1, 2, 4, 8],
             min_weights: vec![0.0, 1e-3, 1e-2, 5e-2],
             scales: vec![0.5, 1.0],
             sphere_counts: (0..=7).map(|k| 4usize.pow(k)).collect(),
             scaling_size: (160, 90),
+        }
+    }
+
+    /// The scenes timed only specialised against generic: the stress scenes
+    /// (`assets/scenes/stress/`) in the full sweep, none in the quick one.
+    fn pipeline_only_scenes(&self) -> Vec<&'static str> {
+        if self.quick {
+            Vec::new()
+        } else {
+            crate::stress::scenes::SCENES
+                .iter()
+                .map(|(name, _)| *name)
+                .collect()
+        }
+    }
+
+    /// Samples per pixel of the converged reference: [`REFERENCE_FACTOR`]
+    /// times the largest count measured.
+    fn reference_spp(&self) -> u32 {
+        REFERENCE_FACTOR * self.spp.iter().max().copied().unwrap_or(1)
+    }
+
+    /// The two largest sample counts measured: their errors' ratio shows
+    /// whether the error falls as averaging predicts.
+    fn convergence_pair(&self) -> (u32, u32) {
+        let mut spp = self.spp.clone();
+        spp.sort_unstable();
+        match spp.as_slice() {
+            [.., lo, hi] => (*lo, *hi),
+            _ => (1, 1),
         }
     }
 
@@ -140,11 +176,24 @@ pub struct ErrorRow {
     pub psnr: f64,
 }
 
+/// The converged reference of one scene and its noise floor.
+#[derive(Debug, Clone)]
+pub struct ReferenceRow {
+    pub scene: String,
+    pub spp: u32,
+    /// RMSE between its two independent halves.
+    pub halves_rmse: f64,
+    /// Its own RMSE as estimated from the halves (`ConvergedReference::noise_floor`).
+    pub noise_floor: f64,
+}
+
 #[derive(Debug, Clone)]
 pub struct PipelineRow {
     pub scene: String,
     pub specialized_ms: f64,
     pub generic_ms: f64,
+    /// The median over frame pairs of generic / specialised time.
+    pub ratio: f64,
 }
 
 #[derive(Debug, Clone)]
@@ -201,6 +250,7 @@ pub fn run(args: &BenchArgs) -> Result<(), BenchError> {
         .iter()
         .map(|(_, s)| plan.points(s).len() + 3)
         .sum::<usize>()
+        + plan.pipeline_only_scenes().len()
         + plan.sphere_counts.len();
     let bar = ProgressBar::new(steps as u64).with_style(
         ProgressStyle::with_template("{bar:40} {pos}/{len} {elapsed_precise} {msg}")
@@ -209,9 +259,25 @@ pub fn run(args: &BenchArgs) -> Result<(), BenchError> {
 
     let mut errors = Vec::new();
     let mut pipelines = Vec::new();
+    let mut references = Vec::new();
     for (name, scene) in &scenes {
         bar.set_message(format!("{name}: converged reference"));
-        let reference = measure::converged_reference(scene, plan.size);
+        let reference = ConvergedReference::render(scene, plan.size, plan.reference_spp());
+        bar.suspend(|| {
+            println!(
+                "{name}: reference {} spp, its halves differ by RMSE {:.5}: noise floor {:.5}",
+                reference.spp,
+                reference.halves_rmse,
+                reference.noise_floor()
+            )
+        });
+        references.push(ReferenceRow {
+            scene: name.clone(),
+            spp: reference.spp,
+            halves_rmse: reference.halves_rmse,
+            noise_floor: reference.noise_floor(),
+        });
+        let reference = reference.image;
         bar.inc(1);
         for point in plan.points(scene) {
             bar.set_message(format!("{name}: {point:?}"));
@@ -230,6 +296,12 @@ pub fn run(args: &BenchArgs) -> Result<(), BenchError> {
         pipelines.push(pipeline_row(&gpu, name, scene, plan.size, args.frames)?);
         bar.inc(2);
     }
+    for name in plan.pipeline_only_scenes() {
+        bar.set_message(format!("{name}: specialised and generic"));
+        let scene = crate::stress::scenes::load(name);
+        pipelines.push(pipeline_row(&gpu, name, &scene, plan.size, args.frames)?);
+        bar.inc(1);
+    }
     let mut scaling = Vec::new();
     for &n in &plan.sphere_counts {
         bar.set_message(format!("{n} spheres"));
@@ -237,8 +309,21 @@ pub fn run(args: &BenchArgs) -> Result<(), BenchError> {
         bar.inc(1);
     }
     bar.finish_with_message("done");
+    let (lo, hi) = plan.convergence_pair();
+    for name in &plan.scenes {
+        let rows: Vec<&ErrorRow> = errors.iter().filter(|r| r.scene == *name).collect();
+        if let Some(ratio) = convergence_ratio(&rows, lo, hi) {
+            println!("{name}: RMSE at {lo} spp / RMSE at {hi} spp = {ratio:.2}");
+        }
+    }
 
-    write_outputs(&args.out, &env, &plan, &errors, &pipelines, &scaling)?;
+    let results = Results {
+        references,
+        errors,
+        pipelines,
+        scaling,
+    };
+    write_outputs(&args.out, &env, &plan, &results)?;
     println!("wrote {}", args.out.join("results.md").display());
     Ok(())
 }
@@ -303,6 +388,8 @@ fn error_row(
     })
 }
 
+/// Specialised against generic on one scene at 1 sample per pixel, frame
+/// for frame in turn (`measure::paired_frame_times`).
 fn pipeline_row(
     gpu: &Gpu,
     name: &str,
@@ -310,15 +397,16 @@ fn pipeline_row(
     size: (u32, u32),
     frames: u32,
 ) -> Result<PipelineRow, BenchError> {
-    let time = |options: ShaderOptions| {
-        measure::frame_time(gpu, &options, scene, size, 1, frames)
-            .map(|(t, _)| ms(t))
-            .map_err(BenchError::Failed)
-    };
+    let specialised = ShaderOptions::for_scene(scene);
+    let generic = ShaderOptions::generic(scene);
+    let ([s, g], ratio) =
+        measure::paired_frame_times(gpu, [&specialised, &generic], scene, size, frames)
+            .map_err(BenchError::Failed)?;
     Ok(PipelineRow {
         scene: name.to_string(),
-        specialized_ms: time(ShaderOptions::for_scene(scene))?,
-        generic_ms: time(ShaderOptions::generic(scene))?,
+        specialized_ms: ms(s),
+        generic_ms: ms(g),
+        ratio,
     })
 }
 
@@ -383,19 +471,58 @@ fn is_default(row: &ErrorRow, scene: &Scene) -> bool {
         && row.point.scale == 1.0
 }
 
+/// PSNR levels the report finds the cheapest point for: from a clearly
+/// visible difference (30 dB, about 8 of 255 RMS) to one hard to see at all
+/// (40 dB, about 2.5 of 255).
+const VISIBILITY_PSNR: [f64; 3] = [30.0, 35.0, 40.0];
+
 /// The CSV columns of `time_vs_error.csv` (tests check them).
 pub const ERROR_COLUMNS: &str = "scene,spp,max_depth,min_weight,scale,time_ms,rmse,psnr_db";
+pub const REFERENCE_COLUMNS: &str = "scene,spp,halves_rmse,noise_floor_rmse";
 pub const PIPELINE_COLUMNS: &str = "scene,specialized_ms,generic_ms,ratio";
 pub const SCALING_COLUMNS: &str = "spheres,bvh_ms,loop_ms,bvh_build_ms";
+
+/// Everything one run measured.
+pub struct Results {
+    pub references: Vec<ReferenceRow>,
+    pub errors: Vec<ErrorRow>,
+    pub pipelines: Vec<PipelineRow>,
+    pub scaling: Vec<ScalingRow>,
+}
+
+/// The RMSE at `spp` samples of one scene's convergence series: full
+/// resolution, the scene's own depth, min_weight 0.
+pub fn series_rmse(rows: &[&ErrorRow], spp: u32) -> Option<f64> {
+    rows.iter()
+        .filter(|r| r.point.spp == spp && r.point.min_weight == 0.0 && r.point.scale == 1.0)
+        .max_by_key(|r| r.point.depth)
+        .map(|r| r.rmse)
+}
+
+/// The error at `lo` samples over the error at `hi` (`lo < hi`) of the
+/// convergence series: Monte Carlo averaging divides the error by
+/// sqrt(hi / lo), quasi-random samples by up to hi / lo.
+pub fn convergence_ratio(rows: &[&ErrorRow], lo: u32, hi: u32) -> Option<f64> {
+    Some(series_rmse(rows, lo)? / series_rmse(rows, hi)?)
+}
+
+/// PSNR (dB) of an RMSE in [0, 1] units.
+fn psnr_of(rmse: f64) -> f64 {
+    -20.0 * rmse.log10()
+}
 
 fn write_outputs(
     out: &Path,
     env: &Environment,
     plan: &Plan,
-    errors: &[ErrorRow],
-    pipelines: &[PipelineRow],
-    scaling: &[ScalingRow],
+    results: &Results,
 ) -> Result<(), BenchError> {
+    let Results {
+        references,
+        errors,
+        pipelines,
+        scaling,
+    } = results;
     let write = |name: &str, text: String| {
         let path = out.join(name);
         std::fs::write(&path, text).map_err(|e| fail(&path, e))
@@ -410,15 +537,21 @@ fn write_outputs(
         );
     }
     write("time_vs_error.csv", csv)?;
+    let mut csv = format!("{REFERENCE_COLUMNS}\n");
+    for r in references {
+        let _ = writeln!(
+            csv,
+            "{},{},{:.6},{:.6}",
+            r.scene, r.spp, r.halves_rmse, r.noise_floor
+        );
+    }
+    write("reference.csv", csv)?;
     let mut csv = format!("{PIPELINE_COLUMNS}\n");
     for r in pipelines {
         let _ = writeln!(
             csv,
             "{},{:.4},{:.4},{:.4}",
-            r.scene,
-            r.specialized_ms,
-            r.generic_ms,
-            r.generic_ms / r.specialized_ms
+            r.scene, r.specialized_ms, r.generic_ms, r.ratio
         );
     }
     write("specialized_vs_generic.csv", csv)?;
@@ -446,11 +579,55 @@ fn write_outputs(
         "- time/error sweep at {}x{} (resolution scale multiplies it), scaling at {}x{}\n",
         plan.size.0, plan.size.1, plan.scaling_size.0, plan.scaling_size.1
     );
-    let _ = writeln!(md, "## Time against error: Pareto fronts\n");
+    let _ = writeln!(md, "## The converged reference\n");
     let _ = writeln!(
         md,
-        "Error against the converged f64 reference (64 spp, max_depth 16, min_weight 0).\n"
+        "Every error below is measured against the f64 CPU reference at {} samples per \
+         pixel ({REFERENCE_FACTOR}x the largest count measured), max_depth 16, min_weight 0, \
+         traced in two halves with two Cranley-Patterson rotations of the R4 sequence: it \
+         shares no sample with any measured render, which all use the unrotated sequence. \
+         The two halves are independent estimates of the same image; their RMSE bounds the \
+         reference's own error (noise floor = halves / 2). Errors near the floor are not \
+         resolved.\n",
+        plan.reference_spp()
     );
+    let _ = writeln!(
+        md,
+        "| scene | reference spp | halves RMSE | noise floor RMSE | floor PSNR (dB) |"
+    );
+    let _ = writeln!(md, "| --- | --- | --- | --- | --- |");
+    for r in references {
+        let _ = writeln!(
+            md,
+            "| {} | {} | {:.5} | {:.5} | {:.1} |",
+            r.scene,
+            r.spp,
+            r.halves_rmse,
+            r.noise_floor,
+            psnr_of(r.noise_floor)
+        );
+    }
+    let (lo, hi) = plan.convergence_pair();
+    let _ = writeln!(
+        md,
+        "\n### Convergence: error at {lo} against {hi} samples\n\n\
+         Full resolution, the scene's own depth, min_weight 0. Averaging independent \
+         samples divides the error by sqrt({hi}/{lo}) = {:.2}; quasi-random samples by up \
+         to {hi}/{lo} = {:.0}.\n",
+        (f64::from(hi) / f64::from(lo)).sqrt(),
+        f64::from(hi) / f64::from(lo)
+    );
+    let _ = writeln!(
+        md,
+        "| scene | RMSE {lo} spp | RMSE {hi} spp | ratio |\n| --- | --- | --- | --- |"
+    );
+    for name in &plan.scenes {
+        let rows: Vec<&ErrorRow> = errors.iter().filter(|r| r.scene == *name).collect();
+        if let (Some(a), Some(b)) = (series_rmse(&rows, lo), series_rmse(&rows, hi)) {
+            let _ = writeln!(md, "| {name} | {a:.5} | {b:.5} | {:.2} |", a / b);
+        }
+    }
+    let _ = writeln!(md, "\n## Time against error: Pareto fronts\n");
     for name in &plan.scenes {
         let rows: Vec<&ErrorRow> = errors.iter().filter(|r| r.scene == *name).collect();
         let scene =
@@ -477,18 +654,17 @@ fn write_outputs(
                 p.spp, p.depth, p.min_weight, p.scale, r.time_ms, r.rmse, r.psnr
             );
         }
-        match cheapest_at(&rows, 45.0) {
-            Some(r) => {
-                let _ = writeln!(
+        for psnr in VISIBILITY_PSNR {
+            let _ = match cheapest_at(&rows, psnr) {
+                Some(r) => writeln!(
                     md,
-                    "\nCheapest point with PSNR >= 45 dB: {:?} at {:.2} ms ({:.1} dB).\n",
+                    "- cheapest point with PSNR >= {psnr} dB: {:?} at {:.2} ms ({:.1} dB)",
                     r.point, r.time_ms, r.psnr
-                );
-            }
-            None => {
-                let _ = writeln!(md, "\nNo point of the sweep reaches PSNR 45 dB.\n");
-            }
+                ),
+                None => writeln!(md, "- no point of the sweep reaches PSNR {psnr} dB"),
+            };
         }
+        let _ = writeln!(md);
         if let Some(d) = default {
             let _ = writeln!(
                 md,
@@ -504,17 +680,16 @@ fn write_outputs(
     );
     let _ = writeln!(
         md,
-        "| scene | specialised (ms) | generic (ms) | generic / specialised |"
+        "Median frame times of the two pipelines rendered in turn, and the median over \
+         those frame pairs of generic / specialised; the bundled scenes, then the stress scenes.\n\n\
+         | scene | specialised (ms) | generic (ms) | generic / specialised |"
     );
     let _ = writeln!(md, "| --- | --- | --- | --- |");
     for r in pipelines {
         let _ = writeln!(
             md,
             "| {} | {:.2} | {:.2} | {:.2} |",
-            r.scene,
-            r.specialized_ms,
-            r.generic_ms,
-            r.generic_ms / r.specialized_ms
+            r.scene, r.specialized_ms, r.generic_ms, r.ratio
         );
     }
     let _ = writeln!(
@@ -581,9 +756,15 @@ mod tests {
         for spp in [1, 2, 4, 8, 16] {
             assert!(points.iter().any(|p| p.spp == spp));
         }
-        for depth in 1..=8 {
+        for depth in [1, 2, 4, 8] {
             assert!(points.iter().any(|p| p.depth == depth));
         }
+        assert_eq!(plan.reference_spp(), 512);
+        assert_eq!(plan.convergence_pair(), (32, 64));
+        assert_eq!(
+            plan.pipeline_only_scenes().len(),
+            crate::stress::scenes::SCENES.len()
+        );
         for mw in [0.0, 1e-3, 1e-2, 5e-2] {
             assert!(points.iter().any(|p| p.min_weight == mw));
         }

@@ -26,9 +26,10 @@ pub struct Features {
     pub bvh: bool,
 }
 
-/// Below this many spheres and boxes a loop over them beats the BVH: its
-/// traversal stack costs about as much as testing ~150 spheres on lavapipe
-/// (`raysandbox bench`, scaling table in docs/performance.md).
+/// Below this many spheres and boxes a specialised pipeline loops over them
+/// instead of using the BVH, whose traversal stack has a fixed cost on
+/// lavapipe (`raysandbox bench`, scaling table in docs/performance.md: the
+/// loop is cheaper up to 16 shapes, the BVH from 64).
 pub const BVH_MIN_SHAPES: usize = 128;
 
 impl Features {

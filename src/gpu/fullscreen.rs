@@ -44,6 +44,12 @@ pub fn pipeline(
     })
 }
 
+/// The `ENCODE_SRGB` constant of the passes that write to `format`: false
+/// for an `*Srgb` format, whose hardware conversion encodes.
+pub fn encode_srgb(format: wgpu::TextureFormat) -> (&'static str, f64) {
+    ("ENCODE_SRGB", if format.is_srgb() { 0.0 } else { 1.0 })
+}
+
 /// Encodes one full-screen pass into `target` (cleared first) with the bind
 /// groups bound in order from group 0.
 pub fn pass(
@@ -52,6 +58,34 @@ pub fn pass(
     bind_groups: &[&wgpu::BindGroup],
     target: &wgpu::TextureView,
 ) {
+    encode(
+        encoder,
+        pipeline,
+        bind_groups,
+        target,
+        wgpu::LoadOp::Clear(wgpu::Color::BLACK),
+    );
+}
+
+/// Like [`pass`], but drawing over what `target` holds: the pixels the
+/// fragment shader discards keep their colour (e.g. the selection outline
+/// over the traced image).
+pub fn pass_over(
+    encoder: &mut wgpu::CommandEncoder,
+    pipeline: &wgpu::RenderPipeline,
+    bind_groups: &[&wgpu::BindGroup],
+    target: &wgpu::TextureView,
+) {
+    encode(encoder, pipeline, bind_groups, target, wgpu::LoadOp::Load);
+}
+
+fn encode(
+    encoder: &mut wgpu::CommandEncoder,
+    pipeline: &wgpu::RenderPipeline,
+    bind_groups: &[&wgpu::BindGroup],
+    target: &wgpu::TextureView,
+    load: wgpu::LoadOp<wgpu::Color>,
+) {
     let mut pass = encoder.begin_render_pass(&wgpu::RenderPassDescriptor {
         label: None,
         color_attachments: &[Some(wgpu::RenderPassColorAttachment {
@@ -59,7 +93,7 @@ pub fn pass(
             depth_slice: None,
             resolve_target: None,
             ops: wgpu::Operations {
-                load: wgpu::LoadOp::Clear(wgpu::Color::BLACK),
+                load,
                 store: wgpu::StoreOp::Store,
             },
         })],

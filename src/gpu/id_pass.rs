@@ -6,16 +6,15 @@
 //! colour that is merely a little off.
 
 use super::context::{Gpu, GpuWaitError};
-use super::features::{ShaderOptions, borrowed};
+use super::features::ShaderOptions;
 use super::fullscreen;
 use super::layout::PackedScene;
 use super::offscreen::read_texels;
+use super::outline::{ID_FORMAT, id_pipeline};
 use super::shaders::ShaderSource;
 use super::texture::render_target;
 use super::tracer::{PipelineError, SceneBuffers, scene_layout_entries};
 use crate::scene::{Scene, ShapeId};
-
-const ID_FORMAT: wgpu::TextureFormat = wgpu::TextureFormat::Rgba32Uint;
 
 /// What the ray through one pixel centre hits first.
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -77,22 +76,8 @@ impl IdRenderer {
             label: Some("scene (id pass)"),
             entries: &scene_layout_entries(),
         });
-        let pipeline_layout = device.create_pipeline_layout(&wgpu::PipelineLayoutDescriptor {
-            label: Some("id pass"),
-            bind_group_layouts: &[Some(&layout)],
-            immediate_size: 0,
-        });
-        let constants = options.constants();
-        let pipeline = fullscreen::pipeline(
-            device,
-            &pipeline_layout,
-            (&module, "vs_fullscreen"),
-            (&module, "fs_id"),
-            &borrowed(&constants),
-            ID_FORMAT,
-        );
         IdRenderer {
-            pipeline,
+            pipeline: id_pipeline(device, &module, &layout, options),
             layout,
             robust: options.robust,
         }

@@ -35,6 +35,21 @@ pub struct Globals {
     pub _pad1: [u32; 2],
 }
 
+/// The viewer's selection outline (`shaders/outline.wgsl`): the shape whose
+/// silhouette is outlined, by the id pass's (kind, index), and how.
+#[repr(C)]
+#[derive(Debug, Clone, Copy, PartialEq, Pod, Zeroable)]
+pub struct Selection {
+    /// `ShapeKind::number`; 0 outlines nothing.
+    pub kind: u32,
+    pub index: u32,
+    /// Outline width in output pixels.
+    pub radius: u32,
+    pub _pad: u32,
+    /// sRGB-encoded RGBA.
+    pub color: [f32; 4],
+}
+
 #[repr(C)]
 #[derive(Debug, Clone, Copy, PartialEq, Pod, Zeroable)]
 pub struct Material {
@@ -387,6 +402,13 @@ mod tests {
                 mirror,
                 transparency,
                 ior
+            }),
+            rust_layout!(Selection {
+                kind,
+                index,
+                radius,
+                _pad,
+                color
             }),
             rust_layout!(BvhNode {
                 bounds_min,

@@ -7,6 +7,7 @@ pub mod fullscreen;
 mod id_pass;
 pub mod layout;
 mod offscreen;
+mod outline;
 pub mod shaders;
 pub mod shapes;
 mod texture;
@@ -18,11 +19,12 @@ pub use context::{Gpu, GpuError, GpuWaitError, SizeError, TIMER_FEATURES, WAIT_L
 pub use features::{Features, ShaderOptions};
 pub use id_pass::{FirstHit, IdRenderer};
 pub use offscreen::{OffscreenRenderer, RenderError, read_texels, read_texture, render_image};
+pub use outline::OUTLINE_COLOR;
 pub use shaders::{ShaderError, ShaderSource};
 pub use texture::render_target;
 pub use timer::{GpuTimer, Timing};
 pub use tracer::{
-    Accumulator, DEFAULT_MAX_SAMPLES, DEFAULT_MIN_WEIGHT, FrameTarget, PipelineError, Pipelines,
-    SceneBuffers, encode_frame,
+    Accumulator, DEFAULT_MAX_SAMPLES, DEFAULT_MIN_WEIGHT, DEFAULT_RENDER_SAMPLES, FrameTarget,
+    PipelineError, Pipelines, SceneBuffers, encode_frame,
 };
 pub use viewport::{EXPORT_FORMAT, FrameStatus, Viewport};

@@ -13,20 +13,22 @@ use super::shapes::{KindInfo, has_flag, kinds};
 /// The shader files in the order they are joined, before the shape kinds'
 /// `shapes/<kind>.wgsl` (see `gpu::shapes`). WGSL resolves names at module
 /// scope in any order, so the order only decides line numbering.
-pub const SHADER_FILES: [&str; 5] = [
+pub const SHADER_FILES: [&str; 6] = [
     "scene.wgsl",
     "camera.wgsl",
     "intersect.wgsl",
     "shade.wgsl",
     "main.wgsl",
+    "outline.wgsl",
 ];
 
-const EMBEDDED: [&str; 5] = [
+const EMBEDDED: [&str; 6] = [
     include_str!("../../shaders/scene.wgsl"),
     include_str!("../../shaders/camera.wgsl"),
     include_str!("../../shaders/intersect.wgsl"),
     include_str!("../../shaders/shade.wgsl"),
     include_str!("../../shaders/main.wgsl"),
+    include_str!("../../shaders/outline.wgsl"),
 ];
 
 /// One named piece of WGSL: a file of the shader folder.

@@ -11,6 +11,7 @@ use wgpu::util::DeviceExt;
 use super::features::{ShaderOptions, borrowed};
 use super::fullscreen;
 use super::layout::PackedScene;
+use super::outline::OutlinePipelines;
 use super::shaders::{FIRST_SHAPE_BINDING, ShaderError, ShaderSource};
 use super::texture::render_target;
 
@@ -27,6 +28,9 @@ pub struct Pipelines {
     display: Vec<(wgpu::TextureFormat, wgpu::RenderPipeline)>,
     scene_layout: wgpu::BindGroupLayout,
     accum_layout: wgpu::BindGroupLayout,
+    /// The id and outline passes of the viewer's selection outline; only
+    /// a window's pipelines have them ([`Pipelines::with_outline`]).
+    outline: Option<OutlinePipelines>,
 }
 
 #[derive(Debug, thiserror::Error)]
@@ -48,12 +52,33 @@ impl Pipelines {
         output_formats: &[wgpu::TextureFormat],
         options: &ShaderOptions,
     ) -> Result<Self, PipelineError> {
+        Self::create(device, source, output_formats, options, false)
+    }
+
+    /// As [`Pipelines::new`], with the passes of the selection outline too
+    /// (the viewer's window): headless renders need not compile them.
+    pub fn with_outline(
+        device: &wgpu::Device,
+        source: &ShaderSource,
+        output_formats: &[wgpu::TextureFormat],
+        options: &ShaderOptions,
+    ) -> Result<Self, PipelineError> {
+        Self::create(device, source, output_formats, options, true)
+    }
+
+    fn create(
+        device: &wgpu::Device,
+        source: &ShaderSource,
+        output_formats: &[wgpu::TextureFormat],
+        options: &ShaderOptions,
+        outline: bool,
+    ) -> Result<Self, PipelineError> {
         let source = &source
             .with_stack_size(options.stack_size)
             .with_functions(&options.functions);
         source.validate()?;
         let scope = device.push_error_scope(wgpu::ErrorFilter::Validation);
-        let pipelines = Self::build(device, source, output_formats, options);
+        let pipelines = Self::build(device, source, output_formats, options, outline);
         match pollster::block_on(scope.pop()) {
             Some(error) => Err(PipelineError::Wgpu(error.to_string())),
             None => Ok(pipelines),
@@ -65,6 +90,7 @@ impl Pipelines {
         source: &ShaderSource,
         output_formats: &[wgpu::TextureFormat],
         options: &ShaderOptions,
+        outline: bool,
     ) -> Self {
         let module = device.create_shader_module(wgpu::ShaderModuleDescriptor {
             label: Some("raysandbox tracer"),
@@ -94,19 +120,26 @@ impl Pipelines {
         let display = output_formats
             .iter()
             .map(|&format| {
-                let encode = if format.is_srgb() { 0.0 } else { 1.0 };
                 (
                     format,
-                    pass("fs_display", format, &[("ENCODE_SRGB", encode)]),
+                    pass("fs_display", format, &[fullscreen::encode_srgb(format)]),
                 )
             })
             .collect();
         Pipelines {
             trace: pass("fs_trace", ACCUM_FORMAT, &borrowed(&trace_constants)),
             display,
+            outline: outline.then(|| {
+                OutlinePipelines::new(device, &module, &scene_layout, output_formats, options)
+            }),
             scene_layout,
             accum_layout,
         }
+    }
+
+    /// The selection outline's passes, if these pipelines have them.
+    pub(super) fn outline(&self) -> Option<&OutlinePipelines> {
+        self.outline.as_ref()
     }
 
     fn display(&self, format: wgpu::TextureFormat) -> &wgpu::RenderPipeline {
@@ -217,8 +250,17 @@ impl SceneBuffers {
 }
 
 /// The default progressive refinement limit of the viewer, in samples per
-/// pixel, chosen from `raysandbox bench` (docs/performance.md).
+/// pixel: the fewest samples of `raysandbox bench`'s series at which every
+/// bundled scene is within 40 dB PSNR of the converged reference, an error
+/// hard to see (docs/performance.md, "The defaults"). The thin-lens scene
+/// needs all 64; the others reach 44 to 54 dB there. Samples come one frame
+/// at a time while the view is still, so only waiting pays for them.
 pub const DEFAULT_MAX_SAMPLES: u32 = 64;
+/// The default samples per pixel of `raysandbox render`: the fewest at which
+/// every bundled scene is within 35 dB (an error seen only on close
+/// inspection) in the same series, at a quarter of the viewer's time: a
+/// render is waited for as a whole (docs/performance.md, "The defaults").
+pub const DEFAULT_RENDER_SAMPLES: u32 = 16;
 /// The viewer's default floor on `min_weight`, chosen from `raysandbox bench`
 /// (docs/performance.md): it leaves no visible difference.
 pub const DEFAULT_MIN_WEIGHT: f64 = 1e-3;

@@ -1,15 +1,17 @@
-//! The tracer drawing into a window surface, with progressive refinement and
-//! a resolution scale. Knows nothing of egui: whoever draws on top of the
+//! The tracer drawing into a window surface, with progressive refinement, a
+//! resolution scale and the selection outline. Knows nothing of egui: whoever draws on top of the
 //! image gets the frame's encoder and view through a callback.
 
 use std::time::{Duration, Instant};
 
 use super::context::{Gpu, GpuWaitError};
+use super::id_pass::FirstHit;
 use super::layout::PackedScene;
+use super::outline::Outline;
 use super::texture::render_target;
 use super::timer::{GpuTimer, Timing};
 use super::tracer::{Accumulator, FrameTarget, Pipelines, SceneBuffers, encode_frame};
-use crate::scene::Scene;
+use crate::scene::{Scene, ShapeId};
 
 /// Format of screenshots: 8-bit RGBA with the exact sRGB formula of the rendering model.
 pub const EXPORT_FORMAT: wgpu::TextureFormat = wgpu::TextureFormat::Rgba8Unorm;
@@ -36,6 +38,8 @@ pub struct Viewport {
     /// GPU time of the last frame that traced samples (see [`Self::timing`]).
     last_frame_time: Option<Duration>,
     timer: Option<GpuTimer>,
+    /// The selected shape's outline, drawn over the image.
+    outline: Outline,
 }
 
 impl Viewport {
@@ -62,6 +66,7 @@ impl Viewport {
             scale: 1.0,
             last_frame_time: None,
             timer: GpuTimer::new(gpu),
+            outline: Outline::new(&gpu.device),
         }
     }
 
@@ -128,6 +133,14 @@ impl Viewport {
         self.scene = SceneBuffers::new(&gpu.device, &self.pipelines, self.scene.packed().clone());
         let (w, h) = self.accum.size();
         self.accum = Accumulator::new(&gpu.device, &self.pipelines, w, h);
+        self.outline.forget_layouts();
+    }
+
+    /// Outlines `shape` (or nothing) with a band `radius` pixels wide; only
+    /// with pipelines made [`Pipelines::with_outline`].
+    pub fn set_selection(&mut self, gpu: &Gpu, shape: Option<ShapeId>, radius: u32) {
+        self.outline
+            .select(&gpu.queue, FirstHit::id_of(shape), radius);
     }
 
     /// Forgets the accumulated samples (e.g. the camera moved).
@@ -190,6 +203,10 @@ impl Viewport {
             .texture
             .create_view(&wgpu::TextureViewDescriptor::default());
         let mut encoder = gpu.device.create_command_encoder(&Default::default());
+        if self.accum.samples() == 0 {
+            // Refinement starts over: what the image shows changed.
+            self.outline.invalidate();
+        }
         let timer = self.timer.as_ref().filter(|_| new_samples > 0);
         if let Some(timer) = timer {
             timer.begin(&mut encoder);
@@ -209,6 +226,16 @@ impl Viewport {
         );
         if let Some(timer) = timer {
             timer.end(&mut encoder);
+        }
+        if let Some(outline) = self.pipelines.outline() {
+            self.outline.encode(
+                &gpu.device,
+                &mut encoder,
+                outline,
+                &self.scene.bind_group,
+                self.accum.size(),
+                (&view, self.config.format),
+            );
         }
         let mut buffers = overlay(&mut encoder, &view);
         buffers.push(encoder.finish());

@@ -34,11 +34,12 @@ use crate::scene::{Material, Scene, TriangleTest};
 
 pub use camera::{camera_basis, normalize_or};
 pub use intersect::ShapeId;
-pub use output::encode_srgb8;
+pub use output::{encode_srgb8, to_rgba8};
+pub use sampling::{r4, r4_rotated};
 
 use camera::{Camera, camera_ray};
 use intersect::nearest_hit;
-use sampling::{concentric_disk, r4};
+use sampling::concentric_disk;
 use shade::trace;
 
 /// A point light, its colour already multiplied by its intensity.
@@ -156,9 +157,22 @@ impl PreparedScene {
 /// (docs/implementation.md), so at 1 sample per pixel it is the pixel centre
 /// through the lens centre. Rows are traced in parallel.
 pub fn render_linear(scene: &PreparedScene, width: u32, height: u32, spp: u32) -> Vec<DVec3> {
+    render_linear_rotated(scene, width, height, spp, [0.0; 4])
+}
+
+/// [`render_linear`] with the samples of [`r4_rotated`] by `shift`: the
+/// same image, traced through other points of the pixels and the lens. With
+/// a shift of zero it is [`render_linear`].
+pub fn render_linear_rotated(
+    scene: &PreparedScene,
+    width: u32,
+    height: u32,
+    spp: u32,
+    shift: [f64; 4],
+) -> Vec<DVec3> {
     let samples: Vec<(DVec2, DVec2)> = (0..spp.max(1))
         .map(|k| {
-            let s = r4(k);
+            let s = r4_rotated(k, shift);
             (
                 DVec2::new(s[0], s[1]),
                 concentric_disk(DVec2::new(s[2], s[3])),

@@ -31,6 +31,27 @@ pub fn r4(k: u32) -> [f64; 4] {
     sample
 }
 
+/// Sample `k` of the R4 sequence rotated by `shift`: every component moved by
+/// the same `shift[i]` modulo 1 (a Cranley-Patterson rotation).
+///
+/// Why: a rotated sequence spreads its points as evenly as the original, but
+/// shares none of them (unless the shift happens to be the difference of two
+/// of its points in all four components), and two different random shifts give two independent
+/// estimates of the same pixel. The time/error benchmark builds its
+/// converged reference this way, so that the renders it measures cannot be
+/// compared with copies of their own samples. A zero shift is [`r4`].
+pub fn r4_rotated(k: u32, shift: [f64; 4]) -> [f64; 4] {
+    let mut sample = r4(k);
+    for (s, d) in sample.iter_mut().zip(shift) {
+        *s = (*s + d).rem_euclid(1.0);
+        // Rounding can land a sum just below 1 on 1 itself.
+        if *s >= 1.0 {
+            *s = 0.0;
+        }
+    }
+    sample
+}
+
 /// Shirley and Chiu's concentric map ("A Low Distortion Map Between Disk and
 /// Square", 1997) from `s` in `[0, 1)^2` to the unit disk.
 ///
@@ -80,6 +101,25 @@ mod tests {
         assert!((s[0] - (0.5 + 1.0 / R4_ROOT - 1.0)).abs() < 1e-15);
         for k in [2, 17, 1000, 123_456, u32::MAX] {
             assert!(r4(k).iter().all(|&x| (0.0..1.0).contains(&x)), "k = {k}");
+        }
+    }
+
+    #[test]
+    fn rotation_by_zero_is_r4_and_others_share_no_sample() {
+        for k in [0, 1, 17, 4096] {
+            assert_eq!(r4_rotated(k, [0.0; 4]), r4(k));
+        }
+        let shift = [0.31, 0.77, 0.05, 0.52];
+        let rotated: Vec<[f64; 4]> = (0..512).map(|k| r4_rotated(k, shift)).collect();
+        assert!(rotated.iter().flatten().all(|x| (0.0..1.0).contains(x)));
+        for k in 0..512 {
+            let s = r4(k);
+            assert!(rotated.iter().all(|r| r != &s), "sample {k} is shared");
+            let r = r4_rotated(k, shift);
+            for i in 0..4 {
+                let moved = (r[i] - s[i]).rem_euclid(1.0);
+                assert!((moved - shift[i]).abs() < 1e-12, "k {k}, component {i}");
+            }
         }
     }
 

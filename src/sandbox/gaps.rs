@@ -5,7 +5,9 @@
 //! - a matrix built from one argument (`mat2(vec4)`, which naga rejects):
 //!   `mat2(` becomes `rsb_mat2(`, overloads the prelude adds;
 //! - a prototype with unnamed parameters (`float f(float);`, which naga
-//!   ignores): each gets a name, `float f(float rsb_p0);`.
+//!   ignores): each gets a name, `float f(float rsb_p0);`;
+//! - a name that is a keyword of GLSL 4.50 but not of WebGL GLSL
+//!   (`float sample = 0.0;`): `rsb_sample`.
 //!
 //! Blanking keeps every offset. An insertion moves the rest of its line to
 //! the right, never to another line, and [`Bridged::original_column`] moves
@@ -32,6 +34,21 @@ pub struct Bridged {
     insertions: Vec<(usize, String)>,
 }
 
+/// Keywords of GLSL 4.50 (what naga reads) that WebGL GLSL shaders use as
+/// names.
+const NEW_KEYWORDS: [&str; 10] = [
+    "sample",
+    "buffer",
+    "shared",
+    "patch",
+    "filter",
+    "input",
+    "output",
+    "active",
+    "common",
+    "partition",
+];
+
 /// Qualifiers that may come before a parameter's type.
 const PARAMETER_QUALIFIERS: [&str; 8] = [
     "const", "in", "out", "inout", "lowp", "mediump", "highp", "precise",
@@ -51,6 +68,9 @@ pub fn bridge(scan: &Scan, mut text: String) -> Bridged {
             "(" => parens += 1,
             ")" => parens -= 1,
             "const" if braces == 0 && parens > 0 => scan::blank(&mut text, t.start..t.end()),
+            word if t.kind == Kind::Ident && NEW_KEYWORDS.contains(&word) => {
+                insertions.push((t.start, "rsb_".to_string()));
+            }
             "mat2" if single_argument(tokens, i + 1) => {
                 insertions.push((t.start, "rsb_".to_string()));
                 uses_mat2 = true;
@@ -200,6 +220,16 @@ mod tests {
                 "void f(void);",
                 "float k(in float a, vec2 p, vec3 c) { return a; }"
             ]
+        );
+    }
+
+    #[test]
+    fn names_that_are_glsl_450_keywords_are_renamed() {
+        let (b, _) =
+            bridged("float sample = 1.0; vec3 filter(vec3 input) { return input * sample; }");
+        assert_eq!(
+            b.text,
+            "float rsb_sample = 1.0; vec3 rsb_filter(vec3 rsb_input) { return rsb_input * rsb_sample; }"
         );
     }
 

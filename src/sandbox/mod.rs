@@ -51,6 +51,11 @@ pub struct ShaderArgs {
     /// `.frag`) in the GLSL Sandbox (`void main`) or Shadertoy (`mainImage`)
     /// style. See docs/sandbox.md.
     pub file: PathBuf,
+    /// FILE is a folder: check every shader file in it (compile, render one
+    /// frame at --size, default 64x36) and print pass or the error for each,
+    /// then the totals. Exit status 2 if any fails.
+    #[arg(long, conflicts_with_all = ["render", "frames"])]
+    pub check_all: bool,
     /// Render one frame to this PNG file instead of opening a window.
     #[arg(long, value_name = "OUT.png", conflicts_with = "frames")]
     pub render: Option<PathBuf>,
@@ -113,7 +118,7 @@ impl ShaderArgs {
     /// `--render` or `--frames`: no window ([`run_headless`]); otherwise the
     /// window, which `app::run_sandbox` owns.
     pub fn is_headless(&self) -> bool {
-        self.render.is_some() || self.frames.is_some()
+        self.check_all || self.render.is_some() || self.frames.is_some()
     }
 }
 
@@ -130,8 +135,12 @@ pub fn require_file(path: &Path) -> Result<(), SandboxError> {
     }
 }
 
-/// `raysandbox shader FILE --render OUT.png` or `--frames N --out DIR`.
+/// `raysandbox shader FILE --render OUT.png` or `--frames N --out DIR`, or
+/// `raysandbox shader --check-all DIR`.
 pub fn run_headless(args: &ShaderArgs) -> Result<(), SandboxError> {
+    if args.check_all {
+        return check_all(args);
+    }
     require_file(&args.file)?;
     let compiled = compile_file(&args.file).map_err(|e| SandboxError::Input(e.to_string()))?;
     let mut params = compiled.params.clone();
@@ -265,6 +274,96 @@ fn render_sequence<E>(
         };
         let image = offscreen.image(gpu).map_err(wait)?;
         each(k, image, stats).map_err(RenderError::Output)?;
+    }
+    Ok(())
+}
+
+/// The extensions of shader files (docs/sandbox.md, "Which kind of file").
+const SHADER_EXTENSIONS: [&str; 6] = ["wgsl", "glsl", "frag", "fs", "fsh", "fragment"];
+
+/// `--check-all DIR`: every shader file of DIR compiled and drawn once.
+fn check_all(args: &ShaderArgs) -> Result<(), SandboxError> {
+    let dir = &args.file;
+    let entries = std::fs::read_dir(dir)
+        .map_err(|e| SandboxError::Input(format!("{}: {e}", dir.display())))?;
+    let mut files: Vec<PathBuf> = entries
+        .filter_map(|e| e.ok().map(|e| e.path()))
+        .filter(|p| {
+            p.extension()
+                .is_some_and(|e| SHADER_EXTENSIONS.contains(&e.to_string_lossy().as_ref()))
+        })
+        .collect();
+    files.sort();
+    if files.is_empty() {
+        return Err(SandboxError::Input(format!(
+            "{}: no shader files (.{}) in this folder",
+            dir.display(),
+            SHADER_EXTENSIONS.join(", .")
+        )));
+    }
+    let size = args.size.unwrap_or((64, 36));
+    let mut gpu = Gpu::headless().map_err(|e| SandboxError::Runtime(e.to_string()))?;
+    let mut failed = 0;
+    for path in &files {
+        match check_file(&gpu, path, size, args.time) {
+            Ok(()) => println!("pass  {}", path.display()),
+            Err(e) => {
+                failed += 1;
+                let first = e.message().lines().next().unwrap_or_default().to_string();
+                println!("FAIL  {first}");
+                if let Checked::Stopped(_) = e {
+                    // That device is still busy with the frame: a new one.
+                    std::mem::forget(gpu);
+                    gpu = Gpu::headless().map_err(|e| SandboxError::Runtime(e.to_string()))?;
+                }
+            }
+        }
+    }
+    let total = files.len();
+    println!(
+        "{} of {total} pass ({:.1}%), {failed} fail",
+        total - failed,
+        100.0 * (total - failed) as f64 / total as f64
+    );
+    match failed {
+        0 => Ok(()),
+        _ => Err(SandboxError::Input(format!(
+            "{failed} of {total} shaders in {} failed",
+            dir.display()
+        ))),
+    }
+}
+
+/// Why a shader did not pass [`check_file`].
+#[derive(Debug, Clone, PartialEq)]
+pub enum Checked {
+    /// It does not compile, or wgpu refused it: the error, at the file.
+    Failed(String),
+    /// Its frame was stopped by the watchdog: the device is still busy.
+    Stopped(String),
+}
+
+impl Checked {
+    pub fn message(&self) -> &str {
+        match self {
+            Checked::Failed(m) | Checked::Stopped(m) => m,
+        }
+    }
+}
+
+/// Compiles `path` and draws one frame of it at `time` (what "it runs"
+/// means for `--check-all` and the compatibility suite).
+pub fn check_file(gpu: &Gpu, path: &Path, size: (u32, u32), time: f64) -> Result<(), Checked> {
+    let compiled = compile_file(path).map_err(|e| Checked::Failed(e.to_string()))?;
+    let mut offscreen = Offscreen::new(gpu);
+    let pipeline = offscreen
+        .builder(gpu)
+        .build(&compiled)
+        .map_err(Checked::Failed)?;
+    let frame = FrameUniforms::at(time, 0, size);
+    if let Err(stopped) = offscreen.draw(gpu, &pipeline, &compiled.params, &frame) {
+        std::mem::forget((offscreen, pipeline));
+        return Err(Checked::Stopped(format!("{}: {stopped}", path.display())));
     }
     Ok(())
 }

@@ -57,6 +57,10 @@ stress_scenes!(
     "scale_1e2",
     "scale_1e3",
     "scale_1e4",
+    "torus_edge_on",
+    "torus_from_far",
+    "torus_inner_equator",
+    "julia_zoom",
 );
 
 /// The TOML text of a stress scene.
@@ -155,6 +159,26 @@ pub fn round_to_f32(scene: &Scene) -> Scene {
         cube.size = CubeSize::PerAxis(v(cube.size.edges()));
         cube.rotation = v(cube.rotation);
     }
+    let placement = |translate: &mut DVec3, scale: &mut f64, rotation: &mut DVec3| {
+        *translate = at(*translate);
+        *scale = r(*scale);
+        *rotation = v(*rotation);
+    };
+    for t in &mut s.tori {
+        placement(&mut t.translate, &mut t.scale, &mut t.rotation);
+        t.major_radius = r(t.major_radius);
+        t.minor_radius = r(t.minor_radius);
+    }
+    for i in &mut s.implicits {
+        placement(&mut i.translate, &mut i.scale, &mut i.rotation);
+        i.bounds = i.bounds.map(v);
+    }
+    for j in &mut s.julias {
+        placement(&mut j.translate, &mut j.scale, &mut j.rotation);
+        j.c = j.c.map(r);
+        j.slice = r(j.slice);
+        j.epsilon = r(j.epsilon);
+    }
     s
 }
 
@@ -188,6 +212,20 @@ pub fn scaled(scene: &Scene, factor: f64) -> Scene {
             CubeSize::Uniform(e) => CubeSize::Uniform(e * factor),
             CubeSize::PerAxis(e) => CubeSize::PerAxis(e * factor),
         };
+    }
+    // The implicit surfaces are written in local units: scaling the scene
+    // scales their placement.
+    for t in &mut s.tori {
+        t.translate *= factor;
+        t.scale *= factor;
+    }
+    for i in &mut s.implicits {
+        i.translate *= factor;
+        i.scale *= factor;
+    }
+    for j in &mut s.julias {
+        j.translate *= factor;
+        j.scale *= factor;
     }
     s
 }

@@ -1,0 +1,2 @@
+// expect: error error: neither `void main()`
+float f(float x) { return x; }
