@@ -27,10 +27,16 @@ struct Hit {
     kind: u32,               // KIND_*, KIND_NONE = missed everything
     index: u32,              // index into the array of that kind
     error_scale: f32,        // magnitude of the shape's numbers, sizes offset_ray
+    shading: vec3<f32>,      // outward shading normal: `normal`, or a smooth mesh's interpolated one
 }
 
 fn no_hit(t_max: f32) -> Hit {
-    return Hit(t_max, vec3(0.0), vec3(0.0), KIND_NONE, 0u, 0.0);
+    return Hit(t_max, vec3(0.0), vec3(0.0), KIND_NONE, 0u, 0.0, vec3(0.0));
+}
+
+/// A hit whose shading normal is its geometric normal.
+fn surface_hit(t: f32, p: vec3<f32>, n: vec3<f32>, kind: u32, index: u32, error_scale: f32) -> Hit {
+    return Hit(t, p, n, kind, index, error_scale, n);
 }
 
 fn max3(v: vec3<f32>) -> f32 {
@@ -202,5 +208,5 @@ fn placed_hit(ray: Ray, best: Hit, l: LocalRay, u: f32, n: vec3<f32>, center: ve
         normal = world_n / len;
     }
     let p = center + l.scale * (rotation * (l.q + u * l.d));
-    return Hit(t, p, normal, kind, index, error_scale);
+    return surface_hit(t, p, normal, kind, index, error_scale);
 }

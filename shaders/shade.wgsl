@@ -112,7 +112,9 @@ fn shade_local(hit: Hit, ns: vec3<f32>, d: vec3<f32>, m: Material, albedo: vec3<
     if !HAS_LIGHTS {
         return color;
     }
-    let shadow_origin = offset_ray(hit.point, ns, hit.error_scale);
+    // Off the surface along the geometric normal, on the lit side.
+    let ng = select(-hit.normal, hit.normal, dot(hit.normal, ns) >= 0.0);
+    let shadow_origin = offset_ray(hit.point, ng, hit.error_scale);
     for (var i = 0u; i < globals.light_count; i++) {
         let light = lights[i];
         // A light at p (or nearer than length() can resolve) has no
@@ -185,7 +187,10 @@ fn trace(primary: Ray) -> vec3<f32> {
             m.transparency = 0.0;
         }
         let into_surface = dot(ray.dir, hit.normal) < 0.0;
-        let ns = select(-hit.normal, hit.normal, into_surface);
+        // Shading (lighting, mirror) by the shading normal facing the ray;
+        // secondary rays leave along the geometric one.
+        let ns = select(-hit.shading, hit.shading, into_surface);
+        let ng = select(-hit.normal, hit.normal, into_surface);
         let albedo = albedo_at(m, hit.point, hit.normal);
         radiance += job.throughput * shade_local(hit, ns, ray.dir, m, albedo);
 
@@ -212,14 +217,14 @@ fn trace(primary: Ray) -> vec3<f32> {
             if !is_thin(hit.kind) {
                 dir = refract_dir(ray.dir, ns, eta);
             }
-            let origin = offset_ray(hit.point, -ns, hit.error_scale);
+            let origin = offset_ray(hit.point, -ng, hit.error_scale);
             stack[top] = PendingRay(Ray(origin, dir, 0.0), child_depth, refracted_weight, job.throughput * wt * albedo);
             top += 1u;
         }
         let reflected_weight = job.weight * wr;
         let reflects = HAS_MIRRORS || HAS_TRANSPARENCY;
         if reflects && worth_tracing(child_depth, reflected_weight) && top < STACK_SIZE {
-            let origin = offset_ray(hit.point, ns, hit.error_scale);
+            let origin = offset_ray(hit.point, ng, hit.error_scale);
             stack[top] = PendingRay(Ray(origin, reflect_dir(ray.dir, ns), 0.0), child_depth, reflected_weight, job.throughput * wr);
             top += 1u;
         }

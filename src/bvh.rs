@@ -10,7 +10,11 @@
 
 use glam::DVec3;
 
-use crate::scene::{Scene, ShapeId};
+use std::sync::{Arc, Mutex, Weak};
+
+use rayon::prelude::*;
+
+use crate::scene::{Geometry, Scene, ShapeId};
 
 /// An axis-aligned box.
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -90,11 +94,21 @@ pub struct Node {
 }
 
 /// The hierarchy: `nodes[0]` is the root (absent when there are no bounded
-/// shapes).
-#[derive(Debug, Clone, PartialEq, Default)]
-pub struct Bvh {
+/// shapes). `P` is what the leaves hold: scene shapes, or the triangle
+/// indices of a mesh ([`mesh_bvh`]).
+#[derive(Debug, Clone, PartialEq)]
+pub struct Bvh<P = ShapeId> {
     pub nodes: Vec<Node>,
-    pub prims: Vec<ShapeId>,
+    pub prims: Vec<P>,
+}
+
+impl<P> Default for Bvh<P> {
+    fn default() -> Self {
+        Bvh {
+            nodes: Vec::new(),
+            prims: Vec::new(),
+        }
+    }
 }
 
 /// Leaves hold at most this many shapes unless the tree is too deep.
@@ -123,26 +137,98 @@ pub fn prim_bounds(scene: &Scene) -> Vec<(ShapeId, Aabb)> {
 }
 
 impl Bvh {
-    /// Builds the hierarchy over the spheres and boxes of `scene`.
+    /// Builds the hierarchy over the bounded shapes of `scene`.
     pub fn build(scene: &Scene) -> Bvh {
-        let mut items = prim_bounds(scene);
-        let mut bvh = Bvh::default();
+        Bvh::from_items(prim_bounds(scene))
+    }
+}
+
+/// The boxes of a mesh's triangles, in its own coordinates.
+fn triangle_bounds(geometry: &Geometry) -> Vec<(u32, Aabb)> {
+    let p = &geometry.positions;
+    geometry
+        .triangles
+        .par_iter()
+        .enumerate()
+        .map(|(i, t)| {
+            let [a, b, c] = t.map(|v| p[v as usize]);
+            let bounds = Aabb {
+                min: a.min(b).min(c),
+                max: a.max(b).max(c),
+            };
+            (i as u32, bounds)
+        })
+        .collect()
+}
+
+/// Triangle BVHs built so far, by the geometry they were built for (held
+/// weakly: a geometry no scene uses any more is dropped from here).
+type MeshBvhCache = Vec<(Weak<Geometry>, Arc<Bvh<u32>>)>;
+static MESH_BVHS: Mutex<MeshBvhCache> = Mutex::new(Vec::new());
+
+/// The BVH over a mesh's triangles (leaves hold triangle indices) in the
+/// mesh's own coordinates. It is built once per loaded geometry and shared
+/// by every copy of the scene: moving, turning or scaling a mesh changes
+/// only its placement, which renderers apply to the ray, never this tree.
+pub fn mesh_bvh(geometry: &Arc<Geometry>) -> Arc<Bvh<u32>> {
+    let cached = |cache: &mut MeshBvhCache| {
+        cache.retain(|(g, _)| g.strong_count() > 0);
+        cache
+            .iter()
+            .find(|(g, _)| std::ptr::eq(g.as_ptr(), Arc::as_ptr(geometry)))
+            .map(|(_, bvh)| bvh.clone())
+    };
+    let lock = || MESH_BVHS.lock().unwrap_or_else(|e| e.into_inner());
+    if let Some(bvh) = cached(&mut lock()) {
+        return bvh;
+    }
+    let bvh = Arc::new(Bvh::from_items(triangle_bounds(geometry)));
+    let mut cache = lock();
+    if let Some(other) = cached(&mut cache) {
+        return other;
+    }
+    cache.push((Arc::downgrade(geometry), bvh.clone()));
+    bvh
+}
+
+/// Below this many items a subtree is built on one thread: splitting the
+/// work further costs more than it gains.
+const PARALLEL_MIN: usize = 4096;
+
+impl<P: Copy + Send> Bvh<P> {
+    /// Builds the hierarchy over `items` (each with its box). Subtrees of
+    /// more than [`PARALLEL_MIN`] items are built in parallel (rayon).
+    pub fn from_items(mut items: Vec<(P, Aabb)>) -> Bvh<P> {
         if items.is_empty() {
-            return bvh;
+            return Bvh::default();
         }
-        bvh.nodes.push(Node {
-            bounds: Aabb::EMPTY,
-            first: 0,
-            count: 0,
-        });
-        bvh.split(0, &mut items, 0, 0);
-        bvh.prims = items.into_iter().map(|(p, _)| p).collect();
-        bvh
+        let nodes = build_nodes(&mut items, 0, 0);
+        Bvh {
+            nodes,
+            prims: items.into_iter().map(|(p, _)| p).collect(),
+        }
+    }
+
+    /// The deepest level of the tree (the root is level 0).
+    pub fn depth(&self) -> usize {
+        fn level(nodes: &[Node], i: usize) -> usize {
+            let n = nodes[i];
+            if n.count > 0 {
+                return 0;
+            }
+            let first = n.first as usize;
+            1 + level(nodes, first).max(level(nodes, first + 1))
+        }
+        if self.nodes.is_empty() {
+            0
+        } else {
+            level(&self.nodes, 0)
+        }
     }
 
     /// Fills node `node` with `items` (which start at `offset` in the final
     /// prim list), splitting it where the SAH says it pays.
-    fn split(&mut self, node: usize, items: &mut [(ShapeId, Aabb)], offset: usize, depth: usize) {
+    fn split(&mut self, node: usize, items: &mut [(P, Aabb)], offset: usize, depth: usize) {
         let bounds = items.iter().fold(Aabb::EMPTY, |b, (_, a)| b.union(*a));
         let leaf = Node {
             bounds,
@@ -179,7 +265,7 @@ impl Bvh {
         o: DVec3,
         d: DVec3,
         mut t_max: f64,
-        mut visit: impl FnMut(ShapeId, f64) -> Option<f64>,
+        mut visit: impl FnMut(P, f64) -> Option<f64>,
     ) {
         if self.nodes.is_empty() {
             return;
@@ -213,6 +299,55 @@ impl Bvh {
     }
 }
 
+/// The nodes of the subtree over `items` (which start at `offset` in the
+/// final prim list), its root first; inner nodes point at children inside
+/// the returned list. Large subtrees split their two halves across
+/// threads, and the halves' lists are appended after the root's children.
+fn build_nodes<P: Copy + Send>(items: &mut [(P, Aabb)], offset: usize, depth: usize) -> Vec<Node> {
+    let count = items.len() as u32;
+    let leaf = |bounds| Node {
+        bounds,
+        first: offset as u32,
+        count,
+    };
+    let bounds = items.iter().fold(Aabb::EMPTY, |b, (_, a)| b.union(*a));
+    if items.len() < PARALLEL_MIN || depth >= MAX_DEPTH {
+        let mut bvh = Bvh::<P> {
+            nodes: vec![leaf(bounds)],
+            prims: Vec::new(),
+        };
+        bvh.split(0, items, offset, depth);
+        return bvh.nodes;
+    }
+    let mid = sah_split(items, bounds).unwrap_or_else(|| median_split(items));
+    let (a, b) = items.split_at_mut(mid);
+    let (left, right) = rayon::join(
+        || build_nodes(a, offset, depth + 1),
+        || build_nodes(b, offset + mid, depth + 1),
+    );
+    // Root, left root, right root, then the rest of left, then of right.
+    let left_base = 3 - 1;
+    let right_base = 3 + (left.len() - 1) - 1;
+    let moved = |n: &Node, base: usize| {
+        let mut n = *n;
+        if n.count == 0 {
+            n.first += base as u32;
+        }
+        n
+    };
+    let mut nodes = Vec::with_capacity(1 + left.len() + right.len());
+    nodes.push(Node {
+        bounds,
+        first: 1,
+        count: 0,
+    });
+    nodes.push(moved(&left[0], left_base));
+    nodes.push(moved(&right[0], right_base));
+    nodes.extend(left[1..].iter().map(|n| moved(n, left_base)));
+    nodes.extend(right[1..].iter().map(|n| moved(n, right_base)));
+    nodes
+}
+
 fn longest_axis(b: Aabb) -> usize {
     let e = b.max - b.min;
     if e.x >= e.y && e.x >= e.z {
@@ -227,7 +362,7 @@ fn longest_axis(b: Aabb) -> usize {
 /// The binned SAH split: sorts `items` into two groups along the longest
 /// axis of the centroids and returns the size of the first, or `None` when
 /// keeping them in one leaf is cheaper (or they cannot be told apart).
-fn sah_split(items: &mut [(ShapeId, Aabb)], bounds: Aabb) -> Option<usize> {
+fn sah_split<P>(items: &mut [(P, Aabb)], bounds: Aabb) -> Option<usize> {
     let centroids = items.iter().fold(Aabb::EMPTY, |b, (_, a)| {
         let c = a.centroid();
         b.union(Aabb { min: c, max: c })
@@ -274,7 +409,7 @@ fn sah_split(items: &mut [(ShapeId, Aabb)], bounds: Aabb) -> Option<usize> {
 
 /// Splits at the median centroid along the longest axis (for shapes the
 /// bins cannot separate, e.g. many at the same place).
-fn median_split(items: &mut [(ShapeId, Aabb)]) -> usize {
+fn median_split<P>(items: &mut [(P, Aabb)]) -> usize {
     let bounds = items.iter().fold(Aabb::EMPTY, |b, (_, a)| b.union(*a));
     let axis = longest_axis(bounds);
     let mid = items.len() / 2;
@@ -285,7 +420,7 @@ fn median_split(items: &mut [(ShapeId, Aabb)]) -> usize {
 }
 
 /// Moves the items for which `left` holds to the front; returns their count.
-fn partition(items: &mut [(ShapeId, Aabb)], left: impl Fn(&Aabb) -> bool) -> usize {
+fn partition<P>(items: &mut [(P, Aabb)], left: impl Fn(&Aabb) -> bool) -> usize {
     let mut mid = 0;
     for i in 0..items.len() {
         if left(&items[i].1) {

@@ -11,7 +11,7 @@ use raysandbox::gpu::{
     Gpu, GpuWaitError, OffscreenRenderer, RenderError, ShaderOptions, ShaderSource,
 };
 use raysandbox::reference;
-use raysandbox::scene::Scene;
+use raysandbox::scene::{Scene, TriangleTest};
 
 #[derive(Parser)]
 #[command(
@@ -97,6 +97,10 @@ struct RenderArgs {
     /// one always); off: a loop over every shape.
     #[arg(long, value_enum, default_value_t = Switch::On)]
     bvh: Switch,
+    /// The ray-triangle test of meshes: cramer (Cramer's rule, as on the
+    /// slides), moller-trumbore, or watertight (Woop, Benthin and Wald).
+    #[arg(long, default_value = "watertight", value_parser = triangle_test)]
+    triangles: TriangleTest,
     /// Render the image this many times after one warm-up render and print
     /// the median, fastest and slowest GPU time.
     #[arg(long, default_value_t = 1, value_parser = clap::value_parser!(u32).range(1..=10000))]
@@ -254,6 +258,14 @@ fn check(path: &Path) -> Result<(), Failure> {
     Ok(())
 }
 
+/// `--triangles NAME`.
+fn triangle_test(name: &str) -> Result<TriangleTest, String> {
+    TriangleTest::from_name(name).ok_or_else(|| {
+        let names: Vec<&str> = TriangleTest::ALL.iter().map(|t| t.name()).collect();
+        format!("one of {}", names.join(", "))
+    })
+}
+
 fn render(args: &RenderArgs) -> Result<(), Failure> {
     let scene = load_scene(&args.scene)?;
     let start = Instant::now();
@@ -262,7 +274,12 @@ fn render(args: &RenderArgs) -> Result<(), Failure> {
             "renderer: f64 CPU reference, {} threads",
             rayon::current_num_threads()
         );
-        reference::render_rgba8(&scene, args.width, args.height, args.spp)
+        let options = reference::ReferenceOptions {
+            triangles: args.triangles,
+            ..Default::default()
+        };
+        let prepared = reference::PreparedScene::with_options(&scene, &options);
+        reference::render_prepared_rgba8(&prepared, args.width, args.height, args.spp)
     } else {
         let source = match &args.shaders {
             Some(dir) => ShaderSource::from_dir(dir).map_err(|e| InputError(e.to_string()))?,
@@ -279,6 +296,7 @@ fn render(args: &RenderArgs) -> Result<(), Failure> {
         if args.bvh == Switch::Off {
             options.features.bvh = false;
         }
+        options.triangles = args.triangles;
         let mut renderer =
             OffscreenRenderer::new(&gpu, &source, &options, &scene, args.width, args.height)
                 .map_err(render_failure)?;

@@ -91,7 +91,7 @@ fn hit_cube(ray: Ray, cube: Cube, index: u32, best: Hit) -> Hit {
     n_local[axis] = sign;
     let p = cube.center + cube.rotation * p_local;
     let scale = max3(abs(cube.center)) + length(h);
-    return Hit(t, p, cube.rotation * n_local, KIND_CUBE, index, scale);
+    return surface_hit(t, p, cube.rotation * n_local, KIND_CUBE, index, scale);
 }
 
 /// The plain slab test (ROBUST = false), as usually taught: inv = 1 / d_i,
@@ -145,5 +145,5 @@ fn hit_cube_naive(ray: Ray, cube: Cube, index: u32, best: Hit) -> Hit {
     var n_local = vec3(0.0);
     n_local[axis] = side * sign(d[axis]);
     let p = ray.origin + t * ray.dir;
-    return Hit(t, p, cube.rotation * n_local, KIND_CUBE, index, 0.0);
+    return surface_hit(t, p, cube.rotation * n_local, KIND_CUBE, index, 0.0);
 }

@@ -42,7 +42,7 @@ fn hit_plane(ray: Ray, pl: Plane, index: u32, best: Hit) -> Hit {
         p = pl.point + (ft.g + t_foot * ray.dir);
     }
     p -= dot(p - pl.point, pl.normal) * pl.normal;
-    return Hit(t, p, pl.normal, KIND_PLANE, index, max3(abs(pl.point)));
+    return surface_hit(t, p, pl.normal, KIND_PLANE, index, max3(abs(pl.point)));
 }
 
 /// The lecture's plane (ROBUST = false): parallel when |n.d| < 1e-6, else
@@ -56,5 +56,5 @@ fn hit_plane_naive(ray: Ray, pl: Plane, index: u32, best: Hit) -> Hit {
     if t <= ray.t_min || t >= best.t {
         return best;
     }
-    return Hit(t, ray.origin + t * ray.dir, pl.normal, KIND_PLANE, index, 0.0);
+    return surface_hit(t, ray.origin + t * ray.dir, pl.normal, KIND_PLANE, index, 0.0);
 }

@@ -94,7 +94,7 @@ fn hit_sphere(ray: Ray, s: Sphere, index: u32, best: Hit) -> Hit {
     }
     let pole_scale = max3(abs(s.center + r * major_axis(n)));
     let scale = max(pole_scale, min(ray_scale, centre_scale));
-    return Hit(t, p, n, KIND_SPHERE, index, scale);
+    return surface_hit(t, p, n, KIND_SPHERE, index, scale);
 }
 
 /// The lecture's sphere (ROBUST = false): a t^2 + b t + c = 0 with
@@ -119,5 +119,5 @@ fn hit_sphere_naive(ray: Ray, s: Sphere, index: u32, best: Hit) -> Hit {
         return best;
     }
     let p = ray.origin + t * ray.dir;
-    return Hit(t, p, (p - s.center) / s.radius, KIND_SPHERE, index, 0.0);
+    return surface_hit(t, p, (p - s.center) / s.radius, KIND_SPHERE, index, 0.0);
 }

@@ -5,7 +5,7 @@
 //! or checker code at all.
 
 use super::shapes::has_flag;
-use crate::scene::{Scene, ShapeKind};
+use crate::scene::{Scene, ShapeKind, TriangleTest};
 
 /// What a scene needs from the shader. Every flag that is true for a scene
 /// must be true in the pipeline that draws it; extra flags only cost time.
@@ -85,6 +85,8 @@ pub struct ShaderOptions {
     /// pipeline constant: WGSL sizes arrays only with `const`s, so it is
     /// written into the source, see `ShaderSource::with_stack_size`).
     pub stack_size: u32,
+    /// The ray-triangle test of meshes (`TRIANGLE_TEST`).
+    pub triangles: TriangleTest,
     /// The scene's distinct implicit functions (`gpu::shapes::implicit::functions`),
     /// compiled into the source (see `ShaderSource::with_functions`): a
     /// pipeline per distinct set.
@@ -98,6 +100,7 @@ impl Default for ShaderOptions {
             robust: true,
             features: Features::ALL,
             stack_size: super::shaders::MAX_STACK_SIZE,
+            triangles: TriangleTest::default(),
             functions: Vec::new(),
         }
     }
@@ -119,6 +122,7 @@ impl ShaderOptions {
             robust: true,
             features: Features::of(scene),
             stack_size: scene.render.max_depth + 1,
+            triangles: TriangleTest::default(),
             functions: super::shapes::implicit::functions(scene),
         }
     }
@@ -138,10 +142,15 @@ impl ShaderOptions {
         ]
         .map(|(name, on)| (name.to_string(), on));
         let kinds = ShapeKind::ALL.iter().map(|&k| (has_flag(k), f.has(k)));
+        let triangles = (
+            "TRIANGLE_TEST".to_string(),
+            f64::from(self.triangles.number()),
+        );
         fixed
             .into_iter()
             .chain(kinds)
             .map(|(name, on)| (name, f64::from(u8::from(on))))
+            .chain([triangles])
             .collect()
     }
 }

@@ -6,8 +6,8 @@
 use bytemuck::{Pod, Zeroable};
 use glam::DVec3;
 
-pub use super::shapes::{Cube, Implicit, Julia, Plane, Sphere, Torus};
-use super::shapes::{Frame, PackShape, f32x3, kinds, pack_all};
+pub use super::shapes::{Cube, Implicit, Julia, Mesh, Plane, Sphere, Torus};
+use super::shapes::{Frame, PackShape, buffer_position, f32x3, pack_all, round_out};
 use crate::bvh::{Aabb, Bvh};
 use crate::scene::{self, Scene, ShapeKind, ShapeList};
 
@@ -101,8 +101,9 @@ pub struct PackedScene {
     /// [`PackedScene::set_view`] writes the camera in the same frame.
     pub frame: Frame,
     pub globals: Globals,
-    /// Every shape kind's array as `u32` words, in the registry order of
-    /// `gpu::shapes` (see [`PackedScene::shapes_of`] for typed access).
+    /// Every shape kind's buffers as `u32` words, in the registry order of
+    /// `gpu::shapes`, a kind's second buffer after its own (see
+    /// [`PackedScene::shapes_of`] for typed access).
     pub shapes: Vec<Vec<u32>>,
     /// The number of shapes of each kind, by kind number (entry 0 unused).
     pub shape_counts: Vec<u32>,
@@ -160,11 +161,7 @@ impl PackedScene {
     /// The packed shapes of kind `T`, padded to at least one element (the
     /// count is in [`PackedScene::shape_counts`]).
     pub fn shapes_of<T: PackShape>(&self) -> &[T] {
-        let kind = <T::Source as ShapeList>::KIND;
-        let position = kinds()
-            .iter()
-            .position(|k| k.kind == kind)
-            .expect("a packed kind is registered");
+        let position = buffer_position(<T::Source as ShapeList>::KIND);
         bytemuck::cast_slice(&self.shapes[position])
     }
 }
@@ -178,22 +175,14 @@ fn shape_counts(scene: &Scene) -> Vec<u32> {
     counts
 }
 
-/// A node with its box rounded outwards to f32, so that the box the shader
-/// tests always holds the shapes inside it (rounding to nearest could cut a
-/// sliver off a shape, and rays through that sliver would miss it).
+/// A node with its box, relative to the frame, rounded outwards to f32
+/// ([`round_out`]).
 fn pack_node(bounds: Aabb, first: u32, count: u32, frame: &Frame) -> BvhNode {
-    let down = |x: f64| {
-        let f = x as f32;
-        if f64::from(f) > x { f.next_down() } else { f }
-    };
-    let up = |x: f64| {
-        let f = x as f32;
-        if f64::from(f) < x { f.next_up() } else { f }
-    };
+    let (bounds_min, bounds_max) = round_out(bounds.min - frame.origin, bounds.max - frame.origin);
     BvhNode {
-        bounds_min: (bounds.min - frame.origin).to_array().map(down),
+        bounds_min,
         first,
-        bounds_max: (bounds.max - frame.origin).to_array().map(up),
+        bounds_max,
         count,
     }
 }
@@ -390,6 +379,17 @@ mod tests {
                 iterations,
                 epsilon,
                 material
+            }),
+            rust_layout!(Mesh {
+                to_local,
+                origin,
+                material,
+                normal_to_world,
+                to_world,
+                node_start,
+                tri_start,
+                normal_start,
+                error_scale
             }),
             rust_layout!(Material {
                 color,

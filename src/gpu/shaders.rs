@@ -162,7 +162,8 @@ fn generated_part(stack_size: u32) -> (String, String) {
 /// `shaders/shapes/<kind>.wgsl`, the material lookup and the thin test.
 fn shape_glue(kinds: &[KindInfo]) -> String {
     let mut declarations = String::from("// The shape kinds (src/gpu/shapes/mod.rs).\n");
-    for (i, k) in kinds.iter().enumerate() {
+    let mut binding = FIRST_SHAPE_BINDING;
+    for k in kinds {
         declarations += &format!(
             "const {kind}: u32 = {number}u;\n\
              override {flag}: bool = true;\n\
@@ -170,10 +171,16 @@ fn shape_glue(kinds: &[KindInfo]) -> String {
             kind = kind_const(k),
             number = k.kind.number(),
             flag = has_flag(k.kind),
-            binding = FIRST_SHAPE_BINDING + i as u32,
             array = k.kind.key(),
             ty = k.wgsl_struct,
         );
+        binding += 1;
+        if let Some(data) = k.data {
+            declarations += &format!(
+                "@group(0) @binding({binding}) var<storage, read> {data}: array<vec4<u32>>;\n"
+            );
+            binding += 1;
+        }
     }
     let (bounded, unbounded): (Vec<&KindInfo>, Vec<&KindInfo>) =
         kinds.iter().partition(|k| k.kind.bounded());

@@ -156,7 +156,7 @@ impl Pipelines {
 /// per shape kind in the registry order of `gpu::shapes` (all read-only
 /// storage buffers, the order of `scene.wgsl` and of the generated WGSL).
 pub(super) fn scene_layout_entries() -> Vec<wgpu::BindGroupLayoutEntry> {
-    let count = FIRST_SHAPE_BINDING as usize + super::shapes::kinds().len();
+    let count = FIRST_SHAPE_BINDING as usize + super::shapes::buffer_count();
     (0..count)
         .map(|i| wgpu::BindGroupLayoutEntry {
             binding: i as u32,

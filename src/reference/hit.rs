@@ -12,8 +12,14 @@ pub struct Hit {
     pub t: f64,
     /// The hit point.
     pub p: DVec3,
-    /// Outward unit normal at `p`: for a plane the declared normal.
+    /// Outward unit (geometric) normal at `p`: for a plane the declared
+    /// normal. It decides whether a ray enters or leaves, and secondary rays
+    /// start off the surface along it.
     pub n: DVec3,
+    /// The outward unit shading normal: `n`, but for smooth meshes the
+    /// interpolated vertex normal (docs/rendering-model.md, "Triangle
+    /// meshes"). Lighting and the mirror direction use it.
+    pub shading: DVec3,
     /// The magnitude of the numbers that computing `p` involved and that a
     /// later test of a ray from `p` against the same shape will involve (for
     /// a box its position and size, for a plane its point; for a sphere see
@@ -21,6 +27,19 @@ pub struct Hit {
     /// that test, is a few eps times the larger of this and `|p|`. It sizes
     /// the offset of secondary rays (`offset_ray`).
     pub error_scale: f64,
+}
+
+impl Hit {
+    /// A hit whose shading normal is its geometric normal.
+    pub fn new(t: f64, p: DVec3, n: DVec3, error_scale: f64) -> Hit {
+        Hit {
+            t,
+            p,
+            n,
+            shading: n,
+            error_scale,
+        }
+    }
 }
 
 /// The foot of the perpendicular from `anchor` to the ray, relative to the

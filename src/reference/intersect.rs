@@ -25,7 +25,7 @@ pub fn nearest_hit(scene: &PreparedScene, ray: &Ray) -> Option<(ShapeId, Hit)> {
     let mut nearest = None;
     let mut t_closest = f64::INFINITY;
     for &id in &scene.unbounded {
-        if let Some(h) = scene.shapes.hit(id, ray, t_closest, scene.robust) {
+        if let Some(h) = scene.shapes.hit(id, ray, t_closest, &scene.options) {
             t_closest = h.t;
             nearest = Some((id, h));
         }
@@ -33,7 +33,7 @@ pub fn nearest_hit(scene: &PreparedScene, ray: &Ray) -> Option<(ShapeId, Hit)> {
     scene
         .bvh
         .traverse(ray.origin, ray.dir, t_closest, |id, t_max| {
-            if let Some(h) = scene.shapes.hit(id, ray, t_max, scene.robust) {
+            if let Some(h) = scene.shapes.hit(id, ray, t_max, &scene.options) {
                 nearest = Some((id, h));
                 return Some(h.t);
             }
@@ -45,7 +45,7 @@ pub fn nearest_hit(scene: &PreparedScene, ray: &Ray) -> Option<(ShapeId, Hit)> {
 /// Whether any shape is hit with `0 < t < t_max` (shadow rays: every shape
 /// blocks fully, so the first hit found is enough).
 pub fn any_hit(scene: &PreparedScene, ray: &Ray, t_max: f64) -> bool {
-    let hit = |id, t| scene.shapes.hit(id, ray, t, scene.robust).is_some();
+    let hit = |id, t| scene.shapes.hit(id, ray, t, &scene.options).is_some();
     if scene.unbounded.iter().any(|&id| hit(id, t_max)) {
         return true;
     }

@@ -30,7 +30,7 @@ use glam::{DVec2, DVec3};
 use rayon::prelude::*;
 
 use crate::bvh::Bvh;
-use crate::scene::{Material, Scene};
+use crate::scene::{Material, Scene, TriangleTest};
 
 pub use camera::{camera_basis, normalize_or};
 pub use intersect::ShapeId;
@@ -76,9 +76,8 @@ pub struct PreparedScene {
     max_depth: u32,
     min_weight: f64,
     exposure: f64,
-    /// The robust intersection routines and scale-aware offsets (true), or
-    /// the lecture's textbook versions ([`ReferenceOptions::robust`]).
-    robust: bool,
+    /// The robust routines or the textbook ones, and the triangle test.
+    options: ReferenceOptions,
 }
 
 /// Variants of the reference, the twin of the shader's `gpu::ShaderOptions`.
@@ -88,11 +87,16 @@ pub struct ReferenceOptions {
     /// quadratic, the plain slab test, the plane without re-projection and a
     /// fixed offset of 1e-3, as the shader with `ROBUST = false`.
     pub robust: bool,
+    /// The ray-triangle test of meshes.
+    pub triangles: TriangleTest,
 }
 
 impl Default for ReferenceOptions {
     fn default() -> Self {
-        ReferenceOptions { robust: true }
+        ReferenceOptions {
+            robust: true,
+            triangles: TriangleTest::default(),
+        }
     }
 }
 
@@ -135,7 +139,7 @@ impl PreparedScene {
             max_depth: scene.render.max_depth,
             min_weight: scene.render.min_weight,
             exposure: scene.render.exposure,
-            robust: options.robust,
+            options: *options,
         }
     }
 
@@ -595,7 +599,10 @@ mod tests {
         let big: Scene = toml::from_str(&text(1000.0)).unwrap();
         let robust = |s: &Scene| render_linear(&PreparedScene::new(s), 24, 16, 1);
         let naive = |s: &Scene| {
-            let options = ReferenceOptions { robust: false };
+            let options = ReferenceOptions {
+                robust: false,
+                ..Default::default()
+            };
             render_linear(&PreparedScene::with_options(s, &options), 24, 16, 1)
         };
         // Mean over the pixels of the largest channel difference.

@@ -43,9 +43,11 @@ fn shade(
     let d = ray.dir;
     // Closed shapes: the ray enters where it meets the outward normal head on.
     let entering = d.dot(hit.n) < 0.0;
-    // The shading normal faces the ray, whichever side was hit.
-    let ns = if entering { hit.n } else { -hit.n };
-    let albedo = albedo(m, hit.p + scene.frame_origin, hit.n, scene.robust);
+    // The shading normal faces the ray, whichever side was hit; secondary
+    // rays start off the surface along the geometric normal.
+    let ns = if entering { hit.shading } else { -hit.shading };
+    let ng = if entering { hit.n } else { -hit.n };
+    let albedo = albedo(m, hit.p + scene.frame_origin, hit.n, scene.options.robust);
     let mut radiance = local(scene, m, albedo, hit, ns, d);
 
     if depth >= scene.max_depth {
@@ -62,18 +64,18 @@ fn shade(
     } else {
         m
     };
-    let split = split(m, d, hit.n, ns, entering, thin);
+    let split = split(m, d, ns, entering, thin);
     let traced = |child_weight: f64| child_weight > 0.0 && child_weight >= scene.min_weight;
 
     let reflected_weight = weight * split.wr;
     if traced(reflected_weight) {
-        let child = Ray::new(offset(scene, hit, ns), reflect(d, ns));
+        let child = Ray::new(offset(scene, hit, ng), reflect(d, ns));
         radiance += split.wr * trace(scene, &child, depth + 1, reflected_weight);
     }
     if let Some(dir) = split.transmitted {
         let refracted_weight = weight * split.wt * albedo.max_element();
         if traced(refracted_weight) {
-            let child = Ray::new(offset(scene, hit, -ns), dir);
+            let child = Ray::new(offset(scene, hit, -ng), dir);
             radiance += split.wt * albedo * trace(scene, &child, depth + 1, refracted_weight);
         }
     }
@@ -119,10 +121,12 @@ fn local(
 }
 
 /// Whether a shape lies between the hit point and the light: the shadow ray
-/// starts at `p` offset to the lit side `ns` and is blocked by any hit with
-/// `0 < t < |L - o|` (classic Whitted shadows: glass blocks fully too).
+/// starts at `p` offset to the lit side `ns` (along the geometric normal on
+/// that side) and is blocked by any hit with `0 < t < |L - o|` (classic
+/// Whitted shadows: glass blocks fully too).
 fn in_shadow(scene: &PreparedScene, hit: &Hit, ns: DVec3, light: DVec3) -> bool {
-    let origin = offset(scene, hit, ns);
+    let ng = if hit.n.dot(ns) >= 0.0 { hit.n } else { -hit.n };
+    let origin = offset(scene, hit, ng);
     let distance = (light - origin).length();
     // Nothing fits strictly between a light and itself.
     distance > 0.0 && any_hit(scene, &Ray::new(origin, light - origin), distance)
@@ -132,7 +136,7 @@ fn in_shadow(scene: &PreparedScene, hit: &Hit, ns: DVec3, light: DVec3) -> bool 
 /// the scale-aware [`offset_ray`], or the fixed textbook offset in the naive
 /// variant.
 fn offset(scene: &PreparedScene, hit: &Hit, n: DVec3) -> DVec3 {
-    if scene.robust {
+    if scene.options.robust {
         offset_ray(hit.p, n, hit.error_scale)
     } else {
         offset_ray_naive(hit.p, n)
@@ -204,7 +208,7 @@ struct Split {
 /// the ray goes straight on (a sheet of glass shifts it sideways by its
 /// thickness, which is zero). F is only computed where `kt > 0`, so a
 /// material without transparency mirrors with exactly `kr`.
-fn split(m: &Material, d: DVec3, n: DVec3, ns: DVec3, entering: bool, thin: bool) -> Split {
+fn split(m: &Material, d: DVec3, ns: DVec3, entering: bool, thin: bool) -> Split {
     let (kr, kt) = (m.mirror, m.transparency);
     if kt <= 0.0 {
         return Split {
@@ -218,7 +222,15 @@ fn split(m: &Material, d: DVec3, n: DVec3, ns: DVec3, entering: bool, thin: bool
     } else {
         (m.ior, 1.0)
     };
-    let f = fresnel(d.dot(n).abs(), n1, n2);
+    // The angle to the shading normal, as for the mirror direction (`ns`
+    // faces the ray; a smooth normal that turns away reflects fully, as
+    // the shader's `fresnel` does for cos_i <= 0).
+    let cos_i = -d.dot(ns);
+    let f = if cos_i <= 0.0 {
+        1.0
+    } else {
+        fresnel(cos_i, n1, n2)
+    };
     let wt = kt * (1.0 - f);
     let transmitted = if wt <= 0.0 {
         None
@@ -379,33 +391,19 @@ mod tests {
     fn split_rules() {
         let d = DVec3::new(0.0, -1.0, 0.0);
         // kt = 0: F is not involved, wr = kr exactly.
-        let s = split(&material(0.3, 0.0), d, DVec3::Y, DVec3::Y, true, false);
+        let s = split(&material(0.3, 0.0), d, DVec3::Y, true, false);
         assert_eq!((s.wr, s.wt, s.transmitted), (0.3, 0.0, None));
         // Entering glass head on: F = 0.04.
-        let s = split(&material(0.1, 0.5), d, DVec3::Y, DVec3::Y, true, false);
+        let s = split(&material(0.1, 0.5), d, DVec3::Y, true, false);
         assert!((s.wr - (0.1 + 0.5 * 0.04)).abs() < 1e-15);
         assert!((s.wt - 0.5 * 0.96).abs() < 1e-15);
         assert!((s.transmitted.unwrap() - d).length() < 1e-15);
         // Leaving a closed shape obliquely past the critical angle: TIR.
         let oblique = DVec3::new(1.0, 1.0, 0.0).normalize();
-        let s = split(
-            &material(0.0, 1.0),
-            oblique,
-            DVec3::Y,
-            -DVec3::Y,
-            false,
-            false,
-        );
+        let s = split(&material(0.0, 1.0), oblique, -DVec3::Y, false, false);
         assert_eq!((s.wr, s.wt, s.transmitted), (1.0, 0.0, None));
         // A thin plane: F as for entering even from the back, ray unbent.
-        let s = split(
-            &material(0.0, 1.0),
-            oblique,
-            DVec3::Y,
-            -DVec3::Y,
-            false,
-            true,
-        );
+        let s = split(&material(0.0, 1.0), oblique, -DVec3::Y, false, true);
         let f = fresnel(oblique.y, 1.0, 1.5);
         assert!(f > 0.04 && f < 1.0);
         assert_eq!((s.wr, s.wt, s.transmitted), (f, 1.0 - f, Some(oblique)));

@@ -8,6 +8,7 @@ pub mod bundled;
 mod document;
 mod error;
 mod key_path;
+mod mesh_file;
 mod parse;
 mod shapes;
 #[cfg(test)]
@@ -22,9 +23,10 @@ use indexmap::IndexMap;
 use serde::{Deserialize, Serialize};
 
 pub use error::SceneError;
+pub use mesh_file::Geometry;
 pub use shapes::{
-    Cube, CubeSize, Implicit, Julia, Placement, Plane, Shape, Sphere, Torus, for_each_shape_kind,
-    implicit, julia,
+    Cube, CubeSize, Implicit, Julia, Loaded, Mesh, Placement, Plane, Shape, Sphere, Torus,
+    TriangleTest, for_each_shape_kind, implicit, julia, rotation_degrees,
 };
 
 /// Writes the [`Scene`] struct, [`ShapeKind`], [`ShapeId`] and the methods
@@ -226,9 +228,10 @@ macro_rules! scene_with_shapes {
             }
 
             /// Validates every shape, kind by kind in registry order.
-            fn validate_shapes(&mut self, root: &key_path::KeyPath) -> validate::Check {
+            fn validate_shapes(&mut self, root: &key_path::KeyPath, base: Option<&Path>) -> validate::Check {
+                let context = shapes::Context { materials: &self.materials, base };
                 $(for (i, shape) in self.$field.iter_mut().enumerate() {
-                    shape.validate(&root.key(stringify!($field)).index(i), &self.materials)?;
+                    shape.validate(&root.key(stringify!($field)).index(i), &context)?;
                 })*
                 Ok(())
             }
@@ -419,8 +422,18 @@ impl Scene {
 
     /// A one-line summary for `raysandbox check`.
     pub fn summary(&self) -> String {
+        let triangles: usize = self
+            .meshes
+            .iter()
+            .map(|m| m.geometry.0.triangles.len())
+            .sum();
+        let triangles = if self.meshes.is_empty() {
+            String::new()
+        } else {
+            format!(" ({triangles} triangles)")
+        };
         format!(
-            "{}, {} materials, {} lights",
+            "{}{triangles}, {} materials, {} lights",
             self.shape_summary(),
             self.materials.len(),
             self.lights.len()

@@ -20,13 +20,15 @@ const UNIT_TOLERANCE: f64 = 8.0 * f64::EPSILON;
 
 /// Parses and checks a scene; `origin` names the file in the error.
 pub(super) fn parse_and_validate(text: &str, origin: Option<&Path>) -> Result<Scene, SceneError> {
-    load(text).map_err(|e| e.in_file(origin))
+    let base = origin.and_then(Path::parent);
+    load(text, base).map_err(|e| e.in_file(origin))
 }
 
-fn load(text: &str) -> Result<Scene, SceneError> {
+/// `base`: the folder that mesh file names are relative to.
+fn load(text: &str, base: Option<&Path>) -> Result<Scene, SceneError> {
     let doc = Document::parse(text)?;
     let mut scene = parse::deserialize(&doc)?;
-    validate(&mut scene).map_err(|issue| doc.error(&issue.path, issue.message))?;
+    validate(&mut scene, base).map_err(|issue| doc.error(&issue.path, issue.message))?;
     Ok(scene)
 }
 
@@ -74,7 +76,7 @@ const FIELD_OF_VIEW: Rule = Rule {
 
 /// Checks every rule, first problem first (sections in the order of the
 /// example file in docs/scene-format.md), and normalises plane normals.
-fn validate(scene: &mut Scene) -> Check {
+fn validate(scene: &mut Scene, base: Option<&Path>) -> Check {
     let root = KeyPath::default();
     render(&scene.render, &root.key("render"))?;
     camera(&scene.camera, &root.key("camera"))?;
@@ -84,7 +86,7 @@ fn validate(scene: &mut Scene) -> Check {
     for (name, material) in &scene.materials {
         self::material(material, &root.key("materials").key(name))?;
     }
-    scene.validate_shapes(&root)
+    scene.validate_shapes(&root, base)
 }
 
 fn render(r: &RenderSettings, path: &KeyPath) -> Check {

@@ -172,7 +172,7 @@ impl GpuVariant {
 /// The reference's image, unlit image and first hits of `scene` (which the
 /// caller has rounded to f32 where that is wanted), robust variant.
 pub fn reference_render(scene: &Scene, width: u32, height: u32) -> ReferenceRender {
-    let prepared = PreparedScene::with_options(scene, &ReferenceOptions { robust: true });
+    let prepared = PreparedScene::with_options(scene, &ReferenceOptions::default());
     let mut unlit = scene.clone();
     unlit.lights.clear();
     ReferenceRender {

@@ -424,7 +424,8 @@ mod tests {
                 ShapeId::Cube(1),
                 ShapeId::Torus(0),
                 ShapeId::Implicit(0),
-                ShapeId::Julia(0)
+                ShapeId::Julia(0),
+                ShapeId::Mesh(0)
             ]
         );
         let scale = scene_scale(&s);

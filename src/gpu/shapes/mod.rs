@@ -13,6 +13,7 @@ use crate::scene::{Camera, Scene, ShapeKind, ShapeList};
 mod cube;
 pub mod implicit;
 mod julia;
+mod mesh;
 mod placed;
 mod plane;
 mod sphere;
@@ -21,6 +22,7 @@ mod torus;
 pub use cube::Cube;
 pub use implicit::Implicit;
 pub use julia::Julia;
+pub use mesh::Mesh;
 pub use plane::Plane;
 pub use sphere::Sphere;
 pub use torus::Torus;
@@ -38,6 +40,7 @@ macro_rules! for_each_packed_shape {
         $m!(Torus, "Torus");
         $m!(Implicit, "Implicit");
         $m!(Julia, "Julia");
+        $m!(Mesh, "Mesh");
     };
 }
 pub use for_each_packed_shape;
@@ -84,6 +87,35 @@ pub trait PackShape: Pod + Zeroable {
     /// Packs `shape`; `scene` resolves its material name to a slot, `frame`
     /// says where positions are measured from.
     fn pack(scene: &Scene, frame: &Frame, shape: &Self::Source) -> Self;
+
+    /// The name of the kind's second buffer, an `array<vec4<u32>>` of data
+    /// its shapes share (a mesh's triangles and BVH), if it has one.
+    const DATA: Option<&'static str> = None;
+
+    /// Packs every shape of the kind and the second buffer's contents
+    /// (empty without [`PackShape::DATA`]); by default each shape alone.
+    fn pack_kind(scene: &Scene, frame: &Frame) -> (Vec<Self>, Vec<[u32; 4]>) {
+        let shapes = Self::Source::list(scene)
+            .iter()
+            .map(|s| Self::pack(scene, frame, s))
+            .collect();
+        (shapes, Vec::new())
+    }
+}
+
+/// A box rounded outwards to f32, so that the box the shader tests always
+/// holds what is inside it (rounding to nearest could cut a sliver off a
+/// shape, and rays through that sliver would miss it).
+pub fn round_out(min: DVec3, max: DVec3) -> ([f32; 3], [f32; 3]) {
+    let down = |x: f64| {
+        let f = x as f32;
+        if f64::from(f) > x { f.next_down() } else { f }
+    };
+    let up = |x: f64| {
+        let f = x as f32;
+        if f64::from(f) < x { f.next_up() } else { f }
+    };
+    (min.to_array().map(down), max.to_array().map(up))
 }
 
 /// Rounds an f64 vector (a direction, a size, a colour) to the f32 triple the
@@ -100,6 +132,8 @@ pub struct KindInfo {
     pub wgsl_struct: &'static str,
     /// The embedded `shaders/shapes/<kind>.wgsl`.
     pub wgsl: &'static str,
+    /// The name of its second buffer ([`PackShape::DATA`]).
+    pub data: Option<&'static str>,
 }
 
 impl KindInfo {
@@ -129,6 +163,7 @@ pub fn kinds() -> Vec<KindInfo> {
                 kind: <<$t as PackShape>::Source as ShapeList>::KIND,
                 wgsl_struct: $wgsl,
                 wgsl: <$t as PackShape>::WGSL,
+                data: <$t as PackShape>::DATA,
             });
         };
     }
@@ -136,30 +171,55 @@ pub fn kinds() -> Vec<KindInfo> {
     kinds
 }
 
-/// The shapes of one kind packed as `u32` words (every packed struct is
-/// made of 4-byte fields), at least one zeroed element, since a storage
-/// buffer may not be empty.
-pub fn pack_kind<T: PackShape>(scene: &Scene, frame: &Frame) -> Vec<u32> {
-    let mut shapes: Vec<T> = T::Source::list(scene)
-        .iter()
-        .map(|s| T::pack(scene, frame, s))
-        .collect();
+/// The buffers of one kind as `u32` words (every packed struct is made of
+/// 4-byte fields): its shapes, then its second buffer if it has one. Each
+/// holds at least one zeroed element, since a storage buffer may not be
+/// empty.
+pub fn pack_kind<T: PackShape>(scene: &Scene, frame: &Frame) -> Vec<Vec<u32>> {
+    let (mut shapes, mut data) = T::pack_kind(scene, frame);
     if shapes.is_empty() {
         shapes.push(T::zeroed());
     }
-    bytemuck::cast_slice(&shapes).to_vec()
+    let mut buffers = vec![bytemuck::cast_slice(&shapes).to_vec()];
+    if T::DATA.is_some() {
+        if data.is_empty() {
+            data.push([0; 4]);
+        }
+        buffers.push(bytemuck::cast_slice(&data).to_vec());
+    }
+    buffers
 }
 
-/// Every kind's buffer contents, in registry order.
+/// Every kind's buffers, in registry order: the order of their bindings.
 pub fn pack_all(scene: &Scene, frame: &Frame) -> Vec<Vec<u32>> {
     let mut buffers = Vec::new();
     macro_rules! pack {
         ($t:ident, $wgsl:literal) => {
-            buffers.push(pack_kind::<$t>(scene, frame));
+            buffers.extend(pack_kind::<$t>(scene, frame));
         };
     }
     for_each_packed_shape!(pack);
     buffers
+}
+
+/// The position of `kind`'s shape buffer among the buffers of [`pack_all`].
+pub fn buffer_position(kind: ShapeKind) -> usize {
+    let mut position = 0;
+    for k in kinds() {
+        if k.kind == kind {
+            return position;
+        }
+        position += 1 + usize::from(k.data.is_some());
+    }
+    panic!("{} is not a packed kind", kind.name());
+}
+
+/// How many buffers the shape kinds bind.
+pub fn buffer_count() -> usize {
+    kinds()
+        .iter()
+        .map(|k| 1 + usize::from(k.data.is_some()))
+        .sum()
 }
 
 #[cfg(test)]

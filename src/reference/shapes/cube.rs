@@ -3,6 +3,7 @@
 use glam::{DMat3, DVec3};
 
 use super::{Prepare, Trace};
+use crate::reference::ReferenceOptions;
 use crate::reference::hit::{Hit, foot};
 use crate::reference::ray::Ray;
 use crate::scene;
@@ -52,8 +53,8 @@ impl Prepare for scene::Cube {
 }
 
 impl Trace for Cube {
-    fn hit(&self, ray: &Ray, t_max: f64, robust: bool) -> Option<Hit> {
-        if robust {
+    fn hit(&self, ray: &Ray, t_max: f64, options: &ReferenceOptions) -> Option<Hit> {
+        if options.robust {
             hit_cube(self, ray, t_max)
         } else {
             hit_cube_naive(self, ray, t_max)
@@ -150,12 +151,12 @@ pub fn hit_cube(cube: &Cube, ray: &Ray, t_max: f64) -> Option<Hit> {
     // rounding of t times |d|, which grows with the distance travelled.
     let mut p_local = o + t_local * d;
     p_local[axis] = sign * cube.half[axis];
-    Some(Hit {
+    Some(Hit::new(
         t,
-        p: cube.center + cube.rotation * p_local,
-        n: sign * cube.rotation.col(axis),
-        error_scale: cube.error_scale,
-    })
+        cube.center + cube.rotation * p_local,
+        sign * cube.rotation.col(axis),
+        cube.error_scale,
+    ))
 }
 
 /// WGSL's `sign`: -1, 0 or +1 (Rust's `signum` gives +1 for +0).
@@ -208,10 +209,5 @@ pub fn hit_cube_naive(cube: &Cube, ray: &Ray, t_max: f64) -> Option<Hit> {
     }
     let mut n_local = DVec3::ZERO;
     n_local[axis] = side * wgsl_sign(d[axis]);
-    Some(Hit {
-        t,
-        p: ray.at(t),
-        n: cube.rotation * n_local,
-        error_scale: 0.0,
-    })
+    Some(Hit::new(t, ray.at(t), cube.rotation * n_local, 0.0))
 }

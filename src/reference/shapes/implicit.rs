@@ -10,6 +10,7 @@ use glam::DVec3;
 use super::placed::{LocalRay, Placed};
 use super::{Prepare, Trace};
 use crate::expr::Function;
+use crate::reference::ReferenceOptions;
 use crate::reference::hit::Hit;
 use crate::reference::ray::{Ray, offset_ray_scale};
 use crate::scene;
@@ -45,7 +46,7 @@ impl Prepare for scene::Implicit {
 }
 
 impl Trace for Implicit {
-    fn hit(&self, ray: &Ray, t_max: f64, _robust: bool) -> Option<Hit> {
+    fn hit(&self, ray: &Ray, t_max: f64, _options: &ReferenceOptions) -> Option<Hit> {
         hit_implicit(self, ray, t_max)
     }
 

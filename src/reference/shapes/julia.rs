@@ -5,6 +5,7 @@ use glam::{DVec3, DVec4};
 
 use super::placed::Placed;
 use super::{Prepare, Trace};
+use crate::reference::ReferenceOptions;
 use crate::reference::hit::Hit;
 use crate::reference::ray::{Ray, offset_ray_scale};
 use crate::scene;
@@ -48,7 +49,7 @@ impl Prepare for scene::Julia {
 }
 
 impl Trace for Julia {
-    fn hit(&self, ray: &Ray, t_max: f64, _robust: bool) -> Option<Hit> {
+    fn hit(&self, ray: &Ray, t_max: f64, _options: &ReferenceOptions) -> Option<Hit> {
         hit_julia(self, ray, t_max)
     }
 

@@ -6,6 +6,7 @@
 pub mod cube;
 pub mod implicit;
 pub mod julia;
+pub mod mesh;
 pub mod placed;
 pub mod plane;
 pub mod sphere;
@@ -13,6 +14,7 @@ pub mod torus;
 
 use std::fmt::Debug;
 
+use super::ReferenceOptions;
 use super::hit::Hit;
 use super::ray::Ray;
 use crate::scene::{self, Scene, Shape, ShapeId};
@@ -29,8 +31,9 @@ pub trait Prepare: Shape {
 /// The hit test of one prepared shape.
 pub trait Trace: Debug + Clone {
     /// The hit with `0 < t < t_max`: the robust routine
-    /// (docs/implementation.md) or, with `robust = false`, the lecture's.
-    fn hit(&self, ray: &Ray, t_max: f64, robust: bool) -> Option<Hit>;
+    /// (docs/implementation.md) or, with `options.robust = false`, the
+    /// lecture's; triangles by `options.triangles`.
+    fn hit(&self, ray: &Ray, t_max: f64, options: &ReferenceOptions) -> Option<Hit>;
 
     /// The slot of its material.
     fn material(&self) -> usize;
@@ -55,9 +58,9 @@ macro_rules! prepared_shapes {
             }
 
             /// The hit of shape `id` with `0 < t < t_max`.
-            pub fn hit(&self, id: ShapeId, ray: &Ray, t_max: f64, robust: bool) -> Option<Hit> {
+            pub fn hit(&self, id: ShapeId, ray: &Ray, t_max: f64, options: &ReferenceOptions) -> Option<Hit> {
                 match id {
-                    $(ShapeId::$kind(i) => self.$field[i].hit(ray, t_max, robust),)*
+                    $(ShapeId::$kind(i) => self.$field[i].hit(ray, t_max, options),)*
                 }
             }
 

@@ -80,12 +80,12 @@ impl Placed {
         } else {
             world_n
         };
-        Hit {
-            t: ray.t(u),
-            p: self.center + self.scale * (self.rotation * ray.at(u)),
+        Hit::new(
+            ray.t(u),
+            self.center + self.scale * (self.rotation * ray.at(u)),
             n,
             error_scale,
-        }
+        )
     }
 
     /// `|center|_max + scale * extent`: the size of the numbers of a hit

@@ -3,6 +3,7 @@
 use glam::DVec3;
 
 use super::{Prepare, Trace};
+use crate::reference::ReferenceOptions;
 use crate::reference::hit::{Hit, foot};
 use crate::reference::ray::Ray;
 use crate::scene;
@@ -41,8 +42,8 @@ impl Prepare for scene::Plane {
 }
 
 impl Trace for Plane {
-    fn hit(&self, ray: &Ray, t_max: f64, robust: bool) -> Option<Hit> {
-        if robust {
+    fn hit(&self, ray: &Ray, t_max: f64, options: &ReferenceOptions) -> Option<Hit> {
+        if options.robust {
             hit_plane(self, ray, t_max)
         } else {
             hit_plane_naive(self, ray, t_max)
@@ -84,12 +85,7 @@ pub fn hit_plane(plane: &Plane, ray: &Ray, t_max: f64) -> Option<Hit> {
             ray.at(t)
         };
     p -= (p - plane.point).dot(n) * n;
-    Some(Hit {
-        t,
-        p,
-        n,
-        error_scale: plane.error_scale,
-    })
+    Some(Hit::new(t, p, n, plane.error_scale))
 }
 
 /// The lecture's plane (the naive variant, the shader's `hit_plane_naive`):
@@ -105,10 +101,5 @@ pub fn hit_plane_naive(plane: &Plane, ray: &Ray, t_max: f64) -> Option<Hit> {
     if t <= 0.0 || t >= t_max {
         return None;
     }
-    Some(Hit {
-        t,
-        p: ray.at(t),
-        n,
-        error_scale: 0.0,
-    })
+    Some(Hit::new(t, ray.at(t), n, 0.0))
 }

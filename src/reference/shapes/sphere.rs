@@ -3,6 +3,7 @@
 use glam::DVec3;
 
 use super::{Prepare, Trace};
+use crate::reference::ReferenceOptions;
 use crate::reference::hit::{Hit, foot, major_axis};
 use crate::reference::ray::Ray;
 use crate::scene;
@@ -34,8 +35,8 @@ impl Prepare for scene::Sphere {
 }
 
 impl Trace for Sphere {
-    fn hit(&self, ray: &Ray, t_max: f64, robust: bool) -> Option<Hit> {
-        if robust {
+    fn hit(&self, ray: &Ray, t_max: f64, options: &ReferenceOptions) -> Option<Hit> {
+        if options.robust {
             hit_sphere(self, ray, t_max)
         } else {
             hit_sphere_naive(self, ray, t_max)
@@ -120,12 +121,12 @@ pub fn hit_sphere(sphere: &Sphere, ray: &Ray, t_max: f64) -> Option<Hit> {
         centre + r * n
     };
     let pole_scale = (centre + r * major_axis(n)).abs().max_element();
-    Some(Hit {
+    Some(Hit::new(
         t,
         p,
         n,
-        error_scale: pole_scale.max(ray_scale.min(centre_scale)),
-    })
+        pole_scale.max(ray_scale.min(centre_scale)),
+    ))
 }
 
 /// The lecture's sphere (the naive variant, `ReferenceOptions::robust =
@@ -151,10 +152,5 @@ pub fn hit_sphere_naive(sphere: &Sphere, ray: &Ray, t_max: f64) -> Option<Hit> {
         return None;
     }
     let p = ray.at(t);
-    Some(Hit {
-        t,
-        p,
-        n: (p - sphere.center) / sphere.radius,
-        error_scale: 0.0,
-    })
+    Some(Hit::new(t, p, (p - sphere.center) / sphere.radius, 0.0))
 }

@@ -5,6 +5,7 @@ use glam::DVec3;
 
 use super::placed::{LocalRay, Placed};
 use super::{Prepare, Trace};
+use crate::reference::ReferenceOptions;
 use crate::reference::hit::Hit;
 use crate::reference::ray::Ray;
 use crate::scene;
@@ -34,7 +35,7 @@ impl Prepare for scene::Torus {
 
 impl Trace for Torus {
     /// One method for both variants: the textbook has no torus to compare with.
-    fn hit(&self, ray: &Ray, t_max: f64, _robust: bool) -> Option<Hit> {
+    fn hit(&self, ray: &Ray, t_max: f64, _options: &ReferenceOptions) -> Option<Hit> {
         hit_torus(self, ray, t_max)
     }
 

@@ -1,11 +1,9 @@
 //! `[[cubes]]`: a box, possibly rotated (docs/scene-format.md).
 
 use glam::{DMat3, DVec3};
-use indexmap::IndexMap;
 use serde::{Deserialize, Serialize};
 
-use super::Shape;
-use crate::scene::Material;
+use super::{Context, Shape, rotation_degrees};
 use crate::scene::key_path::KeyPath;
 use crate::scene::validate::{Check, FINITE, POSITIVE, material_name, number, vector};
 
@@ -44,20 +42,19 @@ impl CubeSize {
 impl Cube {
     /// The rotation matrix `Rz(rz) Ry(ry) Rx(rx)` (docs/rendering-model.md, "Shapes"), in f64.
     pub fn rotation_matrix(&self) -> DMat3 {
-        let r = self.rotation * (std::f64::consts::PI / 180.0);
-        DMat3::from_rotation_z(r.z) * DMat3::from_rotation_y(r.y) * DMat3::from_rotation_x(r.x)
+        rotation_degrees(self.rotation)
     }
 }
 
 impl Shape for Cube {
-    fn validate(&mut self, path: &KeyPath, materials: &IndexMap<String, Material>) -> Check {
+    fn validate(&mut self, path: &KeyPath, context: &Context) -> Check {
         vector(&path.key("center"), self.center, &FINITE)?;
         match self.size {
             CubeSize::Uniform(size) => number(&path.key("size"), size, &POSITIVE)?,
             CubeSize::PerAxis(size) => vector(&path.key("size"), size, &POSITIVE)?,
         }
         vector(&path.key("rotation"), self.rotation, &FINITE)?;
-        material_name(path, self.material.as_deref(), materials)
+        material_name(path, self.material.as_deref(), context.materials)
     }
 
     fn translate(&mut self, offset: DVec3) {

@@ -2,13 +2,11 @@
 //! "Implicit surfaces").
 
 use glam::DVec3;
-use indexmap::IndexMap;
 use serde::{Deserialize, Serialize};
 
-use super::Shape;
 use super::placement::{Placement, one};
+use super::{Context, Shape};
 use crate::expr::Function;
-use crate::scene::Material;
 use crate::scene::key_path::KeyPath;
 use crate::scene::validate::{Check, FINITE, Issue, material_name, vector};
 
@@ -51,7 +49,7 @@ impl Implicit {
 }
 
 impl Shape for Implicit {
-    fn validate(&mut self, path: &KeyPath, materials: &IndexMap<String, Material>) -> Check {
+    fn validate(&mut self, path: &KeyPath, context: &Context) -> Check {
         Function::parse(&self.f).map_err(|e| Issue::new(&path.key("f"), e.to_string()))?;
         let bounds = path.key("bounds");
         vector(&bounds.index(0), self.bounds[0], &FINITE)?;
@@ -72,7 +70,7 @@ impl Shape for Implicit {
             ));
         }
         self.placement().validate(path)?;
-        material_name(path, self.material.as_deref(), materials)
+        material_name(path, self.material.as_deref(), context.materials)
     }
 
     fn translate(&mut self, offset: DVec3) {

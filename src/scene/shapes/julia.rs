@@ -2,12 +2,10 @@
 //! surfaces"; Crane 2005).
 
 use glam::{DVec3, DVec4};
-use indexmap::IndexMap;
 use serde::{Deserialize, Serialize};
 
-use super::Shape;
 use super::placement::{Placement, one};
-use crate::scene::Material;
+use super::{Context, Shape};
 use crate::scene::key_path::KeyPath;
 use crate::scene::validate::{Check, FINITE, Issue, POSITIVE, material_name, number};
 
@@ -56,7 +54,7 @@ impl Julia {
 }
 
 impl Shape for Julia {
-    fn validate(&mut self, path: &KeyPath, materials: &IndexMap<String, Material>) -> Check {
+    fn validate(&mut self, path: &KeyPath, context: &Context) -> Check {
         let c_path = path.key("c");
         for (i, &x) in self.c.iter().enumerate() {
             number(&c_path.index(i), x, &FINITE)?;
@@ -77,7 +75,7 @@ impl Shape for Julia {
         }
         number(&path.key("epsilon"), self.epsilon, &POSITIVE)?;
         self.placement().validate(path)?;
-        material_name(path, self.material.as_deref(), materials)
+        material_name(path, self.material.as_deref(), context.materials)
     }
 
     fn translate(&mut self, offset: DVec3) {

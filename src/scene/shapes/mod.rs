@@ -8,6 +8,7 @@
 mod cube;
 pub mod implicit;
 pub mod julia;
+mod mesh;
 mod placement;
 mod plane;
 mod sphere;
@@ -16,12 +17,15 @@ mod torus;
 pub use cube::{Cube, CubeSize};
 pub use implicit::Implicit;
 pub use julia::Julia;
+pub use mesh::{Loaded, Mesh, TriangleTest};
 pub use placement::Placement;
 pub use plane::Plane;
 pub use sphere::Sphere;
 pub use torus::Torus;
 
-use glam::DVec3;
+use std::path::Path;
+
+use glam::{DMat3, DVec3};
 use indexmap::IndexMap;
 
 use super::Material;
@@ -43,17 +47,32 @@ macro_rules! for_each_shape_kind {
             Torus: tori,
             Implicit: implicits,
             Julia: julias,
+            Mesh: meshes,
         }
     };
 }
 pub use for_each_shape_kind;
+
+/// What validation knows besides the shape: the materials defined, and the
+/// folder that file names are relative to (the scene file's).
+pub struct Context<'a> {
+    pub materials: &'a IndexMap<String, Material>,
+    pub base: Option<&'a Path>,
+}
+
+/// `Rz(rz) Ry(ry) Rx(rx)` for angles in degrees (docs/rendering-model.md,
+/// "Shapes"), in f64: the rotation of boxes and meshes.
+pub fn rotation_degrees(degrees: DVec3) -> DMat3 {
+    let r = degrees * (std::f64::consts::PI / 180.0);
+    DMat3::from_rotation_z(r.z) * DMat3::from_rotation_y(r.y) * DMat3::from_rotation_x(r.x)
+}
 
 /// What every shape kind of the scene provides.
 pub trait Shape: Clone {
     /// Checks the rules of docs/rendering-model.md that serde cannot express
     /// (ranges, finiteness, known material names); `path` names the shape in
     /// messages. May make values canonical (a plane's unit normal).
-    fn validate(&mut self, path: &KeyPath, materials: &IndexMap<String, Material>) -> Check;
+    fn validate(&mut self, path: &KeyPath, context: &Context) -> Check;
 
     /// Moves the shape by `offset` (`Scene::translated`).
     fn translate(&mut self, offset: DVec3);

@@ -20,8 +20,7 @@ pub struct Placement {
 impl Placement {
     /// `Rz(rz) Ry(ry) Rx(rx)`, the cube's convention.
     pub fn rotation_matrix(&self) -> DMat3 {
-        let r = self.rotation * (std::f64::consts::PI / 180.0);
-        DMat3::from_rotation_z(r.z) * DMat3::from_rotation_y(r.y) * DMat3::from_rotation_x(r.x)
+        super::rotation_degrees(self.rotation)
     }
 
     /// Checks the three keys under `path`.

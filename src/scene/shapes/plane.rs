@@ -1,11 +1,9 @@
 //! `[[planes]]`: an infinite, two-sided, thin plane (docs/scene-format.md).
 
 use glam::DVec3;
-use indexmap::IndexMap;
 use serde::{Deserialize, Serialize};
 
-use super::Shape;
-use crate::scene::Material;
+use super::{Context, Shape};
 use crate::scene::key_path::KeyPath;
 use crate::scene::validate::{Check, FINITE, direction, material_name, unit, vector};
 
@@ -24,12 +22,12 @@ impl Shape for Plane {
     const BOUNDED: bool = false;
 
     /// Checks a plane and makes its normal unit length (docs/rendering-model.md, "Shapes").
-    fn validate(&mut self, path: &KeyPath, materials: &IndexMap<String, Material>) -> Check {
+    fn validate(&mut self, path: &KeyPath, context: &Context) -> Check {
         vector(&path.key("point"), self.point, &FINITE)?;
         vector(&path.key("normal"), self.normal, &FINITE)?;
         direction(&path.key("normal"), self.normal)?;
         self.normal = unit(self.normal);
-        material_name(path, self.material.as_deref(), materials)
+        material_name(path, self.material.as_deref(), context.materials)
     }
 
     fn translate(&mut self, offset: DVec3) {

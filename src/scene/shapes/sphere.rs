@@ -1,11 +1,9 @@
 //! `[[spheres]]`: a sphere (docs/scene-format.md).
 
 use glam::DVec3;
-use indexmap::IndexMap;
 use serde::{Deserialize, Serialize};
 
-use super::Shape;
-use crate::scene::Material;
+use super::{Context, Shape};
 use crate::scene::key_path::KeyPath;
 use crate::scene::validate::{Check, FINITE, POSITIVE, material_name, number, vector};
 
@@ -19,10 +17,10 @@ pub struct Sphere {
 }
 
 impl Shape for Sphere {
-    fn validate(&mut self, path: &KeyPath, materials: &IndexMap<String, Material>) -> Check {
+    fn validate(&mut self, path: &KeyPath, context: &Context) -> Check {
         vector(&path.key("center"), self.center, &FINITE)?;
         number(&path.key("radius"), self.radius, &POSITIVE)?;
-        material_name(path, self.material.as_deref(), materials)
+        material_name(path, self.material.as_deref(), context.materials)
     }
 
     fn translate(&mut self, offset: DVec3) {

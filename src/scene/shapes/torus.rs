@@ -1,12 +1,10 @@
 //! `[[tori]]`: a torus (docs/scene-format.md, "Implicit surfaces").
 
 use glam::DVec3;
-use indexmap::IndexMap;
 use serde::{Deserialize, Serialize};
 
-use super::Shape;
 use super::placement::{Placement, one};
-use crate::scene::Material;
+use super::{Context, Shape};
 use crate::scene::key_path::KeyPath;
 use crate::scene::validate::{Check, Issue, POSITIVE, material_name, number};
 
@@ -38,7 +36,7 @@ impl Torus {
 }
 
 impl Shape for Torus {
-    fn validate(&mut self, path: &KeyPath, materials: &IndexMap<String, Material>) -> Check {
+    fn validate(&mut self, path: &KeyPath, context: &Context) -> Check {
         number(&path.key("major_radius"), self.major_radius, &POSITIVE)?;
         number(&path.key("minor_radius"), self.minor_radius, &POSITIVE)?;
         if self.minor_radius >= self.major_radius {
@@ -51,7 +49,7 @@ impl Shape for Torus {
             ));
         }
         self.placement().validate(path)?;
-        material_name(path, self.material.as_deref(), materials)
+        material_name(path, self.material.as_deref(), context.materials)
     }
 
     fn translate(&mut self, offset: DVec3) {

@@ -4,9 +4,8 @@ use egui::Ui;
 use glam::DVec3;
 
 use super::{EditShape, Placement};
-use crate::app::panel::edit::MIN_POSITIVE;
 use crate::app::panel::field;
-use crate::app::panel::widgets::{COORDINATES, VALUE_LIMIT, number, vec3_row};
+use crate::app::panel::widgets::{COORDINATES, vec3_row};
 use crate::scene::{Cube, CubeSize};
 
 impl EditShape for Cube {
@@ -36,7 +35,7 @@ impl EditShape for Cube {
             "size",
             "Edge length, or lengths along the cube's own x, y, z",
         );
-        size_row(ui, &mut self.size, 0.002 * scale);
+        super::size_row(ui, &mut self.size, 0.002 * scale);
         ui.end_row();
         field(
             ui,
@@ -49,27 +48,9 @@ impl EditShape for Cube {
     }
 }
 
-/// One edge length or three, with a toggle between the two forms.
-fn size_row(ui: &mut Ui, size: &mut CubeSize, speed: f64) {
-    ui.vertical(|ui| {
-        let mut per_axis = matches!(size, CubeSize::PerAxis(_));
-        if ui.checkbox(&mut per_axis, "per axis").changed() {
-            *size = toggle_per_axis(*size);
-        }
-        match size {
-            CubeSize::Uniform(s) => {
-                ui.add(number(s, speed, MIN_POSITIVE..=VALUE_LIMIT));
-            }
-            CubeSize::PerAxis(edges) => {
-                vec3_row(ui, edges, speed, MIN_POSITIVE..=VALUE_LIMIT);
-            }
-        }
-    });
-}
-
 /// Switches a cube between one edge length and three. Going back to one keeps
 /// the longest edge, so the cube encloses the box it was.
-fn toggle_per_axis(size: CubeSize) -> CubeSize {
+pub(super) fn toggle_per_axis(size: CubeSize) -> CubeSize {
     match size {
         CubeSize::Uniform(s) => CubeSize::PerAxis(DVec3::splat(s)),
         CubeSize::PerAxis(v) => CubeSize::Uniform(v.max_element()),

@@ -7,6 +7,7 @@
 mod cube;
 mod implicit;
 mod julia;
+mod mesh;
 mod placed;
 mod plane;
 mod sphere;
@@ -15,7 +16,9 @@ mod torus;
 use egui::Ui;
 use glam::DVec3;
 
-use crate::scene::{self, Scene, Shape, ShapeId, ShapeKind};
+use super::edit::MIN_POSITIVE;
+use super::widgets::{VALUE_LIMIT, number, vec3_row};
+use crate::scene::{self, CubeSize, Scene, Shape, ShapeId, ShapeKind};
 
 /// Where new shapes go and how big they are: from the view, so that a new
 /// shape appears in sight and at the size of the scene.
@@ -90,3 +93,22 @@ macro_rules! editors {
     };
 }
 crate::scene::for_each_shape_kind!(editors);
+
+/// One length or three (a cube's size, a mesh's scale), with a toggle
+/// between the two forms.
+pub(super) fn size_row(ui: &mut Ui, size: &mut CubeSize, speed: f64) {
+    ui.vertical(|ui| {
+        let mut per_axis = matches!(size, CubeSize::PerAxis(_));
+        if ui.checkbox(&mut per_axis, "per axis").changed() {
+            *size = cube::toggle_per_axis(*size);
+        }
+        match size {
+            CubeSize::Uniform(s) => {
+                ui.add(number(s, speed, MIN_POSITIVE..=VALUE_LIMIT));
+            }
+            CubeSize::PerAxis(edges) => {
+                vec3_row(ui, edges, speed, MIN_POSITIVE..=VALUE_LIMIT);
+            }
+        }
+    });
+}

@@ -1,0 +1,130 @@
+//! A triangle mesh as `shaders/shapes/mesh.wgsl` reads it: the placement
+//! per mesh, and in the kind's second buffer `mesh_data` each loaded
+//! geometry once (its BVH nodes, its triangles in leaf order, its vertex
+//! normals when smooth), in the mesh's own coordinates, so that a moved
+//! mesh repacks nothing but its placement.
+
+use std::sync::Arc;
+
+use bytemuck::{Pod, Zeroable};
+use glam::DMat3;
+
+use super::{Frame, PackShape, round_out};
+use crate::bvh::mesh_bvh;
+use crate::scene::{self, Geometry, Scene, Shape};
+
+#[repr(C)]
+#[derive(Debug, Clone, Copy, PartialEq, Pod, Zeroable)]
+pub struct Mesh {
+    /// `mat3x3<f32>`: three columns, each padded to 16 bytes.
+    pub to_local: [[f32; 4]; 3],
+    pub origin: [f32; 3],
+    pub material: u32,
+    pub normal_to_world: [[f32; 4]; 3],
+    pub to_world: [[f32; 4]; 3],
+    pub node_start: u32,
+    pub tri_start: u32,
+    pub normal_start: u32,
+    pub error_scale: f32,
+}
+
+fn columns(m: DMat3) -> [[f32; 4]; 3] {
+    [m.x_axis, m.y_axis, m.z_axis].map(|c| c.as_vec3().extend(0.0).to_array())
+}
+
+impl PackShape for Mesh {
+    type Source = scene::Mesh;
+    const WGSL: &'static str = include_str!("../../../shaders/shapes/mesh.wgsl");
+    const DATA: Option<&'static str> = Some("mesh_data");
+
+    /// The placement; the data offsets are set by [`PackShape::pack_kind`].
+    fn pack(scene: &Scene, frame: &Frame, m: &scene::Mesh) -> Self {
+        let to_local = m.linear().inverse();
+        let [lo, hi] = m.bounds();
+        let error_scale = (lo - frame.origin)
+            .abs()
+            .max((hi - frame.origin).abs())
+            .max_element();
+        Mesh {
+            to_local: columns(to_local),
+            origin: frame.point(m.translate),
+            material: scene.material_slot(m.material.as_deref()),
+            normal_to_world: columns(to_local.transpose()),
+            to_world: columns(m.linear()),
+            node_start: 0,
+            tri_start: 0,
+            normal_start: 0,
+            error_scale: error_scale as f32,
+        }
+    }
+
+    /// Each geometry's data goes into `mesh_data` once, however many meshes
+    /// show it.
+    fn pack_kind(scene: &Scene, frame: &Frame) -> (Vec<Self>, Vec<[u32; 4]>) {
+        let mut data = Vec::new();
+        let mut packed: Vec<(*const Geometry, [u32; 3])> = Vec::new();
+        let meshes = scene
+            .meshes
+            .iter()
+            .map(|m| {
+                let geometry = &m.geometry.0;
+                let key = Arc::as_ptr(geometry);
+                let starts = match packed.iter().find(|(g, _)| *g == key) {
+                    Some((_, starts)) => *starts,
+                    None => {
+                        let starts = append_geometry(&mut data, geometry);
+                        packed.push((key, starts));
+                        starts
+                    }
+                };
+                let [node_start, tri_start, normal_start] = starts;
+                Mesh {
+                    node_start,
+                    tri_start,
+                    normal_start,
+                    ..Mesh::pack(scene, frame, m)
+                }
+            })
+            .collect();
+        (meshes, data)
+    }
+}
+
+/// How much every node box grows, relative to its largest edge. The faces
+/// of a tessellated box give boxes of zero thickness, and lavapipe's slab
+/// test (`hit_box`) does not keep their entry and exit equal: rays missed
+/// whole faces until the boxes were padded (seen on the tessellated cube of
+/// tests/meshes.rs). 2^-16 costs nothing measurable in box hits.
+const FLAT_PAD: f64 = 1.0 / 65536.0;
+
+/// Appends a geometry's BVH nodes, triangles and (smooth) normals; returns
+/// where each starts (the normals' start is 0 for a flat mesh: the nodes
+/// always come first).
+fn append_geometry(data: &mut Vec<[u32; 4]>, geometry: &Arc<Geometry>) -> [u32; 3] {
+    let bvh = mesh_bvh(geometry);
+    let bits = |v: [f32; 3], w: u32| [v[0].to_bits(), v[1].to_bits(), v[2].to_bits(), w];
+    let node_start = data.len() as u32;
+    for node in &bvh.nodes {
+        let pad = FLAT_PAD * (node.bounds.max - node.bounds.min).max_element();
+        let (lo, hi) = round_out(node.bounds.min - pad, node.bounds.max + pad);
+        data.push(bits(lo, node.first));
+        data.push(bits(hi, node.count));
+    }
+    let vertex = |v: u32, of: &[glam::DVec3]| bits(of[v as usize].as_vec3().to_array(), 0);
+    let tri_start = data.len() as u32;
+    for &t in &bvh.prims {
+        for v in geometry.triangles[t as usize] {
+            data.push(vertex(v, &geometry.positions));
+        }
+    }
+    let mut normal_start = 0;
+    if !geometry.normals.is_empty() {
+        normal_start = data.len() as u32;
+        for &t in &bvh.prims {
+            for v in geometry.triangles[t as usize] {
+                data.push(vertex(v, &geometry.normals));
+            }
+        }
+    }
+    [node_start, tri_start, normal_start]
+}

@@ -1,0 +1,211 @@
+//! `[[meshes]]`: a triangle mesh from an OBJ or PLY file or inline arrays,
+//! placed by `translate`, `scale` and `rotation` (docs/scene-format.md,
+//! docs/rendering-model.md "Triangle meshes").
+
+use std::path::PathBuf;
+use std::sync::Arc;
+
+use glam::{DMat3, DVec3};
+use serde::{Deserialize, Serialize};
+
+use super::{Context, CubeSize, Shape, rotation_degrees};
+use crate::scene::key_path::KeyPath;
+use crate::scene::mesh_file::{self, Geometry};
+use crate::scene::validate::{Check, FINITE, Issue, POSITIVE, material_name, number, vector};
+
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct Mesh {
+    /// An OBJ or PLY file, relative to the scene file; kept as written, so
+    /// that a saved scene refers to the same file.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub file: Option<PathBuf>,
+    /// Inline geometry (without `file`).
+    #[serde(default, skip_serializing_if = "Vec::is_empty")]
+    pub positions: Vec<DVec3>,
+    #[serde(default, skip_serializing_if = "Vec::is_empty")]
+    pub triangles: Vec<[u32; 3]>,
+    #[serde(default, skip_serializing_if = "Vec::is_empty")]
+    pub normals: Vec<DVec3>,
+    #[serde(default)]
+    pub smooth: bool,
+    #[serde(default)]
+    pub translate: DVec3,
+    /// A number or `[x, y, z]`, like a cube's size.
+    #[serde(default = "unit_scale")]
+    pub scale: CubeSize,
+    /// Degrees about the world x, y, z axes, applied in that order.
+    #[serde(default)]
+    pub rotation: DVec3,
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub material: Option<String>,
+    /// The geometry, loaded and checked by validation; shared between
+    /// copies of the scene, so moving a mesh keeps it (and its BVH).
+    #[serde(skip)]
+    pub geometry: Loaded,
+}
+
+/// The ray-triangle tests the renderers offer (docs/rendering-model.md,
+/// "Triangle meshes"): the same hits in exact arithmetic, different
+/// rounding, speed and behaviour on shared edges.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, Default)]
+pub enum TriangleTest {
+    /// Cramer's rule with signed volumes (determinants), as on the slides.
+    Cramer,
+    /// Möller and Trumbore 1997.
+    MollerTrumbore,
+    /// Woop, Benthin and Wald 2013, as in pbrt-v4: no ray slips between
+    /// two triangles that share an edge.
+    #[default]
+    Watertight,
+}
+
+impl TriangleTest {
+    pub const ALL: [TriangleTest; 3] = [
+        TriangleTest::Cramer,
+        TriangleTest::MollerTrumbore,
+        TriangleTest::Watertight,
+    ];
+
+    /// Its name on the command line and in reports.
+    pub fn name(self) -> &'static str {
+        match self {
+            TriangleTest::Cramer => "cramer",
+            TriangleTest::MollerTrumbore => "moller-trumbore",
+            TriangleTest::Watertight => "watertight",
+        }
+    }
+
+    /// The value of the shader's `TRIANGLE_TEST` constant.
+    pub fn number(self) -> u32 {
+        self as u32
+    }
+
+    /// The test named `name` ([`TriangleTest::name`]).
+    pub fn from_name(name: &str) -> Option<TriangleTest> {
+        TriangleTest::ALL.into_iter().find(|t| t.name() == name)
+    }
+}
+
+fn unit_scale() -> CubeSize {
+    CubeSize::Uniform(1.0)
+}
+
+/// The loaded geometry of a mesh (empty before validation). Two are equal
+/// when they are the same load or hold the same triangles.
+#[derive(Debug, Clone, Default)]
+pub struct Loaded(pub Arc<Geometry>);
+
+impl PartialEq for Loaded {
+    fn eq(&self, other: &Self) -> bool {
+        Arc::ptr_eq(&self.0, &other.0) || self.0 == other.0
+    }
+}
+
+impl Mesh {
+    /// An inline mesh with its geometry loaded (flat shaded, unplaced).
+    pub fn inline(positions: &[DVec3], triangles: &[[u32; 3]]) -> Result<Mesh, String> {
+        let geometry = mesh_file::from_arrays(positions, triangles, &[], false)?;
+        Ok(Mesh {
+            file: None,
+            positions: positions.to_vec(),
+            triangles: triangles.to_vec(),
+            normals: Vec::new(),
+            smooth: false,
+            translate: DVec3::ZERO,
+            scale: unit_scale(),
+            rotation: DVec3::ZERO,
+            material: None,
+            geometry: Loaded(Arc::new(geometry)),
+        })
+    }
+
+    /// `Rz Ry Rx` of `rotation`, the cube's convention.
+    pub fn rotation_matrix(&self) -> DMat3 {
+        rotation_degrees(self.rotation)
+    }
+
+    /// The linear part of local to world: `R * diag(scale)`.
+    pub fn linear(&self) -> DMat3 {
+        self.rotation_matrix() * DMat3::from_diagonal(self.scale.edges())
+    }
+
+    /// A local point in the world: `translate + R (scale * p)`.
+    pub fn to_world(&self, p: DVec3) -> DVec3 {
+        self.translate + self.linear() * p
+    }
+
+    /// Where the geometry is loaded from, for messages and the panel.
+    fn load(&self, path: &KeyPath, context: &Context) -> Result<Geometry, Issue> {
+        let inline = !self.positions.is_empty() || !self.triangles.is_empty();
+        match (&self.file, inline) {
+            (Some(_), true) => Err(Issue::new(
+                &path.key("file"),
+                "give either a file or inline positions and triangles, not both".to_owned(),
+            )),
+            (None, false) => Err(Issue::new(
+                path,
+                "needs a file or inline positions and triangles".to_owned(),
+            )),
+            (Some(file), false) => {
+                let full = match context.base {
+                    Some(dir) => dir.join(file),
+                    None => file.clone(),
+                };
+                mesh_file::load_file(&full, self.smooth)
+                    .map_err(|message| Issue::new(&path.key("file"), message))
+            }
+            (None, true) => {
+                mesh_file::from_arrays(&self.positions, &self.triangles, &self.normals, self.smooth)
+                    .map_err(|message| Issue::new(path, message))
+            }
+        }
+    }
+}
+
+impl Shape for Mesh {
+    /// Checks the placement, then loads the geometry (file or inline) and
+    /// keeps it; degenerate triangles dropped are reported as a warning.
+    fn validate(&mut self, path: &KeyPath, context: &Context) -> Check {
+        vector(&path.key("translate"), self.translate, &FINITE)?;
+        match self.scale {
+            CubeSize::Uniform(s) => number(&path.key("scale"), s, &POSITIVE)?,
+            CubeSize::PerAxis(s) => vector(&path.key("scale"), s, &POSITIVE)?,
+        }
+        vector(&path.key("rotation"), self.rotation, &FINITE)?;
+        material_name(path, self.material.as_deref(), context.materials)?;
+        let geometry = self.load(path, context)?;
+        if geometry.dropped > 0 {
+            log::warn!(
+                "{path}: {} degenerate triangles (zero area) dropped",
+                geometry.dropped
+            );
+        }
+        self.geometry = Loaded(Arc::new(geometry));
+        Ok(())
+    }
+
+    fn translate(&mut self, offset: DVec3) {
+        self.translate += offset;
+    }
+
+    fn material(&self) -> &Option<String> {
+        &self.material
+    }
+
+    fn material_mut(&mut self) -> &mut Option<String> {
+        &mut self.material
+    }
+
+    /// The world box of the transformed vertices.
+    fn bounds(&self) -> [DVec3; 2] {
+        let m = self.linear();
+        self.geometry.0.positions.iter().fold(
+            [DVec3::INFINITY, DVec3::NEG_INFINITY],
+            |[lo, hi], &p| {
+                let w = self.translate + m * p;
+                [lo.min(w), hi.max(w)]
+            },
+        )
+    }
+}

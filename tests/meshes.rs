@@ -1,0 +1,383 @@
+//! Triangle meshes (docs/rendering-model.md, "Triangle meshes"): loading
+//! and its errors through the command line, saving, the reference's
+//! tessellated cube against the analytic one, the GPU against the reference
+//! on the bundled mesh scenes, and the watertightness of the three
+//! ray-triangle tests on rays aimed exactly at shared edges and vertices.
+
+mod common;
+
+use std::path::PathBuf;
+use std::process::{Command, Output};
+
+use glam::DVec3;
+use raysandbox::compare::diff_images;
+use raysandbox::gpu::ShaderSource;
+use raysandbox::reference::ray::Ray;
+use raysandbox::reference::shapes::mesh::hit_triangle;
+use raysandbox::scene::{Geometry, Scene, TriangleTest};
+use raysandbox::stress::Harness;
+
+fn raysandbox(args: &[&str]) -> Output {
+    Command::new(env!("CARGO_BIN_EXE_raysandbox"))
+        .args(args)
+        .output()
+        .expect("run raysandbox")
+}
+
+fn temp_dir() -> PathBuf {
+    let dir = std::env::temp_dir().join(format!("raysandbox-meshes-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).unwrap();
+    dir
+}
+
+fn mesh_scenes_dir() -> PathBuf {
+    common::scenes_dir().join("meshes")
+}
+
+/// A scene in a temporary folder that shows the mesh file `name` holding
+/// `contents`.
+fn scene_with_mesh_file(name: &str, contents: &[u8]) -> PathBuf {
+    let dir = temp_dir();
+    std::fs::write(dir.join(name), contents).unwrap();
+    let scene = dir.join(format!("{name}.toml"));
+    let text =
+        format!("[camera]\nfrom = [0, 0, 5]\nto = [0, 0, 0]\n[[meshes]]\nfile = \"{name}\"\n");
+    std::fs::write(&scene, text).unwrap();
+    scene
+}
+
+/// `check` of a scene with a broken mesh file: exit 2, no panic, and the
+/// message names the file and `expected` (its line or element).
+fn assert_rejected(name: &str, contents: &[u8], expected: &str) {
+    let scene = scene_with_mesh_file(name, contents);
+    let out = raysandbox(&["check", scene.to_str().unwrap()]);
+    let stderr = String::from_utf8_lossy(&out.stderr);
+    assert_eq!(out.status.code(), Some(2), "{name}: {stderr}");
+    assert!(!stderr.contains("panicked"), "{name}: {stderr}");
+    assert!(
+        stderr.contains(expected),
+        "{name}: expected {expected:?} in {stderr}"
+    );
+}
+
+const GOOD_OBJ: &str = "v 0 0 0\nv 1 0 0\nv 0 1 0\nv 0 0 1\nf 1 2 3\nf 1 2 4\n";
+
+#[test]
+fn malformed_obj_and_ply_files_exit_2_naming_the_line_or_element() {
+    let truncated = &GOOD_OBJ[..GOOD_OBJ.find("v 0 1 0").unwrap() + 5];
+    assert_rejected(
+        "truncated.obj",
+        truncated.as_bytes(),
+        "truncated.obj:3: a vertex needs three numbers",
+    );
+    assert_rejected(
+        "index.obj",
+        b"v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 9\n",
+        "index.obj:4: face vertex index 9 out of range",
+    );
+    assert_rejected(
+        "nan.obj",
+        b"v 0 0 0\nv nan 0 0\nv 0 1 0\nf 1 2 3\n",
+        "nan.obj:2: vertex coordinates must be finite",
+    );
+    let mut garbage = b"v 0 0 0\n".to_vec();
+    garbage.extend([0xff, 0xfe, 0x00, 0x81, b'\n', 0xc3]);
+    assert_rejected("garbage.obj", &garbage, "garbage.obj:2: not a text file");
+    let ply = "ply\nformat ascii 1.0\nelement vertex 3\nproperty float x\nproperty float y\nproperty float z\n\
+               element face 2\nproperty list uchar int vertex_indices\nend_header\n\
+               0 0 0\n1 0 0\n0 1 0\n3 0 1 2\n3 0 1 7\n";
+    assert_rejected(
+        "index.ply",
+        ply.as_bytes(),
+        "index.ply: face 1: vertex index 7 out of range",
+    );
+    assert_rejected("short.ply", &ply.as_bytes()[..ply.len() - 12], "short.ply");
+    assert_rejected("missing.obj.ply", b"", "missing.obj.ply");
+    assert_rejected("model.stl", b"solid x", "model.stl:unknown mesh format");
+}
+
+#[test]
+fn inline_errors_name_the_index_and_degenerate_triangles_are_dropped() {
+    let base = "[camera]\nfrom = [0, 0, 5]\nto = [0, 0, 0]\n[[meshes]]\n\
+                positions = [[0, 0, 0], [1, 0, 0], [0, 1, 0], [2, 0, 0]]\n";
+    let bad = format!("{base}triangles = [[0, 1, 2], [0, 1, 4]]\n");
+    let e = Scene::from_toml_str(&bad, None).unwrap_err().to_string();
+    assert!(
+        e.contains("meshes[0]: triangles[1]: vertex index 4 out of range"),
+        "{e}"
+    );
+    // [0, 1, 3] is collinear: zero area.
+    let ok = format!("{base}triangles = [[0, 1, 2], [0, 1, 3]]\n");
+    let scene = Scene::from_toml_str(&ok, None).unwrap();
+    let g: &Geometry = &scene.meshes[0].geometry.0;
+    assert_eq!((g.triangles.len(), g.dropped), (1, 1));
+    assert!(
+        scene.summary().contains("1 meshes (1 triangles)"),
+        "{}",
+        scene.summary()
+    );
+}
+
+#[test]
+fn smooth_normals_are_area_weighted_and_a_saved_scene_keeps_its_file() {
+    let path = mesh_scenes_dir().join("glass_bunny.toml");
+    let scene = Scene::load(&path).unwrap_or_else(|e| panic!("{e}"));
+    let g = &scene.meshes[0].geometry.0;
+    assert_eq!(g.normals.len(), g.positions.len());
+    assert!(g.normals.iter().all(|n| (n.length() - 1.0).abs() < 1e-12));
+    let saved = scene.to_toml_string();
+    assert!(
+        saved.contains("file = \"../../meshes/bunny.obj\""),
+        "{saved}"
+    );
+    let again = Scene::from_toml_str(&saved, Some(&path)).unwrap();
+    assert_eq!(again, scene);
+    // Two squares sharing an edge, one twice the other: the shared
+    // vertices' normals lean towards the larger one's.
+    let text = "[camera]\nfrom = [0, 0, 5]\nto = [0, 0, 0]\n[[meshes]]\nsmooth = true\n\
+                positions = [[0, 0, 0], [1, 0, 0], [0, 1, 0], [0, 0, 2]]\n\
+                triangles = [[0, 1, 2], [0, 3, 1]]\n";
+    let scene = Scene::from_toml_str(text, None).unwrap();
+    let n = scene.meshes[0].geometry.0.normals[0];
+    let expected = (DVec3::Z + 2.0 * DVec3::Y).normalize();
+    assert!((n - expected).length() < 1e-12, "{n}");
+}
+
+/// The box of edge 1 at `centre`, turned by `turn` about y, as a `[[cubes]]`
+/// table or as a mesh of 12 triangles.
+fn box_scene(as_mesh: bool) -> Scene {
+    let shape = if as_mesh {
+        "[[meshes]]\ntranslate = [0.3, 0.5, 0]\nrotation = [10, 35, 0]\nscale = 0.5\n\
+         positions = [[-1,-1,-1],[1,-1,-1],[1,1,-1],[-1,1,-1],[-1,-1,1],[1,-1,1],[1,1,1],[-1,1,1]]\n\
+         triangles = [[0,2,1],[0,3,2],[4,5,6],[4,6,7],[0,1,5],[0,5,4],[3,7,6],[3,6,2],[0,4,7],[0,7,3],[1,2,6],[1,6,5]]\n"
+    } else {
+        "[[cubes]]\ncenter = [0.3, 0.5, 0]\nrotation = [10, 35, 0]\nsize = 1\n"
+    };
+    let text = format!(
+        "[camera]\nfrom = [2, 2.2, 4]\nto = [0, 0.5, 0]\nfov = 40\n\
+         [[lights]]\nposition = [-3, 5, 4]\n\
+         [materials.floor]\nchecker = {{ color = [0.1, 0.1, 0.1], size = 0.5 }}\n\
+         [[planes]]\npoint = [0, -0.4, 0]\nnormal = [0, 1, 0]\nmaterial = \"floor\"\n{shape}"
+    );
+    Scene::from_toml_str(&text, None).unwrap()
+}
+
+#[test]
+fn a_tessellated_cube_renders_like_the_analytic_cube() {
+    let (w, h) = (160, 120);
+    let cube = raysandbox::reference::render_rgba8(&box_scene(false), w, h, 1);
+    let mesh = raysandbox::reference::render_rgba8(&box_scene(true), w, h, 1);
+    let d = diff_images(&cube, &mesh);
+    println!(
+        "tessellated vs analytic cube: mean |d| {:.4}, > 8: {:.3}%",
+        d.mean_abs,
+        d.frac_over_8 * 100.0
+    );
+    assert!(d.mean_abs < 0.1 && d.frac_over_8 < 0.002, "{d:?}");
+}
+
+#[test]
+fn gpu_matches_reference_on_the_mesh_scenes() {
+    let Some(gpu) = common::gpu() else { return };
+    let harness = Harness::new(&gpu, &ShaderSource::embedded()).unwrap();
+    let mut scenes = common::toml_files(&mesh_scenes_dir());
+    scenes.push(PathBuf::from("tessellated cube"));
+    let mut failures = Vec::new();
+    for path in &scenes {
+        let scene = if path.exists() {
+            Scene::load(path).unwrap_or_else(|e| panic!("{e}"))
+        } else {
+            box_scene(true)
+        };
+        let m = harness.measure(&gpu, &scene, 160, 90).unwrap();
+        let c = m.robust_cmp;
+        println!(
+            "{}: FLIP {:.5}, first-hit mismatch {:.4}%, NaN {}",
+            path.display(),
+            c.flip_mean,
+            c.id_mismatch * 100.0,
+            c.nan_pixels
+        );
+        if !c.passes() {
+            failures.push(format!("{}: {c:?}", path.display()));
+        }
+    }
+    assert!(failures.is_empty(), "{}", failures.join("\n"));
+}
+
+/// A closed sphere of `n` x `2n` quads (each two triangles), counter-clockwise
+/// from outside.
+fn uv_sphere(n: u32) -> (Vec<DVec3>, Vec<[u32; 3]>) {
+    let mut positions = vec![DVec3::Y, -DVec3::Y];
+    for i in 1..n {
+        let theta = std::f64::consts::PI * f64::from(i) / f64::from(n);
+        for j in 0..2 * n {
+            let phi = std::f64::consts::PI * f64::from(j) / f64::from(n);
+            positions.push(DVec3::new(
+                theta.sin() * phi.cos(),
+                theta.cos(),
+                -theta.sin() * phi.sin(),
+            ));
+        }
+    }
+    let ring = |i: u32, j: u32| 2 + (i - 1) * 2 * n + j % (2 * n);
+    let mut triangles = Vec::new();
+    for j in 0..2 * n {
+        triangles.push([0, ring(1, j), ring(1, j + 1)]);
+        triangles.push([1, ring(n - 1, j + 1), ring(n - 1, j)]);
+        for i in 1..n - 1 {
+            let (a, b, c, d) = (
+                ring(i, j),
+                ring(i, j + 1),
+                ring(i + 1, j + 1),
+                ring(i + 1, j),
+            );
+            triangles.push([a, d, c]);
+            triangles.push([a, c, b]);
+        }
+    }
+    (positions, triangles)
+}
+
+/// A fan of `n` thin triangles around the origin, in the plane z = 0.
+fn fan(n: u32) -> (Vec<DVec3>, Vec<[u32; 3]>) {
+    let mut positions = vec![DVec3::ZERO];
+    for k in 0..n {
+        let a = std::f64::consts::TAU * f64::from(k) / f64::from(n);
+        positions.push(DVec3::new(a.cos(), a.sin(), 0.0));
+    }
+    let triangles = (0..n).map(|k| [0, 1 + k, 1 + (k + 1) % n]).collect();
+    (positions, triangles)
+}
+
+/// A small deterministic generator (xorshift) for ray origins.
+struct Rng(u64);
+
+impl Rng {
+    fn next(&mut self) -> f64 {
+        self.0 ^= self.0 << 13;
+        self.0 ^= self.0 >> 7;
+        self.0 ^= self.0 << 17;
+        (self.0 >> 11) as f64 / (1u64 << 53) as f64
+    }
+
+    fn direction(&mut self) -> DVec3 {
+        let z = 2.0 * self.next() - 1.0;
+        let a = std::f64::consts::TAU * self.next();
+        let r = (1.0 - z * z).sqrt();
+        DVec3::new(r * a.cos(), r * a.sin(), z)
+    }
+}
+
+/// Rays aimed exactly (in f64) at a shared vertex or at a point of a shared
+/// edge, from a random point 3 units away in front of every triangle that
+/// meets there (so the ray crosses the surface there rather than grazing
+/// it); a ray that meets no triangle of the mesh leaked. Returns (test,
+/// rays, leaks) per test.
+fn leaks(
+    positions: &[DVec3],
+    triangles: &[[u32; 3]],
+    rays: usize,
+    seed: u64,
+) -> Vec<(TriangleTest, usize, usize)> {
+    let normal = |t: &[u32; 3]| {
+        let p = t.map(|v| positions[v as usize]);
+        (p[1] - p[0]).cross(p[2] - p[0]).normalize()
+    };
+    let mut edges: Vec<((u32, u32), usize)> = triangles
+        .iter()
+        .enumerate()
+        .flat_map(|(i, t)| [(t[0], t[1]), (t[1], t[2]), (t[2], t[0])].map(|e| (e, i)))
+        .map(|((a, b), i)| ((a.min(b), a.max(b)), i))
+        .collect();
+    edges.sort_unstable();
+    let shared: Vec<((u32, u32), [usize; 2])> = edges
+        .windows(2)
+        .filter(|w| w[0].0 == w[1].0)
+        .map(|w| (w[0].0, [w[0].1, w[1].1]))
+        .collect();
+    let mut around: Vec<Vec<usize>> = vec![Vec::new(); positions.len()];
+    for (i, t) in triangles.iter().enumerate() {
+        for v in t {
+            around[*v as usize].push(i);
+        }
+    }
+    let mut rng = Rng(seed);
+    let mut aims = Vec::with_capacity(rays);
+    while aims.len() < rays {
+        let ((a, b), faces) = shared[(rng.next() * shared.len() as f64) as usize];
+        let (target, faces) = if aims.len() % 4 == 0 {
+            (positions[a as usize], around[a as usize].clone())
+        } else {
+            let (pa, pb) = (positions[a as usize], positions[b as usize]);
+            (pa.lerp(pb, rng.next()), faces.to_vec())
+        };
+        let dir = rng.direction();
+        if faces.iter().all(|&f| normal(&triangles[f]).dot(dir) > 0.05) {
+            aims.push((target, target + 3.0 * dir));
+        }
+    }
+    TriangleTest::ALL
+        .into_iter()
+        .map(|test| {
+            let leaked = aims
+                .iter()
+                .filter(|&&(target, origin)| {
+                    let ray = Ray::new(origin, target - origin);
+                    !triangles.iter().any(|t| {
+                        let p = t.map(|v| positions[v as usize]);
+                        hit_triangle(test, &ray, p, f64::INFINITY).is_some()
+                    })
+                })
+                .count();
+            (test, rays, leaked)
+        })
+        .collect()
+}
+
+#[test]
+fn watertight_test_leaks_no_ray_through_shared_edges_and_vertices() {
+    let bunny = Scene::load(&mesh_scenes_dir().join("glass_bunny.toml")).unwrap();
+    let g = bunny.meshes[0].geometry.0.clone();
+    let (sphere_p, sphere_t) = uv_sphere(24);
+    let (fan_p, fan_t) = fan(1000);
+    let cases = [
+        ("tessellated sphere", sphere_p, sphere_t, 20_000),
+        ("bunny", g.positions.clone(), g.triangles.clone(), 2_000),
+        ("fan of 1000 slivers", fan_p, fan_t, 20_000),
+    ];
+    println!(
+        "{:<22} {:<16} {:>8} {:>8} {:>14}",
+        "mesh", "test", "rays", "leaks", "per million"
+    );
+    for (name, positions, triangles, rays) in cases {
+        for (test, rays, leaked) in leaks(&positions, &triangles, rays, 0x9e37_79b9_7f4a_7c15) {
+            let per_million = leaked as f64 * 1e6 / rays as f64;
+            println!(
+                "{name:<22} {:<16} {rays:>8} {leaked:>8} {per_million:>14.0}",
+                test.name()
+            );
+            if test == TriangleTest::Watertight {
+                assert_eq!(
+                    leaked, 0,
+                    "{name}: the watertight test leaked {leaked} of {rays} rays"
+                );
+            }
+        }
+    }
+}
+
+#[test]
+fn check_loads_every_mesh_scene() {
+    for path in common::toml_files(&mesh_scenes_dir()) {
+        let out = raysandbox(&["check", path.to_str().unwrap()]);
+        let stdout = String::from_utf8_lossy(&out.stdout);
+        assert!(
+            out.status.success(),
+            "{}: {}",
+            path.display(),
+            String::from_utf8_lossy(&out.stderr)
+        );
+        assert!(stdout.contains("triangles)"), "{stdout}");
+    }
+}
