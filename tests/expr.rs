@@ -129,7 +129,6 @@ struct GpuValue {
 /// function) through `user_f{w}` and `user_f{w}_dual`, the generated WGSL as the
 /// shader gets it.
 fn run_on_gpu(gpu: &Gpu, functions: &[Function], points: &[[f32; 4]]) -> Vec<GpuValue> {
-    use wgpu::util::DeviceExt;
     let mut wgsl = String::new();
     let mut cases = String::new();
     for (i, f) in functions.iter().enumerate() {
@@ -159,71 +158,14 @@ fn run_on_gpu(gpu: &Gpu, functions: &[Function], points: &[[f32; 4]]) -> Vec<Gpu
         ("functions.wgsl".to_string(), wgsl),
         ("harness.wgsl".to_string(), harness),
     ]);
-    source.validate().unwrap_or_else(|e| panic!("{e}"));
-    let device = &gpu.device;
-    let module = device.create_shader_module(wgpu::ShaderModuleDescriptor {
-        label: Some("expression harness"),
-        source: wgpu::ShaderSource::Wgsl(source.text().into()),
-    });
-    let pipeline = device.create_compute_pipeline(&wgpu::ComputePipelineDescriptor {
-        label: Some("expression harness"),
-        layout: None,
-        module: &module,
-        entry_point: Some("run"),
-        compilation_options: wgpu::PipelineCompilationOptions {
-            constants: &[("ENABLED", 1.0)],
-            ..Default::default()
-        },
-        cache: None,
-    });
-    let input = device.create_buffer_init(&wgpu::util::BufferInitDescriptor {
-        label: Some("points"),
-        contents: bytemuck::cast_slice(points),
-        usage: wgpu::BufferUsages::STORAGE,
-    });
-    let size = (points.len() * 2 * 16) as u64;
-    let output = device.create_buffer(&wgpu::BufferDescriptor {
-        label: Some("results"),
-        size,
-        usage: wgpu::BufferUsages::STORAGE | wgpu::BufferUsages::COPY_SRC,
-        mapped_at_creation: false,
-    });
-    let readback = device.create_buffer(&wgpu::BufferDescriptor {
-        label: Some("readback"),
-        size,
-        usage: wgpu::BufferUsages::COPY_DST | wgpu::BufferUsages::MAP_READ,
-        mapped_at_creation: false,
-    });
-    let bind_group = device.create_bind_group(&wgpu::BindGroupDescriptor {
-        label: None,
-        layout: &pipeline.get_bind_group_layout(0),
-        entries: &[
-            wgpu::BindGroupEntry {
-                binding: 0,
-                resource: input.as_entire_binding(),
-            },
-            wgpu::BindGroupEntry {
-                binding: 1,
-                resource: output.as_entire_binding(),
-            },
-        ],
-    });
-    let mut encoder = device.create_command_encoder(&Default::default());
-    {
-        let mut pass = encoder.begin_compute_pass(&Default::default());
-        pass.set_pipeline(&pipeline);
-        pass.set_bind_group(0, &bind_group, &[]);
-        pass.dispatch_workgroups((points.len() as u32).div_ceil(64), 1, 1);
-    }
-    encoder.copy_buffer_to_buffer(&output, 0, &readback, 0, size);
-    gpu.queue.submit([encoder.finish()]);
-    let slice = readback.slice(..);
-    slice.map_async(wgpu::MapMode::Read, |r| r.expect("map"));
-    device
-        .poll(wgpu::PollType::wait_indefinitely())
-        .expect("waiting for the GPU");
-    let data = slice.get_mapped_range().expect("mapped");
-    let vectors: &[[f32; 4]] = bytemuck::cast_slice(&data);
+    let kernel = common::compute::Kernel {
+        label: "expression harness",
+        source: &source,
+        entry: "run",
+        constants: &[("ENABLED", 1.0)],
+        group: 0,
+    };
+    let vectors: Vec<[f32; 4]> = kernel.run(gpu, points, points.len() * 2);
     vectors
         .chunks(2)
         .map(|pair| GpuValue {

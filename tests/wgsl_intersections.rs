@@ -124,7 +124,6 @@ fn test_intersections(@builtin(global_invocation_id) id: vec3<u32>) {
 
 /// Runs the harness on `cases` with the shader's `ROBUST` constant.
 fn run(gpu: &Gpu, cases: &[GpuCase], robust: bool) -> Vec<GpuResult> {
-    use wgpu::util::DeviceExt;
     let embedded = ShaderSource::embedded();
     let source = ShaderSource::from_parts(
         embedded
@@ -132,72 +131,14 @@ fn run(gpu: &Gpu, cases: &[GpuCase], robust: bool) -> Vec<GpuResult> {
             .map(|(name, text)| (name.to_string(), text.to_string()))
             .chain([("harness.wgsl".to_string(), HARNESS.to_string())]),
     );
-    source.validate().unwrap_or_else(|e| panic!("{e}"));
-    let device = &gpu.device;
-    let module = device.create_shader_module(wgpu::ShaderModuleDescriptor {
-        label: Some("intersection harness"),
-        source: wgpu::ShaderSource::Wgsl(source.text().into()),
-    });
-    let constants = [("ROBUST", if robust { 1.0 } else { 0.0 })];
-    let pipeline = device.create_compute_pipeline(&wgpu::ComputePipelineDescriptor {
-        label: Some("test_intersections"),
-        layout: None,
-        module: &module,
-        entry_point: Some("test_intersections"),
-        compilation_options: wgpu::PipelineCompilationOptions {
-            constants: &constants,
-            ..Default::default()
-        },
-        cache: None,
-    });
-    let input = device.create_buffer_init(&wgpu::util::BufferInitDescriptor {
-        label: Some("cases"),
-        contents: bytemuck::cast_slice(cases),
-        usage: wgpu::BufferUsages::STORAGE,
-    });
-    let size = (cases.len() * std::mem::size_of::<GpuResult>()) as u64;
-    let output = device.create_buffer(&wgpu::BufferDescriptor {
-        label: Some("results"),
-        size,
-        usage: wgpu::BufferUsages::STORAGE | wgpu::BufferUsages::COPY_SRC,
-        mapped_at_creation: false,
-    });
-    let readback = device.create_buffer(&wgpu::BufferDescriptor {
-        label: Some("readback"),
-        size,
-        usage: wgpu::BufferUsages::COPY_DST | wgpu::BufferUsages::MAP_READ,
-        mapped_at_creation: false,
-    });
-    let bind_group = device.create_bind_group(&wgpu::BindGroupDescriptor {
-        label: None,
-        layout: &pipeline.get_bind_group_layout(1),
-        entries: &[
-            wgpu::BindGroupEntry {
-                binding: 0,
-                resource: input.as_entire_binding(),
-            },
-            wgpu::BindGroupEntry {
-                binding: 1,
-                resource: output.as_entire_binding(),
-            },
-        ],
-    });
-    let mut encoder = device.create_command_encoder(&Default::default());
-    {
-        let mut pass = encoder.begin_compute_pass(&Default::default());
-        pass.set_pipeline(&pipeline);
-        pass.set_bind_group(1, &bind_group, &[]);
-        pass.dispatch_workgroups((cases.len() as u32).div_ceil(64), 1, 1);
-    }
-    encoder.copy_buffer_to_buffer(&output, 0, &readback, 0, size);
-    gpu.queue.submit([encoder.finish()]);
-    let slice = readback.slice(..);
-    slice.map_async(wgpu::MapMode::Read, |r| r.expect("map"));
-    device
-        .poll(wgpu::PollType::wait_indefinitely())
-        .expect("waiting for the GPU");
-    let data = slice.get_mapped_range().expect("mapped");
-    bytemuck::cast_slice(&data).to_vec()
+    let kernel = common::compute::Kernel {
+        label: "intersection harness",
+        source: &source,
+        entry: "test_intersections",
+        constants: &[("ROBUST", if robust { 1.0 } else { 0.0 })],
+        group: 1,
+    };
+    kernel.run(gpu, cases, cases.len())
 }
 
 /// The shapes of the cases, as the CPU port and the exact answer see them.
