@@ -393,7 +393,13 @@ impl App {
     /// the current scene kept; unsaved edits are not replaced without asking.
     fn reload_scene_file(&mut self) {
         match self.doc.read_external_change() {
-            Ok(None) => {}
+            Ok(None) => {
+                // Back to the text last loaded (an error undone): the scene
+                // shown is that file's, the error is gone.
+                if self.editor.scene_error.take().is_some() {
+                    self.event("scene-error-cleared");
+                }
+            }
             Ok(Some((scene, text))) => {
                 self.editor.scene_error = None;
                 if self.doc.is_dirty() {
@@ -407,8 +413,10 @@ impl App {
             }
             Err(e) => {
                 log::error!("{e}");
-                self.editor.scene_error = Some(e.to_string());
-                self.event("scene-error");
+                let message = e.to_string();
+                let first_line = message.lines().next().unwrap_or_default();
+                self.event(&format!("scene-error {first_line}"));
+                self.editor.scene_error = Some(message);
             }
         }
     }
