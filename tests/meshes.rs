@@ -98,12 +98,10 @@ fn malformed_obj_and_ply_files_exit_2_naming_the_line_or_element() {
     for x in [0.0, 0.0, 0.0, f32::NAN, 0.0, 0.0, 0.0, 1.0, 0.0] {
         nan_binary.extend(f32::to_le_bytes(x));
     }
-    for _ in 0..2 {
-        nan_binary.push(3);
-        for v in [0i32, 1, 2] {
-            nan_binary.extend(v.to_le_bytes());
-        }
-    }
+    let face: Vec<u8> = std::iter::once(3u8)
+        .chain([0i32, 1, 2].into_iter().flat_map(i32::to_le_bytes))
+        .collect();
+    nan_binary.extend(face.repeat(2));
     assert_rejected(
         "nan_binary.ply",
         &nan_binary,

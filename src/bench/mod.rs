@@ -3,6 +3,7 @@
 //! BVH. Writes CSV files, a Markdown report and PNG plots to `--out`.
 
 mod measure;
+mod meshes;
 mod plot;
 
 use std::fmt::Write as _;
@@ -29,6 +30,12 @@ pub struct BenchArgs {
     /// Frames timed per point (median), after one warm-up frame.
     #[arg(long, default_value_t = 10, value_parser = clap::value_parser!(u32).range(1..=1000))]
     pub frames: u32,
+    /// Only the triangle-mesh benchmark (docs/performance.md, "Triangle
+    /// meshes"): per mesh size and ray-triangle test, frame time and error,
+    /// load and BVH build time, GPU bytes per triangle. The two largest
+    /// dragons come from scripts/fetch-meshes.
+    #[arg(long)]
+    pub meshes: bool,
 }
 
 /// What one run sweeps.
@@ -221,6 +228,9 @@ pub enum BenchError {
 
 pub fn run(args: &BenchArgs) -> Result<(), BenchError> {
     let gpu = Gpu::headless().map_err(|e| BenchError::NoGpu(e.to_string()))?;
+    if args.meshes {
+        return meshes::run(&gpu, args);
+    }
     let plan = Plan::new(args.quick);
     let env = Environment {
         adapter: gpu.describe(),
@@ -399,9 +409,13 @@ fn pipeline_row(
 ) -> Result<PipelineRow, BenchError> {
     let specialised = ShaderOptions::for_scene(scene);
     let generic = ShaderOptions::generic(scene);
-    let ([s, g], ratio) =
-        measure::paired_frame_times(gpu, [&specialised, &generic], scene, size, frames)
-            .map_err(BenchError::Failed)?;
+    let ([s, g], ratio) = measure::paired_frame_times(
+        gpu,
+        [(&specialised, scene), (&generic, scene)],
+        size,
+        frames,
+    )
+    .map_err(BenchError::Failed)?;
     Ok(PipelineRow {
         scene: name.to_string(),
         specialized_ms: ms(s),
