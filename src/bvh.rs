@@ -11,6 +11,7 @@
 use glam::DVec3;
 
 use std::sync::{Arc, Mutex, Weak};
+use std::time::{Duration, Instant};
 
 use rayon::prelude::*;
 
@@ -161,9 +162,20 @@ fn triangle_bounds(geometry: &Geometry) -> Vec<(u32, Aabb)> {
         .collect()
 }
 
+/// A triangle BVH as built for one geometry, with what the viewer's panel
+/// shows of it.
+#[derive(Debug, Clone)]
+pub struct MeshBvh {
+    pub bvh: Arc<Bvh<u32>>,
+    /// [`Bvh::depth`], kept: it walks the whole tree.
+    pub depth: usize,
+    /// Wall-clock time of the build (rayon threads included).
+    pub build_time: Duration,
+}
+
 /// Triangle BVHs built so far, by the geometry they were built for (held
 /// weakly: a geometry no scene uses any more is dropped from here).
-type MeshBvhCache = Vec<(Weak<Geometry>, Arc<Bvh<u32>>)>;
+type MeshBvhCache = Vec<(Weak<Geometry>, MeshBvh)>;
 static MESH_BVHS: Mutex<MeshBvhCache> = Mutex::new(Vec::new());
 
 /// The BVH over a mesh's triangles (leaves hold triangle indices) in the
@@ -171,24 +183,36 @@ static MESH_BVHS: Mutex<MeshBvhCache> = Mutex::new(Vec::new());
 /// by every copy of the scene: moving, turning or scaling a mesh changes
 /// only its placement, which renderers apply to the ray, never this tree.
 pub fn mesh_bvh(geometry: &Arc<Geometry>) -> Arc<Bvh<u32>> {
+    mesh_bvh_built(geometry).bvh
+}
+
+/// [`mesh_bvh`] with its depth and build time.
+pub fn mesh_bvh_built(geometry: &Arc<Geometry>) -> MeshBvh {
     let cached = |cache: &mut MeshBvhCache| {
         cache.retain(|(g, _)| g.strong_count() > 0);
         cache
             .iter()
             .find(|(g, _)| std::ptr::eq(g.as_ptr(), Arc::as_ptr(geometry)))
-            .map(|(_, bvh)| bvh.clone())
+            .map(|(_, built)| built.clone())
     };
     let lock = || MESH_BVHS.lock().unwrap_or_else(|e| e.into_inner());
-    if let Some(bvh) = cached(&mut lock()) {
-        return bvh;
+    if let Some(built) = cached(&mut lock()) {
+        return built;
     }
-    let bvh = Arc::new(Bvh::from_items(triangle_bounds(geometry)));
+    let start = Instant::now();
+    let bvh = Bvh::from_items(triangle_bounds(geometry));
+    let build_time = start.elapsed();
+    let built = MeshBvh {
+        depth: bvh.depth(),
+        bvh: Arc::new(bvh),
+        build_time,
+    };
     let mut cache = lock();
     if let Some(other) = cached(&mut cache) {
         return other;
     }
-    cache.push((Arc::downgrade(geometry), bvh.clone()));
-    bvh
+    cache.push((Arc::downgrade(geometry), built.clone()));
+    built
 }
 
 /// Below this many items a subtree is built on one thread: splitting the

@@ -128,3 +128,49 @@ fn append_geometry(data: &mut Vec<[u32; 4]>, geometry: &Arc<Geometry>) -> [u32; 
     }
     [node_start, tri_start, normal_start]
 }
+
+#[cfg(test)]
+mod tests {
+    use glam::DVec3;
+
+    use super::*;
+    use crate::bvh::mesh_bvh_built;
+    use crate::gpu::layout::PackedScene;
+    use crate::scene::{CubeSize, ShapeKind};
+
+    /// What the viewer does when a mesh is moved, turned or scaled in the
+    /// panel: the scene is copied and the placement edited. The geometry,
+    /// its BVH and the packed triangles stay; only the placement changes.
+    #[test]
+    fn a_rigid_move_keeps_the_triangle_bvh_and_repacks_only_the_placement() {
+        let text = r#"
+            [camera]
+            from = [0, 1, 5]
+            to = [0, 0, 0]
+            [[meshes]]
+            positions = [[0, 0, 0], [1, 0, 0], [0, 1, 0], [0, 0, 1]]
+            triangles = [[0, 2, 1], [0, 1, 3], [1, 2, 3], [2, 0, 3]]
+        "#;
+        let scene = Scene::from_toml_str(text, None).unwrap();
+        let built = mesh_bvh_built(&scene.meshes[0].geometry.0);
+        let before = PackedScene::new(&scene, 8, 8);
+
+        let mut moved = scene.clone();
+        let mesh = &mut moved.meshes[0];
+        mesh.translate = DVec3::new(0.5, -0.25, 1.0);
+        mesh.rotation = DVec3::new(10.0, 45.0, 0.0);
+        mesh.scale = CubeSize::PerAxis(DVec3::new(2.0, 1.0, 0.5));
+        let after = PackedScene::new(&moved, 8, 8);
+
+        let again = mesh_bvh_built(&moved.meshes[0].geometry.0);
+        assert!(Arc::ptr_eq(&built.bvh, &again.bvh), "the BVH was rebuilt");
+        assert_eq!(built.build_time, again.build_time);
+        let data = crate::gpu::shapes::buffer_position(ShapeKind::Mesh) + 1;
+        assert_eq!(before.shapes[data], after.shapes[data], "triangle data");
+        assert_ne!(
+            before.shapes_of::<Mesh>()[0],
+            after.shapes_of::<Mesh>()[0],
+            "the placement is repacked"
+        );
+    }
+}
