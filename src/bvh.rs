@@ -10,11 +10,12 @@
 
 use glam::DVec3;
 
-use std::sync::{Arc, Mutex, Weak};
+use std::sync::Arc;
+use std::time::{Duration, Instant};
 
 use rayon::prelude::*;
 
-use crate::scene::{Geometry, Scene, ShapeId};
+use crate::scene::{Geometry, PerGeometry, Scene, ShapeId};
 
 /// An axis-aligned box.
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -161,34 +162,40 @@ fn triangle_bounds(geometry: &Geometry) -> Vec<(u32, Aabb)> {
         .collect()
 }
 
-/// Triangle BVHs built so far, by the geometry they were built for (held
-/// weakly: a geometry no scene uses any more is dropped from here).
-type MeshBvhCache = Vec<(Weak<Geometry>, Arc<Bvh<u32>>)>;
-static MESH_BVHS: Mutex<MeshBvhCache> = Mutex::new(Vec::new());
+/// A triangle BVH as built for one geometry, with what the viewer's panel
+/// shows of it.
+#[derive(Debug, Clone)]
+pub struct MeshBvh {
+    pub bvh: Arc<Bvh<u32>>,
+    /// [`Bvh::depth`], kept: it walks the whole tree.
+    pub depth: usize,
+    /// Wall-clock time of the build (rayon threads included).
+    pub build_time: Duration,
+}
+
+/// Triangle BVHs built so far, by the geometry they were built for.
+static MESH_BVHS: PerGeometry<MeshBvh> = PerGeometry::new();
 
 /// The BVH over a mesh's triangles (leaves hold triangle indices) in the
 /// mesh's own coordinates. It is built once per loaded geometry and shared
 /// by every copy of the scene: moving, turning or scaling a mesh changes
 /// only its placement, which renderers apply to the ray, never this tree.
 pub fn mesh_bvh(geometry: &Arc<Geometry>) -> Arc<Bvh<u32>> {
-    let cached = |cache: &mut MeshBvhCache| {
-        cache.retain(|(g, _)| g.strong_count() > 0);
-        cache
-            .iter()
-            .find(|(g, _)| std::ptr::eq(g.as_ptr(), Arc::as_ptr(geometry)))
-            .map(|(_, bvh)| bvh.clone())
-    };
-    let lock = || MESH_BVHS.lock().unwrap_or_else(|e| e.into_inner());
-    if let Some(bvh) = cached(&mut lock()) {
-        return bvh;
-    }
-    let bvh = Arc::new(Bvh::from_items(triangle_bounds(geometry)));
-    let mut cache = lock();
-    if let Some(other) = cached(&mut cache) {
-        return other;
-    }
-    cache.push((Arc::downgrade(geometry), bvh.clone()));
-    bvh
+    mesh_bvh_built(geometry).bvh
+}
+
+/// [`mesh_bvh`] with its depth and build time.
+pub fn mesh_bvh_built(geometry: &Arc<Geometry>) -> MeshBvh {
+    MESH_BVHS.get_or_make(geometry, || {
+        let start = Instant::now();
+        let bvh = Bvh::from_items(triangle_bounds(geometry));
+        let build_time = start.elapsed();
+        MeshBvh {
+            depth: bvh.depth(),
+            bvh: Arc::new(bvh),
+            build_time,
+        }
+    })
 }
 
 /// Below this many items a subtree is built on one thread: splitting the

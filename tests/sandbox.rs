@@ -23,16 +23,11 @@ fn shaders_dir() -> PathBuf {
 }
 
 fn temp_dir(name: &str) -> PathBuf {
-    let dir =
-        std::env::temp_dir().join(format!("raysandbox-sandbox-{name}-{}", std::process::id()));
-    std::fs::create_dir_all(&dir).unwrap();
-    dir
+    common::temp_dir("sandbox", name)
 }
 
 fn write(dir: &Path, name: &str, text: &str) -> PathBuf {
-    let path = dir.join(name);
-    std::fs::write(&path, text).unwrap();
-    path
+    common::write_file(dir, name, text)
 }
 
 fn distinct_colors(image: &RgbaImage) -> usize {

@@ -14,15 +14,11 @@ use raysandbox::sandbox::{Checked, check_file, render_file};
 const SIZE: (u32, u32) = (32, 18);
 
 fn temp_dir(name: &str) -> PathBuf {
-    let dir = std::env::temp_dir().join(format!("raysandbox-compat-{name}-{}", std::process::id()));
-    std::fs::create_dir_all(&dir).unwrap();
-    dir
+    common::temp_dir("compat", name)
 }
 
 fn write(dir: &Path, name: &str, text: &str) -> PathBuf {
-    let path = dir.join(name);
-    std::fs::write(&path, text).unwrap();
-    path
+    common::write_file(dir, name, text)
 }
 
 /// Renders `text` as a file called `name` at time 1 and returns the image.
@@ -331,7 +327,7 @@ fn check_all_prints_a_verdict_per_file_and_the_totals() {
         Some(2),
         "some files are broken on purpose"
     );
-    assert!(stdout.contains("6 of 10 pass (60.0%), 4 fail"), "{stdout}");
+    assert!(stdout.contains("8 of 13 pass (61.5%), 5 fail"), "{stdout}");
     let typo = stdout
         .lines()
         .find(|l| l.contains("broken_typo.frag"))

@@ -106,3 +106,46 @@ fn the_window_renders_the_file_and_follows_its_edits() {
     drop(window);
     std::fs::remove_dir_all(&dir).unwrap();
 }
+
+const SHOW_CHANNEL0: &str = "\
+void mainImage(out vec4 fragColor, in vec2 fragCoord) {
+    fragColor = texture(iChannel0, fragCoord / iResolution.xy);
+}
+";
+
+#[test]
+fn the_window_shows_the_channel_image_given_on_the_command_line() {
+    let Some(display) = Display::start() else {
+        return;
+    };
+    let dir = std::env::temp_dir().join(format!("raysandbox-window-ch-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).unwrap();
+    let shader = dir.join("show.glsl");
+    std::fs::write(&shader, SHOW_CHANNEL0).unwrap();
+    let input = image::RgbaImage::from_fn(WIDTH, HEIGHT, |x, y| {
+        image::Rgba([
+            (x % 256) as u8,
+            (y % 256) as u8,
+            ((x / 3) ^ (y / 5)) as u8,
+            255,
+        ])
+    });
+    let input_path = dir.join("input.png");
+    input.save(&input_path).unwrap();
+    let window = Window::open(
+        &display,
+        &[
+            "shader",
+            shader.to_str().unwrap(),
+            "--start-paused",
+            "--channel0",
+            input_path.to_str().unwrap(),
+        ],
+        (WIDTH, HEIGHT),
+    );
+    let shown = crop(&window.capture(), FREE);
+    let d = diff_images(&shown, &crop(&input, FREE));
+    assert!(d.max_abs <= 1, "the window shows the image: {d:?}");
+    drop(window);
+    std::fs::remove_dir_all(&dir).unwrap();
+}

@@ -343,3 +343,203 @@ fn window_larger_than_the_gpu_allows_exits_2_naming_the_limit() {
         assert!(!stderr.contains("panicked"), "{args:?}: {stderr}");
     }
 }
+
+/// A floor, a light and one mesh read from `shape.obj` beside the scene.
+const MESH_SCENE: &str = r#"
+[render]
+ambient = [0.2, 0.2, 0.2]
+[camera]
+from = [0, 1.5, 4]
+to = [0, 0.5, 0]
+fov = 45
+[[lights]]
+position = [3, 6, 4]
+[materials.red]
+color = [0.9, 0.2, 0.1]
+[[planes]]
+point = [0, 0, 0]
+normal = [0, 1, 0]
+[[meshes]]
+file = "shape.obj"
+material = "red"
+"#;
+
+/// A tetrahedron standing on the floor, and a wide flat quad.
+const TETRAHEDRON: &str =
+    "v -1 0 1\nv 1 0 1\nv 0 0 -1\nv 0 1.5 0\nf 1 3 2\nf 1 2 4\nf 2 3 4\nf 3 1 4\n";
+const QUAD: &str = "v -2 0.01 -1\nv 2 0.01 -1\nv 2 1.2 -1\nv -2 1.2 -1\nf 1 2 3 4\n";
+
+/// The side panel, left of the view.
+const PANEL: (u32, u32, u32, u32) = (0, 0, 340, HEIGHT - 40);
+
+#[test]
+fn a_mesh_file_edited_on_disk_reloads_and_a_bad_edit_keeps_the_last_good_mesh() {
+    let _serial = serial();
+    let Some(display) = Display::start() else {
+        return;
+    };
+    let dir = temp_dir("mesh-reload");
+    let obj = dir.join("shape.obj");
+    std::fs::write(&obj, TETRAHEDRON).unwrap();
+    let path = dir.join("scene.toml");
+    std::fs::write(&path, MESH_SCENE).unwrap();
+    let mut viewer = open(&display, &[path.to_str().unwrap()]);
+    let tetrahedron = viewer.capture();
+
+    // Another good mesh: it is drawn.
+    std::fs::write(&obj, QUAD).unwrap();
+    assert!(viewer.wait_for("mesh-reloaded").ends_with("shape.obj"));
+    viewer.wait_for("ready");
+    let quad = viewer.capture();
+    let d = diff_images(&crop(&tetrahedron, VIEW), &crop(&quad, VIEW));
+    assert!(d.frac_over_8 > 0.02, "the new mesh is not drawn: {d:?}");
+
+    // A bad file (line 5 names a vertex that does not exist): the error
+    // names the file and the line, the last good mesh keeps rendering and
+    // the panel shows the error.
+    let bad = QUAD.replace("f 1 2 3 4", "f 1 2 3 9");
+    std::fs::write(&obj, bad).unwrap();
+    let error = viewer.wait_for("mesh-error");
+    assert!(
+        error.contains("shape.obj:5: face vertex index 9"),
+        "{error}"
+    );
+    std::thread::sleep(Duration::from_millis(500));
+    assert!(
+        viewer.is_running(),
+        "a bad mesh file must not stop the viewer"
+    );
+    let during = viewer.capture();
+    assert_eq!(
+        diff_images(&crop(&quad, VIEW), &crop(&during, VIEW)).max_abs,
+        0,
+        "the last good mesh must stay"
+    );
+    let panel = diff_images(&crop(&quad, PANEL), &crop(&during, PANEL));
+    assert!(
+        panel.frac_over_8 > 0.002,
+        "no error in the panel: {panel:?}"
+    );
+
+    // Fixed again: drawn again, the error is gone from the panel.
+    std::fs::write(&obj, TETRAHEDRON).unwrap();
+    viewer.wait_for("mesh-reloaded");
+    viewer.wait_for("ready");
+    let fixed = viewer.capture();
+    assert_eq!(
+        diff_images(&crop(&tetrahedron, VIEW), &crop(&fixed, VIEW)).max_abs,
+        0
+    );
+    std::fs::remove_dir_all(&dir).unwrap();
+}
+
+/// An implicit surface and a Julia set on a floor.
+const IMPLICIT_SCENE: &str = r#"
+[render]
+ambient = [0.2, 0.2, 0.2]
+[camera]
+from = [0, 1.5, 5]
+to = [0, 0.7, 0]
+fov = 45
+[[lights]]
+position = [3, 6, 4]
+[materials.blue]
+color = [0.2, 0.35, 0.85]
+[[planes]]
+point = [0, 0, 0]
+normal = [0, 1, 0]
+[[implicits]]
+f = "x^2 + y^2 + z^2 - 1"
+bounds = [[-1.1, -1.1, -1.1], [1.1, 1.1, 1.1]]
+steps = 64
+translate = [-1, 0.8, 0]
+scale = 0.7
+material = "blue"
+[[julias]]
+c = [-0.2, 0.6, 0.2, 0.2]
+translate = [1, 0.8, 0]
+scale = 0.5
+"#;
+
+/// The viewer is given the scene file rewritten with bad implicit input
+/// (docs/scene-format.md, "Errors"): each time it reports the key (and the
+/// column of a bad function) and keeps drawing the last good scene under the
+/// error window, then takes the file again once it is fixed.
+#[test]
+fn bad_implicit_input_keeps_the_last_good_scene_and_shows_the_error() {
+    let _serial = serial();
+    let Some(display) = Display::start() else {
+        return;
+    };
+    let dir = temp_dir("bad-implicit");
+    let path = dir.join("implicit.toml");
+    std::fs::write(&path, IMPLICIT_SCENE).unwrap();
+    let mut viewer = open(&display, &[path.to_str().unwrap()]);
+    let good = viewer.capture();
+    // The error window sits at the bottom of the window; above it the view
+    // must not change.
+    let above_error = (VIEW.0, 0, VIEW.2, 200);
+    let error_area = (VIEW.0, 250, VIEW.2, VIEW.3 - 250);
+    let cases = [
+        (
+            r#"f = "x^2 + y^2 + z^2 - 1""#,
+            r#"f = "x^2 + (y^2 + z^2 - 1""#,
+            "implicits[0].f: column",
+        ),
+        (
+            r#"f = "x^2 + y^2 + z^2 - 1""#,
+            r#"f = "x^2 + foo(y) - 1""#,
+            "implicits[0].f: column",
+        ),
+        (
+            "c = [-0.2, 0.6, 0.2, 0.2]",
+            "c = [2.5, 0, 0, 0]",
+            "julias[0].c",
+        ),
+        ("steps = 64", "steps = 0", "implicits[0].steps"),
+        (
+            "c = [-0.2, 0.6, 0.2, 0.2]",
+            "c = [-0.2, 0.6, 0.2, 0.2]\niterations = 0",
+            "julias[0].iterations",
+        ),
+        (
+            "bounds = [[-1.1, -1.1, -1.1], [1.1, 1.1, 1.1]]",
+            "bounds = [[1.1, -1.1, -1.1], [-1.1, 1.1, 1.1]]",
+            "implicits[0].bounds",
+        ),
+        ("scale = 0.5", "scale = nan", "julias[0].scale"),
+    ];
+    for (good_text, bad_text, key) in cases {
+        let bad = IMPLICIT_SCENE.replacen(good_text, bad_text, 1);
+        assert_ne!(bad, IMPLICIT_SCENE);
+        // One write may reach the watcher as several changes: forget the
+        // reports of the last one.
+        viewer.events_within(Duration::from_millis(300));
+        std::fs::write(&path, &bad).unwrap();
+        let error = viewer.wait_for("scene-error");
+        assert!(error.contains("implicit.toml:"), "{bad_text}: {error}");
+        assert!(error.contains(key), "{bad_text}: {error}");
+        std::thread::sleep(Duration::from_millis(500));
+        assert!(viewer.is_running(), "{bad_text} stopped the viewer");
+        let during = viewer.capture();
+        assert_eq!(
+            diff_images(&crop(&good, above_error), &crop(&during, above_error)).max_abs,
+            0,
+            "{bad_text}: the last good scene must keep rendering"
+        );
+        let shown = diff_images(&crop(&good, error_area), &crop(&during, error_area));
+        assert!(
+            shown.frac_over_8 > 0.02,
+            "{bad_text}: no error shown: {shown:?}"
+        );
+    }
+    std::fs::write(&path, IMPLICIT_SCENE).unwrap();
+    viewer.wait_for("scene-error-cleared");
+    std::thread::sleep(Duration::from_millis(500));
+    assert_eq!(
+        diff_images(&crop(&good, VIEW), &crop(&viewer.capture(), VIEW)).max_abs,
+        0,
+        "the error window is gone once the file is fixed"
+    );
+    std::fs::remove_dir_all(&dir).unwrap();
+}

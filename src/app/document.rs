@@ -3,8 +3,9 @@
 
 use std::path::{Path, PathBuf};
 
+use super::mesh_files;
 use crate::files::write_atomically;
-use crate::scene::{Camera, Scene, SceneError, bundled};
+use crate::scene::{Camera, Mesh, Scene, SceneError, bundled};
 
 /// A scene being edited, and where it came from.
 pub struct Document {
@@ -52,6 +53,68 @@ impl Document {
         self.path.as_deref()
     }
 
+    /// The folder that mesh `file`s are relative to: the scene file's.
+    fn base(&self) -> Option<&Path> {
+        self.path.as_deref().and_then(Path::parent)
+    }
+
+    /// A mesh read from `file` (as picked or dropped: absolute, or relative
+    /// to the working folder), naming it relative to the scene file. The
+    /// error names the file and its line or element.
+    pub fn read_mesh(&self, file: &Path) -> Result<Mesh, String> {
+        let named = mesh_files::scene_relative(file, self.path());
+        Mesh::from_file(named, self.base())
+    }
+
+    /// Every mesh file the scene reads, as [`Document::reload_mesh_file`]
+    /// expects it, each once.
+    pub fn mesh_files(&self) -> Vec<PathBuf> {
+        let mut files: Vec<PathBuf> = Vec::new();
+        for file in self
+            .scene
+            .meshes
+            .iter()
+            .filter_map(|m| m.file_path(self.base()))
+        {
+            if !files.contains(&file) {
+                files.push(file);
+            }
+        }
+        files
+    }
+
+    /// Reads the mesh file `file` (one of [`Document::mesh_files`]) again
+    /// after it changed on disk and gives its new geometry to every mesh
+    /// that shows it, in the scene and in its saved state (a reload is not
+    /// an edit). Returns how many meshes changed. On an error (file and
+    /// line) nothing changes: the last good geometry stays.
+    pub fn reload_mesh_file(&mut self, file: &Path) -> Result<usize, String> {
+        let base = self.base().map(Path::to_path_buf);
+        let shows = |m: &Mesh| m.file_path(base.as_deref()).as_deref() == Some(file);
+        // One load per shading (`smooth` changes the normals), shared.
+        let mut fresh: Vec<Mesh> = Vec::new();
+        for mesh in self.scene.meshes.iter().filter(|m| shows(m)) {
+            if !fresh.iter().any(|f| f.smooth == mesh.smooth) {
+                let mut copy = mesh.clone();
+                copy.reload(base.as_deref())?;
+                fresh.push(copy);
+            }
+        }
+        let give = |meshes: &mut [Mesh]| {
+            let mut changed = 0;
+            for mesh in meshes.iter_mut().filter(|m| shows(m)) {
+                if let Some(new) = fresh.iter().find(|f| f.smooth == mesh.smooth) {
+                    mesh.geometry = new.geometry.clone();
+                    changed += 1;
+                }
+            }
+            changed
+        };
+        give(&mut self.saved.meshes);
+        let changed = give(&mut self.scene.meshes);
+        Ok(changed)
+    }
+
     pub fn is_dirty(&self) -> bool {
         self.scene != self.saved
     }
@@ -85,10 +148,21 @@ impl Document {
         self.save_as(&path)
     }
 
-    /// Writes the scene to `path` and makes it the document's file.
+    /// Writes the scene to `path` and makes it the document's file. Mesh
+    /// files stay where they are: in another folder the scene names them
+    /// by new relative paths.
     pub fn save_as(&mut self, path: &Path) -> Result<PathBuf, String> {
-        let text = self.scene.to_toml_string();
+        let mut scene = self.scene.clone();
+        if self.base() != path.parent() {
+            for mesh in &mut scene.meshes {
+                if let Some(file) = &mut mesh.file {
+                    *file = mesh_files::rebased(file, self.path(), path);
+                }
+            }
+        }
+        let text = scene.to_toml_string();
         write_atomically(path, &text).map_err(|e| format!("{}: {e}", path.display()))?;
+        self.scene = scene;
         self.path = Some(path.to_path_buf());
         self.saved = self.scene.clone();
         self.disk_text = Some(text);
@@ -192,6 +266,67 @@ mod tests {
             "an invalid edit is an error"
         );
         assert_eq!(doc.scene.render.exposure, 2.0, "the current scene is kept");
+        std::fs::remove_dir_all(&dir).unwrap();
+    }
+
+    #[test]
+    fn mesh_files_reload_keep_the_last_good_geometry_and_follow_save_as() {
+        let dir = temp_dir("mesh");
+        std::fs::create_dir_all(dir.join("models")).unwrap();
+        std::fs::create_dir_all(dir.join("scenes")).unwrap();
+        let obj = dir.join("models/tri.obj");
+        std::fs::write(&obj, "v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\n").unwrap();
+        let path = dir.join("scenes/s.toml");
+        let mut doc = Document::bundled("whitted").unwrap();
+        doc.save_as(&path).unwrap();
+        let mesh = doc.read_mesh(&obj).unwrap();
+        assert_eq!(mesh.file.as_deref(), Some(Path::new("../models/tri.obj")));
+        // Two meshes show the same file.
+        doc.scene.meshes.extend([mesh.clone(), mesh]);
+        doc.save().unwrap();
+        let loaded = Scene::load(&path).unwrap();
+        assert_eq!(loaded.meshes[1].geometry.0.triangles.len(), 1);
+        let files = doc.mesh_files();
+        assert_eq!(files, [dir.join("scenes").join("../models/tri.obj")]);
+
+        // A different good file: both meshes take it, and it is no edit.
+        let quad = "v 0 0 0\nv 1 0 0\nv 1 1 0\nv 0 1 0\nf 1 2 3 4\n";
+        std::fs::write(&obj, quad).unwrap();
+        assert_eq!(doc.reload_mesh_file(&files[0]), Ok(2));
+        let [a, b] = [0, 1].map(|i| doc.scene.meshes[i].geometry.0.clone());
+        assert_eq!(a.triangles.len(), 2);
+        assert!(std::sync::Arc::ptr_eq(&a, &b), "one load for both");
+        assert!(!doc.is_dirty());
+
+        // A bad file: the error names file and line, the geometry stays.
+        std::fs::write(&obj, "v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 9\n").unwrap();
+        let error = doc.reload_mesh_file(&files[0]).unwrap_err();
+        assert!(error.contains("tri.obj:4: face vertex index 9"), "{error}");
+        assert!(std::sync::Arc::ptr_eq(&doc.scene.meshes[0].geometry.0, &a));
+        assert_eq!(doc.reload_mesh_file(&dir.join("models/other.obj")), Ok(0));
+
+        // Saved in another folder, the scene still finds the model.
+        std::fs::write(&obj, quad).unwrap();
+        let other = dir.join("copies/deeper/s.toml");
+        std::fs::create_dir_all(other.parent().unwrap()).unwrap();
+        doc.save_as(&other).unwrap();
+        let file = doc.scene.meshes[0].file.as_deref();
+        assert_eq!(file, Some(Path::new("../../models/tri.obj")));
+        assert_eq!(Scene::load(&other).unwrap().meshes.len(), 2);
+        assert!(!doc.is_dirty());
+        std::fs::remove_dir_all(&dir).unwrap();
+    }
+
+    #[test]
+    fn a_bad_mesh_file_is_an_error_naming_its_line() {
+        let dir = temp_dir("bad-mesh");
+        let obj = dir.join("bad.obj");
+        std::fs::write(&obj, "v 0 0 0\nv 1 nan 0\n").unwrap();
+        let doc = Document::bundled("whitted").unwrap();
+        let error = doc.read_mesh(&obj).unwrap_err();
+        assert!(error.contains("bad.obj:2:"), "{error}");
+        let error = doc.read_mesh(&dir.join("missing.ply")).unwrap_err();
+        assert!(error.contains("missing.ply"), "{error}");
         std::fs::remove_dir_all(&dir).unwrap();
     }
 

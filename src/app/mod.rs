@@ -5,6 +5,7 @@
 
 mod controls;
 mod document;
+mod mesh_files;
 mod orbit;
 mod overlay;
 mod panel;
@@ -82,6 +83,8 @@ pub enum UserEvent {
     /// Pipelines built in the background: for a new scene feature set, from
     /// reloaded shaders or for changed shader parameters.
     PipelinesBuilt(Box<pipelines::Built>),
+    /// A mesh file chosen in the file dialog.
+    MeshFilePicked(PathBuf),
 }
 
 /// Opens the viewer and runs until the window closes.
@@ -119,6 +122,7 @@ pub fn run(options: ViewerOptions) -> Result<(), ViewerError> {
         reload_pending: false,
         gfx: None,
         watch: None,
+        watched_meshes: Vec::new(),
         fatal: None,
         drag_start_distance: None,
         was_dragging: false,
@@ -162,6 +166,8 @@ struct App {
     reload_pending: bool,
     gfx: Option<Graphics>,
     watch: Option<watch::Watch>,
+    /// The mesh files being watched (the scene's, when the watch started).
+    watched_meshes: Vec<PathBuf>,
     /// Why the viewer had to stop, reported after the loop ends.
     fatal: Option<ViewerError>,
     /// Eye-target distance when the current drag or zoom started.
@@ -193,7 +199,9 @@ impl ApplicationHandler<UserEvent> for App {
         match event {
             UserEvent::FileChanged(watch::Change::Shaders) => self.reload_shaders(),
             UserEvent::FileChanged(watch::Change::SceneFile) => self.reload_scene_file(),
+            UserEvent::FileChanged(watch::Change::MeshFile(path)) => self.reload_mesh_file(&path),
             UserEvent::PipelinesBuilt(built) => self.pipelines_built(*built),
+            UserEvent::MeshFilePicked(path) => self.add_mesh_file(&path),
         }
         self.request_redraw();
     }
@@ -209,8 +217,14 @@ impl ApplicationHandler<UserEvent> for App {
             }
             WindowEvent::RedrawRequested => self.redraw(event_loop),
             WindowEvent::DroppedFile(path) => {
-                // A file dropped on the window opens as the panel's "Open" does.
-                self.panel_action(PanelAction::Open(path));
+                // A mesh file dropped on the window is added to the scene;
+                // any other file opens as the panel's "Open" does.
+                let action = if mesh_files::is_mesh_file(&path) {
+                    PanelAction::AddMeshFile(path)
+                } else {
+                    PanelAction::Open(path)
+                };
+                self.panel_action(action);
                 self.request_redraw();
             }
             _ => {
@@ -269,16 +283,21 @@ impl App {
         .event(line);
     }
 
-    /// (Re)starts watching the shader folder and the scene file.
+    /// (Re)starts watching the shader folder, the scene file and its mesh
+    /// files.
     fn restart_watch(&mut self) {
         let proxy = self.proxy.clone();
         self.watch = None;
-        if self.shader_dir.is_none() && self.doc.path().is_none() {
+        self.watched_meshes = self.doc.mesh_files();
+        if self.shader_dir.is_none() && self.doc.path().is_none() && self.watched_meshes.is_empty()
+        {
             return;
         }
-        match watch::watch(self.shader_dir.as_deref(), self.doc.path(), move |change| {
+        let notify = move |change| {
             let _ = proxy.send_event(UserEvent::FileChanged(change));
-        }) {
+        };
+        let (shaders, scene) = (self.shader_dir.as_deref(), self.doc.path());
+        match watch::watch(shaders, scene, &self.watched_meshes, notify) {
             Ok(w) => self.watch = Some(w),
             Err(e) => {
                 log::warn!("{e}");
@@ -374,7 +393,13 @@ impl App {
     /// the current scene kept; unsaved edits are not replaced without asking.
     fn reload_scene_file(&mut self) {
         match self.doc.read_external_change() {
-            Ok(None) => {}
+            Ok(None) => {
+                // Back to the text last loaded (an error undone): the scene
+                // shown is that file's, the error is gone.
+                if self.editor.scene_error.take().is_some() {
+                    self.event("scene-error-cleared");
+                }
+            }
             Ok(Some((scene, text))) => {
                 self.editor.scene_error = None;
                 if self.doc.is_dirty() {
@@ -388,10 +413,67 @@ impl App {
             }
             Err(e) => {
                 log::error!("{e}");
-                self.editor.scene_error = Some(e.to_string());
-                self.event("scene-error");
+                let message = e.to_string();
+                let first_line = message.lines().next().unwrap_or_default();
+                self.event(&format!("scene-error {first_line}"));
+                self.editor.scene_error = Some(message);
             }
         }
+    }
+
+    /// A mesh file changed on disk: every mesh that shows it takes the new
+    /// triangles; a bad file is reported (file and line) in the panel and
+    /// the meshes keep their last good triangles.
+    fn reload_mesh_file(&mut self, path: &Path) {
+        match self.doc.reload_mesh_file(path) {
+            Ok(0) => {}
+            Ok(_) => {
+                self.editor.panel.mesh_error = None;
+                self.scene_changed(None);
+                self.event(&format!("mesh-reloaded {}", path.display()));
+            }
+            Err(e) => {
+                log::error!("{e}");
+                self.event(&format!("mesh-error {e}"));
+                self.editor.panel.mesh_error = Some(e);
+            }
+        }
+    }
+
+    /// Adds the mesh in `path` (picked, typed or dropped) in front of the
+    /// camera, selected; a file that cannot be read is reported in the
+    /// panel and the scene is left as it was.
+    fn add_mesh_file(&mut self, path: &Path) {
+        match self.doc.read_mesh(path) {
+            Ok(mesh) => {
+                let triangles = mesh.geometry.0.triangles.len();
+                let before = self.doc.scene.clone();
+                panel::add_mesh(&mut self.doc.scene, &mut self.editor.panel, mesh);
+                self.scene_changed(Some(&before));
+                self.editor.message =
+                    Some(format!("added {} ({triangles} triangles)", path.display()));
+                self.event(&format!("mesh-added {}", path.display()));
+            }
+            Err(e) => {
+                log::error!("{e}");
+                self.event(&format!("mesh-error {e}"));
+                self.editor.panel.mesh_error = Some(e);
+            }
+        }
+    }
+
+    /// Opens the file dialog for "Add mesh from file", in the scene's folder;
+    /// the window keeps drawing while it is open.
+    fn pick_mesh_file(&self) {
+        let proxy = self.proxy.clone();
+        let start = self
+            .doc
+            .path()
+            .and_then(Path::parent)
+            .map(Path::to_path_buf);
+        mesh_files::pick_mesh_file(start, move |path| {
+            let _ = proxy.send_event(UserEvent::MeshFilePicked(path));
+        });
     }
 
     /// Tells the viewport what changed: only the view (camera, render
@@ -406,6 +488,9 @@ impl App {
             }
         }
         self.ensure_pipelines();
+        if self.doc.mesh_files() != self.watched_meshes {
+            self.restart_watch();
+        }
     }
 
     /// The scene as the viewer draws it: the file's, with `min_weight`
@@ -520,6 +605,8 @@ impl App {
             PanelAction::OpenBundled(name) => self.open(Document::bundled(name)),
             PanelAction::ResetCamera => self.doc.scene.camera = self.doc.saved_camera().clone(),
             PanelAction::Screenshot => self.screenshot(),
+            PanelAction::PickMeshFile => self.pick_mesh_file(),
+            PanelAction::AddMeshFile(path) => self.add_mesh_file(&path),
         }
     }
 

@@ -18,7 +18,7 @@ mod widgets;
 use std::path::PathBuf;
 
 use crate::gpu::{DEFAULT_MAX_SAMPLES, DEFAULT_MIN_WEIGHT};
-use crate::scene::{Camera, Light, Material, RenderSettings, Scene, ShapeId, ShapeKind};
+use crate::scene::{Camera, Light, Material, Mesh, RenderSettings, Scene, ShapeId, ShapeKind};
 use egui::{
     Button, CollapsingHeader, ComboBox, Grid, Key, RichText, Slider, SliderClamping, TextEdit, Ui,
 };
@@ -66,6 +66,11 @@ pub struct PanelState {
     save_as_path: String,
     /// The text of the "Open" path field.
     open_path: String,
+    /// The text of the "Add mesh file" path field.
+    mesh_path: String,
+    /// Why the last mesh file could not be read (file and line), shown
+    /// under the shapes until a mesh file reads well.
+    pub mesh_error: Option<String>,
 }
 
 /// A material rename being typed, with the reason the last attempt failed.
@@ -95,6 +100,16 @@ pub enum PanelAction {
     ResetCamera,
     /// Save the current image.
     Screenshot,
+    /// Ask for a mesh file in the system's file dialog.
+    PickMeshFile,
+    /// Add the mesh in this file (OBJ or PLY), typed by the user.
+    AddMeshFile(PathBuf),
+}
+
+/// Adds `mesh` (read from a file) in front of the camera and selects it.
+pub fn add_mesh(scene: &mut Scene, state: &mut PanelState, mesh: Mesh) {
+    state.selection = Some(edit::add_mesh(scene, mesh));
+    state.mesh_error = None;
 }
 
 /// Draws the panel's contents into `ui` (the app has already created a left
@@ -129,7 +144,10 @@ pub fn show(
     section(ui, "Materials", false, |ui| {
         materials_section(ui, scene, state, scale);
     });
-    section(ui, "Shapes", false, |ui| shapes_section(ui, scene, state));
+    section(ui, "Shapes", false, |ui| {
+        shapes_section(ui, scene, state, &mut actions);
+    });
+    mesh_error_row(ui, state);
     let held = selected_shape_section(ui, scene, state, scale);
     shapes::settle(scene, held);
     actions
@@ -600,7 +618,12 @@ fn checker_rows(ui: &mut Ui, m: &mut Material, scale: f64) {
     }
 }
 
-fn shapes_section(ui: &mut Ui, scene: &mut Scene, state: &mut PanelState) {
+fn shapes_section(
+    ui: &mut Ui,
+    scene: &mut Scene,
+    state: &mut PanelState,
+    actions: &mut Vec<PanelAction>,
+) {
     ui.horizontal(|ui| {
         for &kind in ShapeKind::ALL {
             let label = format!("Add {}", kind.name().to_lowercase());
@@ -611,6 +634,7 @@ fn shapes_section(ui: &mut Ui, scene: &mut Scene, state: &mut PanelState) {
     })
     .response
     .on_hover_text("A new shape near the target, selected for editing");
+    mesh_file_rows(ui, state, actions);
     for id in edit::shape_ids(scene) {
         let selected = state.selection == Some(id);
         if ui
@@ -624,6 +648,37 @@ fn shapes_section(ui: &mut Ui, scene: &mut Scene, state: &mut PanelState) {
     }
     if scene.shape_count() == 0 {
         ui.weak("No shapes yet.");
+    }
+}
+
+/// "Add mesh file": the system's file dialog, or a typed path; and why the
+/// last mesh file could not be read.
+fn mesh_file_rows(ui: &mut Ui, state: &mut PanelState, actions: &mut Vec<PanelAction>) {
+    if ui
+        .button("Add mesh from file…")
+        .on_hover_text("An OBJ or PLY file, placed at the target (or drop the file on the window)")
+        .clicked()
+    {
+        actions.push(PanelAction::PickMeshFile);
+    }
+    if let Some(path) = path_row(ui, "Add file", "models/bunny.obj", &mut state.mesh_path) {
+        actions.push(PanelAction::AddMeshFile(path));
+    }
+}
+
+/// Why the last mesh file could not be read, outside the (folded) Shapes
+/// section so that it is seen; the scene keeps what it showed.
+fn mesh_error_row(ui: &mut Ui, state: &mut PanelState) {
+    let Some(error) = &state.mesh_error else {
+        return;
+    };
+    let mut dismiss = false;
+    ui.horizontal_wrapped(|ui| {
+        ui.colored_label(ui.visuals().error_fg_color, format!("Mesh file: {error}"));
+        dismiss = ui.small_button("OK").clicked();
+    });
+    if dismiss {
+        state.mesh_error = None;
     }
 }
 

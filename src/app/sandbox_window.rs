@@ -23,6 +23,7 @@ use super::overlay;
 use super::shell::{self, EguiLayer, EventLog};
 use super::watch;
 use crate::gpu::{EXPORT_FORMAT, Gpu, GpuTimer, Timing, Viewport};
+use crate::sandbox::channels::{self, CHANNELS};
 use crate::sandbox::clock::{Clock, Tick};
 use crate::sandbox::render::{Canvas, PipelineBuilder, SandboxGpu, ShaderPipeline};
 use crate::sandbox::watchdog::Probe;
@@ -62,7 +63,8 @@ enum SandboxEvent {
 /// failure; a shader that never compiled is the user's.
 pub fn run_sandbox(args: &ShaderArgs) -> Result<(), SandboxError> {
     sandbox::require_file(&args.file)?;
-    open_window(args.clone()).map_err(|e| match e {
+    let images = args.channel_images()?;
+    open_window(args.clone(), images).map_err(|e| match e {
         ViewerError::Shader(m) | ViewerError::Scene(m) => SandboxError::Input(m),
         e @ ViewerError::Size(_) => SandboxError::Input(e.to_string()),
         ViewerError::NoDisplay(m) => SandboxError::Runtime(format!(
@@ -92,12 +94,18 @@ fn build_checked(
     Ok(pipeline)
 }
 
-fn open_window(options: ShaderArgs) -> Result<(), ViewerError> {
+fn open_window(
+    options: ShaderArgs,
+    images: [Option<image::RgbaImage>; CHANNELS],
+) -> Result<(), ViewerError> {
     let event_loop = EventLoop::<SandboxEvent>::with_user_event()
         .build()
         .map_err(|e| ViewerError::NoDisplay(e.to_string()))?;
     event_loop.set_control_flow(ControlFlow::Wait);
     let now = Instant::now();
+    let paths = options
+        .channel_paths()
+        .map(|p| p.map(|p| p.display().to_string()).unwrap_or_default());
     let mut app = SandboxApp {
         proxy: event_loop.create_proxy(),
         events: EventLog {
@@ -127,6 +135,7 @@ fn open_window(options: ShaderArgs) -> Result<(), ViewerError> {
         after_present: Vec::new(),
         ready: false,
         repaint_at: None,
+        channels: ChannelPanel { paths, images },
     };
     event_loop
         .run_app(&mut app)
@@ -149,6 +158,13 @@ struct Graphics {
     egui: EguiLayer,
     /// Timestamps around the shader's pass, where the adapter has them.
     timer: Option<GpuTimer>,
+}
+
+/// The channel images: a path per channel in the panel, and the images
+/// read at start-up, given to the canvas once it exists.
+struct ChannelPanel {
+    paths: [String; CHANNELS],
+    images: [Option<image::RgbaImage>; CHANNELS],
 }
 
 struct PanelState {
@@ -236,6 +252,9 @@ struct Actions {
     reset_params: bool,
     save_params: bool,
     load_params: bool,
+    /// Load the image at the path into a channel, or (None) give it the
+    /// noise back.
+    channel: Option<(usize, Option<PathBuf>)>,
     screenshot: bool,
     toggle_fullscreen: bool,
     leave_fullscreen: bool,
@@ -272,6 +291,7 @@ struct SandboxApp {
     after_present: Vec<String>,
     ready: bool,
     repaint_at: Option<Instant>,
+    channels: ChannelPanel,
 }
 
 impl ApplicationHandler<SandboxEvent> for SandboxApp {
@@ -365,17 +385,18 @@ impl SandboxApp {
         if size.width > 0 && size.height > 0 {
             surface.configure(&gpu.device, &config);
         }
-        let sandbox = SandboxGpu::new(
-            &gpu.device,
-            &[format, EXPORT_FORMAT],
-            self.options.nan_color,
-        );
+        let sandbox = SandboxGpu::new(&gpu, &[format, EXPORT_FORMAT], self.options.nan_color);
         let builder = sandbox.builder(&gpu.device);
-        let canvas = Canvas::new(
+        let mut canvas = Canvas::new(
             &gpu,
             &sandbox,
             scaled((size.width, size.height), self.scale),
         );
+        for (k, image) in self.channels.images.iter_mut().enumerate() {
+            if let Some(image) = image.take() {
+                canvas.set_channel(&gpu, &sandbox, k, Some(&image));
+            }
+        }
         let egui = EguiLayer::new(&window, &gpu, format);
         let timer = GpuTimer::new(&gpu);
         Ok(Graphics {
@@ -536,6 +557,7 @@ impl SandboxApp {
         let mouse = &mut self.mouse;
         let scale = self.scale;
         let warning = self.warning.clone();
+        let channel_paths = &mut self.channels.paths;
         let file = self.options.file.file_name().map_or_else(
             || self.options.file.display().to_string(),
             |n| n.to_string_lossy().into_owned(),
@@ -607,6 +629,14 @@ impl SandboxApp {
                                 }
                             });
                         }
+                        ui.separator();
+                        egui::CollapsingHeader::new("Channels")
+                            .default_open(false)
+                            .show(ui, |ui| {
+                                if let Some(a) = channels_ui(ui, channel_paths) {
+                                    actions.channel = Some(a);
+                                }
+                            });
                         if let Some(message) = &panel.message {
                             ui.separator();
                             ui.label(message);
@@ -678,6 +708,9 @@ impl SandboxApp {
             });
             self.draw_next = true;
         }
+        if let Some((k, path)) = &actions.channel {
+            self.set_channel(*k, path.as_deref());
+        }
         if actions.screenshot {
             self.screenshot();
         }
@@ -692,6 +725,28 @@ impl SandboxApp {
         if actions.quit {
             event_loop.exit();
         }
+    }
+
+    /// Gives channel `k` the image at `path` (None: the noise). An image
+    /// that cannot be read leaves the channel as it was, with the error in
+    /// the panel.
+    fn set_channel(&mut self, k: usize, path: Option<&Path>) {
+        let Some(gfx) = &mut self.gfx else { return };
+        let image = match path.map(channels::load).transpose() {
+            Ok(image) => image,
+            Err(e) => {
+                self.panel.message = Some(e);
+                return;
+            }
+        };
+        gfx.canvas
+            .set_channel(&gfx.gpu, &gfx.sandbox, k, image.as_ref());
+        self.panel.message = Some(match path {
+            Some(path) => format!("iChannel{k}: {}", path.display()),
+            None => format!("iChannel{k}: the built-in noise"),
+        });
+        self.events.event(&format!("channel-set {k}"));
+        self.draw_next = true;
     }
 
     fn screenshot(&mut self) {
@@ -940,6 +995,38 @@ fn view_input(
         mouse.surface.pan(delta_uv, aspect);
     }
     *mouse != before
+}
+
+/// A row per channel: the image's path, Load, and Clear (back to the
+/// noise). Returns what was asked for.
+fn channels_ui(
+    ui: &mut egui::Ui,
+    paths: &mut [String; CHANNELS],
+) -> Option<(usize, Option<PathBuf>)> {
+    let mut asked = None;
+    for (k, path) in paths.iter_mut().enumerate() {
+        ui.horizontal(|ui| {
+            ui.label(format!("iChannel{k}"));
+            let edit = ui.add(
+                egui::TextEdit::singleline(path)
+                    .hint_text("noise (path to an image)")
+                    .desired_width(150.0),
+            );
+            let entered = edit.lost_focus() && ui.input(|i| i.key_pressed(Key::Enter));
+            if (ui.button("Load").clicked() || entered) && !path.trim().is_empty() {
+                asked = Some((k, Some(PathBuf::from(path.trim()))));
+            }
+            if ui
+                .button("Clear")
+                .on_hover_text("back to the built-in noise")
+                .clicked()
+            {
+                path.clear();
+                asked = Some((k, None));
+            }
+        });
+    }
+    asked
 }
 
 fn help_window(ctx: &egui::Context, open: &mut bool) {

@@ -1,5 +1,6 @@
-//! Watching the shader folder and the scene file for edits made in another
-//! program (the class's own editor), debounced so that one save that an
+//! Watching the shader folder, the scene file and the mesh files it reads
+//! for edits made in another program (the class's own editor, a modeller's
+//! export), debounced so that one save that an
 //! editor performs as several writes gives one reload.
 
 use std::path::{Path, PathBuf};
@@ -12,10 +13,12 @@ use notify_debouncer_mini::notify::{
 use notify_debouncer_mini::{Config, DebounceEventResult, Debouncer, new_debouncer_opt};
 
 /// What changed on disk.
-#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+#[derive(Debug, Clone, PartialEq, Eq)]
 pub enum Change {
     Shaders,
     SceneFile,
+    /// One of the mesh files, as it was given to [`watch`].
+    MeshFile(PathBuf),
 }
 
 /// Quiet time after the last write before a change is reported.
@@ -66,30 +69,39 @@ impl Watcher for ChangeWatcher {
 }
 
 /// Starts watching `shader_dir` (its `.wgsl` files and those of its `shapes/`
-/// folder, one per shape kind) and `scene_file`, calling
+/// folder, one per shape kind), `scene_file` and `mesh_files`, calling
 /// `notify` from the watcher's thread for every debounced change. Folders are
 /// watched rather than files, because editors often save by writing a new
 /// file and renaming it over the old one, which ends a watch on the file.
 pub fn watch(
     shader_dir: Option<&Path>,
     scene_file: Option<&Path>,
+    mesh_files: &[PathBuf],
     notify: impl Fn(Change) + Send + 'static,
 ) -> Result<Watch, String> {
     let shader_dir = shader_dir.map(canonical);
     let scene_file = scene_file.map(canonical);
     let shape_dir = shader_dir.as_ref().map(|d| d.join("shapes"));
+    let meshes: Vec<(PathBuf, PathBuf)> = mesh_files
+        .iter()
+        .map(|given| (canonical(given), given.clone()))
+        .collect();
     let (dirs, classify) = {
         let mut dirs: Vec<PathBuf> = shader_dir.iter().cloned().collect();
         dirs.extend(shape_dir.iter().filter(|d| d.is_dir()).cloned());
-        if let Some(parent) = scene_file.as_deref().and_then(Path::parent)
-            && !dirs.iter().any(|d| d == parent)
-        {
-            dirs.push(parent.to_path_buf());
+        let files = scene_file.iter().chain(meshes.iter().map(|(c, _)| c));
+        for parent in files.filter_map(|f| f.parent()) {
+            if parent.is_dir() && !dirs.iter().any(|d| d == parent) {
+                dirs.push(parent.to_path_buf());
+            }
         }
         let classify = move |path: &Path| -> Option<Change> {
             let path = canonical(path);
             if scene_file.as_deref() == Some(path.as_path()) {
                 return Some(Change::SceneFile);
+            }
+            if let Some((_, given)) = meshes.iter().find(|(c, _)| *c == path) {
+                return Some(Change::MeshFile(given.clone()));
             }
             let in_shader_dir = path.parent().is_some_and(|p| {
                 shader_dir.as_deref() == Some(p) || shape_dir.as_deref() == Some(p)
@@ -102,11 +114,12 @@ pub fn watch(
     let config = Config::default().with_timeout(DEBOUNCE);
     let handler = move |result: DebounceEventResult| match result {
         Ok(events) => {
-            let mut changes: Vec<Change> =
-                events.iter().filter_map(|e| classify(&e.path)).collect();
-            changes.dedup();
-            changes.sort_by_key(|c| *c as u8);
-            changes.dedup();
+            let mut changes: Vec<Change> = Vec::new();
+            for change in events.iter().filter_map(|e| classify(&e.path)) {
+                if !changes.contains(&change) {
+                    changes.push(change);
+                }
+            }
             for change in changes {
                 notify(change);
             }
@@ -129,7 +142,7 @@ pub fn watch(
 /// Watches one file (the sandbox's shader), calling `notify` for every
 /// debounced change of it. Its folder is watched, as for the scene file.
 pub fn watch_file(file: &Path, notify: impl Fn() + Send + 'static) -> Result<Watch, String> {
-    watch(None, Some(file), move |_| notify())
+    watch(None, Some(file), &[], move |_| notify())
 }
 
 /// The absolute path, resolved through links where the file exists (events
@@ -161,10 +174,10 @@ mod tests {
     /// The next change that is not a repeat of `previous`: one write can
     /// reach the watcher as several events, which a loaded machine may
     /// debounce into separate reports.
-    fn next_change(rx: &mpsc::Receiver<Change>, previous: Option<Change>) -> Option<Change> {
+    fn next_change(rx: &mpsc::Receiver<Change>, previous: Option<&Change>) -> Option<Change> {
         loop {
             let change = rx.recv_timeout(Duration::from_secs(5)).ok()?;
-            if Some(change) != previous {
+            if Some(&change) != previous {
                 return Some(change);
             }
         }
@@ -179,14 +192,17 @@ mod tests {
         std::fs::write(&scene, "a").unwrap();
         std::fs::write(shaders.join("main.wgsl"), "a").unwrap();
         let (tx, rx) = mpsc::channel();
-        let _watch = watch(Some(&shaders), Some(&scene), move |c| tx.send(c).unwrap()).unwrap();
+        let _watch = watch(Some(&shaders), Some(&scene), &[], move |c| {
+            tx.send(c).unwrap()
+        })
+        .unwrap();
         std::thread::sleep(Duration::from_millis(200));
 
         std::fs::write(shaders.join("main.wgsl"), "b").unwrap();
         assert_eq!(next_change(&rx, None), Some(Change::Shaders));
         std::fs::write(&scene, "b").unwrap();
         assert_eq!(
-            next_change(&rx, Some(Change::Shaders)),
+            next_change(&rx, Some(&Change::Shaders)),
             Some(Change::SceneFile)
         );
         // Let late repeats of the scene write arrive before the quiet check.
@@ -206,6 +222,35 @@ mod tests {
         assert!(
             rx.recv_timeout(Duration::from_millis(600)).is_err(),
             "reading a watched file is not a change"
+        );
+        std::fs::remove_dir_all(&dir).unwrap();
+    }
+
+    #[test]
+    fn reports_a_mesh_file_by_the_path_it_was_given() {
+        let dir =
+            std::env::temp_dir().join(format!("raysandbox-watch-mesh-{}", std::process::id()));
+        let models = dir.join("models");
+        std::fs::create_dir_all(&models).unwrap();
+        let mesh = models.join("tri.obj");
+        std::fs::write(&mesh, "a").unwrap();
+        // As a scene names it: through its own folder.
+        let given = dir.join("scenes/../models/tri.obj");
+        std::fs::create_dir_all(dir.join("scenes")).unwrap();
+        let (tx, rx) = mpsc::channel();
+        let _watch = watch(None, None, std::slice::from_ref(&given), move |c| {
+            tx.send(c).unwrap()
+        })
+        .unwrap();
+        std::thread::sleep(Duration::from_millis(200));
+        std::fs::write(models.join("other.obj"), "x").unwrap();
+        std::fs::write(&mesh, "b").unwrap();
+        assert_eq!(next_change(&rx, None), Some(Change::MeshFile(given)));
+        while rx.recv_timeout(Duration::from_millis(500)).is_ok() {}
+        std::fs::write(models.join("other.obj"), "y").unwrap();
+        assert!(
+            rx.recv_timeout(Duration::from_millis(600)).is_err(),
+            "other files of the folder are ignored"
         );
         std::fs::remove_dir_all(&dir).unwrap();
     }

@@ -6,6 +6,8 @@
 //! needed), then `fs_display` divides by the sample count and encodes it into
 //! the output target.
 
+use std::sync::Arc;
+
 use wgpu::util::DeviceExt;
 
 use super::features::{ShaderOptions, borrowed};
@@ -179,12 +181,26 @@ pub(super) fn scene_layout_entries() -> Vec<wgpu::BindGroupLayoutEntry> {
 pub struct SceneBuffers {
     packed: PackedScene,
     globals: wgpu::Buffer,
+    /// One per entry of `packed.shapes`.
+    shape_buffers: Vec<wgpu::Buffer>,
     pub(super) bind_group: wgpu::BindGroup,
 }
 
 impl SceneBuffers {
     pub fn new(device: &wgpu::Device, pipelines: &Pipelines, packed: PackedScene) -> Self {
-        Self::with_layout(device, &pipelines.scene_layout, packed)
+        Self::with_layout(device, &pipelines.scene_layout, packed, None)
+    }
+
+    /// The buffers of `packed`, keeping those of `previous` whose contents
+    /// are shared with it (a moved mesh's triangles: nothing is uploaded
+    /// again).
+    pub fn reusing(
+        device: &wgpu::Device,
+        pipelines: &Pipelines,
+        packed: PackedScene,
+        previous: &SceneBuffers,
+    ) -> Self {
+        Self::with_layout(device, &pipelines.scene_layout, packed, Some(previous))
     }
 
     /// The buffers and their bind group for any pipeline whose group 0 is
@@ -193,6 +209,7 @@ impl SceneBuffers {
         device: &wgpu::Device,
         layout: &wgpu::BindGroupLayout,
         packed: PackedScene,
+        previous: Option<&SceneBuffers>,
     ) -> Self {
         let globals = device.create_buffer_init(&wgpu::util::BufferInitDescriptor {
             label: Some("globals"),
@@ -213,13 +230,21 @@ impl SceneBuffers {
             storage("bvh shapes", bytemuck::cast_slice(&packed.bvh_prims)),
             storage("shape counts", bytemuck::cast_slice(&packed.shape_counts)),
         ];
-        let shapes = packed
+        let shape_buffers: Vec<wgpu::Buffer> = packed
             .shapes
             .iter()
-            .map(|words| storage("shapes", bytemuck::cast_slice(words)));
-        let buffers: Vec<wgpu::Buffer> = fixed.into_iter().chain(shapes).collect();
+            .enumerate()
+            .map(|(i, words)| {
+                let shared = previous.and_then(|p| {
+                    let same = Arc::ptr_eq(p.packed.shapes.get(i)?, words);
+                    same.then(|| p.shape_buffers[i].clone())
+                });
+                shared.unwrap_or_else(|| storage("shapes", bytemuck::cast_slice(words.as_slice())))
+            })
+            .collect();
+        let buffers: Vec<&wgpu::Buffer> = fixed.iter().chain(&shape_buffers).collect();
         let entries: Vec<wgpu::BindGroupEntry> = std::iter::once(&globals)
-            .chain(&buffers)
+            .chain(buffers)
             .enumerate()
             .map(|(i, b)| wgpu::BindGroupEntry {
                 binding: i as u32,
@@ -234,6 +259,7 @@ impl SceneBuffers {
         SceneBuffers {
             packed,
             globals,
+            shape_buffers,
             bind_group,
         }
     }

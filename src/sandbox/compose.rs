@@ -64,6 +64,10 @@ pub struct Compiled {
     pub entry_point: &'static str,
     /// Parameters with their default values.
     pub params: ParamSet,
+    /// The shader reads the previous frame (GLSL Sandbox's `backbuffer`):
+    /// each frame is copied for the next one to read (docs/sandbox.md,
+    /// "Textures").
+    pub reads_backbuffer: bool,
 }
 
 /// Reads and compiles a shader file. Unreadable files are errors too, named
@@ -198,9 +202,21 @@ fn wgsl_prelude() -> String {
     format!(
         "// raysandbox WGSL prelude: the values every sandbox shader can read.\n\
          {WGSL_STRUCT}\
-         @group(0) @binding(0) var<uniform> u: Uniforms;\n"
+         @group(0) @binding(0) var<uniform> u: Uniforms;\n\
+         {WGSL_TEXTURES}"
     )
 }
+
+/// The textures of the WGSL prelude (docs/sandbox.md, "Textures"): the four
+/// channels, their sampler and the previous frame.
+const WGSL_TEXTURES: &str = "\
+@group(0) @binding(2) var channel0: texture_2d<f32>;
+@group(0) @binding(3) var channel1: texture_2d<f32>;
+@group(0) @binding(4) var channel2: texture_2d<f32>;
+@group(0) @binding(5) var channel3: texture_2d<f32>;
+@group(0) @binding(6) var channel_sampler: sampler;
+@group(0) @binding(7) var backbuffer: texture_2d<f32>;
+";
 
 fn wgsl_epilogue(has_params: bool) -> String {
     let mut text = String::from("// raysandbox WGSL epilogue\n");
@@ -253,6 +269,7 @@ fn compile_wgsl(name: &str, text: &str, scan: &Scan) -> Result<Compiled, ShaderE
         module,
         entry_point: WGSL_ENTRY,
         params,
+        reads_backbuffer: tokens.iter().any(|t| t.is("backbuffer")),
     })
 }
 
@@ -424,6 +441,11 @@ fn standard_uniforms(style: Style) -> &'static [(&'static str, &'static str)] {
             ("iGlobalTime", "float"),
             ("iSampleRate", "float"),
             ("iChannelTime", "float[4]"),
+            ("iChannelResolution", "vec3[4]"),
+            ("iChannel0", "sampler2D"),
+            ("iChannel1", "sampler2D"),
+            ("iChannel2", "sampler2D"),
+            ("iChannel3", "sampler2D"),
         ],
         _ => &[
             ("time", "float"),
@@ -755,6 +777,90 @@ fn old_shadertoy_names(used: &dyn Fn(&str) -> bool) -> String {
     text
 }
 
+/// The textures of the GLSL preludes (docs/sandbox.md, "Textures"). naga
+/// reads Vulkan GLSL, where a `sampler2D` is not a variable but a
+/// constructor joining a `texture2D` and a `sampler`; the names the user's
+/// file reads are `#define`d as such constructors.
+const GLSL_TEXTURES: &str = "\
+layout(set = 0, binding = 2) uniform texture2D rsb_channel0;
+layout(set = 0, binding = 3) uniform texture2D rsb_channel1;
+layout(set = 0, binding = 4) uniform texture2D rsb_channel2;
+layout(set = 0, binding = 5) uniform texture2D rsb_channel3;
+layout(set = 0, binding = 6) uniform sampler rsb_sampler;
+layout(set = 0, binding = 7) uniform texture2D rsb_backbuffer;
+";
+
+/// Channels are numbered 0 to 3.
+const CHANNELS: usize = 4;
+
+/// `#define`s for the `uniform sampler2D` names the file declared: GLSL
+/// Sandbox's `backbuffer` is the previous frame, Shadertoy's `iChannelN`
+/// channel N, and any other name the next channel in the order declared.
+fn glsl_texture_names(
+    name: &str,
+    scan: &Scan,
+    style: Style,
+    uniforms: &[UniformDecl],
+    textures: &[&str],
+) -> Result<String, ShaderError> {
+    let mut text = String::new();
+    let mut next = 0;
+    for texture in textures {
+        if style == Style::GlslSandbox && *texture == "backbuffer" {
+            text.push_str("#define backbuffer sampler2D(rsb_backbuffer, rsb_sampler)\n");
+            continue;
+        }
+        if next == CHANNELS {
+            let decl = uniforms
+                .iter()
+                .find(|d| d.name == *texture)
+                .expect("declared");
+            return Err(error_at(
+                name,
+                scan,
+                decl.offset,
+                format!("`{texture}`: at most {CHANNELS} textures (channels 0 to 3)"),
+            ));
+        }
+        let _ = writeln!(
+            text,
+            "#define {texture} sampler2D(rsb_channel{next}, rsb_sampler)"
+        );
+        next += 1;
+    }
+    Ok(text)
+}
+
+/// Shadertoy's channels where the file reads them: `iChannel0..3` and
+/// `iChannelResolution[4]` (each channel's size in pixels, z = 1).
+fn shadertoy_channels(used: &dyn Fn(&str) -> bool) -> String {
+    let mut text = String::new();
+    for k in 0..CHANNELS {
+        if used(&format!("iChannel{k}")) {
+            let _ = writeln!(
+                text,
+                "#define iChannel{k} sampler2D(rsb_channel{k}, rsb_sampler)"
+            );
+        }
+    }
+    if used("iChannelResolution") {
+        let size =
+            |k| format!("vec3(vec2(textureSize(sampler2D(rsb_channel{k}, rsb_sampler), 0)), 1.0)");
+        let _ = write!(
+            text,
+            "vec3[4] rsb_channel_resolution() {{\n\
+             \x20   return vec3[4]({}, {}, {}, {});\n\
+             }}\n\
+             #define iChannelResolution rsb_channel_resolution()\n",
+            size(0),
+            size(1),
+            size(2),
+            size(3)
+        );
+    }
+    text
+}
+
 /// GLSL Sandbox's `surfacePosition` (the pixel's point on a plane the
 /// viewer pans and zooms, y up) and `surfaceSize` (the size of the part
 /// shown), where the file declares them. glslsandbox.com interpolates the
@@ -807,6 +913,7 @@ fn compile_glsl(name: &str, scan: &Scan) -> Result<Compiled, ShaderError> {
     let standard = standard_uniforms(style);
     let mut declared = Vec::new();
     let mut user_params = Vec::new();
+    let mut textures = Vec::new();
     for decl in &rewrite.uniforms {
         match standard.iter().find(|(n, _)| *n == decl.name) {
             Some((n, t)) if *t == decl.type_name => declared.push(*n),
@@ -824,6 +931,7 @@ fn compile_glsl(name: &str, scan: &Scan) -> Result<Compiled, ShaderError> {
                     ),
                 ));
             }
+            None if decl.type_name == "sampler2D" => textures.push(decl.name),
             None => match glsl_param_type(&decl.type_name) {
                 Some(_) => user_params.push(decl),
                 None => {
@@ -832,8 +940,9 @@ fn compile_glsl(name: &str, scan: &Scan) -> Result<Compiled, ShaderError> {
                         scan,
                         decl.offset,
                         format!(
-                            "uniform `{}`: a {} cannot be a parameter here (no textures or \
-                             matrices); use float, int, uint, bool or a vector of them",
+                            "uniform `{}`: a {} cannot be a parameter here (no matrices, \
+                             the only textures are sampler2D); use float, int, uint, bool \
+                             or a vector of them",
                             decl.name, decl.type_name
                         ),
                     ));
@@ -847,6 +956,15 @@ fn compile_glsl(name: &str, scan: &Scan) -> Result<Compiled, ShaderError> {
         style.describe()
     );
     prelude.push_str(&glsl_frame_block(style, &declared));
+    prelude.push_str(GLSL_TEXTURES);
+    let reads_backbuffer = style == Style::GlslSandbox && textures.contains(&"backbuffer");
+    prelude.push_str(&glsl_texture_names(
+        name,
+        scan,
+        style,
+        &rewrite.uniforms,
+        &textures,
+    )?);
     if !user_params.is_empty() {
         prelude.push_str("layout(set = 0, binding = 1) uniform RsbParams {\n");
         for decl in &user_params {
@@ -892,7 +1010,10 @@ fn compile_glsl(name: &str, scan: &Scan) -> Result<Compiled, ShaderError> {
             })
     };
     match style {
-        Style::Shadertoy => prelude.push_str(&old_shadertoy_names(&used)),
+        Style::Shadertoy => {
+            prelude.push_str(&old_shadertoy_names(&used));
+            prelude.push_str(&shadertoy_channels(&used));
+        }
         _ => prelude.push_str(&glsl_sandbox_surface(
             resolution,
             rewrite.surface_position,
@@ -949,6 +1070,7 @@ fn compile_glsl(name: &str, scan: &Scan) -> Result<Compiled, ShaderError> {
         module,
         entry_point: GLSL_ENTRY,
         params,
+        reads_backbuffer,
     })
 }
 
@@ -1176,7 +1298,7 @@ void main() {
         assert_eq!(bool_field.line, 2, "{bool_field}");
         let sampler = error(
             "x.frag",
-            "uniform sampler2D backbuffer;\nvoid main() { gl_FragColor = vec4(1.0); }\n",
+            "uniform samplerCube sky;\nvoid main() { gl_FragColor = vec4(1.0); }\n",
         );
         assert_eq!(sampler.line, 1, "{sampler}");
     }

@@ -7,7 +7,12 @@
 //! - a prototype with unnamed parameters (`float f(float);`, which naga
 //!   ignores): each gets a name, `float f(float rsb_p0);`;
 //! - a name that is a keyword of GLSL 4.50 but not of WebGL GLSL
-//!   (`float sample = 0.0;`): `rsb_sample`.
+//!   (`float sample = 0.0;`): `rsb_sample`;
+//! - WebGL's texture functions (`texture2D(`, `texture2DLod(`, ...):
+//!   GLSL 4.50's (`texture  (`, `textureLod  (`), padded with spaces;
+//! - a `sampler2D` parameter, which naga's Vulkan GLSL has no type for:
+//!   a `texture2D` parameter, each use of it in the function's body wrapped
+//!   as `sampler2D(NAME, rsb_sampler)` with the prelude's sampler.
 //!
 //! Blanking keeps every offset. An insertion moves the rest of its line to
 //! the right, never to another line, and [`Bridged::original_column`] moves
@@ -49,6 +54,17 @@ const NEW_KEYWORDS: [&str; 10] = [
     "partition",
 ];
 
+/// WebGL GLSL's texture functions and the GLSL 4.50 function each is.
+const TEXTURE_FUNCTIONS: [(&str, &str); 7] = [
+    ("texture2D", "texture"),
+    ("texture2DLod", "textureLod"),
+    ("texture2DLodEXT", "textureLod"),
+    ("texture2DProj", "textureProj"),
+    ("texture2DProjLod", "textureProjLod"),
+    ("texture2DGradEXT", "textureGrad"),
+    ("texture2DProjLodEXT", "textureProjLod"),
+];
+
 /// Qualifiers that may come before a parameter's type.
 const PARAMETER_QUALIFIERS: [&str; 8] = [
     "const", "in", "out", "inout", "lowp", "mediump", "highp", "precise",
@@ -75,12 +91,18 @@ pub fn bridge(scan: &Scan, mut text: String) -> Bridged {
                 insertions.push((t.start, "rsb_".to_string()));
                 uses_mat2 = true;
             }
+            word if tokens.get(i + 1).is_some_and(|n| n.is("(")) => {
+                if let Some((_, new)) = TEXTURE_FUNCTIONS.iter().find(|(old, _)| *old == word) {
+                    overwrite(&mut text, t.start..t.end(), new);
+                }
+            }
             _ => {}
         }
         if braces == 0 && parens == 0 && t.kind == Kind::Ident {
             name_prototype_parameters(tokens, i, &mut insertions);
         }
     }
+    sampler_parameters(tokens, &mut text, &mut insertions);
     insertions.sort_by_key(|(offset, _)| *offset);
     for (offset, inserted) in insertions.iter().rev() {
         text.insert_str(*offset, inserted);
@@ -89,6 +111,55 @@ pub fn bridge(scan: &Scan, mut text: String) -> Bridged {
         text,
         uses_mat2,
         insertions,
+    }
+}
+
+/// Writes `new` over `range` of `text`, padded with spaces to its length.
+fn overwrite(text: &mut String, range: std::ops::Range<usize>, new: &str) {
+    let padded = format!("{new:<width$}", width = range.len());
+    text.replace_range(range, &padded);
+}
+
+/// `sampler2D NAME` parameters become `texture2D NAME` (the same length),
+/// and in the function's body each `NAME` becomes
+/// `sampler2D(NAME, rsb_sampler)`, which naga's texture functions take.
+fn sampler_parameters(tokens: &[Token], text: &mut String, out: &mut Vec<(usize, String)>) {
+    let (mut braces, mut parens) = (0i32, 0i32);
+    let mut pending: Vec<&str> = Vec::new();
+    let mut in_body: Vec<&str> = Vec::new();
+    for (i, t) in tokens.iter().enumerate() {
+        match t.text {
+            "{" => {
+                if braces == 0 {
+                    in_body = std::mem::take(&mut pending);
+                }
+                braces += 1;
+            }
+            "}" => {
+                braces -= 1;
+                if braces == 0 {
+                    in_body.clear();
+                }
+            }
+            "(" => parens += 1,
+            ")" => parens -= 1,
+            ";" if braces == 0 => pending.clear(),
+            "sampler2D" if braces == 0 && parens > 0 => {
+                overwrite(text, t.start..t.end(), "texture2D");
+                if let Some(n) = tokens.get(i + 1).filter(|n| n.kind == Kind::Ident) {
+                    pending.push(n.text);
+                }
+            }
+            word if braces > 0
+                && t.kind == Kind::Ident
+                && in_body.contains(&word)
+                && !(i > 0 && tokens[i - 1].is(".")) =>
+            {
+                out.push((t.start, "sampler2D(".to_string()));
+                out.push((t.end(), ", rsb_sampler)".to_string()));
+            }
+            _ => {}
+        }
     }
 }
 
@@ -230,6 +301,33 @@ mod tests {
         assert_eq!(
             b.text,
             "float rsb_sample = 1.0; vec3 rsb_filter(vec3 rsb_input) { return rsb_input * rsb_sample; }"
+        );
+    }
+
+    #[test]
+    fn webgl_texture_functions_become_glsl_450_ones_in_place() {
+        let text = "vec4 a = texture2D(t, uv) + texture2DLod(t, uv, 0.0); float texture2Dx;";
+        let (b, _) = bridged(text);
+        assert_eq!(
+            b.text,
+            "vec4 a = texture  (t, uv) + textureLod  (t, uv, 0.0); float texture2Dx;"
+        );
+    }
+
+    #[test]
+    fn sampler2d_parameters_become_textures_wrapped_at_each_use() {
+        let (b, _) = bridged(
+            "vec4 f(sampler2D s, vec2 p);\nvec4 f(in sampler2D s, vec2 p) {\n    return texture(s, p) + v.s;\n}\nvec4 g() { return texture(s, p); }",
+        );
+        assert_eq!(
+            b.text.lines().collect::<Vec<_>>(),
+            [
+                "vec4 f(texture2D s, vec2 p);",
+                "vec4 f(in texture2D s, vec2 p) {",
+                "    return texture(sampler2D(s, rsb_sampler), p) + v.s;",
+                "}",
+                "vec4 g() { return texture(s, p); }",
+            ]
         );
     }
 

@@ -11,7 +11,8 @@
 //! | `uniforms` | the per-frame values (time, mouse, resolution, date) |
 //! | `clock` | pause, resume, restart, step |
 //! | `repair` | workarounds for naga bugs, applied to the parsed module |
-//! | `render` | the GPU passes: the user's shader into a canvas, the canvas shown |
+//! | `render` | the GPU passes: the user's shader into a canvas, the canvas shown, the previous frame kept |
+//! | `channels` | the images a shader samples: files, or the built-in noise |
 //! | `session` | one file: the last good pipeline, reloads, parameter values |
 //! | `watchdog` | the window's trial frame that refuses shaders too slow to run |
 //! | `constants` | the same parameters for the ray tracer's shader folder (annotated `const`s) |
@@ -19,6 +20,7 @@
 //! The window is `app::sandbox_window` (`app::run_sandbox`), built on this
 //! module; it shares the viewer's window setup, error overlay and controls.
 
+pub mod channels;
 pub mod clock;
 pub mod compose;
 pub mod constants;
@@ -86,6 +88,20 @@ pub struct ShaderArgs {
     /// the shader's author saw it), or magenta to find them.
     #[arg(long, value_enum, default_value_t = NanColor::Black)]
     pub nan_color: NanColor,
+    /// The image of Shadertoy's `iChannel0` (PNG, JPEG, ...), also the
+    /// first `uniform sampler2D` of a GLSL Sandbox file other than
+    /// `backbuffer`. Without it, a built-in noise image.
+    #[arg(long, value_name = "IMAGE")]
+    pub channel0: Option<PathBuf>,
+    /// The image of `iChannel1` (see --channel0).
+    #[arg(long, value_name = "IMAGE")]
+    pub channel1: Option<PathBuf>,
+    /// The image of `iChannel2` (see --channel0).
+    #[arg(long, value_name = "IMAGE")]
+    pub channel2: Option<PathBuf>,
+    /// The image of `iChannel3` (see --channel0).
+    #[arg(long, value_name = "IMAGE")]
+    pub channel3: Option<PathBuf>,
     /// Print one line per event (ready, shader-reloaded, shader-error, ...)
     /// on stdout, for scripts and tests that drive the window.
     #[arg(long, hide = true)]
@@ -115,6 +131,24 @@ pub enum SandboxError {
 }
 
 impl ShaderArgs {
+    /// The paths of `--channel0 .. --channel3`.
+    pub fn channel_paths(&self) -> [Option<PathBuf>; channels::CHANNELS] {
+        [
+            self.channel0.clone(),
+            self.channel1.clone(),
+            self.channel2.clone(),
+            self.channel3.clone(),
+        ]
+    }
+
+    /// The channel images, read now: a wrong path is the user's error
+    /// (exit status 2), reported before a GPU or window is opened.
+    pub fn channel_images(
+        &self,
+    ) -> Result<[Option<image::RgbaImage>; channels::CHANNELS], SandboxError> {
+        channels::load_all(&self.channel_paths()).map_err(SandboxError::Input)
+    }
+
     /// `--render` or `--frames`: no window ([`run_headless`]); otherwise the
     /// window, which `app::run_sandbox` owns.
     pub fn is_headless(&self) -> bool {
@@ -142,6 +176,7 @@ pub fn run_headless(args: &ShaderArgs) -> Result<(), SandboxError> {
         return check_all(args);
     }
     require_file(&args.file)?;
+    let images = args.channel_images()?;
     let compiled = compile_file(&args.file).map_err(|e| SandboxError::Input(e.to_string()))?;
     let mut params = compiled.params.clone();
     let sidecar = params::sidecar_path(&args.file);
@@ -172,6 +207,7 @@ pub fn run_headless(args: &ShaderArgs) -> Result<(), SandboxError> {
     let mut warned = false;
     let rendered = render_sequence(
         &gpu,
+        images,
         &compiled,
         &params,
         size,
@@ -241,6 +277,7 @@ enum RenderError<E> {
 #[allow(clippy::too_many_arguments)]
 fn render_sequence<E>(
     gpu: &Gpu,
+    images: [Option<image::RgbaImage>; channels::CHANNELS],
     compiled: &Compiled,
     params: &ParamSet,
     size: (u32, u32),
@@ -250,7 +287,7 @@ fn render_sequence<E>(
     nan: NanColor,
     mut each: impl FnMut(u32, image::RgbaImage, CanvasStats) -> Result<(), E>,
 ) -> Result<(), RenderError<E>> {
-    let mut offscreen = Offscreen::with_nan_color(gpu, nan);
+    let mut offscreen = Offscreen::with_nan_color(gpu, nan).with_channels(images);
     let pipeline = offscreen
         .builder(gpu)
         .build(compiled)

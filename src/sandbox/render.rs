@@ -6,6 +6,7 @@
 
 use std::borrow::Cow;
 
+use super::channels::{self, CHANNELS};
 use super::compose::Compiled;
 use super::params::ParamSet;
 use super::uniforms::{FRAME_UNIFORMS_SIZE, FrameUniforms};
@@ -42,6 +43,10 @@ fn vs_display(@builtin(vertex_index) i: u32) -> VertexOut {
 /// NaN and infinite pixels are drawn magenta instead of black.
 override NAN_MAGENTA: bool = false;
 
+/// Upside down: the copy of the canvas the next frame reads as its
+/// previous frame, whose texture coordinates have y up like the shader's.
+override FLIP_Y: bool = false;
+
 /// True for an *Srgb target, which encodes by itself: the shader's values
 /// are display values (as on Shadertoy), so they are decoded first.
 override DECODE_SRGB: bool = false;
@@ -58,7 +63,7 @@ fn srgb_decode(c: vec3<f32>) -> vec3<f32> {
 fn fs_display(in: VertexOut) -> @location(0) vec4<f32> {
     // Nearest texel: each output pixel shows the canvas pixel under it.
     let size = textureDimensions(canvas);
-    let at = vec2(in.uv.x, 1.0 - in.uv.y) * vec2<f32>(size);
+    let at = vec2(in.uv.x, select(1.0 - in.uv.y, in.uv.y, FLIP_Y)) * vec2<f32>(size);
     let texel = min(vec2<u32>(at), size - 1u);
     let c = textureLoad(canvas, texel, 0).rgb;
     if any(!is_finite(c)) {
@@ -79,11 +84,24 @@ pub struct SandboxGpu {
     vertex: wgpu::ShaderModule,
     display_layout: wgpu::BindGroupLayout,
     display: Vec<(wgpu::TextureFormat, wgpu::RenderPipeline)>,
+    /// The display pass upside down into [`BACKBUFFER_FORMAT`].
+    backbuffer_copy: wgpu::RenderPipeline,
+    /// How every texture is sampled: linear, repeating (Shadertoy's
+    /// default for its textures).
+    sampler: wgpu::Sampler,
+    /// [`channels::noise_image`], the channel where no image is given.
+    noise: wgpu::TextureView,
 }
+
+/// The previous frame as the shader reads it: 8 bits per component,
+/// clamped to 0..1, NaN black, as GLSL Sandbox's `backbuffer` holds it.
+pub const BACKBUFFER_FORMAT: wgpu::TextureFormat = wgpu::TextureFormat::Rgba8Unorm;
 
 /// The user's shader as a pipeline.
 pub struct ShaderPipeline {
     pipeline: wgpu::RenderPipeline,
+    /// Each frame is copied for the next one to read.
+    reads_backbuffer: bool,
 }
 
 /// What can build a [`ShaderPipeline`] on another thread.
@@ -107,7 +125,8 @@ pub enum NanColor {
 impl SandboxGpu {
     /// Builds the shared parts, with a display pass for each of `formats`
     /// that shows NaN pixels in `nan`.
-    pub fn new(device: &wgpu::Device, formats: &[wgpu::TextureFormat], nan: NanColor) -> Self {
+    pub fn new(gpu: &Gpu, formats: &[wgpu::TextureFormat], nan: NanColor) -> Self {
+        let device = &gpu.device;
         let uniform = |binding| wgpu::BindGroupLayoutEntry {
             binding,
             visibility: wgpu::ShaderStages::FRAGMENT,
@@ -118,9 +137,36 @@ impl SandboxGpu {
             },
             count: None,
         };
+        let texture = |binding| wgpu::BindGroupLayoutEntry {
+            binding,
+            visibility: wgpu::ShaderStages::FRAGMENT,
+            ty: wgpu::BindingType::Texture {
+                sample_type: wgpu::TextureSampleType::Float { filterable: true },
+                view_dimension: wgpu::TextureViewDimension::D2,
+                multisampled: false,
+            },
+            count: None,
+        };
+        // The bindings of the preludes (docs/sandbox.md, "Textures"):
+        // frame uniforms, parameters, four channels, the sampler, the
+        // previous frame.
         let bind_layout = device.create_bind_group_layout(&wgpu::BindGroupLayoutDescriptor {
             label: Some("sandbox uniforms"),
-            entries: &[uniform(0), uniform(1)],
+            entries: &[
+                uniform(0),
+                uniform(1),
+                texture(2),
+                texture(3),
+                texture(4),
+                texture(5),
+                wgpu::BindGroupLayoutEntry {
+                    binding: 6,
+                    visibility: wgpu::ShaderStages::FRAGMENT,
+                    ty: wgpu::BindingType::Sampler(wgpu::SamplerBindingType::Filtering),
+                    count: None,
+                },
+                texture(7),
+            ],
         });
         let pipeline_layout = device.create_pipeline_layout(&wgpu::PipelineLayoutDescriptor {
             label: Some("sandbox"),
@@ -157,12 +203,33 @@ impl SandboxGpu {
                 (format, pipeline)
             })
             .collect();
+        let backbuffer_copy = fullscreen::pipeline(
+            device,
+            &layout,
+            (&display_module, "vs_display"),
+            (&display_module, "fs_display"),
+            &[("FLIP_Y", 1.0)],
+            BACKBUFFER_FORMAT,
+        );
+        let sampler = device.create_sampler(&wgpu::SamplerDescriptor {
+            label: Some("sandbox channels"),
+            address_mode_u: wgpu::AddressMode::Repeat,
+            address_mode_v: wgpu::AddressMode::Repeat,
+            mag_filter: wgpu::FilterMode::Linear,
+            min_filter: wgpu::FilterMode::Linear,
+            ..Default::default()
+        });
+        let noise = channels::upload(device, &gpu.queue, &channels::noise_image())
+            .create_view(&Default::default());
         SandboxGpu {
             bind_layout,
             pipeline_layout,
             vertex,
             display_layout,
             display,
+            backbuffer_copy,
+            sampler,
+            noise,
         }
     }
 
@@ -208,7 +275,10 @@ impl PipelineBuilder {
                 "{}: wgpu rejected the shader: {error}",
                 compiled.file
             )),
-            None => Ok(ShaderPipeline { pipeline }),
+            None => Ok(ShaderPipeline {
+                pipeline,
+                reads_backbuffer: compiled.reads_backbuffer,
+            }),
         }
     }
 }
@@ -261,6 +331,10 @@ pub struct Canvas {
     view: wgpu::TextureView,
     frame: wgpu::Buffer,
     params: wgpu::Buffer,
+    /// The channel images; the noise where none was given.
+    channels: [wgpu::TextureView; CHANNELS],
+    /// The previous frame, upside down ([`BACKBUFFER_FORMAT`]).
+    backbuffer: wgpu::TextureView,
     bind_group: wgpu::BindGroup,
     display_bind_group: wgpu::BindGroup,
 }
@@ -277,24 +351,62 @@ impl Canvas {
         let params = Self::params_buffer(device, 16);
         let texture = Self::texture(device, size);
         let view = texture.create_view(&Default::default());
-        let bind_group = Self::bind_group(device, sandbox, &frame, &params);
+        let channels = std::array::from_fn(|_| sandbox.noise.clone());
+        let backbuffer = Self::backbuffer(device, size);
         let display_bind_group = Self::display_bind_group(device, sandbox, &view);
+        let bind_group =
+            Self::bind_group(device, sandbox, [&frame, &params], &channels, &backbuffer);
         Canvas {
             texture,
             view,
             frame,
             params,
+            channels,
+            backbuffer,
             bind_group,
             display_bind_group,
         }
     }
 
+    /// Shows `image` in channel `k` (0..3), or the noise for None.
+    pub fn set_channel(
+        &mut self,
+        gpu: &Gpu,
+        sandbox: &SandboxGpu,
+        k: usize,
+        image: Option<&image::RgbaImage>,
+    ) {
+        self.channels[k] = match image {
+            Some(image) => {
+                channels::upload(&gpu.device, &gpu.queue, image).create_view(&Default::default())
+            }
+            None => sandbox.noise.clone(),
+        };
+        self.bind(&gpu.device, sandbox);
+    }
+
+    /// The previous frame starts black, as on GLSL Sandbox.
+    fn backbuffer(device: &wgpu::Device, size: (u32, u32)) -> wgpu::TextureView {
+        Self::target(device, "sandbox backbuffer", size, BACKBUFFER_FORMAT)
+            .create_view(&Default::default())
+    }
+
     fn texture(device: &wgpu::Device, size: (u32, u32)) -> wgpu::Texture {
+        Self::target(device, "sandbox canvas", size, CANVAS_FORMAT)
+    }
+
+    /// A texture drawn into and read by later passes, at least 1x1.
+    fn target(
+        device: &wgpu::Device,
+        label: &str,
+        size: (u32, u32),
+        format: wgpu::TextureFormat,
+    ) -> wgpu::Texture {
         render_target(
             device,
-            "sandbox canvas",
+            label,
             (size.0.max(1), size.1.max(1)),
-            CANVAS_FORMAT,
+            format,
             wgpu::TextureUsages::TEXTURE_BINDING | wgpu::TextureUsages::COPY_SRC,
         )
     }
@@ -308,12 +420,30 @@ impl Canvas {
         })
     }
 
+    /// The bind group of the user's pass, after a buffer, a channel or
+    /// the previous frame changed.
+    fn bind(&mut self, device: &wgpu::Device, sandbox: &SandboxGpu) {
+        self.bind_group = Self::bind_group(
+            device,
+            sandbox,
+            [&self.frame, &self.params],
+            &self.channels,
+            &self.backbuffer,
+        );
+    }
+
+    /// The bindings of the preludes, in the order of [`SandboxGpu`]'s layout.
     fn bind_group(
         device: &wgpu::Device,
         sandbox: &SandboxGpu,
-        frame: &wgpu::Buffer,
-        params: &wgpu::Buffer,
+        [frame, params]: [&wgpu::Buffer; 2],
+        channels: &[wgpu::TextureView; CHANNELS],
+        backbuffer: &wgpu::TextureView,
     ) -> wgpu::BindGroup {
+        let view = |binding, view| wgpu::BindGroupEntry {
+            binding,
+            resource: wgpu::BindingResource::TextureView(view),
+        };
         device.create_bind_group(&wgpu::BindGroupDescriptor {
             label: Some("sandbox uniforms"),
             layout: &sandbox.bind_layout,
@@ -326,6 +456,15 @@ impl Canvas {
                     binding: 1,
                     resource: params.as_entire_binding(),
                 },
+                view(2, &channels[0]),
+                view(3, &channels[1]),
+                view(4, &channels[2]),
+                view(5, &channels[3]),
+                wgpu::BindGroupEntry {
+                    binding: 6,
+                    resource: wgpu::BindingResource::Sampler(&sandbox.sampler),
+                },
+                view(7, backbuffer),
             ],
         })
     }
@@ -357,6 +496,8 @@ impl Canvas {
             self.texture = Self::texture(&gpu.device, size);
             self.view = self.texture.create_view(&Default::default());
             self.display_bind_group = Self::display_bind_group(&gpu.device, sandbox, &self.view);
+            self.backbuffer = Self::backbuffer(&gpu.device, size);
+            self.bind(&gpu.device, sandbox);
         }
     }
 
@@ -374,12 +515,21 @@ impl Canvas {
         let bytes = params.bytes();
         if bytes.len() as u64 > self.params.size() {
             self.params = Self::params_buffer(&gpu.device, bytes.len() as u64);
-            self.bind_group = Self::bind_group(&gpu.device, sandbox, &self.frame, &self.params);
+            self.bind(&gpu.device, sandbox);
         }
         gpu.queue.write_buffer(&self.params, 0, &bytes);
         gpu.queue
             .write_buffer(&self.frame, 0, bytemuck::bytes_of(frame));
         fullscreen::pass(encoder, &pipeline.pipeline, &[&self.bind_group], &self.view);
+        if pipeline.reads_backbuffer {
+            // The next frame's `backbuffer` is this one.
+            fullscreen::pass(
+                encoder,
+                &sandbox.backbuffer_copy,
+                &[&self.display_bind_group],
+                &self.backbuffer,
+            );
+        }
     }
 
     /// Encodes the display pass: the canvas scaled onto `target`.
@@ -469,6 +619,8 @@ impl std::fmt::Display for TooSlow {
 pub struct Offscreen {
     sandbox: SandboxGpu,
     canvas: Option<Canvas>,
+    /// The channel images (None: the noise).
+    channels: [Option<image::RgbaImage>; CHANNELS],
 }
 
 impl Offscreen {
@@ -479,9 +631,16 @@ impl Offscreen {
 
     pub fn with_nan_color(gpu: &Gpu, nan: NanColor) -> Self {
         Offscreen {
-            sandbox: SandboxGpu::new(&gpu.device, &[EXPORT_FORMAT], nan),
+            sandbox: SandboxGpu::new(gpu, &[EXPORT_FORMAT], nan),
             canvas: None,
+            channels: Default::default(),
         }
+    }
+
+    /// The images of `iChannel0..3` (None: the noise).
+    pub fn with_channels(mut self, images: [Option<image::RgbaImage>; CHANNELS]) -> Self {
+        self.channels = images;
+        self
     }
 
     /// Builds pipelines that this can draw with.
@@ -502,9 +661,16 @@ impl Offscreen {
     ) -> Result<(), TooSlow> {
         let size = (frame.resolution[0] as u32, frame.resolution[1] as u32);
         let sandbox = &self.sandbox;
-        let canvas = self
-            .canvas
-            .get_or_insert_with(|| Canvas::new(gpu, sandbox, size));
+        let channels = &self.channels;
+        let canvas = self.canvas.get_or_insert_with(|| {
+            let mut canvas = Canvas::new(gpu, sandbox, size);
+            for (k, image) in channels.iter().enumerate() {
+                if image.is_some() {
+                    canvas.set_channel(gpu, sandbox, k, image.as_ref());
+                }
+            }
+            canvas
+        });
         canvas.resize(gpu, sandbox, size);
         let mut encoder = gpu.device.create_command_encoder(&Default::default());
         canvas.draw(gpu, sandbox, &mut encoder, pipeline, frame, params);

@@ -23,7 +23,7 @@ use indexmap::IndexMap;
 use serde::{Deserialize, Serialize};
 
 pub use error::SceneError;
-pub use mesh_file::Geometry;
+pub use mesh_file::{Geometry, PerGeometry, load_file};
 pub use shapes::{
     Cube, CubeSize, Implicit, Julia, Loaded, Mesh, Placement, Plane, Shape, Sphere, Torus,
     TorusMethod, TriangleTest, for_each_shape_kind, implicit, julia, rotation_degrees,

@@ -3,7 +3,6 @@
 //! Each test binary compiles this module and uses only part of it.
 #![allow(dead_code)]
 
-pub mod compute;
 pub mod xwindow;
 
 use std::path::{Path, PathBuf};
@@ -95,4 +94,20 @@ pub fn copy_dir(from: &Path, to: &Path) {
             std::fs::copy(&path, &target).unwrap();
         }
     }
+}
+
+/// A fresh folder for one test's files, `raysandbox-PREFIX-NAME-PID` in the
+/// system's temporary folder.
+pub fn temp_dir(prefix: &str, name: &str) -> PathBuf {
+    let dir =
+        std::env::temp_dir().join(format!("raysandbox-{prefix}-{name}-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).unwrap();
+    dir
+}
+
+/// Writes `text` to `dir/name` and returns the path.
+pub fn write_file(dir: &Path, name: &str, text: &str) -> PathBuf {
+    let path = dir.join(name);
+    std::fs::write(&path, text).unwrap();
+    path
 }

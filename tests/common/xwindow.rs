@@ -238,9 +238,11 @@ impl<'d> Window<'d> {
 
     /// The window's pixels as shown on the X server.
     pub fn capture(&self) -> RgbaImage {
+        // Window ids repeat across X servers: the display is in the name.
         let file = std::env::temp_dir().join(format!(
-            "raysandbox-capture-{}-{}.png",
+            "raysandbox-capture-{}-{}-{}.png",
             std::process::id(),
+            self.display.name.trim_start_matches(':'),
             self.id
         ));
         let status = Command::new("import")

@@ -6,7 +6,9 @@
 use glam::DVec3;
 
 use super::shapes::{self, Placement};
-use crate::scene::{Camera, Checker, Light, Material, Scene, ShapeId, ShapeKind};
+use crate::scene::{
+    Camera, Checker, CubeSize, Light, Material, Mesh, Scene, Shape, ShapeId, ShapeKind,
+};
 
 /// Smallest value the panel writes into a field that must be > 0 (radius,
 /// exposure, ior...): the rendering model only asks for > 0, and a drag must not stop at 0.
@@ -54,12 +56,15 @@ pub(super) fn default_checker(scene_scale: f64) -> Checker {
     }
 }
 
-/// Every shape's material name, whatever its kind.
-fn material_slots_mut(scene: &mut Scene) -> impl Iterator<Item = &mut Option<String>> {
-    let spheres = scene.spheres.iter_mut().map(|s| &mut s.material);
-    let planes = scene.planes.iter_mut().map(|p| &mut p.material);
-    let cubes = scene.cubes.iter_mut().map(|c| &mut c.material);
-    spheres.chain(planes).chain(cubes)
+/// Sets every shape's material named `old` to `new`, whatever its kind.
+fn replace_material(scene: &mut Scene, old: &str, new: Option<&str>) {
+    for id in scene.shape_ids() {
+        if let Some(slot) = scene.shape_material_mut(id)
+            && slot.as_deref() == Some(old)
+        {
+            *slot = new.map(str::to_owned);
+        }
+    }
 }
 
 /// How many shapes name the material `name` (shown before removing it).
@@ -94,11 +99,7 @@ pub(super) fn remove_material(scene: &mut Scene, name: &str) {
     if scene.materials.shift_remove(name).is_none() {
         return;
     }
-    for slot in material_slots_mut(scene) {
-        if slot.as_deref() == Some(name) {
-            *slot = None;
-        }
-    }
+    replace_material(scene, name, None);
 }
 
 /// Renames a material in place (same position in the list) and every shape
@@ -125,11 +126,7 @@ pub(super) fn rename_material(scene: &mut Scene, old: &str, new: &str) -> Result
             (name, material)
         })
         .collect();
-    for slot in material_slots_mut(scene) {
-        if slot.as_deref() == Some(old) {
-            *slot = Some(new.to_owned());
-        }
-    }
+    replace_material(scene, old, Some(new));
     Ok(())
 }
 
@@ -188,6 +185,27 @@ fn placement(scene: &Scene) -> Placement {
 pub(super) fn add_shape(scene: &mut Scene, kind: ShapeKind) -> ShapeId {
     let at = placement(scene);
     shapes::add(scene, kind, &at)
+}
+
+/// How large a mesh from a file appears, relative to the scene scale: files
+/// come in any unit (the bunny is 0.15 across, the teapot 6), so it is
+/// scaled to be seen whole beside the target.
+const NEW_MESH_SIZE: f64 = 0.4;
+
+/// Appends a mesh just read from a file in front of the camera: the centre
+/// of its box on the target, scaled uniformly so that its longest side is
+/// [`NEW_MESH_SIZE`] of the scene scale. Returns its id.
+pub(super) fn add_mesh(scene: &mut Scene, mut mesh: Mesh) -> ShapeId {
+    let at = placement(scene);
+    mesh.translate = DVec3::ZERO;
+    mesh.scale = CubeSize::Uniform(1.0);
+    mesh.rotation = DVec3::ZERO;
+    let [lo, hi] = mesh.bounds();
+    let size = NEW_MESH_SIZE * at.scale / (hi - lo).max_element().max(f64::MIN_POSITIVE);
+    mesh.scale = CubeSize::Uniform(size);
+    mesh.translate = at.target - 0.5 * (lo + hi) * size;
+    scene.meshes.push(mesh);
+    ShapeId::Mesh(scene.meshes.len() - 1)
 }
 
 /// Copies the selected shape to the end of its list, moved to the right of
@@ -273,7 +291,10 @@ mod tests {
     fn rename_updates_every_user_and_keeps_order() {
         let mut s = scene();
         let glass = s.materials["glass"].clone();
+        let mesh = add_shape(&mut s, ShapeKind::Mesh);
+        *s.shape_material_mut(mesh).unwrap() = Some("glass".to_owned());
         rename_material(&mut s, "glass", "  crystal ").unwrap();
+        assert_eq!(s.meshes[0].material.as_deref(), Some("crystal"));
         assert_eq!(names(&s), ["crystal", "floor", "metal"]);
         assert_eq!(s.materials["crystal"], glass);
         assert_eq!(s.spheres[0].material.as_deref(), Some("crystal"));
@@ -462,6 +483,28 @@ mod tests {
         assert!((s.planes[1].normal - DVec3::new(0.6, 0.0, 0.8)).length() < 1e-15);
         shapes::settle(&mut s, None);
         assert_eq!(s.planes[0].normal, DVec3::Y);
+    }
+
+    #[test]
+    fn a_mesh_from_a_file_is_centred_on_the_target_at_the_scene_scale() {
+        let mut s = scene();
+        // A box from (10, 0, 0) to (14, 2, 1): far away and large.
+        let positions = [
+            DVec3::new(10.0, 0.0, 0.0),
+            DVec3::new(14.0, 0.0, 0.0),
+            DVec3::new(10.0, 2.0, 0.0),
+            DVec3::new(10.0, 0.0, 1.0),
+        ];
+        let mut mesh = Mesh::inline(&positions, &[[0, 1, 2], [0, 2, 3]]).unwrap();
+        mesh.translate = DVec3::splat(100.0);
+        let id = add_mesh(&mut s, mesh);
+        assert_eq!(id, ShapeId::Mesh(0));
+        let [lo, hi] = s.meshes[0].bounds();
+        let centre = 0.5 * (lo + hi);
+        assert!((centre - s.camera.to).length() < 1e-9, "{centre}");
+        let longest = (hi - lo).max_element();
+        assert!((longest - NEW_MESH_SIZE * scene_scale(&s)).abs() < 1e-9);
+        assert!(Scene::from_toml_str(&s.to_toml_string(), None).is_ok());
     }
 
     #[test]

@@ -2,7 +2,7 @@
 //! placed by `translate`, `scale` and `rotation` (docs/scene-format.md,
 //! docs/rendering-model.md "Triangle meshes").
 
-use std::path::PathBuf;
+use std::path::{Path, PathBuf};
 use std::sync::Arc;
 
 use glam::{DMat3, DVec3};
@@ -107,9 +107,31 @@ impl Mesh {
     pub fn inline(positions: &[DVec3], triangles: &[[u32; 3]]) -> Result<Mesh, String> {
         let geometry = mesh_file::from_arrays(positions, triangles, &[], false)?;
         Ok(Mesh {
-            file: None,
             positions: positions.to_vec(),
             triangles: triangles.to_vec(),
+            ..Mesh::unplaced(geometry)
+        })
+    }
+
+    /// A mesh read from `file` (an OBJ or PLY file, relative to `base`, the
+    /// scene file's folder, as `file` is in a scene), flat shaded, unplaced.
+    /// The error names the file and its line or element.
+    pub fn from_file(file: PathBuf, base: Option<&Path>) -> Result<Mesh, String> {
+        let mut mesh = Mesh {
+            file: Some(file),
+            ..Mesh::unplaced(Geometry::default())
+        };
+        mesh.reload(base)?;
+        Ok(mesh)
+    }
+
+    /// `geometry` at the origin, unscaled, unrotated, flat shaded, with the
+    /// default material and no source yet.
+    fn unplaced(geometry: Geometry) -> Mesh {
+        Mesh {
+            file: None,
+            positions: Vec::new(),
+            triangles: Vec::new(),
             normals: Vec::new(),
             smooth: false,
             translate: DVec3::ZERO,
@@ -117,7 +139,27 @@ impl Mesh {
             rotation: DVec3::ZERO,
             material: None,
             geometry: Loaded(Arc::new(geometry)),
+        }
+    }
+
+    /// The mesh's file, relative to `base` (the scene file's folder) unless
+    /// absolute; `None` for an inline mesh.
+    pub fn file_path(&self, base: Option<&Path>) -> Option<PathBuf> {
+        let file = self.file.as_ref()?;
+        Some(match base {
+            Some(dir) => dir.join(file),
+            None => file.clone(),
         })
+    }
+
+    /// Reads the mesh's file again (it changed on disk). On an error the
+    /// geometry in use is kept: a bad save in another program never leaves
+    /// the mesh without triangles.
+    pub fn reload(&mut self, base: Option<&Path>) -> Result<(), String> {
+        let full = self.file_path(base).ok_or("an inline mesh has no file")?;
+        let geometry = mesh_file::load_file(&full, self.smooth)?;
+        self.geometry = Loaded(Arc::new(geometry));
+        Ok(())
     }
 
     /// `Rz Ry Rx` of `rotation`, the cube's convention.
@@ -147,11 +189,8 @@ impl Mesh {
                 path,
                 "needs a file or inline positions and triangles".to_owned(),
             )),
-            (Some(file), false) => {
-                let full = match context.base {
-                    Some(dir) => dir.join(file),
-                    None => file.clone(),
-                };
+            (Some(_), false) => {
+                let full = self.file_path(context.base).unwrap_or_default();
                 mesh_file::load_file(&full, self.smooth)
                     .map_err(|message| Issue::new(&path.key("file"), message))
             }

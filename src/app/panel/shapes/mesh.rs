@@ -7,6 +7,7 @@ use glam::DVec3;
 use super::{EditShape, Placement, size_row};
 use crate::app::panel::field;
 use crate::app::panel::widgets::{COORDINATES, vec3_row};
+use crate::bvh::{MAX_DEPTH, mesh_bvh_built};
 use crate::scene::{CubeSize, Mesh};
 
 impl EditShape for Mesh {
@@ -36,13 +37,7 @@ impl EditShape for Mesh {
     }
 
     fn edit(&mut self, ui: &mut Ui, scale: f64) -> bool {
-        field(ui, "triangles", "Loaded from the file or the inline arrays");
-        let source = match &self.file {
-            Some(file) => file.display().to_string(),
-            None => "inline".to_owned(),
-        };
-        ui.label(format!("{} ({source})", self.geometry.0.triangles.len()));
-        ui.end_row();
+        geometry_rows(ui, self);
         field(ui, "translate", "Where the mesh's origin goes (x, y, z)");
         vec3_row(ui, &mut self.translate, 0.005 * scale, COORDINATES);
         ui.end_row();
@@ -62,4 +57,42 @@ impl EditShape for Mesh {
         ui.end_row();
         false
     }
+}
+
+/// Where the triangles come from, how many there are, and their BVH: its
+/// depth (against the traversal stack's limit) and how long it took to
+/// build. Moving, turning and scaling keep this tree ([`mesh_bvh_built`]).
+fn geometry_rows(ui: &mut Ui, mesh: &Mesh) {
+    field(
+        ui,
+        "file",
+        "The OBJ or PLY file, relative to the scene file",
+    );
+    match &mesh.file {
+        Some(file) => ui.label(file.display().to_string()),
+        None => ui.weak("(inline positions and triangles)"),
+    };
+    ui.end_row();
+    let geometry = &mesh.geometry.0;
+    field(
+        ui,
+        "triangles",
+        "Triangles of non-zero area (degenerate ones are dropped on load)",
+    );
+    ui.label(geometry.triangles.len().to_string());
+    ui.end_row();
+    let built = mesh_bvh_built(&mesh.geometry.0);
+    field(
+        ui,
+        "BVH",
+        "The tree over the triangles: its depth (the shader's stack allows \
+         MAX_DEPTH) and its build time on this machine",
+    );
+    ui.label(format!(
+        "depth {} of {MAX_DEPTH}, {} nodes, built in {:.1} ms",
+        built.depth,
+        built.bvh.nodes.len(),
+        built.build_time.as_secs_f64() * 1e3
+    ));
+    ui.end_row();
 }
