@@ -295,7 +295,7 @@ fn frame_ratio(
     let a = staged(small.1).map_err(BenchError::Failed)?;
     let b = staged(large.1).map_err(BenchError::Failed)?;
     let (oa, ob) = (ShaderOptions::for_scene(&a), ShaderOptions::for_scene(&b));
-    let ([ta, tb], ratio) = measure::paired_frame_times(gpu, [(&oa, &a), (&ob, &b)], size, frames)
+    let ([ta, tb], ratio) = measure::paired_scene_times(gpu, [(&oa, &a), (&ob, &b)], size, frames)
         .map_err(BenchError::Failed)?;
     Ok(FrameRatio {
         small: small.0,

@@ -5,6 +5,7 @@
 mod measure;
 mod meshes;
 mod plot;
+mod sweeps;
 
 use std::fmt::Write as _;
 use std::path::{Path, PathBuf};
@@ -36,6 +37,12 @@ pub struct BenchArgs {
     /// dragons come from scripts/fetch-meshes.
     #[arg(long)]
     pub meshes: bool,
+    /// Only the sweeps of tori, implicit surfaces and Julia sets (implicit
+    /// steps, Julia iterations and epsilon, the torus method) and their
+    /// cost against spheres in their place: `implicit.md`,
+    /// `implicit_knobs.csv`, `implicit_costs.csv` and plots.
+    #[arg(long)]
+    pub implicit: bool,
 }
 
 /// What one run sweeps.
@@ -244,6 +251,9 @@ pub fn run(args: &BenchArgs) -> Result<(), BenchError> {
         env.cpu
     );
     std::fs::create_dir_all(&args.out).map_err(|e| fail(&args.out, e))?;
+    if args.implicit {
+        return sweeps::run(&gpu, &env, &args.out, args.quick, args.frames);
+    }
 
     let scenes: Vec<(String, Scene)> = plan
         .scenes
@@ -409,13 +419,9 @@ fn pipeline_row(
 ) -> Result<PipelineRow, BenchError> {
     let specialised = ShaderOptions::for_scene(scene);
     let generic = ShaderOptions::generic(scene);
-    let ([s, g], ratio) = measure::paired_frame_times(
-        gpu,
-        [(&specialised, scene), (&generic, scene)],
-        size,
-        frames,
-    )
-    .map_err(BenchError::Failed)?;
+    let ([s, g], ratio) =
+        measure::paired_frame_times(gpu, [&specialised, &generic], scene, size, frames)
+            .map_err(BenchError::Failed)?;
     Ok(PipelineRow {
         scene: name.to_string(),
         specialized_ms: ms(s),

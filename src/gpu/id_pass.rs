@@ -100,7 +100,7 @@ impl IdRenderer {
         } else {
             PackedScene::in_world(scene, width, height)
         };
-        let scene = SceneBuffers::with_layout(device, &self.layout, packed);
+        let scene = SceneBuffers::with_layout(device, &self.layout, packed, None);
         let bind_group = &scene.bind_group;
         let target = render_target(
             device,

@@ -6,6 +6,8 @@
 //! needed), then `fs_display` divides by the sample count and encodes it into
 //! the output target.
 
+use std::sync::Arc;
+
 use wgpu::util::DeviceExt;
 
 use super::features::{ShaderOptions, borrowed};
@@ -52,7 +54,7 @@ impl Pipelines {
         output_formats: &[wgpu::TextureFormat],
         options: &ShaderOptions,
     ) -> Result<Self, PipelineError> {
-        Self::create(device, source, output_formats, options, false)
+        pollster::block_on(Self::create(device, source, output_formats, options, false))
     }
 
     /// As [`Pipelines::new`], with the passes of the selection outline too
@@ -63,10 +65,22 @@ impl Pipelines {
         output_formats: &[wgpu::TextureFormat],
         options: &ShaderOptions,
     ) -> Result<Self, PipelineError> {
-        Self::create(device, source, output_formats, options, true)
+        pollster::block_on(Self::create(device, source, output_formats, options, true))
     }
 
-    fn create(
+    /// As [`Pipelines::with_outline`], without blocking: in the browser
+    /// wgpu reports validation errors only once control returns to the
+    /// page's event loop (docs/web.md).
+    pub async fn with_outline_async(
+        device: &wgpu::Device,
+        source: &ShaderSource,
+        output_formats: &[wgpu::TextureFormat],
+        options: &ShaderOptions,
+    ) -> Result<Self, PipelineError> {
+        Self::create(device, source, output_formats, options, true).await
+    }
+
+    async fn create(
         device: &wgpu::Device,
         source: &ShaderSource,
         output_formats: &[wgpu::TextureFormat],
@@ -79,7 +93,7 @@ impl Pipelines {
         source.validate()?;
         let scope = device.push_error_scope(wgpu::ErrorFilter::Validation);
         let pipelines = Self::build(device, source, output_formats, options, outline);
-        match pollster::block_on(scope.pop()) {
+        match scope.pop().await {
             Some(error) => Err(PipelineError::Wgpu(error.to_string())),
             None => Ok(pipelines),
         }
@@ -179,12 +193,26 @@ pub(super) fn scene_layout_entries() -> Vec<wgpu::BindGroupLayoutEntry> {
 pub struct SceneBuffers {
     packed: PackedScene,
     globals: wgpu::Buffer,
+    /// One per entry of `packed.shapes`.
+    shape_buffers: Vec<wgpu::Buffer>,
     pub(super) bind_group: wgpu::BindGroup,
 }
 
 impl SceneBuffers {
     pub fn new(device: &wgpu::Device, pipelines: &Pipelines, packed: PackedScene) -> Self {
-        Self::with_layout(device, &pipelines.scene_layout, packed)
+        Self::with_layout(device, &pipelines.scene_layout, packed, None)
+    }
+
+    /// The buffers of `packed`, keeping those of `previous` whose contents
+    /// are shared with it (a moved mesh's triangles: nothing is uploaded
+    /// again).
+    pub fn reusing(
+        device: &wgpu::Device,
+        pipelines: &Pipelines,
+        packed: PackedScene,
+        previous: &SceneBuffers,
+    ) -> Self {
+        Self::with_layout(device, &pipelines.scene_layout, packed, Some(previous))
     }
 
     /// The buffers and their bind group for any pipeline whose group 0 is
@@ -193,6 +221,7 @@ impl SceneBuffers {
         device: &wgpu::Device,
         layout: &wgpu::BindGroupLayout,
         packed: PackedScene,
+        previous: Option<&SceneBuffers>,
     ) -> Self {
         let globals = device.create_buffer_init(&wgpu::util::BufferInitDescriptor {
             label: Some("globals"),
@@ -213,13 +242,21 @@ impl SceneBuffers {
             storage("bvh shapes", bytemuck::cast_slice(&packed.bvh_prims)),
             storage("shape counts", bytemuck::cast_slice(&packed.shape_counts)),
         ];
-        let shapes = packed
+        let shape_buffers: Vec<wgpu::Buffer> = packed
             .shapes
             .iter()
-            .map(|words| storage("shapes", bytemuck::cast_slice(words)));
-        let buffers: Vec<wgpu::Buffer> = fixed.into_iter().chain(shapes).collect();
+            .enumerate()
+            .map(|(i, words)| {
+                let shared = previous.and_then(|p| {
+                    let same = Arc::ptr_eq(p.packed.shapes.get(i)?, words);
+                    same.then(|| p.shape_buffers[i].clone())
+                });
+                shared.unwrap_or_else(|| storage("shapes", bytemuck::cast_slice(words.as_slice())))
+            })
+            .collect();
+        let buffers: Vec<&wgpu::Buffer> = fixed.iter().chain(&shape_buffers).collect();
         let entries: Vec<wgpu::BindGroupEntry> = std::iter::once(&globals)
-            .chain(&buffers)
+            .chain(buffers)
             .enumerate()
             .map(|(i, b)| wgpu::BindGroupEntry {
                 binding: i as u32,
@@ -234,6 +271,7 @@ impl SceneBuffers {
         SceneBuffers {
             packed,
             globals,
+            shape_buffers,
             bind_group,
         }
     }

@@ -10,6 +10,7 @@
 //! element (PLY).
 
 use std::path::Path;
+use std::sync::{Arc, Mutex, Weak};
 
 use glam::DVec3;
 
@@ -24,6 +25,50 @@ pub struct Geometry {
     pub normals: Vec<DVec3>,
     /// Degenerate (zero-area) triangles dropped on load.
     pub dropped: usize,
+}
+
+/// Values derived from a loaded geometry (its BVH, its packed GPU data),
+/// made once and shared by every copy of the scene that holds the same
+/// geometry: moving a mesh copies the scene but not its triangles, so
+/// nothing derived from them is made again. Entries are held by a weak
+/// reference: a geometry no scene uses any more is dropped from here.
+pub struct PerGeometry<T>(Mutex<Vec<(Weak<Geometry>, T)>>);
+
+impl<T: Clone> Default for PerGeometry<T> {
+    fn default() -> Self {
+        Self::new()
+    }
+}
+
+impl<T: Clone> PerGeometry<T> {
+    /// An empty cache (`const`, for a `static`).
+    pub const fn new() -> Self {
+        PerGeometry(Mutex::new(Vec::new()))
+    }
+
+    /// The value for `geometry`, made by `make` if there is none yet.
+    /// `make` runs without the lock held (it may take a second on a large
+    /// mesh); if two threads made one, the first stored wins.
+    pub fn get_or_make(&self, geometry: &Arc<Geometry>, make: impl FnOnce() -> T) -> T {
+        let cached = |entries: &mut Vec<(Weak<Geometry>, T)>| {
+            entries.retain(|(g, _)| g.strong_count() > 0);
+            entries
+                .iter()
+                .find(|(g, _)| std::ptr::eq(g.as_ptr(), Arc::as_ptr(geometry)))
+                .map(|(_, value)| value.clone())
+        };
+        let lock = || self.0.lock().unwrap_or_else(|e| e.into_inner());
+        if let Some(value) = cached(&mut lock()) {
+            return value;
+        }
+        let value = make();
+        let mut entries = lock();
+        if let Some(first) = cached(&mut entries) {
+            return first;
+        }
+        entries.push((Arc::downgrade(geometry), value.clone()));
+        value
+    }
 }
 
 /// What was read, before triangles are checked: positions, polygons as
