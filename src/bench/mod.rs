@@ -4,6 +4,7 @@
 
 mod measure;
 mod plot;
+mod sweeps;
 
 use std::fmt::Write as _;
 use std::path::{Path, PathBuf};
@@ -29,6 +30,12 @@ pub struct BenchArgs {
     /// Frames timed per point (median), after one warm-up frame.
     #[arg(long, default_value_t = 10, value_parser = clap::value_parser!(u32).range(1..=1000))]
     pub frames: u32,
+    /// Only the sweeps of tori, implicit surfaces and Julia sets (implicit
+    /// steps, Julia iterations and epsilon, the torus method) and their
+    /// cost against spheres in their place: `implicit.md`,
+    /// `implicit_knobs.csv`, `implicit_costs.csv` and plots.
+    #[arg(long)]
+    pub implicit: bool,
 }
 
 /// What one run sweeps.
@@ -234,6 +241,9 @@ pub fn run(args: &BenchArgs) -> Result<(), BenchError> {
         env.cpu
     );
     std::fs::create_dir_all(&args.out).map_err(|e| fail(&args.out, e))?;
+    if args.implicit {
+        return sweeps::run(&gpu, &env, &args.out, args.quick, args.frames);
+    }
 
     let scenes: Vec<(String, Scene)> = plan
         .scenes

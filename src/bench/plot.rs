@@ -10,7 +10,7 @@ use super::{ErrorRow, ScalingRow};
 
 type PlotResult = Result<(), Box<dyn std::error::Error>>;
 
-fn register_font() {
+pub(super) fn register_font() {
     static ONCE: Once = Once::new();
     ONCE.call_once(|| {
         // Only fails for bytes that are not a font; these are.
@@ -23,7 +23,7 @@ fn register_font() {
 }
 
 /// The range of positive values, padded by a factor for a log axis.
-fn log_range(values: impl Iterator<Item = f64>) -> std::ops::Range<f64> {
+pub(super) fn log_range(values: impl Iterator<Item = f64>) -> std::ops::Range<f64> {
     let (lo, hi) = values
         .filter(|v| v.is_finite() && *v > 0.0)
         .fold((f64::MAX, f64::MIN), |(lo, hi), v| (lo.min(v), hi.max(v)));

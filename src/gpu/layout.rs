@@ -378,7 +378,11 @@ mod tests {
                 slice,
                 iterations,
                 epsilon,
-                material
+                material,
+                footprint,
+                _pad0,
+                _pad1,
+                _pad2
             }),
             rust_layout!(Mesh {
                 to_local,
