@@ -54,7 +54,7 @@ impl Pipelines {
         output_formats: &[wgpu::TextureFormat],
         options: &ShaderOptions,
     ) -> Result<Self, PipelineError> {
-        Self::create(device, source, output_formats, options, false)
+        pollster::block_on(Self::create(device, source, output_formats, options, false))
     }
 
     /// As [`Pipelines::new`], with the passes of the selection outline too
@@ -65,10 +65,22 @@ impl Pipelines {
         output_formats: &[wgpu::TextureFormat],
         options: &ShaderOptions,
     ) -> Result<Self, PipelineError> {
-        Self::create(device, source, output_formats, options, true)
+        pollster::block_on(Self::create(device, source, output_formats, options, true))
     }
 
-    fn create(
+    /// As [`Pipelines::with_outline`], without blocking: in the browser
+    /// wgpu reports validation errors only once control returns to the
+    /// page's event loop (docs/web.md).
+    pub async fn with_outline_async(
+        device: &wgpu::Device,
+        source: &ShaderSource,
+        output_formats: &[wgpu::TextureFormat],
+        options: &ShaderOptions,
+    ) -> Result<Self, PipelineError> {
+        Self::create(device, source, output_formats, options, true).await
+    }
+
+    async fn create(
         device: &wgpu::Device,
         source: &ShaderSource,
         output_formats: &[wgpu::TextureFormat],
@@ -81,7 +93,7 @@ impl Pipelines {
         source.validate()?;
         let scope = device.push_error_scope(wgpu::ErrorFilter::Validation);
         let pipelines = Self::build(device, source, output_formats, options, outline);
-        match pollster::block_on(scope.pop()) {
+        match scope.pop().await {
             Some(error) => Err(PipelineError::Wgpu(error.to_string())),
             None => Ok(pipelines),
         }
