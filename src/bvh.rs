@@ -11,7 +11,7 @@
 use glam::DVec3;
 
 use std::sync::Arc;
-use std::time::{Duration, Instant};
+use web_time::{Duration, Instant};
 
 use rayon::prelude::*;
 

@@ -109,8 +109,14 @@ impl ApplicationHandler<Ready> for Page {
 
     fn user_event(&mut self, _: &ActiveEventLoop, Ready(gfx): Ready) {
         match gfx {
-            Ok(gfx) => {
+            Ok(mut gfx) => {
                 page::event(&format!("adapter {}", gfx.gpu.describe()));
+                // The canvas may have been laid out while the device was
+                // being made: draw at its size now.
+                if let Some(window) = &self.window {
+                    let size = window.inner_size();
+                    gfx.viewport.resize(&gfx.gpu, (size.width, size.height));
+                }
                 self.gfx = Some(gfx);
                 self.request_redraw();
             }
