@@ -1,20 +1,23 @@
 //! Criterion benchmarks of the CPU side: the reference's intersection
-//! routines (robust and naive), BVH construction, and the reference tracer's
-//! rays per second. `cargo bench`; results in target/criterion/.
+//! routines (robust and naive), BVH construction, the reference tracer's
+//! rays per second, and what the viewer does when a mesh moves against when
+//! its file is reloaded. `cargo bench`; results in target/criterion/.
 
 use std::hint::black_box;
+use std::sync::Arc;
 
 use criterion::{BenchmarkId, Criterion, Throughput, criterion_group, criterion_main};
 use glam::{DMat3, DVec3};
 use raysandbox::bench::sphere_field;
 use raysandbox::bvh::Bvh;
+use raysandbox::gpu::layout::PackedScene;
 use raysandbox::reference::intersect::{
     Cube, Plane, Sphere, hit_cube, hit_cube_naive, hit_plane, hit_plane_naive, hit_sphere,
     hit_sphere_naive,
 };
 use raysandbox::reference::ray::Ray;
 use raysandbox::reference::{PreparedScene, render_linear};
-use raysandbox::scene::{Scene, bundled};
+use raysandbox::scene::{Loaded, Mesh, Scene, bundled};
 
 /// Rays from a ring of origins at the unit shapes at the origin: about half
 /// hit, so both branches of every routine are measured.
@@ -89,11 +92,39 @@ fn reference_tracer(c: &mut Criterion) {
     group.finish();
 }
 
+/// Packing a scene for the GPU after a mesh was moved (its geometry, BVH
+/// and packed triangles are reused) against after its file was reloaded (a
+/// new geometry: BVH built and triangles packed again), on the bundled
+/// 48k-triangle dragon.
+fn mesh_repack(c: &mut Criterion) {
+    let mut group = c.benchmark_group("mesh repack");
+    group.sample_size(10);
+    let dir = std::path::Path::new(env!("CARGO_MANIFEST_DIR"));
+    let mesh = Mesh::from_file("assets/meshes/dragon_res3.ply".into(), Some(dir)).unwrap();
+    let mut scene = Scene::from_toml_str(bundled::text("whitted").unwrap(), None).unwrap();
+    scene.meshes.push(mesh);
+    PackedScene::new(&scene, 1, 1);
+    group.bench_function("moved", |b| {
+        b.iter(|| {
+            scene.meshes[0].translate.x += 1e-3;
+            PackedScene::new(black_box(&scene), 1, 1)
+        })
+    });
+    group.bench_function("reloaded", |b| {
+        b.iter(|| {
+            let fresh = Arc::new((*scene.meshes[0].geometry.0).clone());
+            scene.meshes[0].geometry = Loaded(fresh);
+            PackedScene::new(black_box(&scene), 1, 1)
+        })
+    });
+    group.finish();
+}
+
 criterion_group! {
     name = benches;
     // Criterion's HTML plots need a system font (plotters' font feature is
     // set for the bench command's own plots, which bring their font along).
     config = Criterion::default().without_plots();
-    targets = intersections, bvh_build, reference_tracer
+    targets = intersections, bvh_build, reference_tracer, mesh_repack
 }
 criterion_main!(benches);

@@ -10,12 +10,12 @@
 
 use glam::DVec3;
 
-use std::sync::{Arc, Mutex, Weak};
-use std::time::{Duration, Instant};
+use std::sync::Arc;
+use web_time::{Duration, Instant};
 
 use rayon::prelude::*;
 
-use crate::scene::{Geometry, Scene, ShapeId};
+use crate::scene::{Geometry, PerGeometry, Scene, ShapeId};
 
 /// An axis-aligned box.
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -173,10 +173,8 @@ pub struct MeshBvh {
     pub build_time: Duration,
 }
 
-/// Triangle BVHs built so far, by the geometry they were built for (held
-/// weakly: a geometry no scene uses any more is dropped from here).
-type MeshBvhCache = Vec<(Weak<Geometry>, MeshBvh)>;
-static MESH_BVHS: Mutex<MeshBvhCache> = Mutex::new(Vec::new());
+/// Triangle BVHs built so far, by the geometry they were built for.
+static MESH_BVHS: PerGeometry<MeshBvh> = PerGeometry::new();
 
 /// The BVH over a mesh's triangles (leaves hold triangle indices) in the
 /// mesh's own coordinates. It is built once per loaded geometry and shared
@@ -188,31 +186,22 @@ pub fn mesh_bvh(geometry: &Arc<Geometry>) -> Arc<Bvh<u32>> {
 
 /// [`mesh_bvh`] with its depth and build time.
 pub fn mesh_bvh_built(geometry: &Arc<Geometry>) -> MeshBvh {
-    let cached = |cache: &mut MeshBvhCache| {
-        cache.retain(|(g, _)| g.strong_count() > 0);
-        cache
-            .iter()
-            .find(|(g, _)| std::ptr::eq(g.as_ptr(), Arc::as_ptr(geometry)))
-            .map(|(_, built)| built.clone())
-    };
-    let lock = || MESH_BVHS.lock().unwrap_or_else(|e| e.into_inner());
-    if let Some(built) = cached(&mut lock()) {
-        return built;
-    }
-    let start = Instant::now();
-    let bvh = Bvh::from_items(triangle_bounds(geometry));
-    let build_time = start.elapsed();
-    let built = MeshBvh {
-        depth: bvh.depth(),
-        bvh: Arc::new(bvh),
-        build_time,
-    };
-    let mut cache = lock();
-    if let Some(other) = cached(&mut cache) {
-        return other;
-    }
-    cache.push((Arc::downgrade(geometry), built.clone()));
-    built
+    MESH_BVHS.get_or_make(geometry, || {
+        let start = Instant::now();
+        let bvh = build_mesh_bvh(geometry);
+        let build_time = start.elapsed();
+        MeshBvh {
+            depth: bvh.depth(),
+            bvh: Arc::new(bvh),
+            build_time,
+        }
+    })
+}
+
+/// A new BVH over the triangles of `geometry`, in its own coordinates,
+/// bypassing the cache of [`mesh_bvh`] (the benchmark times builds).
+pub fn build_mesh_bvh(geometry: &Geometry) -> Bvh<u32> {
+    Bvh::from_items(triangle_bounds(geometry))
 }
 
 /// Below this many items a subtree is built on one thread: splitting the

@@ -11,7 +11,7 @@ use raysandbox::gpu::{
     Gpu, GpuWaitError, OffscreenRenderer, RenderError, ShaderOptions, ShaderSource,
 };
 use raysandbox::reference;
-use raysandbox::scene::{Scene, TriangleTest};
+use raysandbox::scene::{Scene, TorusMethod, TriangleTest};
 
 #[derive(Parser)]
 #[command(
@@ -101,6 +101,10 @@ struct RenderArgs {
     /// slides), moller-trumbore, or watertight (Woop, Benthin and Wald).
     #[arg(long, default_value = "watertight", value_parser = triangle_test)]
     triangles: TriangleTest,
+    /// How the GPU solves a torus's quartic: bisection, or newton (the
+    /// slope's zeros in closed form, Newton steps kept inside the bracket).
+    #[arg(long, default_value = "newton", value_parser = torus_method)]
+    torus: TorusMethod,
     /// Render the image this many times after one warm-up render and print
     /// the median, fastest and slowest GPU time.
     #[arg(long, default_value_t = 1, value_parser = clap::value_parser!(u32).range(1..=10000))]
@@ -266,6 +270,14 @@ fn triangle_test(name: &str) -> Result<TriangleTest, String> {
     })
 }
 
+/// `--torus NAME`.
+fn torus_method(name: &str) -> Result<TorusMethod, String> {
+    TorusMethod::from_name(name).ok_or_else(|| {
+        let names: Vec<&str> = TorusMethod::ALL.iter().map(|t| t.name()).collect();
+        format!("one of {}", names.join(", "))
+    })
+}
+
 fn render(args: &RenderArgs) -> Result<(), Failure> {
     let scene = load_scene(&args.scene)?;
     let start = Instant::now();
@@ -297,6 +309,7 @@ fn render(args: &RenderArgs) -> Result<(), Failure> {
             options.features.bvh = false;
         }
         options.triangles = args.triangles;
+        options.torus = args.torus;
         let mut renderer =
             OffscreenRenderer::new(&gpu, &source, &options, &scene, args.width, args.height)
                 .map_err(render_failure)?;

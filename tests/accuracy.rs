@@ -79,7 +79,7 @@ fn measure_all() -> Option<HashMap<String, (Comparison, Comparison)>> {
     let gpu = common::gpu()?;
     let harness = Harness::new(&gpu, &ShaderSource::embedded()).unwrap_or_else(|e| panic!("{e}"));
     let mut out = HashMap::new();
-    for entry in stress::entries(None, true) {
+    for entry in stress::entries(None, true).unwrap_or_else(|e| panic!("{e}")) {
         let m = harness
             .measure_entry(&gpu, &entry, WIDTH, HEIGHT)
             .unwrap_or_else(|e| panic!("{}: {e}", entry.name));

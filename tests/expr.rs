@@ -158,7 +158,7 @@ fn run_on_gpu(gpu: &Gpu, functions: &[Function], points: &[[f32; 4]]) -> Vec<Gpu
         ("functions.wgsl".to_string(), wgsl),
         ("harness.wgsl".to_string(), harness),
     ]);
-    let kernel = common::compute::Kernel {
+    let kernel = raysandbox::gpu::compute::Kernel {
         label: "expression harness",
         source: &source,
         entry: "run",

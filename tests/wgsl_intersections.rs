@@ -131,7 +131,7 @@ fn run(gpu: &Gpu, cases: &[GpuCase], robust: bool) -> Vec<GpuResult> {
             .map(|(name, text)| (name.to_string(), text.to_string()))
             .chain([("harness.wgsl".to_string(), HARNESS.to_string())]),
     );
-    let kernel = common::compute::Kernel {
+    let kernel = raysandbox::gpu::compute::Kernel {
         label: "intersection harness",
         source: &source,
         entry: "test_intersections",

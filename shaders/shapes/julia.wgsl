@@ -13,6 +13,10 @@ struct Julia {
     iterations: u32,
     epsilon: f32,            // local units
     material: u32,
+    footprint: u32,          // 1: epsilon grows with the pixel footprint
+    _pad0: u32,
+    _pad1: u32,
+    _pad2: u32,
 }
 
 /// The distance estimate at local point p: z <- z^2 + c from z = (p, slice),
@@ -32,9 +36,8 @@ fn julia_distance(s: Julia, p: vec3<f32>) -> f32 {
     return 0.5 * r * log(r) / dz;
 }
 
-/// grad DE by central differences with step epsilon.
-fn julia_normal(s: Julia, p: vec3<f32>) -> vec3<f32> {
-    let e = s.epsilon;
+/// grad DE by central differences with step e (the epsilon of the hit).
+fn julia_normal(s: Julia, p: vec3<f32>, e: f32) -> vec3<f32> {
     return vec3(
         julia_distance(s, p + vec3(e, 0.0, 0.0)) - julia_distance(s, p - vec3(e, 0.0, 0.0)),
         julia_distance(s, p + vec3(0.0, e, 0.0)) - julia_distance(s, p - vec3(0.0, e, 0.0)),
@@ -42,10 +45,24 @@ fn julia_normal(s: Julia, p: vec3<f32>) -> vec3<f32> {
     );
 }
 
+/// The surface distance (local units) at local parameter u: epsilon, or
+/// with the footprint on at least the width one pixel subtends at the
+/// distance travelled along the ray (from the eye for camera rays, whose
+/// t_min reaches back to it, from the surface left for the others).
+fn julia_epsilon(ray: Ray, s: Julia, l: LocalRay, u: f32) -> f32 {
+    if s.footprint == 0u {
+        return s.epsilon;
+    }
+    let pixel_angle = globals.film_height / f32(globals.resolution.y);
+    let travelled = l.s + l.scale * u - min(ray.t_min, 0.0);
+    return max(s.epsilon, pixel_angle * travelled / l.scale);
+}
+
 /// Sphere tracing from where the ray enters the sphere |p| < 2 (or from its
-/// start inside it) to the first point with DE < epsilon; leaving the sphere
-/// or 1024 steps is a miss. Rays leaving the surface start 2 epsilon off it:
-/// the error_scale for which offset_ray moves them that far.
+/// start inside it) to the first point with DE < epsilon (julia_epsilon);
+/// leaving the sphere or 1024 steps is a miss. Rays leaving the surface
+/// start 2 epsilon off it: the error_scale for which offset_ray moves them
+/// that far.
 fn hit_julia(ray: Ray, s: Julia, index: u32, best: Hit) -> Hit {
     let l = local_ray(ray, s.center, s.scale, s.rotation);
     let qq = dot(l.q, l.q);
@@ -61,12 +78,13 @@ fn hit_julia(ray: Ray, s: Julia, index: u32, best: Hit) -> Hit {
         }
         let p = l.q + u * l.d;
         let de = julia_distance(s, p);
-        if de < s.epsilon {
+        let epsilon = julia_epsilon(ray, s, l, u);
+        if de < epsilon {
             let error_scale = max(
-                offset_scale_for(2.0 * s.epsilon * s.scale),
+                offset_scale_for(2.0 * epsilon * s.scale),
                 max3(abs(s.center)) + 2.0 * s.scale,
             );
-            return placed_hit(ray, best, l, u, julia_normal(s, p), s.center, s.rotation, KIND_JULIA, index, error_scale);
+            return placed_hit(ray, best, l, u, julia_normal(s, p, epsilon), s.center, s.rotation, KIND_JULIA, index, error_scale);
         }
         u += de;
     }

@@ -75,12 +75,21 @@ fn quartic_bracketed(k: Quartic, slope: bool, a_in: f32, b_in: f32) -> f32 {
     return b;
 }
 
+/// How the torus's quartic is solved (`TorusMethod` in
+/// src/scene/shapes/torus.rs, docs/implementation.md "Torus"):
+/// 0 = bisection on monotone pieces, 1 = the slope's roots in closed form
+/// and safeguarded Newton steps on the monotone pieces.
+override TORUS_METHOD: u32 = 1u;
+
 /// The first root in (lo, hi], T_FAR when there is none: the zeros of the
 /// second derivative 12 u^2 + 2 b split [lo, hi] into pieces where the
 /// slope is monotone, each holding at most one zero of the slope; those
 /// split it into pieces where the quartic is monotone, each holding at most
 /// one root. The first piece with a sign change holds the nearest root.
 fn quartic_first_root(k: Quartic, lo: f32, hi: f32) -> f32 {
+    if TORUS_METHOD == 1u {
+        return quartic_first_root_newton(k, lo, hi);
+    }
     var splits = array<f32, 4>(lo, hi, hi, hi);
     var n = 1u;
     if k.b < 0.0 {
@@ -112,6 +121,89 @@ fn quartic_first_root(k: Quartic, lo: f32, hi: f32) -> f32 {
         }
     }
     return T_FAR;
+}
+
+/// The real roots of the slope 4 u^3 + 2 b u + c, a depressed cubic
+/// u^3 + p u + q (p = b / 2, q = c / 4), in increasing order; a single real
+/// root is repeated three times. Cardano's formula in its cancellation-free
+/// form for one real root, the trigonometric one for three.
+fn slope_roots(k: Quartic) -> vec3<f32> {
+    let p = 0.5 * k.b;
+    let q = 0.25 * k.c;
+    let d = 0.25 * q * q + p * p * p / 27.0;
+    if d >= 0.0 {
+        let s = 0.5 * abs(q) + sqrt(d);
+        let a = -sign(q) * pow(s, 1.0 / 3.0);
+        let u = select(0.0, a - p / (3.0 * a), a != 0.0);
+        return vec3(u);
+    }
+    // d < 0 needs p < 0: three real roots 2 sqrt(-p/3) cos(phi + 2 pi j / 3),
+    // phi in [0, pi/3]: j = 1 gives the smallest (its angle is in
+    // [2pi/3, pi]), j = 2 the middle one, j = 0 the largest.
+    let r = sqrt(-p / 3.0);
+    let phi = acos(clamp(-0.5 * q / (r * r * r), -1.0, 1.0)) / 3.0;
+    let third = 2.0943951;
+    return 2.0 * r * vec3(cos(phi + third), cos(phi + 2.0 * third), cos(phi));
+}
+
+/// The root in (a, b] of the quartic, monotone there, when its ends differ
+/// in sign (or the far one is 0): Newton steps from the middle, each kept
+/// inside the shrinking bracket (a step that would leave it halves the
+/// bracket instead), until a step is below 1e-6 of the piece or 24 steps;
+/// T_FAR when there is no root.
+fn quartic_newton(k: Quartic, a_in: f32, b_in: f32) -> f32 {
+    var a = a_in;
+    var b = b_in;
+    let ga = quartic_at(k, false, a);
+    let gb = quartic_at(k, false, b);
+    if gb == 0.0 && ga != 0.0 {
+        return b;
+    }
+    if ga == 0.0 || (ga < 0.0) == (gb < 0.0) {
+        return T_FAR;
+    }
+    let a_negative = ga < 0.0;
+    let tolerance = 1e-6 * (b - a);
+    var x = 0.5 * (a + b);
+    for (var i = 0; i < 24; i++) {
+        let g = quartic_at(k, false, x);
+        if g == 0.0 {
+            return x;
+        }
+        if (g < 0.0) == a_negative {
+            a = x;
+        } else {
+            b = x;
+        }
+        var next = x - g / quartic_at(k, true, x);
+        if !(next > a && next < b) {
+            next = 0.5 * (a + b);
+        }
+        let step = abs(next - x);
+        x = next;
+        if step <= tolerance {
+            break;
+        }
+    }
+    return x;
+}
+
+/// The first root in (lo, hi] as in quartic_first_root, with the slope's
+/// zeros from the closed-form cubic and Newton steps instead of halvings.
+fn quartic_first_root_newton(k: Quartic, lo: f32, hi: f32) -> f32 {
+    let roots = slope_roots(k);
+    var a = lo;
+    for (var i = 0u; i < 3u; i++) {
+        let x = roots[i];
+        if x > a && x < hi {
+            let u = quartic_newton(k, a, x);
+            if u <= hi {
+                return u;
+            }
+            a = x;
+        }
+    }
+    return quartic_newton(k, a, hi);
 }
 
 /// Torus: the first root of its quartic inside the bounding sphere of

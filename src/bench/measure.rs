@@ -38,11 +38,8 @@ pub fn frame_time(
     ))
 }
 
-/// Two pipelines timed on the same scene, frame for frame in turn (A, B, A,
-/// B, ...) after a warm-up render of each: the median time of each, and the
-/// median of the per-pair ratios B / A. Taking turns exposes both to the same
-/// load of a shared machine, and the pair's ratio cancels what drifts
-/// between pairs, so the ratio is steadier than the ratio of the medians.
+/// Two pipelines timed on the same scene, frame for frame in turn: see
+/// [`paired_scene_times`].
 pub fn paired_frame_times(
     gpu: &Gpu,
     options: [&ShaderOptions; 2],
@@ -50,10 +47,25 @@ pub fn paired_frame_times(
     size: (u32, u32),
     frames: u32,
 ) -> Result<([Duration; 2], f64), String> {
+    paired_scene_times(gpu, options.map(|o| (o, scene)), size, frames)
+}
+
+/// Two renders (a pipeline and a scene each) timed frame for frame in turn
+/// (A, B, A, B, ...) after a warm-up render of each: the median time of
+/// each, and the median of the per-pair ratios B / A. Taking turns exposes
+/// both to the same load of a shared machine, and the pair's ratio cancels
+/// what drifts between pairs, so the ratio is steadier than the ratio of
+/// the medians.
+pub fn paired_scene_times(
+    gpu: &Gpu,
+    renders: [(&ShaderOptions, &Scene); 2],
+    size: (u32, u32),
+    frames: u32,
+) -> Result<([Duration; 2], f64), String> {
     let source = ShaderSource::embedded();
     let wait = |e: crate::gpu::GpuWaitError| e.to_string();
     let mut renderers = Vec::new();
-    for o in options {
+    for (o, scene) in renders {
         let mut r = OffscreenRenderer::new(gpu, &source, o, scene, size.0, size.1)
             .map_err(|e| e.to_string())?;
         r.render(gpu, 1).map_err(wait)?;

@@ -3,7 +3,9 @@
 //! BVH. Writes CSV files, a Markdown report and PNG plots to `--out`.
 
 mod measure;
+mod meshes;
 mod plot;
+mod sweeps;
 
 use std::fmt::Write as _;
 use std::path::{Path, PathBuf};
@@ -29,6 +31,18 @@ pub struct BenchArgs {
     /// Frames timed per point (median), after one warm-up frame.
     #[arg(long, default_value_t = 10, value_parser = clap::value_parser!(u32).range(1..=1000))]
     pub frames: u32,
+    /// Only the triangle-mesh benchmark (docs/performance.md, "Triangle
+    /// meshes"): per mesh size and ray-triangle test, frame time and error,
+    /// load and BVH build time, GPU bytes per triangle. The two largest
+    /// dragons come from scripts/fetch-meshes.
+    #[arg(long)]
+    pub meshes: bool,
+    /// Only the sweeps of tori, implicit surfaces and Julia sets (implicit
+    /// steps, Julia iterations and epsilon, the torus method) and their
+    /// cost against spheres in their place: `implicit.md`,
+    /// `implicit_knobs.csv`, `implicit_costs.csv` and plots.
+    #[arg(long)]
+    pub implicit: bool,
 }
 
 /// What one run sweeps.
@@ -221,6 +235,9 @@ pub enum BenchError {
 
 pub fn run(args: &BenchArgs) -> Result<(), BenchError> {
     let gpu = Gpu::headless().map_err(|e| BenchError::NoGpu(e.to_string()))?;
+    if args.meshes {
+        return meshes::run(&gpu, args);
+    }
     let plan = Plan::new(args.quick);
     let env = Environment {
         adapter: gpu.describe(),
@@ -234,6 +251,9 @@ pub fn run(args: &BenchArgs) -> Result<(), BenchError> {
         env.cpu
     );
     std::fs::create_dir_all(&args.out).map_err(|e| fail(&args.out, e))?;
+    if args.implicit {
+        return sweeps::run(&gpu, &env, &args.out, args.quick, args.frames);
+    }
 
     let scenes: Vec<(String, Scene)> = plan
         .scenes

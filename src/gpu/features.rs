@@ -5,7 +5,7 @@
 //! or checker code at all.
 
 use super::shapes::has_flag;
-use crate::scene::{Scene, ShapeKind, TriangleTest};
+use crate::scene::{Scene, ShapeKind, TorusMethod, TriangleTest};
 
 /// What a scene needs from the shader. Every flag that is true for a scene
 /// must be true in the pipeline that draws it; extra flags only cost time.
@@ -87,6 +87,8 @@ pub struct ShaderOptions {
     pub stack_size: u32,
     /// The ray-triangle test of meshes (`TRIANGLE_TEST`).
     pub triangles: TriangleTest,
+    /// How tori solve their quartic (`TORUS_METHOD`).
+    pub torus: TorusMethod,
     /// The scene's distinct implicit functions (`gpu::shapes::implicit::functions`),
     /// compiled into the source (see `ShaderSource::with_functions`): a
     /// pipeline per distinct set.
@@ -101,6 +103,7 @@ impl Default for ShaderOptions {
             features: Features::ALL,
             stack_size: super::shaders::MAX_STACK_SIZE,
             triangles: TriangleTest::default(),
+            torus: TorusMethod::default(),
             functions: Vec::new(),
         }
     }
@@ -123,6 +126,7 @@ impl ShaderOptions {
             features: Features::of(scene),
             stack_size: scene.render.max_depth + 1,
             triangles: TriangleTest::default(),
+            torus: TorusMethod::default(),
             functions: super::shapes::implicit::functions(scene),
         }
     }
@@ -142,15 +146,16 @@ impl ShaderOptions {
         ]
         .map(|(name, on)| (name.to_string(), on));
         let kinds = ShapeKind::ALL.iter().map(|&k| (has_flag(k), f.has(k)));
-        let triangles = (
-            "TRIANGLE_TEST".to_string(),
-            f64::from(self.triangles.number()),
-        );
+        let methods = [
+            ("TRIANGLE_TEST", self.triangles.number()),
+            ("TORUS_METHOD", self.torus.number()),
+        ]
+        .map(|(name, value)| (name.to_string(), f64::from(value)));
         fixed
             .into_iter()
             .chain(kinds)
             .map(|(name, on)| (name, f64::from(u8::from(on))))
-            .chain([triangles])
+            .chain(methods)
             .collect()
     }
 }

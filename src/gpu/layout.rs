@@ -7,7 +7,7 @@ use bytemuck::{Pod, Zeroable};
 use glam::DVec3;
 
 pub use super::shapes::{Cube, Implicit, Julia, Mesh, Plane, Sphere, Torus};
-use super::shapes::{Frame, PackShape, buffer_position, f32x3, pack_all, round_out};
+use super::shapes::{Frame, PackShape, Words, buffer_position, f32x3, pack_all, round_out};
 use crate::bvh::{Aabb, Bvh};
 use crate::scene::{self, Scene, ShapeKind, ShapeList};
 
@@ -104,7 +104,7 @@ pub struct PackedScene {
     /// Every shape kind's buffers as `u32` words, in the registry order of
     /// `gpu::shapes`, a kind's second buffer after its own (see
     /// [`PackedScene::shapes_of`] for typed access).
-    pub shapes: Vec<Vec<u32>>,
+    pub shapes: Vec<Words>,
     /// The number of shapes of each kind, by kind number (entry 0 unused).
     pub shape_counts: Vec<u32>,
     pub materials: Vec<Material>,
@@ -162,7 +162,7 @@ impl PackedScene {
     /// count is in [`PackedScene::shape_counts`]).
     pub fn shapes_of<T: PackShape>(&self) -> &[T] {
         let position = buffer_position(<T::Source as ShapeList>::KIND);
-        bytemuck::cast_slice(&self.shapes[position])
+        bytemuck::cast_slice(self.shapes[position].as_slice())
     }
 }
 
@@ -378,7 +378,11 @@ mod tests {
                 slice,
                 iterations,
                 epsilon,
-                material
+                material,
+                footprint,
+                _pad0,
+                _pad1,
+                _pad2
             }),
             rust_layout!(Mesh {
                 to_local,

@@ -1,6 +1,7 @@
 //! The GPU side: device, shader source, buffer packing, the tracer's passes
 //! and offscreen rendering with readback. Knows scenes, not windows or UI.
 
+pub mod compute;
 mod context;
 mod features;
 pub mod fullscreen;

@@ -2,7 +2,7 @@
 //! resolution scale and the selection outline. Knows nothing of egui: whoever draws on top of the
 //! image gets the frame's encoder and view through a callback.
 
-use std::time::{Duration, Instant};
+use web_time::{Duration, Instant};
 
 use super::context::{Gpu, GpuWaitError};
 use super::id_pass::FirstHit;
@@ -115,7 +115,8 @@ impl Viewport {
 
     /// Uploads a changed scene and restarts refinement.
     pub fn set_scene(&mut self, gpu: &Gpu, scene: &Scene) {
-        self.scene = SceneBuffers::new(&gpu.device, &self.pipelines, PackedScene::new(scene, 1, 1));
+        let packed = PackedScene::new(scene, 1, 1);
+        self.scene = SceneBuffers::reusing(&gpu.device, &self.pipelines, packed, &self.scene);
         self.accum.reset();
     }
 

@@ -76,12 +76,16 @@ pub struct PreparedScene {
     max_depth: u32,
     min_weight: f64,
     exposure: f64,
-    /// The robust routines or the textbook ones, and the triangle test.
+    /// The robust routines or the textbook ones, the triangle test and the
+    /// pixel angle.
     options: ReferenceOptions,
+    /// Whether a Julia set grows its epsilon with the pixel footprint: then
+    /// each render sets `options.pixel_angle` for its image height.
+    uses_footprint: bool,
 }
 
 /// Variants of the reference, the twin of the shader's `gpu::ShaderOptions`.
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
+#[derive(Debug, Clone, Copy, PartialEq)]
 pub struct ReferenceOptions {
     /// true: the robust routines (docs/implementation.md); false: the naive
     /// quadratic, the plain slab test, the plane without re-projection and a
@@ -89,6 +93,10 @@ pub struct ReferenceOptions {
     pub robust: bool,
     /// The ray-triangle test of meshes.
     pub triangles: TriangleTest,
+    /// The height one pixel subtends at unit distance (film height / image
+    /// height), for Julia sets with `footprint` (docs/rendering-model.md,
+    /// "Implicit surfaces"). The render functions set it for their image.
+    pub pixel_angle: f64,
 }
 
 impl Default for ReferenceOptions {
@@ -96,6 +104,7 @@ impl Default for ReferenceOptions {
         ReferenceOptions {
             robust: true,
             triangles: TriangleTest::default(),
+            pixel_angle: 0.0,
         }
     }
 }
@@ -140,7 +149,20 @@ impl PreparedScene {
             min_weight: scene.render.min_weight,
             exposure: scene.render.exposure,
             options: *options,
+            uses_footprint: scene.julias.iter().any(|j| j.footprint),
         }
+    }
+
+    /// This scene as a render of `height` rows traces it: with the pixel
+    /// angle of that height when a Julia set needs it (a copy), else itself.
+    fn sized(&self, height: u32) -> std::borrow::Cow<'_, PreparedScene> {
+        let pixel_angle = self.camera.film_height / f64::from(height.max(1));
+        if !self.uses_footprint || self.options.pixel_angle == pixel_angle {
+            return std::borrow::Cow::Borrowed(self);
+        }
+        let mut sized = self.clone();
+        sized.options.pixel_angle = pixel_angle;
+        std::borrow::Cow::Owned(sized)
     }
 
     /// The material of a shape.
@@ -183,6 +205,7 @@ pub fn render_linear_rotated(
     if image.is_empty() {
         return image;
     }
+    let scene = &*scene.sized(height);
     image
         .par_chunks_mut(width as usize)
         .enumerate()

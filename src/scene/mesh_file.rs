@@ -10,6 +10,7 @@
 //! element (PLY).
 
 use std::path::Path;
+use std::sync::{Arc, Mutex, Weak};
 
 use glam::DVec3;
 
@@ -24,6 +25,50 @@ pub struct Geometry {
     pub normals: Vec<DVec3>,
     /// Degenerate (zero-area) triangles dropped on load.
     pub dropped: usize,
+}
+
+/// Values derived from a loaded geometry (its BVH, its packed GPU data),
+/// made once and shared by every copy of the scene that holds the same
+/// geometry: moving a mesh copies the scene but not its triangles, so
+/// nothing derived from them is made again. Entries are held by a weak
+/// reference: a geometry no scene uses any more is dropped from here.
+pub struct PerGeometry<T>(Mutex<Vec<(Weak<Geometry>, T)>>);
+
+impl<T: Clone> Default for PerGeometry<T> {
+    fn default() -> Self {
+        Self::new()
+    }
+}
+
+impl<T: Clone> PerGeometry<T> {
+    /// An empty cache (`const`, for a `static`).
+    pub const fn new() -> Self {
+        PerGeometry(Mutex::new(Vec::new()))
+    }
+
+    /// The value for `geometry`, made by `make` if there is none yet.
+    /// `make` runs without the lock held (it may take a second on a large
+    /// mesh); if two threads made one, the first stored wins.
+    pub fn get_or_make(&self, geometry: &Arc<Geometry>, make: impl FnOnce() -> T) -> T {
+        let cached = |entries: &mut Vec<(Weak<Geometry>, T)>| {
+            entries.retain(|(g, _)| g.strong_count() > 0);
+            entries
+                .iter()
+                .find(|(g, _)| std::ptr::eq(g.as_ptr(), Arc::as_ptr(geometry)))
+                .map(|(_, value)| value.clone())
+        };
+        let lock = || self.0.lock().unwrap_or_else(|e| e.into_inner());
+        if let Some(value) = cached(&mut lock()) {
+            return value;
+        }
+        let value = make();
+        let mut entries = lock();
+        if let Some(first) = cached(&mut entries) {
+            return first;
+        }
+        entries.push((Arc::downgrade(geometry), value.clone()));
+        value
+    }
 }
 
 /// What was read, before triangles are checked: positions, polygons as
@@ -143,14 +188,7 @@ fn area_weighted_normals(positions: &[DVec3], triangles: &[[u32; 3]]) -> Vec<DVe
 /// An OBJ file through `tobj`: `v`, `vn` and `f` records, polygons
 /// fan-triangulated, other records ignored. Errors start with the line.
 fn read_obj(bytes: &[u8]) -> Result<Raw, String> {
-    let text = std::str::from_utf8(bytes).map_err(|e| {
-        let line = bytes[..e.valid_up_to()]
-            .iter()
-            .filter(|&&b| b == b'\n')
-            .count()
-            + 1;
-        format!("{line}: not a text file (invalid UTF-8)")
-    })?;
+    let text = as_text(bytes)?;
     if let Some((line, message)) = obj_problem(text) {
         return Err(format!("{line}: {message}"));
     }
@@ -276,6 +314,7 @@ fn face_problem<'a>(words: impl Iterator<Item = &'a str>, vertices: i64) -> Opti
 fn read_ply(bytes: &[u8]) -> Result<Raw, String> {
     use ply_rs_bw::parser::Parser;
     use ply_rs_bw::ply::DefaultElement;
+    as_text(ply_text_part(bytes))?;
     let ply = Parser::<DefaultElement>::new()
         .read_ply(&mut std::io::Cursor::new(bytes))
         .map_err(|e| format!(" {e}"))?;
@@ -324,6 +363,34 @@ fn read_ply(bytes: &[u8]) -> Result<Raw, String> {
         }
     }
     Ok(raw)
+}
+
+/// `bytes` as UTF-8 text, or an error naming the line of the first byte
+/// that is not.
+fn as_text(bytes: &[u8]) -> Result<&str, String> {
+    std::str::from_utf8(bytes).map_err(|e| {
+        let line = bytes[..e.valid_up_to()]
+            .iter()
+            .filter(|&&b| b == b'\n')
+            .count()
+            + 1;
+        format!("{line}: not a text file (invalid UTF-8)")
+    })
+}
+
+/// The part of a PLY file that must be text: the header, and the whole
+/// file in the ASCII format (the parser's own UTF-8 error names no line).
+fn ply_text_part(bytes: &[u8]) -> &[u8] {
+    const END: &[u8] = b"end_header";
+    let Some(end) = bytes.windows(END.len()).position(|w| w == END) else {
+        return bytes;
+    };
+    let header = &bytes[..end];
+    if header.windows(6).any(|w| w == b"binary") {
+        header
+    } else {
+        bytes
+    }
 }
 
 fn ply_scalar(p: &ply_rs_bw::ply::Property) -> Option<f64> {

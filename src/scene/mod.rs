@@ -23,10 +23,10 @@ use indexmap::IndexMap;
 use serde::{Deserialize, Serialize};
 
 pub use error::SceneError;
-pub use mesh_file::Geometry;
+pub use mesh_file::{Geometry, PerGeometry, load_file};
 pub use shapes::{
     Cube, CubeSize, Implicit, Julia, Loaded, Mesh, Placement, Plane, Shape, Sphere, Torus,
-    TriangleTest, for_each_shape_kind, implicit, julia, rotation_degrees,
+    TorusMethod, TriangleTest, for_each_shape_kind, implicit, julia, rotation_degrees,
 };
 
 /// Writes the [`Scene`] struct, [`ShapeKind`], [`ShapeId`] and the methods

@@ -1091,6 +1091,7 @@ mod properties {
                 slice: c,
                 iterations,
                 epsilon,
+                footprint: iterations % 2 == 0,
                 translate: DVec3::ZERO,
                 scale: 1.0,
                 rotation: DVec3::ZERO,

@@ -7,6 +7,7 @@
 //! `docs/accuracy.md` for the results and what they mean.
 
 pub mod f32_intersect;
+pub mod leaks;
 pub mod metrics;
 mod report;
 pub mod scenes;
@@ -49,6 +50,11 @@ pub struct StressArgs {
     /// Read the WGSL from this folder instead of the embedded copy.
     #[arg(long)]
     pub shaders: Option<PathBuf>,
+    /// Rays per mesh of the watertightness count (rays aimed exactly at
+    /// shared edges and vertices, every triangle test, f64 and the GPU's
+    /// f32); 0 leaves the count out.
+    #[arg(long, default_value_t = 100_000)]
+    pub leak_rays: usize,
 }
 
 /// Why the stress command failed.
@@ -277,8 +283,11 @@ pub struct Entry {
 }
 
 /// The scenes the command runs: the stress scenes, their moved and scaled
-/// copies, then (unless left out) the bundled ones, filtered by name.
-pub fn entries(filter: Option<&str>, bundled: bool) -> Vec<Entry> {
+/// copies, the mesh series, then (unless left out) the bundled ones and the
+/// bundled mesh scenes, filtered by name. The mesh scenes are read from the
+/// project folder (their mesh files are not embedded): an error if they
+/// cannot be read.
+pub fn entries(filter: Option<&str>, bundled: bool) -> Result<Vec<Entry>, String> {
     let mut out: Vec<Entry> = scenes::SCENES
         .iter()
         .map(|(name, _)| Entry {
@@ -288,12 +297,24 @@ pub fn entries(filter: Option<&str>, bundled: bool) -> Vec<Entry> {
             exact: None,
         })
         .collect();
-    out.extend(scenes::moved().into_iter().map(|m| Entry {
-        name: m.name,
-        group: "moved",
-        scene: m.scene,
-        exact: Some(m.exact),
+    let meshes = scenes::mesh_series()?;
+    out.extend(meshes.far.into_iter().map(|(name, scene)| Entry {
+        name,
+        group: "stress",
+        scene,
+        exact: None,
     }));
+    out.extend(
+        scenes::moved()
+            .into_iter()
+            .chain(meshes.moved)
+            .map(|m| Entry {
+                name: m.name,
+                group: "moved",
+                scene: m.scene,
+                exact: Some(m.exact),
+            }),
+    );
     if bundled {
         for name in crate::scene::bundled::names() {
             let text = crate::scene::bundled::text(name).expect("bundled scene");
@@ -304,9 +325,36 @@ pub fn entries(filter: Option<&str>, bundled: bool) -> Vec<Entry> {
                 exact: None,
             });
         }
+        out.extend(bundled_mesh_scenes()?);
     }
     out.retain(|e| filter.is_none_or(|f| e.name.contains(f)));
-    out
+    Ok(out)
+}
+
+/// The scenes of `assets/scenes/meshes/`, by file name.
+fn bundled_mesh_scenes() -> Result<Vec<Entry>, String> {
+    let dir = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("assets/scenes/meshes");
+    let listing = std::fs::read_dir(&dir).map_err(|e| format!("{}: {e}", dir.display()))?;
+    let mut paths: Vec<PathBuf> = listing
+        .filter_map(|entry| Some(entry.ok()?.path()))
+        .filter(|p| p.extension().is_some_and(|e| e == "toml"))
+        .collect();
+    paths.sort();
+    paths
+        .iter()
+        .map(|path| {
+            Ok(Entry {
+                name: path
+                    .file_stem()
+                    .unwrap_or_default()
+                    .to_string_lossy()
+                    .into_owned(),
+                group: "bundled",
+                scene: Scene::load(path).map_err(|e| e.to_string())?,
+                exact: None,
+            })
+        })
+        .collect()
 }
 
 /// Scenes whose scaled copies (x 1000 and x 1/1000) must render the same
@@ -373,7 +421,7 @@ pub fn run(args: &StressArgs) -> Result<(), StressError> {
     source
         .validate()
         .map_err(|e| StressError::Input(e.to_string()))?;
-    let entries = entries(args.filter.as_deref(), !args.no_bundled);
+    let entries = entries(args.filter.as_deref(), !args.no_bundled).map_err(StressError::Input)?;
     if entries.is_empty() {
         return Err(StressError::Input(format!(
             "no scene matches --filter {:?}",
@@ -437,6 +485,14 @@ pub fn run(args: &StressArgs) -> Result<(), StressError> {
     if !invariance.is_empty() {
         println!("{}", report::invariance_markdown(&invariance));
     }
+    let leak_rows = if args.leak_rays > 0 {
+        let rows = leaks::measure(&gpu, &source, args.leak_rays).map_err(StressError::Runtime)?;
+        println!("Watertightness: rays aimed exactly at shared edges and vertices\n");
+        println!("{}", leaks::markdown(&rows));
+        rows
+    } else {
+        Vec::new()
+    };
     println!("measured in {:.1} s", start.elapsed().as_secs_f64());
     if let Some(dir) = &args.out {
         let write = |name: &str, text: String| {
@@ -445,10 +501,12 @@ pub fn run(args: &StressArgs) -> Result<(), StressError> {
                 .map_err(|e| StressError::Runtime(format!("{}: {e}", path.display())))
         };
         write("stress.csv", report::csv(&rows))?;
-        write(
-            "stress.md",
-            report::markdown(&rows, &summary, &invariance, args.width, args.height),
-        )?;
+        let mut md = report::markdown(&rows, &summary, &invariance, args.width, args.height);
+        if !leak_rows.is_empty() {
+            write("leaks.csv", leaks::csv(&leak_rows))?;
+            md.push_str(&report::leaks_markdown(&leak_rows));
+        }
+        write("stress.md", md)?;
         println!("wrote {}", dir.display());
     }
     Ok(())

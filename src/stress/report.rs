@@ -256,3 +256,13 @@ pub fn markdown(
     }
     out
 }
+
+/// The watertightness section of the report.
+pub fn leaks_markdown(rows: &[super::leaks::LeakRow]) -> String {
+    format!(
+        "\n## Watertightness\n\nRays aimed exactly (in f64) at shared edges and vertices, from \
+         in front of every triangle that meets there; a ray that meets none of those triangles \
+         leaked. The GPU gets the same rays rounded to f32.\n\n{}",
+        super::leaks::markdown(rows)
+    )
+}

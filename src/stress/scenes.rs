@@ -2,9 +2,12 @@
 //! runs from any directory), their series, and the scene transformations the
 //! measurements need: rounding to f32, translating and scaling.
 
+use std::path::Path;
+use std::sync::Arc;
+
 use glam::DVec3;
 
-use crate::scene::{CubeSize, Scene};
+use crate::scene::{CubeSize, Geometry, Loaded, Scene};
 
 /// Declares the embedded scene files: `(name, TOML text)`.
 macro_rules! stress_scenes {
@@ -102,6 +105,14 @@ pub const SERIES: &[(&str, &str)] = &[
         "scaled",
         "whole scene scaled by 10^k, against the unscaled scene's f64 image",
     ),
+    (
+        "bunny_far",
+        "bunny mesh seen from D = 10^k, oblique camera, field of view narrowed to keep the framing",
+    ),
+    (
+        "bunny_moved",
+        "bunny mesh scene translated by 10^k (-1, 1, -1), against the unmoved scene's f64 image",
+    ),
 ];
 
 /// Rounds every number of the scene to the nearest f32, as the GPU buffers
@@ -179,6 +190,21 @@ pub fn round_to_f32(scene: &Scene) -> Scene {
         j.c = j.c.map(r);
         j.slice = r(j.slice);
         j.epsilon = r(j.epsilon);
+    }
+    for m in &mut s.meshes {
+        m.translate = at(m.translate);
+        m.scale = CubeSize::PerAxis(v(m.scale.edges()));
+        m.rotation = v(m.rotation);
+        // The GPU gets the vertices in the mesh's own coordinates, in f32.
+        let g = &m.geometry.0;
+        let rounded = Geometry {
+            positions: g.positions.iter().map(|&p| v(p)).collect(),
+            normals: g.normals.iter().map(|&n| v(n)).collect(),
+            ..Geometry::clone(g)
+        };
+        if rounded != **g {
+            m.geometry = Loaded(Arc::new(rounded));
+        }
     }
     s
 }
@@ -283,6 +309,59 @@ pub fn moved() -> Vec<Moved> {
         exact: oblique,
     });
     out
+}
+
+/// The base scene of the mesh series, `assets/scenes/stress/meshes/bunny.toml`,
+/// read from the project folder (its mesh file is not embedded in the
+/// binary).
+pub fn bunny() -> Result<Scene, String> {
+    let path = Path::new(env!("CARGO_MANIFEST_DIR")).join("assets/scenes/stress/meshes/bunny.toml");
+    Scene::load(&path).map_err(|e| e.to_string())
+}
+
+/// `scene` seen from `distance` units away along its camera's own line of
+/// sight, the field of view narrowed so that the target keeps its size in
+/// the image: only the size of the numbers changes.
+pub fn seen_from(scene: &Scene, distance: f64) -> Scene {
+    let mut s = scene.clone();
+    let camera = &mut s.camera;
+    let offset = camera.from - camera.to;
+    let near = offset.length();
+    camera.from = camera.to + offset * (distance / near);
+    let half_width = (camera.fov.to_radians() / 2.0).tan() * near / distance;
+    camera.fov = 2.0 * half_width.atan().to_degrees();
+    s
+}
+
+/// The mesh series of the stress command: the bunny seen from 10^k units
+/// (`bunny_far_1e<k>`, k = 1 to 6, each against the reference of its own
+/// f32-rounded scene), and the bunny's scene translated by 10^k (-1, 1, -1)
+/// (`bunny_moved_1e<k>`, k = 2 to 6, against the unmoved scene's f64
+/// image).
+pub fn mesh_series() -> Result<MeshSeries, String> {
+    let base = bunny()?;
+    let far = (1..=6)
+        .map(|k| {
+            (
+                format!("bunny_far_1e{k}"),
+                seen_from(&base, power_of_ten(k)),
+            )
+        })
+        .collect();
+    let moved = (2..=6)
+        .map(|k| Moved {
+            name: format!("bunny_moved_1e{k}"),
+            scene: base.translated(power_of_ten(k) * DVec3::new(-1.0, 1.0, -1.0)),
+            exact: base.clone(),
+        })
+        .collect();
+    Ok(MeshSeries { far, moved })
+}
+
+/// The two mesh series: `(name, scene)` seen from far, and the moved scenes.
+pub struct MeshSeries {
+    pub far: Vec<(String, Scene)>,
+    pub moved: Vec<Moved>,
 }
 
 /// `10^k` as the literal `1e<k>` reads, exactly as in the scene files.

@@ -3,7 +3,6 @@
 //! Each test binary compiles this module and uses only part of it.
 #![allow(dead_code)]
 
-pub mod compute;
 pub mod xwindow;
 
 use std::path::{Path, PathBuf};

@@ -17,6 +17,11 @@ pub struct Julia {
     pub iterations: u32,
     pub epsilon: f32,
     pub material: u32,
+    /// 1: epsilon grows with the pixel footprint.
+    pub footprint: u32,
+    pub _pad0: u32,
+    pub _pad1: u32,
+    pub _pad2: u32,
 }
 
 impl PackShape for Julia {
@@ -34,6 +39,10 @@ impl PackShape for Julia {
             iterations: j.iterations,
             epsilon: j.epsilon as f32,
             material: scene.material_slot(j.material.as_deref()),
+            footprint: u32::from(j.footprint),
+            _pad0: 0,
+            _pad1: 0,
+            _pad2: 0,
         }
     }
 }

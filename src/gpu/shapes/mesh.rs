@@ -9,9 +9,9 @@ use std::sync::Arc;
 use bytemuck::{Pod, Zeroable};
 use glam::DMat3;
 
-use super::{Frame, PackShape, round_out};
+use super::{Frame, PackShape, Words, round_out};
 use crate::bvh::mesh_bvh;
-use crate::scene::{self, Geometry, Scene, Shape};
+use crate::scene::{self, Geometry, PerGeometry, Scene, Shape};
 
 #[repr(C)]
 #[derive(Debug, Clone, Copy, PartialEq, Pod, Zeroable)]
@@ -59,33 +59,44 @@ impl PackShape for Mesh {
     }
 
     /// Each geometry's data goes into `mesh_data` once, however many meshes
-    /// show it.
-    fn pack_kind(scene: &Scene, frame: &Frame) -> (Vec<Self>, Vec<[u32; 4]>) {
-        let mut data = Vec::new();
-        let mut packed: Vec<(*const Geometry, [u32; 3])> = Vec::new();
+    /// show it. A scene with one geometry shares its packed block as is, so
+    /// that moving the mesh copies no triangle.
+    fn pack_kind(scene: &Scene, frame: &Frame) -> (Vec<Self>, Words) {
+        let mut blocks: Vec<(*const Geometry, Arc<PackedGeometry>, u32)> = Vec::new();
+        let mut next = 0;
         let meshes = scene
             .meshes
             .iter()
             .map(|m| {
                 let geometry = &m.geometry.0;
                 let key = Arc::as_ptr(geometry);
-                let starts = match packed.iter().find(|(g, _)| *g == key) {
-                    Some((_, starts)) => *starts,
+                let (block, start) = match blocks.iter().find(|(g, _, _)| *g == key) {
+                    Some((_, block, start)) => (block.clone(), *start),
                     None => {
-                        let starts = append_geometry(&mut data, geometry);
-                        packed.push((key, starts));
-                        starts
+                        let block = packed_geometry(geometry);
+                        let start = next;
+                        next += block.entries();
+                        blocks.push((key, block.clone(), start));
+                        (block, start)
                     }
                 };
-                let [node_start, tri_start, normal_start] = starts;
                 Mesh {
-                    node_start,
-                    tri_start,
-                    normal_start,
+                    node_start: start,
+                    tri_start: start + block.tri_offset,
+                    normal_start: block.normal_offset.map_or(0, |offset| start + offset),
                     ..Mesh::pack(scene, frame, m)
                 }
             })
             .collect();
+        let data = match blocks.as_slice() {
+            [(_, only, _)] => only.words.clone(),
+            _ => Arc::new(
+                blocks
+                    .iter()
+                    .flat_map(|(_, block, _)| block.words.iter().copied())
+                    .collect(),
+            ),
+        };
         (meshes, data)
     }
 }
@@ -97,36 +108,63 @@ impl PackShape for Mesh {
 /// tests/meshes.rs). 2^-16 costs nothing measurable in box hits.
 const FLAT_PAD: f64 = 1.0 / 65536.0;
 
-/// Appends a geometry's BVH nodes, triangles and (smooth) normals; returns
-/// where each starts (the normals' start is 0 for a flat mesh: the nodes
-/// always come first).
-fn append_geometry(data: &mut Vec<[u32; 4]>, geometry: &Arc<Geometry>) -> [u32; 3] {
+/// A geometry's block of `mesh_data`: its BVH nodes, its triangles in leaf
+/// order and (smooth) its normals, with where the triangles and normals
+/// start within the block, in `vec4<u32>` entries.
+struct PackedGeometry {
+    words: Words,
+    tri_offset: u32,
+    normal_offset: Option<u32>,
+}
+
+impl PackedGeometry {
+    /// Its length in `vec4<u32>` entries.
+    fn entries(&self) -> u32 {
+        (self.words.len() / 4) as u32
+    }
+}
+
+/// Each geometry is packed once: a mesh moved in the viewer reuses its
+/// block instead of walking a million triangles again.
+static PACKED: PerGeometry<Arc<PackedGeometry>> = PerGeometry::new();
+
+fn packed_geometry(geometry: &Arc<Geometry>) -> Arc<PackedGeometry> {
+    PACKED.get_or_make(geometry, || Arc::new(pack_geometry(geometry)))
+}
+
+/// The block of `geometry` (see [`PackedGeometry`]), in the mesh's own
+/// coordinates: the same wherever the mesh is placed.
+fn pack_geometry(geometry: &Arc<Geometry>) -> PackedGeometry {
     let bvh = mesh_bvh(geometry);
     let bits = |v: [f32; 3], w: u32| [v[0].to_bits(), v[1].to_bits(), v[2].to_bits(), w];
-    let node_start = data.len() as u32;
+    let mut words = Vec::with_capacity(2 * bvh.nodes.len() + 6 * bvh.prims.len());
     for node in &bvh.nodes {
         let pad = FLAT_PAD * (node.bounds.max - node.bounds.min).max_element();
         let (lo, hi) = round_out(node.bounds.min - pad, node.bounds.max + pad);
-        data.push(bits(lo, node.first));
-        data.push(bits(hi, node.count));
+        words.push(bits(lo, node.first));
+        words.push(bits(hi, node.count));
     }
     let vertex = |v: u32, of: &[glam::DVec3]| bits(of[v as usize].as_vec3().to_array(), 0);
-    let tri_start = data.len() as u32;
+    let tri_offset = words.len() as u32;
     for &t in &bvh.prims {
         for v in geometry.triangles[t as usize] {
-            data.push(vertex(v, &geometry.positions));
+            words.push(vertex(v, &geometry.positions));
         }
     }
-    let mut normal_start = 0;
+    let mut normal_offset = None;
     if !geometry.normals.is_empty() {
-        normal_start = data.len() as u32;
+        normal_offset = Some(words.len() as u32);
         for &t in &bvh.prims {
             for v in geometry.triangles[t as usize] {
-                data.push(vertex(v, &geometry.normals));
+                words.push(vertex(v, &geometry.normals));
             }
         }
     }
-    [node_start, tri_start, normal_start]
+    PackedGeometry {
+        words: Arc::new(bytemuck::cast_slice(&words).to_vec()),
+        tri_offset,
+        normal_offset,
+    }
 }
 
 #[cfg(test)]
@@ -166,7 +204,10 @@ mod tests {
         assert!(Arc::ptr_eq(&built.bvh, &again.bvh), "the BVH was rebuilt");
         assert_eq!(built.build_time, again.build_time);
         let data = crate::gpu::shapes::buffer_position(ShapeKind::Mesh) + 1;
-        assert_eq!(before.shapes[data], after.shapes[data], "triangle data");
+        assert!(
+            Arc::ptr_eq(&before.shapes[data], &after.shapes[data]),
+            "the triangle data is shared, not packed again"
+        );
         assert_ne!(
             before.shapes_of::<Mesh>()[0],
             after.shapes_of::<Mesh>()[0],

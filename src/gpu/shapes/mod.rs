@@ -5,6 +5,8 @@
 //! docs/implementation.md, "Adding a shape kind"); the buffers, bindings,
 //! counts, feature flags and WGSL loops follow from [`kinds`].
 
+use std::sync::Arc;
+
 use bytemuck::{Pod, Zeroable};
 use glam::DVec3;
 
@@ -94,14 +96,19 @@ pub trait PackShape: Pod + Zeroable {
 
     /// Packs every shape of the kind and the second buffer's contents
     /// (empty without [`PackShape::DATA`]); by default each shape alone.
-    fn pack_kind(scene: &Scene, frame: &Frame) -> (Vec<Self>, Vec<[u32; 4]>) {
+    fn pack_kind(scene: &Scene, frame: &Frame) -> (Vec<Self>, Words) {
         let shapes = Self::Source::list(scene)
             .iter()
             .map(|s| Self::pack(scene, frame, s))
             .collect();
-        (shapes, Vec::new())
+        (shapes, Words::default())
     }
 }
+
+/// A buffer's contents as `u32` words, shared: a kind's second buffer (a
+/// mesh's triangles) stays the same when its shapes only move, and the
+/// viewer then keeps the GPU buffer it made from it.
+pub type Words = Arc<Vec<u32>>;
 
 /// A box rounded outwards to f32, so that the box the shader tests always
 /// holds what is inside it (rounding to nearest could cut a sliver off a
@@ -175,23 +182,24 @@ pub fn kinds() -> Vec<KindInfo> {
 /// 4-byte fields): its shapes, then its second buffer if it has one. Each
 /// holds at least one zeroed element, since a storage buffer may not be
 /// empty.
-pub fn pack_kind<T: PackShape>(scene: &Scene, frame: &Frame) -> Vec<Vec<u32>> {
-    let (mut shapes, mut data) = T::pack_kind(scene, frame);
+pub fn pack_kind<T: PackShape>(scene: &Scene, frame: &Frame) -> Vec<Words> {
+    let (mut shapes, data) = T::pack_kind(scene, frame);
     if shapes.is_empty() {
         shapes.push(T::zeroed());
     }
-    let mut buffers = vec![bytemuck::cast_slice(&shapes).to_vec()];
+    let mut buffers = vec![Arc::new(bytemuck::cast_slice(&shapes).to_vec())];
     if T::DATA.is_some() {
-        if data.is_empty() {
-            data.push([0; 4]);
-        }
-        buffers.push(bytemuck::cast_slice(&data).to_vec());
+        buffers.push(if data.is_empty() {
+            Arc::new(vec![0; 4])
+        } else {
+            data
+        });
     }
     buffers
 }
 
 /// Every kind's buffers, in registry order: the order of their bindings.
-pub fn pack_all(scene: &Scene, frame: &Frame) -> Vec<Vec<u32>> {
+pub fn pack_all(scene: &Scene, frame: &Frame) -> Vec<Words> {
     let mut buffers = Vec::new();
     macro_rules! pack {
         ($t:ident, $wgsl:literal) => {

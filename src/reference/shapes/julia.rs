@@ -21,6 +21,8 @@ pub struct Julia {
     pub iterations: u32,
     /// Distance at which a point counts as on the surface, local units.
     pub epsilon: f64,
+    /// Grow epsilon with the pixel footprint ([`surface_distance`]).
+    pub footprint: bool,
     pub material: usize,
 }
 
@@ -43,14 +45,15 @@ impl Prepare for scene::Julia {
             slice: self.slice,
             iterations: self.iterations,
             epsilon: self.epsilon,
+            footprint: self.footprint,
             material,
         }
     }
 }
 
 impl Trace for Julia {
-    fn hit(&self, ray: &Ray, t_max: f64, _options: &ReferenceOptions) -> Option<Hit> {
-        hit_julia(self, ray, t_max)
+    fn hit(&self, ray: &Ray, t_max: f64, options: &ReferenceOptions) -> Option<Hit> {
+        hit_julia(self, ray, t_max, options.pixel_angle)
     }
 
     fn material(&self) -> usize {
@@ -82,10 +85,21 @@ pub fn distance(julia: &Julia, p: DVec3) -> f64 {
     0.5 * r * r.ln() / dz
 }
 
+/// The surface distance (local units) at world parameter `t`: epsilon, or
+/// with the footprint on at least the height `pixel_angle * t` that one
+/// pixel subtends at the distance travelled along the ray (rays start at
+/// the eye or on the surface they leave).
+pub fn surface_distance(julia: &Julia, t: f64, pixel_angle: f64) -> f64 {
+    if !julia.footprint {
+        return julia.epsilon;
+    }
+    julia.epsilon.max(pixel_angle * t / julia.placed.scale)
+}
+
 /// Sphere tracing from where the ray enters the bounding sphere (or from
-/// its origin inside it): the first point with `DE < epsilon` with
-/// `0 < t < t_max`.
-pub fn hit_julia(julia: &Julia, ray: &Ray, t_max: f64) -> Option<Hit> {
+/// its origin inside it): the first point with `DE < epsilon`
+/// ([`surface_distance`]) with `0 < t < t_max`.
+pub fn hit_julia(julia: &Julia, ray: &Ray, t_max: f64, pixel_angle: f64) -> Option<Hit> {
     let local = julia.placed.local(ray);
     let qq = local.q.length_squared();
     if qq >= BOUND * BOUND {
@@ -99,13 +113,16 @@ pub fn hit_julia(julia: &Julia, ray: &Ray, t_max: f64) -> Option<Hit> {
             return None;
         }
         let de = distance(julia, local.at(u));
-        if de < julia.epsilon {
+        let epsilon = surface_distance(julia, local.t(u), pixel_angle);
+        if de < epsilon {
             let p = local.at(u);
             // Secondary rays start 2 epsilon off the surface (the rendering
             // model): the scale that makes offset_ray move them that far.
-            let error_scale = offset_ray_scale(2.0 * julia.epsilon * julia.placed.scale)
+            let error_scale = offset_ray_scale(2.0 * epsilon * julia.placed.scale)
                 .max(julia.placed.error_scale(BOUND));
-            let hit = julia.placed.hit(&local, u, normal(julia, p), error_scale);
+            let hit = julia
+                .placed
+                .hit(&local, u, normal(julia, p, epsilon), error_scale);
             return (hit.t > 0.0 && hit.t < t_max).then_some(hit);
         }
         u += de;
@@ -113,10 +130,9 @@ pub fn hit_julia(julia: &Julia, ray: &Ray, t_max: f64) -> Option<Hit> {
     None
 }
 
-/// `grad DE` by central differences with step epsilon (DE is not smooth
-/// enough for more; the rendering model allows it here).
-pub fn normal(julia: &Julia, p: DVec3) -> DVec3 {
-    let e = julia.epsilon;
+/// `grad DE` by central differences with step `e`, the hit's epsilon (DE
+/// is not smooth enough for more; the rendering model allows it here).
+pub fn normal(julia: &Julia, p: DVec3, e: f64) -> DVec3 {
     DVec3::from_array(
         [DVec3::X, DVec3::Y, DVec3::Z]
             .map(|axis| distance(julia, p + e * axis) - distance(julia, p - e * axis)),

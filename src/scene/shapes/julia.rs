@@ -22,6 +22,12 @@ pub struct Julia {
     pub iterations: u32,
     #[serde(default = "default_epsilon")]
     pub epsilon: f64,
+    /// Grow epsilon with the pixel footprint: at distance t along a ray the
+    /// surface distance is `max(epsilon, t * pixel angle)` (world units;
+    /// docs/rendering-model.md, "Implicit surfaces"), so detail stays about
+    /// one pixel wide at any zoom.
+    #[serde(default, skip_serializing_if = "is_false")]
+    pub footprint: bool,
     #[serde(default)]
     pub translate: DVec3,
     #[serde(default = "one")]
@@ -41,6 +47,10 @@ fn default_iterations() -> u32 {
 
 fn default_epsilon() -> f64 {
     1e-3
+}
+
+fn is_false(b: &bool) -> bool {
+    !*b
 }
 
 impl Julia {

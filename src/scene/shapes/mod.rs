@@ -21,7 +21,7 @@ pub use mesh::{Loaded, Mesh, TriangleTest};
 pub use placement::Placement;
 pub use plane::Plane;
 pub use sphere::Sphere;
-pub use torus::Torus;
+pub use torus::{Torus, TorusMethod};
 
 use std::path::Path;
 

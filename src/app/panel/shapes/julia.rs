@@ -1,5 +1,6 @@
 //! The Julia set's editor: four sliders for c, the slice, the iteration
-//! count, epsilon and the placement.
+//! count, epsilon (fixed or grown with the pixel footprint) and the
+//! placement.
 
 use egui::Ui;
 use glam::{DVec3, DVec4};
@@ -18,6 +19,7 @@ impl EditShape for Julia {
             slice: 0.0,
             iterations: 10,
             epsilon: 1e-3,
+            footprint: false,
             translate: at.target + at.up * (0.25 * at.scale),
             scale: 0.1 * at.scale,
             rotation: DVec3::ZERO,
@@ -55,6 +57,14 @@ impl EditShape for Julia {
             "Distance that counts as on the surface, local units",
         );
         ui.add(egui::Slider::new(&mut self.epsilon, 1e-5..=1e-1).logarithmic(true));
+        ui.end_row();
+        field(
+            ui,
+            "footprint",
+            "Grow epsilon with distance to one pixel's width, so detail stays one pixel \
+             wide at any zoom (docs/scene-format.md)",
+        );
+        ui.checkbox(&mut self.footprint, "epsilon at least one pixel");
         ui.end_row();
         placement_rows(
             ui,

@@ -1,0 +1,120 @@
+//! Runs a WGSL compute kernel over arrays of inputs and reads its results
+//! back: the harness of the WGSL-against-CPU tests (`tests/expr.rs`,
+//! `tests/wgsl_intersections.rs`) and of the GPU leak count of
+//! `raysandbox stress` (docs/accuracy.md, "Watertightness").
+
+use wgpu::util::DeviceExt;
+
+use super::{Gpu, ShaderSource};
+
+/// One kernel: `entry` of `source` with its override `constants`; the
+/// inputs are bound at bindings `0..n` of bind group `group` and the
+/// results right after them, one invocation per case in workgroups of 64.
+pub struct Kernel<'a> {
+    pub label: &'a str,
+    pub source: &'a ShaderSource,
+    pub entry: &'a str,
+    pub constants: &'a [(&'a str, f64)],
+    pub group: u32,
+}
+
+impl Kernel<'_> {
+    /// Runs the kernel over `cases` (binding 0) and returns `results`
+    /// values of `R` (binding 1). Panics on an invalid source: for tests.
+    pub fn run<C: bytemuck::Pod, R: bytemuck::Pod>(
+        &self,
+        gpu: &Gpu,
+        cases: &[C],
+        results: usize,
+    ) -> Vec<R> {
+        self.run_with(gpu, &[bytemuck::cast_slice(cases)], cases.len(), results)
+            .unwrap_or_else(|e| panic!("{e}"))
+    }
+
+    /// Runs `invocations` invocations with `inputs` bound in order from
+    /// binding 0 and returns `results` values of `R`, bound after them.
+    /// Fails with a message if the source does not validate.
+    pub fn run_with<R: bytemuck::Pod>(
+        &self,
+        gpu: &Gpu,
+        inputs: &[&[u8]],
+        invocations: usize,
+        results: usize,
+    ) -> Result<Vec<R>, String> {
+        self.source.validate().map_err(|e| e.to_string())?;
+        let device = &gpu.device;
+        let module = device.create_shader_module(wgpu::ShaderModuleDescriptor {
+            label: Some(self.label),
+            source: wgpu::ShaderSource::Wgsl(self.source.text().into()),
+        });
+        let pipeline = device.create_compute_pipeline(&wgpu::ComputePipelineDescriptor {
+            label: Some(self.label),
+            layout: None,
+            module: &module,
+            entry_point: Some(self.entry),
+            compilation_options: wgpu::PipelineCompilationOptions {
+                constants: self.constants,
+                ..Default::default()
+            },
+            cache: None,
+        });
+        let buffers: Vec<wgpu::Buffer> = inputs
+            .iter()
+            .map(|bytes| {
+                device.create_buffer_init(&wgpu::util::BufferInitDescriptor {
+                    label: Some("kernel input"),
+                    contents: bytes,
+                    usage: wgpu::BufferUsages::STORAGE,
+                })
+            })
+            .collect();
+        let size = (results * std::mem::size_of::<R>()) as u64;
+        let output = device.create_buffer(&wgpu::BufferDescriptor {
+            label: Some("results"),
+            size,
+            usage: wgpu::BufferUsages::STORAGE | wgpu::BufferUsages::COPY_SRC,
+            mapped_at_creation: false,
+        });
+        let readback = device.create_buffer(&wgpu::BufferDescriptor {
+            label: Some("readback"),
+            size,
+            usage: wgpu::BufferUsages::COPY_DST | wgpu::BufferUsages::MAP_READ,
+            mapped_at_creation: false,
+        });
+        let entries: Vec<wgpu::BindGroupEntry> = buffers
+            .iter()
+            .chain([&output])
+            .enumerate()
+            .map(|(binding, buffer)| wgpu::BindGroupEntry {
+                binding: binding as u32,
+                resource: buffer.as_entire_binding(),
+            })
+            .collect();
+        let bind_group = device.create_bind_group(&wgpu::BindGroupDescriptor {
+            label: None,
+            layout: &pipeline.get_bind_group_layout(self.group),
+            entries: &entries,
+        });
+        let mut encoder = device.create_command_encoder(&Default::default());
+        {
+            let mut pass = encoder.begin_compute_pass(&Default::default());
+            pass.set_pipeline(&pipeline);
+            pass.set_bind_group(self.group, &bind_group, &[]);
+            pass.dispatch_workgroups((invocations as u32).div_ceil(64), 1, 1);
+        }
+        encoder.copy_buffer_to_buffer(&output, 0, &readback, 0, size);
+        gpu.queue.submit([encoder.finish()]);
+        let slice = readback.slice(..);
+        let (sender, mapped) = std::sync::mpsc::channel();
+        slice.map_async(wgpu::MapMode::Read, move |result| {
+            let _ = sender.send(result);
+        });
+        gpu.wait().map_err(|e| e.to_string())?;
+        mapped
+            .try_recv()
+            .map_err(|_| "the results were never mapped".to_string())?
+            .map_err(|e| e.to_string())?;
+        let data = slice.get_mapped_range().map_err(|e| e.to_string())?;
+        Ok(bytemuck::cast_slice(&data).to_vec())
+    }
+}
