@@ -523,7 +523,7 @@ impl App {
             self.scene_changed(Some(&before));
         }
         self.update_title();
-        self.paint(egui_output, input.dragging);
+        self.paint(egui_output, input.dragging || input.widget_dragging);
         if picked {
             // Once the frame with its outline is on screen.
             self.event(&format!("selected {:?}", self.editor.panel.selection));
