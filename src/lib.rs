@@ -1,7 +1,13 @@
 //! raysandbox: a Whitted ray tracer for teaching, as a WGSL shader on wgpu and
 //! as an f64 CPU reference that measures how far the GPU is from exact.
+//!
+//! The same crate builds for the browser (`wasm32`, docs/web.md): there the
+//! page in [`web`] replaces the command line, the window viewer and the
+//! measurements, which need files, threads and a terminal.
 
+#[cfg(not(target_arch = "wasm32"))]
 pub mod app;
+#[cfg(not(target_arch = "wasm32"))]
 pub mod bench;
 pub mod bvh;
 pub mod cli;
@@ -12,4 +18,7 @@ pub mod gpu;
 pub mod reference;
 pub mod sandbox;
 pub mod scene;
+#[cfg(not(target_arch = "wasm32"))]
 pub mod stress;
+#[cfg(target_arch = "wasm32")]
+pub mod web;

@@ -91,6 +91,25 @@ fn malformed_obj_and_ply_files_exit_2_naming_the_line_or_element() {
         "index.ply: face 1: vertex index 7 out of range",
     );
     assert_rejected("short.ply", &ply.as_bytes()[..ply.len() - 12], "short.ply");
+    let header = &ply[..ply.find("0 0 0\n").unwrap()];
+    let nan_ascii = format!("{header}0 0 0\nnan 0 0\n0 1 0\n3 0 1 2\n3 0 1 2\n");
+    assert_rejected("nan.ply", nan_ascii.as_bytes(), "nan.ply: Line 11");
+    let mut nan_binary = header.replace("ascii", "binary_little_endian").into_bytes();
+    for x in [0.0, 0.0, 0.0, f32::NAN, 0.0, 0.0, 0.0, 1.0, 0.0] {
+        nan_binary.extend(f32::to_le_bytes(x));
+    }
+    let face: Vec<u8> = std::iter::once(3u8)
+        .chain([0i32, 1, 2].into_iter().flat_map(i32::to_le_bytes))
+        .collect();
+    nan_binary.extend(face.repeat(2));
+    assert_rejected(
+        "nan_binary.ply",
+        &nan_binary,
+        "nan_binary.ply: vertex 1: coordinates must be finite",
+    );
+    let mut garbage = format!("{header}0 0 0\n").into_bytes();
+    garbage.extend([0xff, 0xfe, 0x00, 0x81, b'\n']);
+    assert_rejected("garbage.ply", &garbage, "garbage.ply:11: not a text file");
     assert_rejected("missing.obj.ply", b"", "missing.obj.ply");
     assert_rejected("model.stl", b"solid x", "model.stl:unknown mesh format");
 }

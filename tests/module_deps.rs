@@ -26,6 +26,7 @@ const LAYERS: &[&str] = &[
     "bench",
     "sandbox",
     "app",
+    "web",
 ];
 
 /// One source file: its module path (`["gpu", "context"]`) and text.

@@ -3,6 +3,7 @@
 //! BVH. Writes CSV files, a Markdown report and PNG plots to `--out`.
 
 mod measure;
+mod meshes;
 mod plot;
 mod sweeps;
 
@@ -30,6 +31,12 @@ pub struct BenchArgs {
     /// Frames timed per point (median), after one warm-up frame.
     #[arg(long, default_value_t = 10, value_parser = clap::value_parser!(u32).range(1..=1000))]
     pub frames: u32,
+    /// Only the triangle-mesh benchmark (docs/performance.md, "Triangle
+    /// meshes"): per mesh size and ray-triangle test, frame time and error,
+    /// load and BVH build time, GPU bytes per triangle. The two largest
+    /// dragons come from scripts/fetch-meshes.
+    #[arg(long)]
+    pub meshes: bool,
     /// Only the sweeps of tori, implicit surfaces and Julia sets (implicit
     /// steps, Julia iterations and epsilon, the torus method) and their
     /// cost against spheres in their place: `implicit.md`,
@@ -228,6 +235,9 @@ pub enum BenchError {
 
 pub fn run(args: &BenchArgs) -> Result<(), BenchError> {
     let gpu = Gpu::headless().map_err(|e| BenchError::NoGpu(e.to_string()))?;
+    if args.meshes {
+        return meshes::run(&gpu, args);
+    }
     let plan = Plan::new(args.quick);
     let env = Environment {
         adapter: gpu.describe(),

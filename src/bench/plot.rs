@@ -99,46 +99,58 @@ pub fn pareto(
 /// Frame time against the number of spheres, log-log, with and without the
 /// BVH.
 pub fn scaling(path: &Path, rows: &[ScalingRow]) -> PlotResult {
+    let points = |time: fn(&ScalingRow) -> f64| -> Vec<(f64, f64)> {
+        rows.iter().map(|r| (r.spheres as f64, time(r))).collect()
+    };
+    log_log_lines(
+        path,
+        "Frame time against the number of spheres",
+        ("spheres", "GPU frame time (ms)"),
+        &[
+            ("with the BVH".to_string(), points(|r| r.bvh_ms)),
+            ("loop over all spheres".to_string(), points(|r| r.loop_ms)),
+        ],
+    )
+}
+
+/// Lines with dots on log-log axes, one per `(label, points)` (red, blue,
+/// green, ...), with a legend.
+pub fn log_log_lines(
+    path: &Path,
+    title: &str,
+    (x_desc, y_desc): (&str, &str),
+    series: &[(String, Vec<(f64, f64)>)],
+) -> PlotResult {
     register_font();
     let root = BitMapBackend::new(path, (800, 560)).into_drawing_area();
     root.fill(&WHITE)?;
-    let times = log_range(rows.iter().flat_map(|r| [r.bvh_ms, r.loop_ms]));
-    let counts = log_range(rows.iter().map(|r| r.spheres as f64));
+    let all = || series.iter().flat_map(|(_, p)| p.iter());
+    let xs = log_range(all().map(|p| p.0));
+    let ys = log_range(all().map(|p| p.1));
     let mut chart = ChartBuilder::on(&root)
-        .caption(
-            "Frame time against the number of spheres",
-            ("sans-serif", 26),
-        )
+        .caption(title, ("sans-serif", 26))
         .margin(12)
         .x_label_area_size(46)
         .y_label_area_size(70)
-        .build_cartesian_2d(counts.log_scale(), times.log_scale())?;
+        .build_cartesian_2d(xs.log_scale(), ys.log_scale())?;
     chart
         .configure_mesh()
-        .x_desc("spheres")
-        .y_desc("GPU frame time (ms)")
+        .x_desc(x_desc)
+        .y_desc(y_desc)
         .label_style(("sans-serif", 15))
         .draw()?;
-    for (label, color, time) in [
-        (
-            "with the BVH",
-            RED,
-            (|r: &ScalingRow| r.bvh_ms) as fn(&ScalingRow) -> f64,
-        ),
-        ("loop over all spheres", BLUE, |r: &ScalingRow| r.loop_ms),
-    ] {
-        let points: Vec<(f64, f64)> = rows.iter().map(|r| (r.spheres as f64, time(r))).collect();
+    for ((label, points), color) in series
+        .iter()
+        .zip([RED, BLUE, GREEN, MAGENTA].iter().cycle())
+    {
+        let color = *color;
         chart
             .draw_series(LineSeries::new(points.clone(), color.stroke_width(2)))?
             .label(label)
             .legend(move |(x, y)| {
                 PathElement::new(vec![(x - 8, y), (x + 8, y)], color.stroke_width(2))
             });
-        chart.draw_series(
-            points
-                .into_iter()
-                .map(|p| Circle::new(p, 4, color.filled())),
-        )?;
+        chart.draw_series(points.iter().map(|&p| Circle::new(p, 4, color.filled())))?;
     }
     chart
         .configure_series_labels()

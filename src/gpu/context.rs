@@ -112,7 +112,18 @@ impl Gpu {
         instance: wgpu::Instance,
         options: &wgpu::RequestAdapterOptions<'_, '_>,
     ) -> Result<Gpu, GpuError> {
-        let adapter = pollster::block_on(instance.request_adapter(options))
+        pollster::block_on(Self::request(instance, options))
+    }
+
+    /// As [`Gpu::with_adapter`], without blocking: the browser answers these
+    /// requests only once control returns to its event loop (docs/web.md).
+    pub async fn request(
+        instance: wgpu::Instance,
+        options: &wgpu::RequestAdapterOptions<'_, '_>,
+    ) -> Result<Gpu, GpuError> {
+        let adapter = instance
+            .request_adapter(options)
+            .await
             .map_err(|e| GpuError::NoAdapter(e.to_string()))?;
         let accumulates = adapter
             .get_texture_format_features(ACCUM_FORMAT)
@@ -126,17 +137,19 @@ impl Gpu {
                 info.name, info.backend
             )));
         }
-        let (device, queue) = pollster::block_on(adapter.request_device(&wgpu::DeviceDescriptor {
-            label: Some("raysandbox"),
-            // Timestamp queries time frames where the adapter has them.
-            required_features: adapter.features() & TIMER_FEATURES,
-            required_limits: required_limits(&adapter),
-            ..Default::default()
-        }))
-        .map_err(|e| GpuError::NoDevice {
-            adapter: adapter.get_info().name,
-            reason: e.to_string(),
-        })?;
+        let (device, queue) = adapter
+            .request_device(&wgpu::DeviceDescriptor {
+                label: Some("raysandbox"),
+                // Timestamp queries time frames where the adapter has them.
+                required_features: adapter.features() & TIMER_FEATURES,
+                required_limits: required_limits(&adapter),
+                ..Default::default()
+            })
+            .await
+            .map_err(|e| GpuError::NoDevice {
+                adapter: adapter.get_info().name,
+                reason: e.to_string(),
+            })?;
         Ok(Gpu {
             instance,
             adapter,

@@ -11,7 +11,7 @@ use super::fullscreen;
 use super::layout::PackedScene;
 use super::offscreen::read_texels;
 use super::outline::{ID_FORMAT, id_pipeline};
-use super::shaders::ShaderSource;
+use super::shaders::{ALL_KINDS_BOUND, ShaderSource};
 use super::texture::render_target;
 use super::tracer::{PipelineError, SceneBuffers, scene_layout_entries};
 use crate::scene::{Scene, ShapeId};
@@ -76,7 +76,7 @@ impl IdRenderer {
         });
         let layout = device.create_bind_group_layout(&wgpu::BindGroupLayoutDescriptor {
             label: Some("scene (id pass)"),
-            entries: &scene_layout_entries(),
+            entries: &scene_layout_entries(ALL_KINDS_BOUND),
         });
         IdRenderer {
             pipeline: id_pipeline(device, &module, &layout, options),
@@ -100,7 +100,8 @@ impl IdRenderer {
         } else {
             PackedScene::in_world(scene, width, height)
         };
-        let scene = SceneBuffers::with_layout(device, &self.layout, packed, None);
+        let scene =
+            SceneBuffers::with_layout(device, (&self.layout, ALL_KINDS_BOUND), packed, None);
         let bind_group = &scene.bind_group;
         let target = render_target(
             device,

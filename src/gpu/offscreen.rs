@@ -1,6 +1,6 @@
 //! Headless rendering: the tracer into an offscreen texture, read back to the CPU.
 
-use std::time::{Duration, Instant};
+use web_time::{Duration, Instant};
 
 use super::context::{Gpu, GpuWaitError, SizeError};
 use super::features::ShaderOptions;

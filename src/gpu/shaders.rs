@@ -9,6 +9,7 @@ use std::fmt;
 use std::path::{Path, PathBuf};
 
 use super::shapes::{KindInfo, has_flag, kinds};
+use crate::scene::ShapeKind;
 
 /// The shader files in the order they are joined, before the shape kinds'
 /// `shapes/<kind>.wgsl` (see `gpu::shapes`). WGSL resolves names at module
@@ -139,9 +140,20 @@ fn functions_part(functions: &[String]) -> (String, String) {
 /// `shaders/scene.wgsl` come before it.
 pub const FIRST_SHAPE_BINDING: u32 = 6;
 
+/// Every shape kind's arrays bound (bit `ShapeKind::number` per kind): the
+/// generic source, which draws any scene.
+pub const ALL_KINDS_BOUND: u32 = u32::MAX;
+
+/// Whether the arrays of `kind` are storage bindings in a source or layout
+/// made for `bound_kinds` (bit `ShapeKind::number` per kind).
+pub fn is_bound(bound_kinds: u32, kind: ShapeKind) -> bool {
+    bound_kinds & (1 << kind.number()) != 0
+}
+
 /// The generated part: WGSL constants that cannot be pipeline-overridable
-/// because they size arrays, and the glue of the shape kinds.
-fn generated_part(stack_size: u32) -> (String, String) {
+/// because they size arrays, and the glue of the shape kinds, whose arrays
+/// are bound for the kinds in `bound_kinds`.
+fn generated_part(stack_size: u32, bound_kinds: u32) -> (String, String) {
     let stack_size = stack_size.clamp(1, MAX_STACK_SIZE);
     (
         GENERATED.to_string(),
@@ -151,7 +163,7 @@ fn generated_part(stack_size: u32) -> (String, String) {
              // The BVH traversal stack, for trees as deep as src/bvh.rs builds them.\n\
              const BVH_STACK: u32 = {}u;\n{}",
             crate::bvh::TRAVERSAL_STACK,
-            shape_glue(&kinds())
+            shape_glue(&kinds(), bound_kinds)
         ),
     )
 }
@@ -160,26 +172,34 @@ fn generated_part(stack_size: u32) -> (String, String) {
 /// per kind its `KIND_*` number, `HAS_*` flag and array binding, then the
 /// dispatch and loops that call each kind's `hit_<kind>` from
 /// `shaders/shapes/<kind>.wgsl`, the material lookup and the thin test.
-fn shape_glue(kinds: &[KindInfo]) -> String {
+///
+/// A kind not in `bound_kinds` keeps its binding number unused and gets a
+/// one-element private array instead: its code still compiles (and its
+/// `HAS_*` flag, false for a scene without it, makes it dead), while the
+/// pipeline binds fewer storage buffers. WebGPU guarantees only 8 per
+/// shader stage, fewer than all kinds need (docs/web.md).
+fn shape_glue(kinds: &[KindInfo], bound_kinds: u32) -> String {
     let mut declarations = String::from("// The shape kinds (src/gpu/shapes/mod.rs).\n");
     let mut binding = FIRST_SHAPE_BINDING;
     for k in kinds {
         declarations += &format!(
-            "const {kind}: u32 = {number}u;\n\
-             override {flag}: bool = true;\n\
-             @group(0) @binding({binding}) var<storage, read> {array}: array<{ty}>;\n",
+            "const {kind}: u32 = {number}u;\noverride {flag}: bool = true;\n",
             kind = kind_const(k),
             number = k.kind.number(),
             flag = has_flag(k.kind),
-            array = k.kind.key(),
-            ty = k.wgsl_struct,
         );
-        binding += 1;
-        if let Some(data) = k.data {
-            declarations += &format!(
-                "@group(0) @binding({binding}) var<storage, read> {data}: array<vec4<u32>>;\n"
-            );
+        let bound = is_bound(bound_kinds, k.kind);
+        let mut array = |name: &str, ty: &str| {
+            declarations += &if bound {
+                format!("@group(0) @binding({binding}) var<storage, read> {name}: array<{ty}>;\n")
+            } else {
+                format!("var<private> {name}: array<{ty}, 1>;\n")
+            };
             binding += 1;
+        };
+        array(k.kind.key(), k.wgsl_struct);
+        if let Some(data) = k.data {
+            array(data, "vec4<u32>");
         }
     }
     let (bounded, unbounded): (Vec<&KindInfo>, Vec<&KindInfo>) =
@@ -306,7 +326,7 @@ impl ShaderSource {
             .into_iter()
             .map(|k| (format!("shaders/{}", k.file()), k.wgsl.to_string()));
         Self::join(
-            std::iter::once(generated_part(MAX_STACK_SIZE))
+            std::iter::once(generated_part(MAX_STACK_SIZE, ALL_KINDS_BOUND))
                 .chain(files)
                 .chain(shapes)
                 .chain([functions_part(&[])]),
@@ -316,9 +336,16 @@ impl ShaderSource {
     /// The same source with the ray-tree stack sized for `stack_size`
     /// entries (a scene's `max_depth + 1`).
     pub fn with_stack_size(&self, stack_size: u32) -> Self {
+        self.specialised(stack_size, ALL_KINDS_BOUND)
+    }
+
+    /// The same source with the ray-tree stack sized for `stack_size`
+    /// entries and storage bindings only for the arrays of `bound_kinds`
+    /// (see `shape_glue`).
+    pub fn specialised(&self, stack_size: u32, bound_kinds: u32) -> Self {
         let files = self.parts().filter(|(name, _)| *name != GENERATED);
         Self::join(
-            std::iter::once(generated_part(stack_size))
+            std::iter::once(generated_part(stack_size, bound_kinds))
                 .chain(files.map(|(name, text)| (name.to_string(), text.to_string()))),
         )
     }
@@ -345,7 +372,7 @@ impl ShaderSource {
             files.push((path.display().to_string(), text));
         }
         Ok(Self::join(
-            std::iter::once(generated_part(MAX_STACK_SIZE))
+            std::iter::once(generated_part(MAX_STACK_SIZE, ALL_KINDS_BOUND))
                 .chain(files)
                 .chain([functions_part(&[])]),
         ))

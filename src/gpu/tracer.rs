@@ -14,7 +14,7 @@ use super::features::{ShaderOptions, borrowed};
 use super::fullscreen;
 use super::layout::PackedScene;
 use super::outline::OutlinePipelines;
-use super::shaders::{FIRST_SHAPE_BINDING, ShaderError, ShaderSource};
+use super::shaders::{FIRST_SHAPE_BINDING, ShaderError, ShaderSource, is_bound};
 use super::texture::render_target;
 
 /// Where the radiance sum is kept: full f32 precision, so 1000s of samples
@@ -29,6 +29,9 @@ pub struct Pipelines {
     trace: wgpu::RenderPipeline,
     display: Vec<(wgpu::TextureFormat, wgpu::RenderPipeline)>,
     scene_layout: wgpu::BindGroupLayout,
+    /// The shape kinds whose arrays `scene_layout` binds (bit
+    /// `ShapeKind::number` per kind).
+    bound_kinds: u32,
     accum_layout: wgpu::BindGroupLayout,
     /// The id and outline passes of the viewer's selection outline; only
     /// a window's pipelines have them ([`Pipelines::with_outline`]).
@@ -54,7 +57,7 @@ impl Pipelines {
         output_formats: &[wgpu::TextureFormat],
         options: &ShaderOptions,
     ) -> Result<Self, PipelineError> {
-        Self::create(device, source, output_formats, options, false)
+        pollster::block_on(Self::create(device, source, output_formats, options, false))
     }
 
     /// As [`Pipelines::new`], with the passes of the selection outline too
@@ -65,10 +68,22 @@ impl Pipelines {
         output_formats: &[wgpu::TextureFormat],
         options: &ShaderOptions,
     ) -> Result<Self, PipelineError> {
-        Self::create(device, source, output_formats, options, true)
+        pollster::block_on(Self::create(device, source, output_formats, options, true))
     }
 
-    fn create(
+    /// As [`Pipelines::with_outline`], without blocking: in the browser
+    /// wgpu reports validation errors only once control returns to the
+    /// page's event loop (docs/web.md).
+    pub async fn with_outline_async(
+        device: &wgpu::Device,
+        source: &ShaderSource,
+        output_formats: &[wgpu::TextureFormat],
+        options: &ShaderOptions,
+    ) -> Result<Self, PipelineError> {
+        Self::create(device, source, output_formats, options, true).await
+    }
+
+    async fn create(
         device: &wgpu::Device,
         source: &ShaderSource,
         output_formats: &[wgpu::TextureFormat],
@@ -76,12 +91,12 @@ impl Pipelines {
         outline: bool,
     ) -> Result<Self, PipelineError> {
         let source = &source
-            .with_stack_size(options.stack_size)
+            .specialised(options.stack_size, options.features.shape_kinds)
             .with_functions(&options.functions);
         source.validate()?;
         let scope = device.push_error_scope(wgpu::ErrorFilter::Validation);
         let pipelines = Self::build(device, source, output_formats, options, outline);
-        match pollster::block_on(scope.pop()) {
+        match scope.pop().await {
             Some(error) => Err(PipelineError::Wgpu(error.to_string())),
             None => Ok(pipelines),
         }
@@ -100,7 +115,7 @@ impl Pipelines {
         });
         let scene_layout = device.create_bind_group_layout(&wgpu::BindGroupLayoutDescriptor {
             label: Some("scene"),
-            entries: &scene_layout_entries(),
+            entries: &scene_layout_entries(options.features.shape_kinds),
         });
         let accum_layout = fullscreen::texture_layout(device, "accumulated radiance");
         let layout = device.create_pipeline_layout(&wgpu::PipelineLayoutDescriptor {
@@ -135,8 +150,14 @@ impl Pipelines {
                 OutlinePipelines::new(device, &module, &scene_layout, output_formats, options)
             }),
             scene_layout,
+            bound_kinds: options.features.shape_kinds,
             accum_layout,
         }
+    }
+
+    /// The layout of the scene's bind group, and the kinds whose arrays it binds.
+    pub(super) fn scene_layout(&self) -> (&wgpu::BindGroupLayout, u32) {
+        (&self.scene_layout, self.bound_kinds)
     }
 
     /// The selection outline's passes, if these pipelines have them.
@@ -156,12 +177,14 @@ impl Pipelines {
 /// Binding 0: the globals uniform; 1..=5: materials, lights, BVH nodes, BVH
 /// shape list and shape counts; from [`FIRST_SHAPE_BINDING`] on, one array
 /// per shape kind in the registry order of `gpu::shapes` (all read-only
-/// storage buffers, the order of `scene.wgsl` and of the generated WGSL).
-pub(super) fn scene_layout_entries() -> Vec<wgpu::BindGroupLayoutEntry> {
-    let count = FIRST_SHAPE_BINDING as usize + super::shapes::buffer_count();
-    (0..count)
+/// storage buffers, the order of `scene.wgsl` and of the generated WGSL),
+/// of which only those of `bound_kinds` are bound (see
+/// [`ShaderSource::specialised`]).
+pub(super) fn scene_layout_entries(bound_kinds: u32) -> Vec<wgpu::BindGroupLayoutEntry> {
+    bound_bindings(bound_kinds)
+        .into_iter()
         .map(|i| wgpu::BindGroupLayoutEntry {
-            binding: i as u32,
+            binding: i,
             visibility: wgpu::ShaderStages::FRAGMENT,
             ty: wgpu::BindingType::Buffer {
                 ty: if i == 0 {
@@ -177,6 +200,20 @@ pub(super) fn scene_layout_entries() -> Vec<wgpu::BindGroupLayoutEntry> {
         .collect()
 }
 
+/// The binding numbers of [`scene_layout_entries`], in order.
+fn bound_bindings(bound_kinds: u32) -> Vec<u32> {
+    let mut bindings: Vec<u32> = (0..FIRST_SHAPE_BINDING).collect();
+    let mut binding = FIRST_SHAPE_BINDING;
+    for k in super::shapes::kinds() {
+        let count = 1 + u32::from(k.data.is_some());
+        if is_bound(bound_kinds, k.kind) {
+            bindings.extend(binding..binding + count);
+        }
+        binding += count;
+    }
+    bindings
+}
+
 /// The scene in GPU buffers, with the CPU copy it was made from.
 pub struct SceneBuffers {
     packed: PackedScene,
@@ -188,7 +225,7 @@ pub struct SceneBuffers {
 
 impl SceneBuffers {
     pub fn new(device: &wgpu::Device, pipelines: &Pipelines, packed: PackedScene) -> Self {
-        Self::with_layout(device, &pipelines.scene_layout, packed, None)
+        Self::with_layout(device, pipelines.scene_layout(), packed, None)
     }
 
     /// The buffers of `packed`, keeping those of `previous` whose contents
@@ -200,14 +237,14 @@ impl SceneBuffers {
         packed: PackedScene,
         previous: &SceneBuffers,
     ) -> Self {
-        Self::with_layout(device, &pipelines.scene_layout, packed, Some(previous))
+        Self::with_layout(device, pipelines.scene_layout(), packed, Some(previous))
     }
 
     /// The buffers and their bind group for any pipeline whose group 0 is
     /// [`scene_layout_entries`] (the tracer's, the id pass's).
     pub(super) fn with_layout(
         device: &wgpu::Device,
-        layout: &wgpu::BindGroupLayout,
+        (layout, bound_kinds): (&wgpu::BindGroupLayout, u32),
         packed: PackedScene,
         previous: Option<&SceneBuffers>,
     ) -> Self {
@@ -242,13 +279,15 @@ impl SceneBuffers {
                 shared.unwrap_or_else(|| storage("shapes", bytemuck::cast_slice(words.as_slice())))
             })
             .collect();
-        let buffers: Vec<&wgpu::Buffer> = fixed.iter().chain(&shape_buffers).collect();
-        let entries: Vec<wgpu::BindGroupEntry> = std::iter::once(&globals)
-            .chain(buffers)
-            .enumerate()
-            .map(|(i, b)| wgpu::BindGroupEntry {
-                binding: i as u32,
-                resource: b.as_entire_binding(),
+        let buffers: Vec<&wgpu::Buffer> = std::iter::once(&globals)
+            .chain(&fixed)
+            .chain(&shape_buffers)
+            .collect();
+        let entries: Vec<wgpu::BindGroupEntry> = bound_bindings(bound_kinds)
+            .into_iter()
+            .map(|i| wgpu::BindGroupEntry {
+                binding: i,
+                resource: buffers[i as usize].as_entire_binding(),
             })
             .collect();
         let bind_group = device.create_bind_group(&wgpu::BindGroupDescriptor {

@@ -2,7 +2,7 @@
 //! resolution scale and the selection outline. Knows nothing of egui: whoever draws on top of the
 //! image gets the frame's encoder and view through a callback.
 
-use std::time::{Duration, Instant};
+use web_time::{Duration, Instant};
 
 use super::context::{Gpu, GpuWaitError};
 use super::id_pass::FirstHit;

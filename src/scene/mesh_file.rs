@@ -188,14 +188,7 @@ fn area_weighted_normals(positions: &[DVec3], triangles: &[[u32; 3]]) -> Vec<DVe
 /// An OBJ file through `tobj`: `v`, `vn` and `f` records, polygons
 /// fan-triangulated, other records ignored. Errors start with the line.
 fn read_obj(bytes: &[u8]) -> Result<Raw, String> {
-    let text = std::str::from_utf8(bytes).map_err(|e| {
-        let line = bytes[..e.valid_up_to()]
-            .iter()
-            .filter(|&&b| b == b'\n')
-            .count()
-            + 1;
-        format!("{line}: not a text file (invalid UTF-8)")
-    })?;
+    let text = as_text(bytes)?;
     if let Some((line, message)) = obj_problem(text) {
         return Err(format!("{line}: {message}"));
     }
@@ -321,6 +314,7 @@ fn face_problem<'a>(words: impl Iterator<Item = &'a str>, vertices: i64) -> Opti
 fn read_ply(bytes: &[u8]) -> Result<Raw, String> {
     use ply_rs_bw::parser::Parser;
     use ply_rs_bw::ply::DefaultElement;
+    as_text(ply_text_part(bytes))?;
     let ply = Parser::<DefaultElement>::new()
         .read_ply(&mut std::io::Cursor::new(bytes))
         .map_err(|e| format!(" {e}"))?;
@@ -369,6 +363,34 @@ fn read_ply(bytes: &[u8]) -> Result<Raw, String> {
         }
     }
     Ok(raw)
+}
+
+/// `bytes` as UTF-8 text, or an error naming the line of the first byte
+/// that is not.
+fn as_text(bytes: &[u8]) -> Result<&str, String> {
+    std::str::from_utf8(bytes).map_err(|e| {
+        let line = bytes[..e.valid_up_to()]
+            .iter()
+            .filter(|&&b| b == b'\n')
+            .count()
+            + 1;
+        format!("{line}: not a text file (invalid UTF-8)")
+    })
+}
+
+/// The part of a PLY file that must be text: the header, and the whole
+/// file in the ASCII format (the parser's own UTF-8 error names no line).
+fn ply_text_part(bytes: &[u8]) -> &[u8] {
+    const END: &[u8] = b"end_header";
+    let Some(end) = bytes.windows(END.len()).position(|w| w == END) else {
+        return bytes;
+    };
+    let header = &bytes[..end];
+    if header.windows(6).any(|w| w == b"binary") {
+        header
+    } else {
+        bytes
+    }
 }
 
 fn ply_scalar(p: &ply_rs_bw::ply::Property) -> Option<f64> {

@@ -91,6 +91,11 @@ impl Display {
 }
 
 impl Display {
+    /// The X display name (`:N`), for programs other than raysandbox.
+    pub fn name(&self) -> &str {
+        &self.name
+    }
+
     /// Runs `raysandbox ARGS` on this display until it exits, e.g. to see it
     /// refuse to open a window.
     pub fn run(&self, args: &[&str]) -> std::process::Output {

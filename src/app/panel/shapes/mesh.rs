@@ -85,14 +85,14 @@ fn geometry_rows(ui: &mut Ui, mesh: &Mesh) {
     field(
         ui,
         "BVH",
-        "The tree over the triangles: its depth (the shader's stack allows \
-         MAX_DEPTH) and its build time on this machine",
+        "The tree over the triangles: its depth, of the most the shader's \
+         traversal stack allows, and its build time on this machine",
     );
     ui.label(format!(
-        "depth {} of {MAX_DEPTH}, {} nodes, built in {:.1} ms",
+        "depth {}/{MAX_DEPTH}, built in {:.1} ms",
         built.depth,
-        built.bvh.nodes.len(),
         built.build_time.as_secs_f64() * 1e3
-    ));
+    ))
+    .on_hover_text(format!("{} nodes", built.bvh.nodes.len()));
     ui.end_row();
 }

@@ -1,0 +1,55 @@
+//! What the Rust side touches of the HTML page (`web/index.html`): the
+//! canvas, the message box, and the console.
+
+use wasm_bindgen::JsCast;
+
+/// Id of the canvas the tracer draws into.
+const CANVAS_ID: &str = "raysandbox";
+/// Id of the box that shows errors over the canvas.
+const MESSAGE_ID: &str = "message";
+
+fn document() -> Option<web_sys::Document> {
+    web_sys::window()?.document()
+}
+
+/// The page's canvas; without one winit appends its own.
+pub fn canvas() -> Option<web_sys::HtmlCanvasElement> {
+    document()?
+        .get_element_by_id(CANVAS_ID)?
+        .dyn_into::<web_sys::HtmlCanvasElement>()
+        .ok()
+}
+
+/// The value of `key` in the page address's query (`?samples=1`), the
+/// page's options, as the native viewer's command-line options.
+pub fn query(key: &str) -> Option<String> {
+    let search = web_sys::window()?.location().search().ok()?;
+    web_sys::UrlSearchParams::new_with_str(&search)
+        .ok()?
+        .get(key)
+}
+
+/// Logs one `raysandbox: EVENT` line on the console (tests read them).
+pub fn event(line: &str) {
+    web_sys::console::log_1(&format!("raysandbox: {line}").into());
+}
+
+/// Shows `message` where the user looks (over the canvas) and logs it.
+pub fn show_error(message: &str) {
+    web_sys::console::error_1(&format!("raysandbox: error {message}").into());
+    if let Some(element) = document().and_then(|d| d.get_element_by_id(MESSAGE_ID)) {
+        element.set_text_content(Some(message));
+        let _ = element.set_attribute("class", "shown");
+    }
+}
+
+/// An adapter or device error, with what enables WebGPU.
+pub fn no_webgpu_help(error: &str) -> String {
+    format!(
+        "WebGPU is not available: {error}.\n\
+         raysandbox draws with WebGPU: use a recent Chrome, Edge or Chromium (113 or later), \
+         Firefox 141 or later on Windows, or Safari 26; on Linux, start Chromium with \
+         --enable-unsafe-webgpu --enable-features=Vulkan, or enable \
+         chrome://flags/#enable-unsafe-webgpu."
+    )
+}
