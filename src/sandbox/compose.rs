@@ -116,14 +116,40 @@ pub fn compile(name: &str, text: &str) -> Result<Compiled, ShaderError> {
             // the line as the user wrote it.
             e.source_line = scan.line_text(e.line).to_string();
         }
-        if e.file == EPILOGUE_NAME {
-            e.message.push_str(
-                "\n(in the code the sandbox adds after your file, which calls your entry \
-                 function: check its name and signature, see docs/sandbox.md)",
-            );
+        if e.file == EPILOGUE_NAME || e.file == PRELUDE_NAME {
+            blame_the_users_file(&mut e, name);
         }
         e
     })
+}
+
+/// An error naga found in the code the sandbox joins around the user's
+/// file is caused by the file (a name that clashes, an entry function
+/// missing or misspelt): it is reported at the file, saying where it
+/// surfaced, so that every error names the user's file.
+fn blame_the_users_file(e: &mut ShaderError, name: &str) {
+    let (part, hint) = if e.file == EPILOGUE_NAME {
+        (
+            "after",
+            "it calls your entry function: check its name and signature",
+        )
+    } else {
+        (
+            "before",
+            "it declares the names of docs/sandbox.md: check that your file does not \
+             declare them too",
+        )
+    };
+    e.message = format!(
+        "{} (in the code the sandbox adds {part} your file, at {}:{}: {hint}; see \
+         docs/sandbox.md)",
+        e.message, e.line, e.column
+    );
+    e.file = name.to_string();
+    e.line = 0;
+    e.column = 0;
+    e.source_line.clear();
+    e.label.clear();
 }
 
 /// naga reports a missing `;` at the token after it, often on the next line.
@@ -507,6 +533,18 @@ fn glsl_frame_block(style: Style, declared: &[&str]) -> String {
     text
 }
 
+/// `mat2` .. `mat4`, `mat2x3`, ...: a uniform that cannot be a parameter
+/// (the panel has no control for it), zero as WebGL leaves it.
+fn is_matrix(type_name: &str) -> bool {
+    let Some(size) = type_name.strip_prefix("mat") else {
+        return false;
+    };
+    let sizes = [
+        "2", "3", "4", "2x2", "2x3", "2x4", "3x2", "3x3", "3x4", "4x2", "4x3", "4x4",
+    ];
+    sizes.contains(&size)
+}
+
 /// GLSL types a parameter may have.
 fn glsl_param_type(type_name: &str) -> Option<&'static str> {
     Some(match type_name {
@@ -742,6 +780,12 @@ fn initializer_values(tokens: &[Token]) -> Vec<f64> {
     values
 }
 
+/// Whether `word` occurs in `text` as a whole identifier.
+fn has_word(text: &str, word: &str) -> bool {
+    text.split(|c: char| !(c.is_ascii_alphanumeric() || c == '_'))
+        .any(|w| w == word)
+}
+
 /// Whether a top-level `uniform` declares one of `names`.
 fn declares_uniform(tokens: &[Token], names: &[&str]) -> bool {
     tokens.iter().enumerate().any(|(i, t)| {
@@ -822,9 +866,15 @@ fn glsl_texture_names(
                 format!("`{texture}`: at most {CHANNELS} textures (channels 0 to 3)"),
             ));
         }
+        // The front-end gaps rename a variable called `texture`.
+        let renamed = if *texture == "texture" {
+            "rsb_texture"
+        } else {
+            texture
+        };
         let _ = writeln!(
             text,
-            "#define {texture} sampler2D(rsb_channel{next}, rsb_sampler)"
+            "#define {renamed} sampler2D(rsb_channel{next}, rsb_sampler)"
         );
         next += 1;
     }
@@ -914,9 +964,23 @@ fn compile_glsl(name: &str, scan: &Scan) -> Result<Compiled, ShaderError> {
     let mut declared = Vec::new();
     let mut user_params = Vec::new();
     let mut textures = Vec::new();
+    // Declared but never set by GLSL Sandbox: zero, as in WebGL.
+    let mut zero = Vec::new();
     for decl in &rewrite.uniforms {
         match standard.iter().find(|(n, _)| *n == decl.name) {
             Some((n, t)) if *t == decl.type_name => declared.push(*n),
+            // `uniform vec4 mouse;`: the pointer in xy, zw zero.
+            Some(("mouse", _)) if ["vec3", "vec4"].contains(&decl.type_name.as_str()) => {
+                zero.push(format!(
+                    "#define mouse {}(rsb_mouse, {})\n",
+                    decl.type_name,
+                    if decl.type_name == "vec3" {
+                        "0.0"
+                    } else {
+                        "0.0, 0.0"
+                    }
+                ));
+            }
             // Old exports declare it `uniform float iChannelTime[4];` or so.
             Some((n, t)) if t.starts_with(decl.type_name.as_str()) => declared.push(*n),
             Some((n, t)) => {
@@ -932,6 +996,10 @@ fn compile_glsl(name: &str, scan: &Scan) -> Result<Compiled, ShaderError> {
                 ));
             }
             None if decl.type_name == "sampler2D" => textures.push(decl.name),
+            None if is_matrix(&decl.type_name) => zero.push(format!(
+                "const {0} {1} = {0}(0.0);\n",
+                decl.type_name, decl.name
+            )),
             None => match glsl_param_type(&decl.type_name) {
                 Some(_) => user_params.push(decl),
                 None => {
@@ -957,6 +1025,7 @@ fn compile_glsl(name: &str, scan: &Scan) -> Result<Compiled, ShaderError> {
     );
     prelude.push_str(&glsl_frame_block(style, &declared));
     prelude.push_str(GLSL_TEXTURES);
+    prelude.push_str(&zero.concat());
     let reads_backbuffer = style == Style::GlslSandbox && textures.contains(&"backbuffer");
     prelude.push_str(&glsl_texture_names(
         name,
@@ -1002,8 +1071,11 @@ fn compile_glsl(name: &str, scan: &Scan) -> Result<Compiled, ShaderError> {
         let _ = writeln!(prelude, "#define {output} rsb_frag_color");
     }
     // Names the file uses and does not `#define` itself.
+    // Also in the body of a `#define` (`#define FONT iChannel0`).
     let used = |word: &str| {
-        tokens.iter().any(|t| t.is(word))
+        tokens
+            .iter()
+            .any(|t| t.is(word) || (t.kind == Kind::Directive && has_word(t.text, word)))
             && !tokens.iter().any(|t| {
                 t.kind == Kind::Directive
                     && t.text[1..].split_whitespace().take(2).eq(["define", word])
@@ -1034,6 +1106,9 @@ fn compile_glsl(name: &str, scan: &Scan) -> Result<Compiled, ShaderError> {
     let bridged = gaps::bridge(scan, rewrite.text);
     if bridged.uses_mat2 {
         prelude.push_str(gaps::MAT2_OVERLOADS);
+    }
+    if bridged.uses_dot {
+        prelude.push_str(gaps::DOT_OVERLOADS);
     }
     let mut parts = vec![
         (PRELUDE_NAME.to_string(), prelude),

@@ -10,6 +10,10 @@
 //!   (`float sample = 0.0;`): `rsb_sample`;
 //! - WebGL's texture functions (`texture2D(`, `texture2DLod(`, ...):
 //!   GLSL 4.50's (`texture  (`, `textureLod  (`), padded with spaces;
+//! - a float literal too big for a float (`1e39`, which WebGL reads as
+//!   infinity and naga rejects): the largest float, `3.4028235e38`;
+//! - `dot(`, which naga lacks for two floats: `rsb_dot(`, overloads the
+//!   prelude adds for floats and float vectors;
 //! - a `sampler2D` parameter, which naga's Vulkan GLSL has no type for:
 //!   a `texture2D` parameter, each use of it in the function's body wrapped
 //!   as `sampler2D(NAME, rsb_sampler)` with the prelude's sampler.
@@ -30,19 +34,37 @@ mat2 rsb_mat2(mat3 m) { return mat2(m); }
 mat2 rsb_mat2(mat4 m) { return mat2(m); }
 ";
 
+/// The overloads behind `rsb_dot(...)`, for the prelude.
+pub const DOT_OVERLOADS: &str = "\
+// dot(x, y) of two floats too, as WebGL GLSL has it (docs/sandbox.md).
+float rsb_dot(float a, float b) { return a * b; }
+float rsb_dot(vec2 a, vec2 b) { return dot(a, b); }
+float rsb_dot(vec3 a, vec3 b) { return dot(a, b); }
+float rsb_dot(vec4 a, vec4 b) { return dot(a, b); }
+";
+
+/// The largest finite float, written for a literal WebGL reads as infinity.
+const LARGEST_FLOAT: &str = "3.4028235e38";
+
 /// The user's text after the rewrites.
 pub struct Bridged {
     pub text: String,
     /// `mat2(` calls were renamed: the prelude needs [`MAT2_OVERLOADS`].
     pub uses_mat2: bool,
+    /// `dot(` calls were renamed: the prelude needs [`DOT_OVERLOADS`].
+    pub uses_dot: bool,
     /// (offset in the original text, inserted text), in order.
     insertions: Vec<(usize, String)>,
 }
 
 /// Keywords of GLSL 4.50 (what naga reads) that WebGL GLSL shaders use as
 /// names.
-const NEW_KEYWORDS: [&str; 10] = [
+const NEW_KEYWORDS: [&str; 14] = [
     "sample",
+    "smooth",
+    "flat",
+    "noperspective",
+    "centroid",
     "buffer",
     "shared",
     "patch",
@@ -76,8 +98,13 @@ pub fn bridge(scan: &Scan, mut text: String) -> Bridged {
     let tokens = &scan.tokens;
     let mut insertions: Vec<(usize, String)> = Vec::new();
     let mut uses_mat2 = false;
+    let mut uses_dot = false;
     let (mut braces, mut parens) = (0i32, 0i32);
     for (i, t) in tokens.iter().enumerate() {
+        if text[t.start..t.end()].trim().is_empty() {
+            // Blanked by the GLSL rewrite (a `uniform` declaration).
+            continue;
+        }
         match t.text {
             "{" => braces += 1,
             "}" => braces -= 1,
@@ -87,9 +114,22 @@ pub fn bridge(scan: &Scan, mut text: String) -> Bridged {
             word if t.kind == Kind::Ident && NEW_KEYWORDS.contains(&word) => {
                 insertions.push((t.start, "rsb_".to_string()));
             }
+            // A texture named `texture` (`uniform sampler2D texture;`), not
+            // the function.
+            "texture" if !tokens.get(i + 1).is_some_and(|n| n.is("(")) => {
+                insertions.push((t.start, "rsb_".to_string()));
+            }
             "mat2" if single_argument(tokens, i + 1) => {
                 insertions.push((t.start, "rsb_".to_string()));
                 uses_mat2 = true;
+            }
+            "dot" if tokens.get(i + 1).is_some_and(|n| n.is("(")) => {
+                insertions.push((t.start, "rsb_".to_string()));
+                uses_dot = true;
+            }
+            number if t.kind == Kind::Number && is_infinite_float(number) => {
+                overwrite(&mut text, t.start..t.end(), "");
+                insertions.push((t.start, LARGEST_FLOAT.to_string()));
             }
             word if tokens.get(i + 1).is_some_and(|n| n.is("(")) => {
                 if let Some((_, new)) = TEXTURE_FUNCTIONS.iter().find(|(old, _)| *old == word) {
@@ -110,8 +150,16 @@ pub fn bridge(scan: &Scan, mut text: String) -> Bridged {
     Bridged {
         text,
         uses_mat2,
+        uses_dot,
         insertions,
     }
+}
+
+/// A float literal beyond the largest float (`1e39`, `1e100`).
+fn is_infinite_float(literal: &str) -> bool {
+    let digits = literal.trim_end_matches(['f', 'F']);
+    let float = digits.contains(['.', 'e', 'E']) && !digits.starts_with("0x");
+    float && digits.parse::<f64>().is_ok_and(|v| v > f64::from(f32::MAX))
 }
 
 /// Writes `new` over `range` of `text`, padded with spaces to its length.
@@ -302,6 +350,16 @@ mod tests {
             b.text,
             "float rsb_sample = 1.0; vec3 rsb_filter(vec3 rsb_input) { return rsb_input * rsb_sample; }"
         );
+    }
+
+    #[test]
+    fn infinite_literals_become_the_largest_float_and_dot_is_renamed() {
+        let (b, _) = bridged("float far = 1e39; float d = dot(a, b) + 1.5e3 + dot (c, c);");
+        assert_eq!(
+            b.text,
+            "float far = 3.4028235e38    ; float d = rsb_dot(a, b) + 1.5e3 + rsb_dot (c, c);"
+        );
+        assert!(b.uses_dot);
     }
 
     #[test]

@@ -39,6 +39,7 @@ use std::time::Instant;
 pub use compose::{Compiled, Style, compile, compile_file};
 pub use constants::SourceParams;
 pub use params::{Control, ParamSet, ParamSpec};
+use render::{BuildFailed, FRAME_LIMIT, build_too_slow};
 pub use render::{CanvasStats, NanColor, Offscreen, render_once};
 pub use session::{ReloadError, Session};
 pub use uniforms::FrameUniforms;
@@ -287,11 +288,16 @@ fn render_sequence<E>(
     nan: NanColor,
     mut each: impl FnMut(u32, image::RgbaImage, CanvasStats) -> Result<(), E>,
 ) -> Result<(), RenderError<E>> {
-    let mut offscreen = Offscreen::with_nan_color(gpu, nan).with_channels(images);
-    let pipeline = offscreen
-        .builder(gpu)
-        .build(compiled)
-        .map_err(RenderError::Gpu)?;
+    let offscreen = Offscreen::with_nan_color(gpu, nan).with_channels(images);
+    let pipeline = match offscreen.builder(gpu).build_within(compiled, FRAME_LIMIT) {
+        Ok(pipeline) => pipeline,
+        Err(BuildFailed::Refused(m)) => return Err(RenderError::Gpu(m)),
+        Err(BuildFailed::TooSlow) => {
+            std::mem::forget(offscreen);
+            return Err(RenderError::Stopped(build_too_slow(&compiled.file)));
+        }
+    };
+    let mut offscreen = offscreen;
     for k in 0..count {
         let mut frame = FrameUniforms::at(time + f64::from(k) / fps, k, size);
         frame.time_delta = (1.0 / fps) as f32;
@@ -393,10 +399,14 @@ impl Checked {
 pub fn check_file(gpu: &Gpu, path: &Path, size: (u32, u32), time: f64) -> Result<(), Checked> {
     let compiled = compile_file(path).map_err(|e| Checked::Failed(e.to_string()))?;
     let mut offscreen = Offscreen::new(gpu);
-    let pipeline = offscreen
-        .builder(gpu)
-        .build(&compiled)
-        .map_err(Checked::Failed)?;
+    let pipeline = match offscreen.builder(gpu).build_within(&compiled, FRAME_LIMIT) {
+        Ok(pipeline) => pipeline,
+        Err(BuildFailed::Refused(m)) => return Err(Checked::Failed(m)),
+        Err(BuildFailed::TooSlow) => {
+            std::mem::forget(offscreen);
+            return Err(Checked::Stopped(build_too_slow(&compiled.file)));
+        }
+    };
     let frame = FrameUniforms::at(time, 0, size);
     if let Err(stopped) = offscreen.draw(gpu, &pipeline, &compiled.params, &frame) {
         std::mem::forget((offscreen, pipeline));

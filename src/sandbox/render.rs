@@ -251,7 +251,41 @@ impl SandboxGpu {
     }
 }
 
+/// Why [`PipelineBuilder::build_within`] gave no pipeline.
+#[derive(Debug, Clone, PartialEq, Eq)]
+pub enum BuildFailed {
+    /// wgpu refused the shader: the message, at the file.
+    Refused(String),
+    /// The GPU driver did not finish compiling the pipeline within the
+    /// limit. It is still at it, so the device must be neither waited on
+    /// nor dropped, as after [`TooSlow`].
+    TooSlow,
+}
+
 impl PipelineBuilder {
+    /// [`build`](Self::build) on a thread of its own, waited for at most
+    /// `limit`. A driver compiling a shader's pipeline can take without end
+    /// (lavapipe was seen recursing for minutes on a 200-line GLSL Sandbox
+    /// shader), which the frame's watchdog does not cover.
+    pub fn build_within(
+        &self,
+        compiled: &Compiled,
+        limit: std::time::Duration,
+    ) -> Result<ShaderPipeline, BuildFailed> {
+        let (builder, compiled) = (self.clone(), compiled.clone());
+        let (sender, receiver) = std::sync::mpsc::channel();
+        std::thread::spawn(move || {
+            let _ = sender.send(builder.build(&compiled));
+        });
+        match receiver.recv_timeout(limit) {
+            Ok(built) => built.map_err(BuildFailed::Refused),
+            Err(std::sync::mpsc::RecvTimeoutError::Timeout) => Err(BuildFailed::TooSlow),
+            Err(std::sync::mpsc::RecvTimeoutError::Disconnected) => Err(BuildFailed::Refused(
+                "the GPU driver failed while compiling the shader".into(),
+            )),
+        }
+    }
+
     /// Hands the validated module to wgpu. naga has checked it already, so an
     /// error here is rare (a limit of the adapter); it is returned, never
     /// panicked on, so the last good pipeline can keep running.
@@ -595,6 +629,15 @@ impl Canvas {
 /// 65535 iterations, so there an endless loop is only very slow; elsewhere
 /// it never ends.
 pub const FRAME_LIMIT: std::time::Duration = std::time::Duration::from_secs(20);
+
+/// The message for [`BuildFailed::TooSlow`].
+pub fn build_too_slow(file: &str) -> String {
+    format!(
+        "{file}: the GPU driver did not finish compiling the shader in {} s and it was \
+         abandoned (a shader too long or too deeply nested for this driver)",
+        FRAME_LIMIT.as_secs()
+    )
+}
 
 /// A frame did not finish within [`FRAME_LIMIT`]. The GPU is still running
 /// it: its device must not be waited on again, nor dropped (dropping waits
