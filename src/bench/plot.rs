@@ -126,7 +126,9 @@ pub fn log_log_lines(
     root.fill(&WHITE)?;
     let all = || series.iter().flat_map(|(_, p)| p.iter());
     let xs = log_range(all().map(|p| p.0));
+    // At least a decade, so that the log axis has labelled marks.
     let ys = log_range(all().map(|p| p.1));
+    let ys = ys.start.min(ys.end / 10.0)..ys.end;
     let mut chart = ChartBuilder::on(&root)
         .caption(title, ("sans-serif", 26))
         .margin(12)
