@@ -20,5 +20,4 @@ pub mod sandbox;
 pub mod scene;
 #[cfg(not(target_arch = "wasm32"))]
 pub mod stress;
-#[cfg(target_arch = "wasm32")]
 pub mod web;

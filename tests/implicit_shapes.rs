@@ -4,7 +4,8 @@
 //! 0.01, Julia sets 0.02 for their fractal edges), on the bundled scenes and
 //! the stress cases: a torus edge-on, from 1e4 units, rays grazing its inner
 //! equator, an implicit sphere whose silhouette rays are near double roots,
-//! and a Julia set at high zoom.
+//! and a Julia set at high zoom; and the Julia set with its epsilon grown to
+//! the pixel footprint.
 
 mod common;
 
@@ -19,6 +20,12 @@ const HEIGHT: u32 = 180;
 /// The implicit sphere's stress scene: its silhouette, zoomed.
 fn tangent_sphere_text() -> &'static str {
     scenes::text("implicit_tangent_sphere").expect("a stress scene")
+}
+
+/// `scene` with every Julia set's epsilon grown to the pixel footprint.
+fn with_footprint(mut scene: Scene) -> Scene {
+    scene.julias.iter_mut().for_each(|j| j.footprint = true);
+    scene
 }
 
 fn cases() -> Vec<(String, Scene, f64)> {
@@ -39,6 +46,11 @@ fn cases() -> Vec<(String, Scene, f64)> {
             0.01,
         ),
         ("julia_zoom".into(), scenes::load("julia_zoom"), 0.02),
+        (
+            "julia_footprint".into(),
+            with_footprint(bundled("julia")),
+            0.02,
+        ),
         (
             "implicit_tangent_sphere".into(),
             scenes::load("implicit_tangent_sphere"),

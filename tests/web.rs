@@ -11,6 +11,7 @@ use std::io::{BufRead, BufReader, Read, Write};
 use std::net::TcpListener;
 use std::path::{Path, PathBuf};
 use std::process::{Child, Command, Stdio};
+use std::sync::atomic::{AtomicU32, Ordering};
 use std::sync::mpsc::{Receiver, RecvTimeoutError, channel};
 use std::time::{Duration, Instant};
 
@@ -18,6 +19,7 @@ use image::RgbaImage;
 use raysandbox::compare::{diff_images, distinct_colors, nan_pixels};
 use raysandbox::reference;
 use raysandbox::scene::{Scene, bundled};
+use raysandbox::web::link;
 
 /// Size of the browser window, and so of the page's canvas, in pixels.
 const SIZE: (u32, u32) = (480, 270);
@@ -207,7 +209,10 @@ struct TempDir(PathBuf);
 
 impl TempDir {
     fn new(prefix: &str) -> TempDir {
-        let dir = std::env::temp_dir().join(format!("{prefix}-{}", std::process::id()));
+        // Tests run in parallel: each folder gets its own number.
+        static NEXT: AtomicU32 = AtomicU32::new(0);
+        let n = NEXT.fetch_add(1, Ordering::SeqCst);
+        let dir = std::env::temp_dir().join(format!("{prefix}-{}-{n}", std::process::id()));
         let _ = std::fs::remove_dir_all(&dir);
         std::fs::create_dir_all(&dir).expect("create a temporary folder");
         TempDir(dir)
@@ -222,7 +227,11 @@ impl Drop for TempDir {
 
 /// The top-left `SIZE` of the X screen, where the page's window is.
 fn capture_screen(display: &common::xwindow::Display) -> RgbaImage {
-    let file = std::env::temp_dir().join(format!("raysandbox-web-{}.png", std::process::id()));
+    let file = std::env::temp_dir().join(format!(
+        "raysandbox-web-{}-{}.png",
+        std::process::id(),
+        display.name().trim_start_matches(':')
+    ));
     let status = Command::new("import")
         .args(["-window", "root", file.to_str().unwrap()])
         .env("DISPLAY", display.name())
@@ -248,11 +257,46 @@ fn capture_picture(display: &common::xwindow::Display) -> RgbaImage {
     }
 }
 
+/// Compares the page's picture with the reference image of `scene` at 1
+/// sample per pixel, within the budget of tests/gpu_vs_reference.rs (mean
+/// |difference| <= 0.5, at most 0.5% of pixels off by more than 8, no
+/// non-finite pixels, not blank); saves both images when they differ.
+fn assert_like_reference(name: &str, page: &RgbaImage, scene: &Scene) {
+    let expected = reference::render_rgba8(scene, SIZE.0, SIZE.1, 1);
+    let d = diff_images(page, &expected);
+    let nans = nan_pixels(page, &expected);
+    eprintln!(
+        "{name}: page vs reference: mean |d| {:.4}, {:.3}% > 8, max {}, {nans} NaN",
+        d.mean_abs,
+        d.frac_over_8 * 100.0,
+        d.max_abs
+    );
+    let within =
+        d.mean_abs <= 0.5 && d.frac_over_8 <= 0.005 && nans == 0 && distinct_colors(page, 16) >= 16;
+    if !within {
+        let out = std::env::temp_dir();
+        page.save(out.join(format!("web-{name}-page.png"))).unwrap();
+        expected
+            .save(out.join(format!("web-{name}-reference.png")))
+            .unwrap();
+    }
+    assert!(
+        within,
+        "{name}: the page's picture differs from the reference (both saved in {})",
+        std::env::temp_dir().display()
+    );
+}
+
+fn whitted() -> (String, Scene) {
+    let name = bundled::names()[0];
+    assert_eq!(name, "whitted");
+    let text = bundled::text(name).unwrap().to_string();
+    let scene = Scene::from_toml_str(&text, None).unwrap();
+    (text, scene)
+}
+
 /// Opened without link data, the page shows the bundled Whitted scene, and
-/// its first frame (1 sample per pixel) is the native renderer's picture:
-/// compared with the f64 reference within the budget of
-/// tests/gpu_vs_reference.rs (mean |difference| <= 0.5, at most 0.5% of
-/// pixels off by more than 8, no non-finite pixels).
+/// its first frame (1 sample per pixel) is the native renderer's picture.
 #[test]
 fn the_page_renders_the_whitted_scene_like_the_reference() {
     let Some(display) = common::xwindow::Display::start() else {
@@ -260,37 +304,35 @@ fn the_page_renders_the_whitted_scene_like_the_reference() {
     };
     let url = serve(page_dir());
     let mut browser = Browser::open(&display, &format!("{url}?samples=1"));
+    assert_eq!(browser.wait_for("scene"), "whitted");
     let adapter = browser.wait_for("adapter");
     eprintln!("page adapter: {adapter}");
     let size = browser.wait_for("first-frame");
     assert_eq!(size, format!("{}x{}", SIZE.0, SIZE.1), "canvas size");
     browser.wait_for("ready");
-    let page = capture_picture(&display);
+    assert_like_reference("whitted", &capture_picture(&display), &whitted().1);
+}
 
-    let name = bundled::names()[0];
-    assert_eq!(name, "whitted");
-    let scene = Scene::from_toml_str(bundled::text(name).unwrap(), None).unwrap();
-    let expected = reference::render_rgba8(&scene, SIZE.0, SIZE.1, 1);
-    let d = diff_images(&page, &expected);
-    let nans = nan_pixels(&page, &expected);
-    eprintln!(
-        "page vs reference: mean |d| {:.4}, {:.3}% > 8, max {}, {nans} NaN",
-        d.mean_abs,
-        d.frac_over_8 * 100.0,
-        d.max_abs
-    );
-    let within = d.mean_abs <= 0.5
-        && d.frac_over_8 <= 0.005
-        && nans == 0
-        && distinct_colors(&page, 16) >= 16;
-    if !within {
-        let out = std::env::temp_dir();
-        page.save(out.join("web-page.png")).unwrap();
-        expected.save(out.join("web-reference.png")).unwrap();
-    }
-    assert!(
-        within,
-        "the page's picture differs from the reference (both saved in {})",
-        std::env::temp_dir().display()
-    );
+/// A link made from an edited scene (another sky and camera) reproduces
+/// that scene, not the default one, in a fresh browser.
+#[test]
+fn a_shared_link_reproduces_the_scene_in_a_fresh_browser() {
+    let Some(display) = common::xwindow::Display::start() else {
+        return;
+    };
+    let (text, original) = whitted();
+    let edited = text
+        .replace(
+            "background = [0.25, 0.55, 0.95]",
+            "background = [0.9, 0.5, 0.2]",
+        )
+        .replace("from = [0.2, 1.4, 5.8]", "from = [-2.0, 2.5, 5.0]");
+    let scene = Scene::from_toml_str(&edited, None).unwrap();
+    assert_ne!(scene, original, "the edit changed the scene");
+    let url = serve(page_dir());
+    let address = format!("{url}?samples=1#{}", link::scene_hash(&edited));
+    let mut browser = Browser::open(&display, &address);
+    assert_eq!(browser.wait_for("scene"), "from-link");
+    browser.wait_for("ready");
+    assert_like_reference("link", &capture_picture(&display), &scene);
 }

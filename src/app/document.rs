@@ -58,12 +58,17 @@ impl Document {
         self.path.as_deref().and_then(Path::parent)
     }
 
-    /// A mesh read from `file` (as picked or dropped: absolute, or relative
-    /// to the working folder), naming it relative to the scene file. The
-    /// error names the file and its line or element.
-    pub fn read_mesh(&self, file: &Path) -> Result<Mesh, String> {
+    /// Reads the mesh in `file` (as picked or dropped: absolute, or relative
+    /// to the working folder) when called, on any thread (a large model
+    /// takes seconds), naming it relative to the scene file. The error
+    /// names the file and its line or element.
+    pub fn mesh_reader(
+        &self,
+        file: &Path,
+    ) -> impl FnOnce() -> Result<Mesh, String> + Send + 'static {
         let named = mesh_files::scene_relative(file, self.path());
-        Mesh::from_file(named, self.base())
+        let base = self.base().map(Path::to_path_buf);
+        move || Mesh::from_file(named, base.as_deref())
     }
 
     /// Every mesh file the scene reads, as [`Document::reload_mesh_file`]
@@ -279,7 +284,7 @@ mod tests {
         let path = dir.join("scenes/s.toml");
         let mut doc = Document::bundled("whitted").unwrap();
         doc.save_as(&path).unwrap();
-        let mesh = doc.read_mesh(&obj).unwrap();
+        let mesh = doc.mesh_reader(&obj)().unwrap();
         assert_eq!(mesh.file.as_deref(), Some(Path::new("../models/tri.obj")));
         // Two meshes show the same file.
         doc.scene.meshes.extend([mesh.clone(), mesh]);
@@ -323,9 +328,9 @@ mod tests {
         let obj = dir.join("bad.obj");
         std::fs::write(&obj, "v 0 0 0\nv 1 nan 0\n").unwrap();
         let doc = Document::bundled("whitted").unwrap();
-        let error = doc.read_mesh(&obj).unwrap_err();
+        let error = doc.mesh_reader(&obj)().unwrap_err();
         assert!(error.contains("bad.obj:2:"), "{error}");
-        let error = doc.read_mesh(&dir.join("missing.ply")).unwrap_err();
+        let error = doc.mesh_reader(&dir.join("missing.ply"))().unwrap_err();
         assert!(error.contains("missing.ply"), "{error}");
         std::fs::remove_dir_all(&dir).unwrap();
     }

@@ -27,7 +27,7 @@ use winit::window::WindowId;
 use crate::gpu::{FrameStatus, Gpu, Pipelines, ShaderOptions, ShaderSource, Viewport};
 use crate::reference;
 use crate::sandbox::SourceParams;
-use crate::scene::{Scene, bundled};
+use crate::scene::{Mesh, Scene, bundled};
 use document::Document;
 use panel::PanelAction;
 use shell::{EguiLayer, EventLog};
@@ -85,6 +85,8 @@ pub enum UserEvent {
     PipelinesBuilt(Box<pipelines::Built>),
     /// A mesh file chosen in the file dialog.
     MeshFilePicked(PathBuf),
+    /// A mesh file read (and its BVH built) on another thread.
+    MeshRead(PathBuf, Box<Result<Mesh, String>>),
 }
 
 /// Opens the viewer and runs until the window closes.
@@ -202,6 +204,7 @@ impl ApplicationHandler<UserEvent> for App {
             UserEvent::FileChanged(watch::Change::MeshFile(path)) => self.reload_mesh_file(&path),
             UserEvent::PipelinesBuilt(built) => self.pipelines_built(*built),
             UserEvent::MeshFilePicked(path) => self.add_mesh_file(&path),
+            UserEvent::MeshRead(path, mesh) => self.mesh_read(&path, *mesh),
         }
         self.request_redraw();
     }
@@ -440,12 +443,30 @@ impl App {
         }
     }
 
-    /// Adds the mesh in `path` (picked, typed or dropped) in front of the
-    /// camera, selected; a file that cannot be read is reported in the
-    /// panel and the scene is left as it was.
+    /// Reads the mesh in `path` (picked, typed or dropped) and builds its
+    /// BVH on another thread, so that the window keeps drawing while a
+    /// large model loads; [`App::mesh_read`] adds it.
     fn add_mesh_file(&mut self, path: &Path) {
-        match self.doc.read_mesh(path) {
-            Ok(mesh) => {
+        let read = self.doc.mesh_reader(path);
+        let (proxy, path) = (self.proxy.clone(), path.to_path_buf());
+        self.editor.message = Some(format!("reading {}…", path.display()));
+        std::thread::spawn(move || {
+            let mesh = read().inspect(|mesh| {
+                crate::bvh::mesh_bvh(&mesh.geometry.0);
+            });
+            let _ = proxy.send_event(UserEvent::MeshRead(path, Box::new(mesh)));
+        });
+    }
+
+    /// Adds a mesh read by [`App::add_mesh_file`] in front of the camera,
+    /// selected; a file that could not be read is reported in the panel and
+    /// the scene is left as it was.
+    fn mesh_read(&mut self, path: &Path, mesh: Result<Mesh, String>) {
+        match mesh {
+            Ok(mut mesh) => {
+                // Named for the scene open now (another may have been
+                // opened while the file was read).
+                mesh.file = Some(mesh_files::scene_relative(path, self.doc.path()));
                 let triangles = mesh.geometry.0.triangles.len();
                 let before = self.doc.scene.clone();
                 panel::add_mesh(&mut self.doc.scene, &mut self.editor.panel, mesh);
@@ -457,6 +478,7 @@ impl App {
             Err(e) => {
                 log::error!("{e}");
                 self.event(&format!("mesh-error {e}"));
+                self.editor.message = None;
                 self.editor.panel.mesh_error = Some(e);
             }
         }
@@ -523,7 +545,7 @@ impl App {
             self.scene_changed(Some(&before));
         }
         self.update_title();
-        self.paint(egui_output, input.dragging);
+        self.paint(egui_output, input.dragging || input.widget_dragging);
         if picked {
             // Once the frame with its outline is on screen.
             self.event(&format!("selected {:?}", self.editor.panel.selection));

@@ -91,6 +91,10 @@ pub struct ViewInput {
     pub double_click: Option<(f64, f64)>,
     /// A camera drag is in progress (render at the interaction scale).
     pub dragging: bool,
+    /// A widget of the panel is being dragged (a slider: Julia's c, a
+    /// light, ...): the scene changes every frame, so render at the
+    /// interaction scale too, and refine once it is let go.
+    pub widget_dragging: bool,
 }
 
 /// The keyboard shortcuts, for the help window and the README.
@@ -139,7 +143,8 @@ pub fn draw(
             });
     }
     egui::Panel::bottom("status").show(ui, |ui| status_line(ui, status, editor));
-    let input = egui::CentralPanel::no_frame().show(ui, view_input).inner;
+    let mut input = egui::CentralPanel::no_frame().show(ui, view_input).inner;
+    input.widget_dragging = !input.dragging && ui.ctx().dragged_id().is_some();
     overlays(ui.ctx(), editor, &mut commands);
     (commands, input)
 }

@@ -107,17 +107,18 @@ pub fn compile(name: &str, text: &str) -> Result<Compiled, ShaderError> {
     };
     result.map_err(|mut e| {
         if e.line == 0 {
-            // No position (naga failed as a whole): the user's file it is.
-            e.file = name.to_string();
+            // No position (naga failed as a whole): the user's file it is,
+            // at its end.
+            e = at_end_of_file(name, &scan, e.message);
         }
-        if e.file == name && e.line > 0 {
+        if e.file == name {
             point_at_missing_semicolon(&mut e, &scan);
             // The joined text may hold the user's line blanked in part: show
             // the line as the user wrote it.
             e.source_line = scan.line_text(e.line).to_string();
         }
         if e.file == EPILOGUE_NAME || e.file == PRELUDE_NAME {
-            blame_the_users_file(&mut e, name);
+            blame_the_users_file(&mut e, name, &scan);
         }
         e
     })
@@ -125,9 +126,10 @@ pub fn compile(name: &str, text: &str) -> Result<Compiled, ShaderError> {
 
 /// An error naga found in the code the sandbox joins around the user's
 /// file is caused by the file (a name that clashes, an entry function
-/// missing or misspelt): it is reported at the file, saying where it
-/// surfaced, so that every error names the user's file.
-fn blame_the_users_file(e: &mut ShaderError, name: &str) {
+/// missing or misspelt, a sandbox macro used wrongly): it is reported at
+/// the line of the file that caused it, saying where it surfaced, so that
+/// every error names the user's file and line (docs/sandbox.md, "Errors").
+fn blame_the_users_file(e: &mut ShaderError, name: &str, scan: &Scan) {
     let (part, hint) = if e.file == EPILOGUE_NAME {
         (
             "after",
@@ -145,11 +147,27 @@ fn blame_the_users_file(e: &mut ShaderError, name: &str) {
          docs/sandbox.md)",
         e.message, e.line, e.column
     );
-    e.file = name.to_string();
-    e.line = 0;
-    e.column = 0;
-    e.source_line.clear();
-    e.label.clear();
+    let culprit = if e.file == EPILOGUE_NAME {
+        ["mainImage", "main_image", "main"]
+            .iter()
+            .find_map(|entry| scan.tokens.iter().find(|t| t.is(entry)))
+    } else {
+        // naga places an error inside a macro of the sandbox (`gl_FragCoord`
+        // and the old Shadertoy names are macros) at the macro's `#define`:
+        // the user's first use of that name is what went wrong.
+        let line = e.source_line.trim_start();
+        let defined = line
+            .strip_prefix("#define")
+            .and_then(|rest| rest.split_whitespace().next());
+        defined.and_then(|macro_name| scan.tokens.iter().find(|t| t.is(macro_name)))
+    };
+    *e = match culprit {
+        Some(token) => ShaderError {
+            label: "caused by this".to_string(),
+            ..error_at(name, scan, token.start, std::mem::take(&mut e.message))
+        },
+        None => at_end_of_file(name, scan, std::mem::take(&mut e.message)),
+    };
 }
 
 /// naga reports a missing `;` at the token after it, often on the next line.
@@ -188,14 +206,14 @@ fn error_at(name: &str, scan: &Scan, offset: usize, message: String) -> ShaderEr
     }
 }
 
-fn whole_file_error(name: &str, message: String) -> ShaderError {
+/// An error about the file as a whole (no entry function): like rustc's
+/// missing `main`, it points at the end of the file, where the function
+/// would go, so that it has a line like every other error.
+fn at_end_of_file(name: &str, scan: &Scan, message: String) -> ShaderError {
+    let end = scan.tokens.last().map_or(0, |t| t.end());
     ShaderError {
-        file: name.to_string(),
-        line: 0,
-        column: 0,
-        message,
-        source_line: String::new(),
-        label: String::new(),
+        label: "the file ends here".to_string(),
+        ..error_at(name, scan, end, message)
     }
 }
 
@@ -263,8 +281,9 @@ fn wgsl_epilogue(has_params: bool) -> String {
 fn compile_wgsl(name: &str, text: &str, scan: &Scan) -> Result<Compiled, ShaderError> {
     let tokens = &scan.tokens;
     if find_pair(tokens, "fn", "main_image").is_none() {
-        return Err(whole_file_error(
+        return Err(at_end_of_file(
             name,
+            scan,
             "no `fn main_image(frag_coord: vec2<f32>) -> vec4<f32>` in this WGSL file: \
              the sandbox calls it for every pixel (see docs/sandbox.md)"
                 .into(),
@@ -951,8 +970,9 @@ fn compile_glsl(name: &str, scan: &Scan) -> Result<Compiled, ShaderError> {
     } else if user_main {
         Style::GlslSandbox
     } else {
-        return Err(whole_file_error(
+        return Err(at_end_of_file(
             name,
+            scan,
             "neither `void main()` (GLSL Sandbox style) nor \
              `void mainImage(out vec4 fragColor, in vec2 fragCoord)` (Shadertoy style) \
              in this GLSL file (see docs/sandbox.md)"
@@ -1322,6 +1342,41 @@ void main() {
 
     fn error(file: &str, text: &str) -> ShaderError {
         compile(file, text).expect_err("an error")
+    }
+
+    #[test]
+    fn errors_about_the_whole_file_have_a_line_too() {
+        // No entry function: at the end of the file, where it would go.
+        let missing = error(
+            "m.frag",
+            "uniform float time;\nfloat f() {\n    return time;\n}\n\n",
+        );
+        assert_eq!(
+            (missing.file.as_str(), missing.line),
+            ("m.frag", 4),
+            "{missing}"
+        );
+        assert_eq!(missing.source_line, "}");
+        assert!(
+            missing
+                .to_string()
+                .starts_with("m.frag:4:2: error: neither"),
+            "{missing}"
+        );
+        let wgsl = error("m.wgsl", "fn main() -> f32 {\n    return 1.0;\n}\n");
+        assert_eq!((wgsl.file.as_str(), wgsl.line), ("m.wgsl", 3), "{wgsl}");
+        // A sandbox macro misused (`gl_FragCoord` as a parameter name): naga
+        // places it in the prelude; it is reported at the user's use.
+        let misused = error(
+            "p.frag",
+            "uniform vec2 resolution;\nvoid main(gl_FragCoord.xy / resolution) {\n    gl_FragColor = vec4(1.0);\n}\n",
+        );
+        assert_eq!(
+            (misused.file.as_str(), misused.line, misused.column),
+            ("p.frag", 2, 11),
+            "{misused}"
+        );
+        assert!(misused.message.contains("before your file"), "{misused}");
     }
 
     #[test]

@@ -29,6 +29,12 @@ pub fn query(key: &str) -> Option<String> {
         .get(key)
 }
 
+/// The page address's fragment (after `#`, without it).
+pub fn hash() -> Option<String> {
+    let hash = web_sys::window()?.location().hash().ok()?;
+    Some(hash.trim_start_matches('#').to_string())
+}
+
 /// Logs one `raysandbox: EVENT` line on the console (tests read them).
 pub fn event(line: &str) {
     web_sys::console::log_1(&format!("raysandbox: {line}").into());

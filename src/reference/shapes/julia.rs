@@ -138,3 +138,35 @@ pub fn normal(julia: &Julia, p: DVec3, e: f64) -> DVec3 {
             .map(|axis| distance(julia, p + e * axis) - distance(julia, p - e * axis)),
     )
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn julia(footprint: bool) -> Julia {
+        let scene = scene::Julia {
+            c: [-0.2, 0.6, 0.2, 0.2],
+            slice: 0.0,
+            iterations: 6,
+            epsilon: 1e-3,
+            footprint,
+            translate: DVec3::ZERO,
+            scale: 2.0,
+            rotation: DVec3::ZERO,
+            material: None,
+        };
+        scene.prepare(0)
+    }
+
+    /// Off: epsilon at every distance. On: epsilon up close, then one
+    /// pixel's height at distance t, in local units (world / scale).
+    #[test]
+    fn the_footprint_grows_epsilon_with_distance_only_when_on() {
+        let pixel_angle = 0.01;
+        assert_eq!(surface_distance(&julia(false), 100.0, pixel_angle), 1e-3);
+        let on = julia(true);
+        assert_eq!(surface_distance(&on, 0.1, pixel_angle), 1e-3);
+        assert_eq!(surface_distance(&on, 100.0, pixel_angle), 0.5);
+        assert_eq!(surface_distance(&on, 100.0, 0.0), 1e-3);
+    }
+}

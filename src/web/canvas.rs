@@ -1,0 +1,210 @@
+//! The page's canvas and event loop: the scene from the address (or the
+//! bundled Whitted scene), drawn with progressive refinement. What happens is
+//! told on the browser's console as `raysandbox: EVENT` lines, for people and
+//! for tests.
+//!
+//! In the browser nothing may block: the adapter, the device and the
+//! pipelines' validation arrive asynchronously, and the page hands them to
+//! the event loop as a [`Ready`] event once they are there.
+
+use std::sync::Arc;
+
+use wasm_bindgen::prelude::*;
+use winit::application::ApplicationHandler;
+use winit::event::WindowEvent;
+use winit::event_loop::{ActiveEventLoop, ControlFlow, EventLoop, EventLoopProxy};
+use winit::platform::web::{EventLoopExtWebSys, WindowAttributesExtWebSys};
+use winit::window::{Window, WindowId};
+
+use super::{link, page};
+use crate::gpu::{FrameStatus, Gpu, Pipelines, ShaderOptions, ShaderSource, Viewport};
+use crate::scene::{Scene, bundled};
+
+/// Samples per pixel the page accumulates before it stops drawing, as the
+/// native viewer's progressive refinement does; `?samples=N` in the address
+/// sets another limit.
+const MAX_SAMPLES: u32 = 64;
+
+/// Starts the page: called by the JavaScript glue once the module is loaded.
+#[wasm_bindgen(start)]
+pub fn start() {
+    std::panic::set_hook(Box::new(|info| page::show_error(&info.to_string())));
+    let scene = match initial_scene() {
+        Ok(scene) => scene,
+        Err(e) => {
+            page::show_error(&e);
+            return;
+        }
+    };
+    let event_loop = match EventLoop::<Ready>::with_user_event().build() {
+        Ok(event_loop) => event_loop,
+        Err(e) => {
+            page::show_error(&format!("cannot start the page's event loop: {e}"));
+            return;
+        }
+    };
+    event_loop.set_control_flow(ControlFlow::Wait);
+    let max_samples = page::query("samples")
+        .and_then(|n| n.parse::<u32>().ok())
+        .map_or(MAX_SAMPLES, |n| n.max(1));
+    let app = Page {
+        proxy: event_loop.create_proxy(),
+        scene,
+        max_samples,
+        window: None,
+        gfx: None,
+    };
+    event_loop.spawn_app(app);
+}
+
+/// The scene the page opens with: the one in the address's `#scene=` link,
+/// else the bundled Whitted scene. A broken link is reported over the canvas
+/// and the Whitted scene shown.
+fn initial_scene() -> Result<Scene, String> {
+    if let Some(text) = page::hash().as_deref().and_then(link::scene_in_hash) {
+        match text.and_then(|text| Scene::from_toml_str(&text, None).map_err(|e| e.to_string())) {
+            Ok(scene) => {
+                page::event("scene from-link");
+                return Ok(scene);
+            }
+            Err(e) => page::show_error(&format!("the link's scene cannot be shown: {e}")),
+        }
+    }
+    let name = bundled::names()[0];
+    let text = bundled::text(name).expect("a bundled scene has its text");
+    page::event(&format!("scene {name}"));
+    Scene::from_toml_str(text, None).map_err(|e| e.to_string())
+}
+
+/// The GPU objects made asynchronously, handed to the event loop.
+pub struct Ready(Result<Graphics, String>);
+
+/// Everything that draws into the canvas.
+struct Graphics {
+    gpu: Gpu,
+    viewport: Viewport,
+}
+
+struct Page {
+    proxy: EventLoopProxy<Ready>,
+    scene: Scene,
+    max_samples: u32,
+    window: Option<Arc<Window>>,
+    gfx: Option<Graphics>,
+}
+
+impl ApplicationHandler<Ready> for Page {
+    fn resumed(&mut self, event_loop: &ActiveEventLoop) {
+        if self.window.is_some() {
+            return;
+        }
+        let attributes = Window::default_attributes()
+            .with_title("raysandbox")
+            .with_canvas(page::canvas());
+        let window = match event_loop.create_window(attributes) {
+            Ok(window) => Arc::new(window),
+            Err(e) => {
+                page::show_error(&format!("cannot use the page's canvas: {e}"));
+                return;
+            }
+        };
+        self.window = Some(window.clone());
+        let proxy = self.proxy.clone();
+        let scene = self.scene.clone();
+        wasm_bindgen_futures::spawn_local(async move {
+            let gfx = create_graphics(window, &scene).await;
+            let _ = proxy.send_event(Ready(gfx));
+        });
+    }
+
+    fn user_event(&mut self, _: &ActiveEventLoop, Ready(gfx): Ready) {
+        match gfx {
+            Ok(mut gfx) => {
+                page::event(&format!("adapter {}", gfx.gpu.describe()));
+                // The canvas may have been laid out while the device was
+                // being made: draw at its size now.
+                if let Some(window) = &self.window {
+                    let size = window.inner_size();
+                    gfx.viewport.resize(&gfx.gpu, (size.width, size.height));
+                }
+                self.gfx = Some(gfx);
+                self.request_redraw();
+            }
+            Err(e) => page::show_error(&e),
+        }
+    }
+
+    fn window_event(&mut self, _: &ActiveEventLoop, _: WindowId, event: WindowEvent) {
+        match event {
+            WindowEvent::Resized(size) => {
+                if let Some(gfx) = &mut self.gfx {
+                    gfx.viewport.resize(&gfx.gpu, (size.width, size.height));
+                }
+                self.request_redraw();
+            }
+            WindowEvent::RedrawRequested => self.redraw(),
+            _ => {}
+        }
+    }
+}
+
+impl Page {
+    fn request_redraw(&self) {
+        if let Some(window) = &self.window {
+            window.request_redraw();
+        }
+    }
+
+    /// Adds one sample per pixel until the limit, then stops drawing.
+    fn redraw(&mut self) {
+        let Some(gfx) = &mut self.gfx else { return };
+        let before = gfx.viewport.samples();
+        let new_samples = u32::from(before < self.max_samples);
+        let status = gfx.viewport.frame(&gfx.gpu, new_samples, |_, _| Vec::new());
+        let samples = gfx.viewport.samples();
+        if status == FrameStatus::Presented && before == 0 && samples > 0 {
+            let (w, h) = gfx.viewport.traced_resolution();
+            page::event(&format!("first-frame {w}x{h}"));
+        }
+        if new_samples > 0 && samples >= self.max_samples {
+            page::event(&format!("ready samples={samples}"));
+        }
+        if status == FrameStatus::Skipped || new_samples > 0 {
+            self.request_redraw();
+        }
+    }
+}
+
+/// The WebGPU adapter and device, and the tracer's pipelines for `scene`,
+/// validated before the first frame.
+async fn create_graphics(window: Arc<Window>, scene: &Scene) -> Result<Graphics, String> {
+    let instance = wgpu::Instance::new(wgpu::InstanceDescriptor {
+        backends: wgpu::Backends::BROWSER_WEBGPU,
+        ..wgpu::InstanceDescriptor::new_without_display_handle()
+    });
+    let size = window.inner_size();
+    let surface = instance
+        .create_surface(window)
+        .map_err(|e| format!("cannot draw into the canvas: {e}"))?;
+    let options = wgpu::RequestAdapterOptions {
+        power_preference: wgpu::PowerPreference::HighPerformance,
+        force_fallback_adapter: false,
+        compatible_surface: Some(&surface),
+        apply_limit_buckets: false,
+    };
+    let gpu = Gpu::request(instance, &options)
+        .await
+        .map_err(|e| page::no_webgpu_help(&e.to_string()))?;
+    let formats = Viewport::output_formats(&gpu, &surface);
+    let source = ShaderSource::embedded();
+    let pipelines = Pipelines::with_outline_async(
+        &gpu.device,
+        &source,
+        &formats,
+        &ShaderOptions::for_scene(scene),
+    )
+    .await
+    .map_err(|e| e.to_string())?;
+    let viewport = Viewport::new(&gpu, surface, (size.width, size.height), pipelines, scene);
+    Ok(Graphics { gpu, viewport })
+}
