@@ -25,7 +25,9 @@ use super::watch;
 use crate::gpu::{EXPORT_FORMAT, Gpu, GpuTimer, Timing, Viewport};
 use crate::sandbox::channels::{self, CHANNELS};
 use crate::sandbox::clock::{Clock, Tick};
-use crate::sandbox::render::{Canvas, PipelineBuilder, SandboxGpu, ShaderPipeline};
+use crate::sandbox::render::{
+    BuildFailed, Canvas, FRAME_LIMIT, PipelineBuilder, SandboxGpu, ShaderPipeline, build_too_slow,
+};
 use crate::sandbox::watchdog::Probe;
 use crate::sandbox::{
     self, Compiled, FrameUniforms, ReloadError, SandboxError, Session, ShaderArgs, uniforms,
@@ -55,6 +57,8 @@ enum SandboxEvent {
         generation: u64,
         compiled: Box<Compiled>,
         result: Result<ShaderPipeline, String>,
+        /// Not the first load (see [`SandboxApp::load`]).
+        reloaded: bool,
     },
 }
 
@@ -77,16 +81,21 @@ pub fn run_sandbox(args: &ShaderArgs) -> Result<(), SandboxError> {
     })
 }
 
-/// Builds the pipeline of a compiled shader, then lets the watchdog draw a
-/// trial frame with it: a shader that would freeze the window at `size` is
-/// refused like a compile error.
+/// Builds the pipeline of a compiled shader within [`FRAME_LIMIT`] (a
+/// driver compiling for ever is reported, not waited for), then lets the
+/// watchdog draw a trial frame with it: a shader that would freeze the
+/// window at `size` is refused like a compile error.
 fn build_checked(
     builder: &PipelineBuilder,
     probe: &Mutex<Probe>,
     compiled: &Compiled,
     size: (u32, u32),
 ) -> Result<ShaderPipeline, String> {
-    let pipeline = builder.build(compiled)?;
+    let pipeline = match builder.build_within(compiled, FRAME_LIMIT) {
+        Ok(pipeline) => pipeline,
+        Err(BuildFailed::Refused(m)) => return Err(m),
+        Err(BuildFailed::TooSlow) => return Err(build_too_slow(&compiled.file)),
+    };
     probe
         .lock()
         .unwrap_or_else(PoisonError::into_inner)
@@ -134,6 +143,7 @@ fn open_window(
         last_tick: None,
         after_present: Vec::new(),
         ready: false,
+        building: false,
         repaint_at: None,
         channels: ChannelPanel { paths, images },
     };
@@ -290,6 +300,10 @@ struct SandboxApp {
     /// Event lines to print once the next frame is on screen.
     after_present: Vec<String>,
     ready: bool,
+    /// A pipeline build for the current text is running: "ready" waits for
+    /// it on the first load, so the first frame shown is the shader's (or
+    /// its error).
+    building: bool,
     repaint_at: Option<Instant>,
     channels: ChannelPanel,
 }
@@ -302,7 +316,7 @@ impl ApplicationHandler<SandboxEvent> for SandboxApp {
         match self.create_graphics(event_loop) {
             Ok(gfx) => {
                 self.gfx = Some(gfx);
-                self.first_load();
+                self.load(false);
                 let proxy = self.proxy.clone();
                 match watch::watch_file(&self.options.file, move || {
                     let _ = proxy.send_event(SandboxEvent::FileChanged);
@@ -320,14 +334,16 @@ impl ApplicationHandler<SandboxEvent> for SandboxApp {
 
     fn user_event(&mut self, _: &ActiveEventLoop, event: SandboxEvent) {
         match event {
-            SandboxEvent::FileChanged => self.reload(),
+            SandboxEvent::FileChanged => self.load(true),
             SandboxEvent::Built {
                 generation,
                 compiled,
                 result,
+                reloaded,
             } => {
                 if generation == self.generation {
-                    self.built(*compiled, result, true);
+                    self.building = false;
+                    self.built(*compiled, result, reloaded);
                 }
             }
         }
@@ -418,24 +434,12 @@ impl SandboxApp {
         }
     }
 
-    /// The first compile and build, on this thread: the window shows the
-    /// first frame of the shader (or its error) from the start.
-    fn first_load(&mut self) {
-        let Some(gfx) = &self.gfx else { return };
-        let (builder, size) = (gfx.builder.clone(), gfx.canvas.size());
-        match self.session.compile() {
-            Ok(Some(compiled)) => {
-                let result = build_checked(&builder, &self.probe, &compiled, size);
-                self.built(compiled, result, false);
-            }
-            Ok(None) => {}
-            Err(e) => self.failed(&e),
-        }
-    }
-
-    /// The file changed: compile now (naga, quick), build the pipeline on
-    /// another thread while the last good one keeps drawing.
-    fn reload(&mut self) {
+    /// The first load and every change of the file: compile now (naga,
+    /// quick), build the pipeline on another thread while the window keeps
+    /// drawing (the last good shader, if any). The first load takes the same
+    /// path, so that a driver stuck on the first shader never freezes the
+    /// window either.
+    fn load(&mut self, reloaded: bool) {
         if self.gfx.is_none() {
             return;
         }
@@ -445,6 +449,7 @@ impl SandboxApp {
             Err(e) => {
                 // A build still running is for older text: drop its result.
                 self.generation += 1;
+                self.building = false;
                 return self.failed(&e);
             }
         };
@@ -455,12 +460,14 @@ impl SandboxApp {
         let probe = Arc::clone(&self.probe);
         let proxy = self.proxy.clone();
         let generation = self.generation;
+        self.building = true;
         std::thread::spawn(move || {
             let result = build_checked(&builder, &probe, &compiled, size);
             let _ = proxy.send_event(SandboxEvent::Built {
                 generation,
                 compiled: Box::new(compiled),
                 result,
+                reloaded,
             });
         });
     }
@@ -870,7 +877,7 @@ impl SandboxApp {
             self.check_next = false;
             self.last_check = Instant::now();
         }
-        if !self.ready {
+        if !self.ready && !self.building {
             self.ready = true;
             self.events.event("ready");
         }

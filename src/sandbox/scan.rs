@@ -135,11 +135,15 @@ impl<'a> Scan<'a> {
     /// Drops the tokens of preprocessor branches that are not taken, so
     /// that `#ifdef A void main() { #else void mainImage(...) { #endif`
     /// reads as one function. `defined` are the macros defined before the
-    /// text; `#define`s in taken branches add to them. `#if`/`#elif` with
-    /// an expression other than `0`, `1` or `[!]defined(NAME)` count as
-    /// true: then the first branch is read. The directives themselves stay.
+    /// text (as `1`); `#define`s in taken branches add to them, with their
+    /// values. `#if`/`#elif` conditions are evaluated when they are simple
+    /// (see [`condition`]); others count as true: then the first branch is
+    /// read. The directives themselves stay.
     pub fn drop_inactive_branches(&mut self, defined: &[&str]) {
-        let mut defined: Vec<String> = defined.iter().map(|d| d.to_string()).collect();
+        let mut defined: Vec<(String, String)> = defined
+            .iter()
+            .map(|d| (d.to_string(), "1".to_string()))
+            .collect();
         // Per open `#if`: (this branch is taken, a branch of it was taken).
         let mut open: Vec<(bool, bool)> = Vec::new();
         let mut kept = Vec::with_capacity(self.tokens.len());
@@ -158,11 +162,11 @@ impl<'a> Scan<'a> {
             let first_word = rest.split_whitespace().next().unwrap_or_default();
             match keyword {
                 "ifdef" => {
-                    let taken = defined.iter().any(|d| d == first_word);
+                    let taken = defined.iter().any(|(d, _)| d == first_word);
                     open.push((taken, taken));
                 }
                 "ifndef" => {
-                    let taken = !defined.iter().any(|d| d == first_word);
+                    let taken = !defined.iter().any(|(d, _)| d == first_word);
                     open.push((taken, taken));
                 }
                 "if" => {
@@ -186,9 +190,10 @@ impl<'a> Scan<'a> {
                 }
                 "define" if active => {
                     let name = first_word.split('(').next().unwrap_or_default();
-                    defined.push(name.to_string());
+                    let value = rest[first_word.len()..].trim();
+                    defined.push((name.to_string(), value.to_string()));
                 }
-                "undef" if active => defined.retain(|d| *d != first_word),
+                "undef" if active => defined.retain(|(d, _)| d != first_word),
                 _ => {}
             }
             kept.push(token);
@@ -286,26 +291,83 @@ impl<'a> Scan<'a> {
 }
 
 /// The value of a preprocessor condition as far as it can be told without
-/// evaluating it: `0`, `1`, `defined(NAME)`, `defined NAME`, `!defined(NAME)`;
-/// anything else counts as true.
-fn condition(expression: &str, defined: &[String]) -> bool {
+/// a full preprocessor: `||` and `&&` of terms, each `[!]defined(NAME)`,
+/// `[!]defined NAME`, a number or macro (true when not zero), or a
+/// comparison (`==`, `!=`, `<`, `<=`, `>`, `>=`) of two of them, as in
+/// `#if SHADERTOY == 1`. A macro not defined is 0, as in C. Anything else
+/// counts as true.
+fn condition(expression: &str, defined: &[(String, String)]) -> bool {
     let compact: String = expression.chars().filter(|c| !c.is_whitespace()).collect();
-    let (negated, rest) = match compact.strip_prefix('!') {
-        Some(rest) => (true, rest),
-        None => (false, compact.as_str()),
-    };
-    let value = match rest {
-        "0" => false,
-        "1" => true,
-        _ => match rest.strip_prefix("defined") {
-            Some(name) => {
-                let name = name.trim_start_matches('(').trim_end_matches(')');
-                defined.iter().any(|d| d == name)
-            }
-            None => return true,
-        },
-    };
-    value != negated
+    let compact = compact
+        .replace("defined(", "defined ")
+        .replace("defined", "defined ");
+    evaluate(&compact, defined).unwrap_or(true)
+}
+
+/// `None` when the expression is not simple enough for [`condition`].
+fn evaluate(expression: &str, defined: &[(String, String)]) -> Option<bool> {
+    if expression.contains("||") {
+        let mut any = false;
+        for term in expression.split("||") {
+            any |= evaluate(term, defined)?;
+        }
+        return Some(any);
+    }
+    if expression.contains("&&") {
+        let mut all = true;
+        for term in expression.split("&&") {
+            all &= evaluate(term, defined)?;
+        }
+        return Some(all);
+    }
+    let term = expression.trim();
+    if let Some(inner) = term.strip_prefix('(').and_then(|t| t.strip_suffix(')')) {
+        return evaluate(inner, defined);
+    }
+    if let Some(name) = term.strip_prefix("defined ") {
+        let name = name.trim().trim_start_matches('(').trim_end_matches(')');
+        return Some(defined.iter().any(|(d, _)| d == name));
+    }
+    for op in ["==", "!=", "<=", ">=", "<", ">"] {
+        if let Some((left, right)) = term.split_once(op) {
+            let (a, b) = (value(left, defined)?, value(right, defined)?);
+            return Some(match op {
+                "==" => a == b,
+                "!=" => a != b,
+                "<=" => a <= b,
+                ">=" => a >= b,
+                "<" => a < b,
+                _ => a > b,
+            });
+        }
+    }
+    if let Some(rest) = term.strip_prefix('!') {
+        return evaluate(rest, defined).map(|v| !v);
+    }
+    value(term, defined).map(|v| v != 0)
+}
+
+/// An integer or the integer a macro is defined as (0 when not defined).
+fn value(operand: &str, defined: &[(String, String)]) -> Option<i64> {
+    let operand = operand.trim().trim_start_matches('(').trim_end_matches(')');
+    if let Ok(number) = operand
+        .trim_end_matches(['u', 'U', 'l', 'L'])
+        .parse::<i64>()
+    {
+        return Some(number);
+    }
+    if !operand
+        .chars()
+        .all(|c| c.is_ascii_alphanumeric() || c == '_')
+        || operand.is_empty()
+    {
+        return None;
+    }
+    match defined.iter().rev().find(|(d, _)| d == operand) {
+        Some((_, body)) if body.is_empty() => None,
+        Some((_, body)) => body.trim().parse::<i64>().ok(),
+        None => Some(0),
+    }
 }
 
 /// Replaces `text[range]` with spaces, keeping newlines, so that every byte
@@ -413,6 +475,49 @@ void other() {
                 .count(),
             11
         );
+    }
+
+    #[test]
+    fn simple_if_conditions_are_evaluated() {
+        let text = "\
+#define SHADERTOY 1
+#define VERSION 2
+#if SHADERTOY == 1
+void mainImage(out vec4 c, in vec2 p) {
+#else
+void main() {
+#endif
+}
+#if VERSION > 2 || !defined(SHADERTOY)
+int newer;
+#elif VERSION != 2
+int other;
+#elif defined(SHADERTOY) && VERSION >= 2
+int taken;
+#endif
+#if UNDEFINED == 1
+int not_this;
+#endif
+";
+        let mut scan = Scan::new(text);
+        scan.drop_inactive_branches(&["GL_ES"]);
+        let code: Vec<&str> = scan
+            .tokens
+            .iter()
+            .filter(|t| t.kind != Kind::Directive)
+            .map(|t| t.text)
+            .collect();
+        let joined = code.join(" ");
+        assert_eq!(
+            joined,
+            "void mainImage ( out vec4 c , in vec2 p ) { } int taken ;"
+        );
+        let defined = [("A".to_string(), "3".to_string())];
+        assert!(condition("A == 3", &defined));
+        assert!(!condition("(A < 3)", &defined));
+        assert!(!condition("B", &defined), "an undefined macro is 0");
+        // Beyond this reading (arithmetic): the first branch, as before.
+        assert!(condition("A + 1 == 4", &defined));
     }
 
     #[test]

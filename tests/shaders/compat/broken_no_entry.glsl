@@ -1,2 +1,2 @@
-// expect: error error: neither `void main()`
+// expect: error 2:31: error: neither `void main()`
 float f(float x) { return x; }
