@@ -624,7 +624,7 @@ fn shapes_section(
     state: &mut PanelState,
     actions: &mut Vec<PanelAction>,
 ) {
-    ui.horizontal(|ui| {
+    ui.horizontal_wrapped(|ui| {
         for &kind in ShapeKind::ALL {
             let label = format!("Add {}", kind.name().to_lowercase());
             if ui.button(label).clicked() {

@@ -42,6 +42,9 @@ impl EditShape for Julia {
         {
             field(ui, name, "The constant of z <- z^2 + c; |c| <= 2");
             let slider = ui.add(egui::Slider::new(&mut self.c[i], -2.0..=2.0));
+            if slider.changed() {
+                self.keep_c_inside(i);
+            }
             held |= slider.dragged() || slider.has_focus();
             ui.end_row();
         }
@@ -75,12 +78,43 @@ impl EditShape for Julia {
         );
         held
     }
+}
 
-    /// |c| <= 2: a c dragged past it is brought back to length 2.
-    fn settle(&mut self) {
+impl Julia {
+    /// |c| <= 2 (docs/scene-format.md) at every frame, also while a slider
+    /// is dragged: the component just moved stops where |c| reaches 2, so
+    /// the other three keep the values the user gave them.
+    fn keep_c_inside(&mut self, moved: usize) {
         let c = DVec4::from_array(self.c);
         if c.length() > 2.0 {
-            self.c = (c * (2.0 / c.length())).to_array();
+            let others = c.length_squared() - self.c[moved] * self.c[moved];
+            // A hair inside, so that rounding cannot land |c| above 2.
+            let room = (4.0 - others).max(0.0).sqrt() * (1.0 - 1e-12);
+            self.c[moved] = room.copysign(self.c[moved]);
         }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// A slider pushed past |c| = 2 stops on the sphere of radius 2 and
+    /// leaves the other components alone; the scene stays valid.
+    #[test]
+    fn a_component_dragged_past_two_stops_on_the_sphere() {
+        let at = Placement {
+            target: DVec3::ZERO,
+            right: DVec3::X,
+            up: DVec3::Y,
+            scale: 1.0,
+        };
+        let mut julia = Julia::new_near(&at);
+        julia.c = [1.5, -1.9, 0.25, 0.0];
+        julia.keep_c_inside(1);
+        assert_eq!([julia.c[0], julia.c[2], julia.c[3]], [1.5, 0.25, 0.0]);
+        assert!(julia.c[1] < 0.0);
+        let length = DVec4::from_array(julia.c).length();
+        assert!(length <= 2.0 && length > 2.0 - 1e-9, "{length}");
     }
 }
