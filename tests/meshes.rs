@@ -11,6 +11,7 @@ use std::path::PathBuf;
 use std::process::{Command, Output};
 
 use glam::DVec3;
+use raysandbox::bench::storage;
 use raysandbox::compare::diff_images;
 use raysandbox::gpu::ShaderSource;
 use raysandbox::scene::{Geometry, Scene, TriangleTest};
@@ -282,4 +283,32 @@ fn check_loads_every_mesh_scene() {
         );
         assert!(stdout.contains("triangles)"), "{stdout}");
     }
+}
+
+/// The storage comparison of `raysandbox bench --meshes` times equal work:
+/// on a closed sphere, every ray tested against every triangle finds the
+/// same nearest triangle at the same t (to the bit) whether the triangles
+/// are read as the renderer stores them or through indices, and most rays
+/// do hit.
+#[test]
+fn both_storage_layouts_find_identical_hits() {
+    let Some(gpu) = common::gpu() else { return };
+    let (positions, triangles) = leaks::uv_sphere(8);
+    let geometry = Geometry {
+        positions,
+        triangles,
+        normals: Vec::new(),
+        dropped: 0,
+    };
+    let layouts = storage::Layouts::new(&geometry, 1024, geometry.triangles.len());
+    let leaf = storage::nearest_hits(&gpu, &layouts, false).unwrap();
+    let indexed = storage::nearest_hits(&gpu, &layouts, true).unwrap();
+    assert_eq!(leaf, indexed);
+    let hits = leaf.iter().filter(|h| h[1] != u32::MAX).count();
+    assert!(hits > 500, "only {hits} of 1024 rays hit the sphere");
+    let missed = leaf
+        .iter()
+        .find(|h| h[1] == u32::MAX)
+        .expect("rays past the sphere");
+    assert_eq!(f32::from_bits(missed[0]), 1e30, "a miss keeps t = T_FAR");
 }

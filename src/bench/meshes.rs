@@ -5,7 +5,8 @@
 //! mesh scaled to the same size on a floor, with its shadow) and the error
 //! against the f64 reference. Then the targets: the largest mesh's frame
 //! time over the teapot's (timed in turn), and the load time of a 10 MB OBJ
-//! file written for the occasion and deleted after.
+//! file written for the occasion and deleted after. Last, the two storage
+//! layouts of `storage` timed against each other on every mesh.
 
 use std::fmt::Write as _;
 use std::path::Path;
@@ -14,6 +15,7 @@ use std::time::{Duration, Instant};
 use glam::DVec3;
 
 use super::measure;
+use super::storage::{self, StorageRow};
 use super::{BenchArgs, BenchError, cpu_model, fail, ms, timing_of};
 use crate::bvh::build_mesh_bvh;
 use crate::gpu::layout::PackedScene;
@@ -172,7 +174,14 @@ struct Plan {
     frame_size: (u32, u32),
     error_size: (u32, u32),
     meshes: usize,
+    /// Rays per dispatch of the storage comparison, and dispatches timed.
+    storage_rays: usize,
+    storage_runs: usize,
 }
+
+/// Triangles each ray of the storage comparison is tested against: a few
+/// BVH leaves' worth, enough for the loop to dominate the dispatch.
+const STORAGE_BLOCK: usize = 64;
 
 impl Plan {
     fn new(quick: bool) -> Plan {
@@ -181,12 +190,16 @@ impl Plan {
                 frame_size: (320, 180),
                 error_size: (96, 54),
                 meshes: 3,
+                storage_rays: 16_384,
+                storage_runs: 3,
             }
         } else {
             Plan {
                 frame_size: (1280, 720),
                 error_size: (320, 180),
                 meshes: MESHES.len(),
+                storage_rays: 65_536,
+                storage_runs: 9,
             }
         }
     }
@@ -409,6 +422,7 @@ pub fn run(gpu: &Gpu, args: &BenchArgs) -> Result<(), BenchError> {
         obj.triangles,
         obj.load_ms
     );
+    let storage_rows = storage_rows(gpu, &plan)?;
     let plot = args.out.join("meshes.png");
     frame_time_plot(&plot, &rows).map_err(|e| fail(&plot, e))?;
     let write = |name: &str, text: String| {
@@ -416,12 +430,38 @@ pub fn run(gpu: &Gpu, args: &BenchArgs) -> Result<(), BenchError> {
         std::fs::write(&path, text).map_err(|e| fail(&path, e))
     };
     write("meshes.csv", csv(&rows))?;
+    write("storage.csv", storage::csv(&storage_rows))?;
     write(
         "meshes.md",
-        markdown(&machine, threads, &plan, &rows, &ratio, &obj, &missing),
+        markdown(&machine, threads, &plan, &rows, &ratio, &obj, &missing)
+            + &storage::markdown(&storage_rows),
     )?;
     println!("wrote {}", args.out.join("meshes.md").display());
     Ok(())
+}
+
+/// The storage comparison on every mesh of the plan that is present.
+fn storage_rows(gpu: &Gpu, plan: &Plan) -> Result<Vec<StorageRow>, BenchError> {
+    let mut rows = Vec::new();
+    for (name, file) in MESHES.iter().take(plan.meshes) {
+        let path = project().join(file);
+        if !path.exists() {
+            continue;
+        }
+        let geometry = load_file(&path, false).map_err(BenchError::Failed)?;
+        let row = storage::measure(
+            gpu,
+            name,
+            &geometry,
+            plan.storage_rays,
+            STORAGE_BLOCK,
+            plan.storage_runs,
+        )
+        .map_err(BenchError::Failed)?;
+        println!("{}", storage::console_line(&row));
+        rows.push(row);
+    }
+    Ok(rows)
 }
 
 fn console_line(r: &MeshRow) -> String {

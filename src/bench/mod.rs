@@ -5,6 +5,7 @@
 mod measure;
 mod meshes;
 mod plot;
+pub mod storage;
 mod sweeps;
 
 use std::fmt::Write as _;

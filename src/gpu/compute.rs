@@ -3,6 +3,8 @@
 //! `tests/wgsl_intersections.rs`) and of the GPU leak count of
 //! `raysandbox stress` (docs/accuracy.md, "Watertightness").
 
+use std::time::{Duration, Instant};
+
 use wgpu::util::DeviceExt;
 
 use super::{Gpu, ShaderSource};
@@ -41,6 +43,21 @@ impl Kernel<'_> {
         invocations: usize,
         results: usize,
     ) -> Result<Vec<R>, String> {
+        let prepared = self.prepare(gpu, inputs, results * std::mem::size_of::<R>())?;
+        prepared.dispatch(gpu, invocations)?;
+        prepared.read(gpu)
+    }
+
+    /// Compiles the kernel and uploads `inputs` (bindings `0..n`) with a
+    /// results buffer of `result_bytes` after them, so that the kernel can
+    /// be dispatched and timed many times without compiling or uploading
+    /// again (`raysandbox bench --meshes`, "Storage").
+    pub fn prepare(
+        &self,
+        gpu: &Gpu,
+        inputs: &[&[u8]],
+        result_bytes: usize,
+    ) -> Result<Prepared, String> {
         self.source.validate().map_err(|e| e.to_string())?;
         let device = &gpu.device;
         let module = device.create_shader_module(wgpu::ShaderModuleDescriptor {
@@ -68,17 +85,11 @@ impl Kernel<'_> {
                 })
             })
             .collect();
-        let size = (results * std::mem::size_of::<R>()) as u64;
+        let size = result_bytes as u64;
         let output = device.create_buffer(&wgpu::BufferDescriptor {
             label: Some("results"),
             size,
             usage: wgpu::BufferUsages::STORAGE | wgpu::BufferUsages::COPY_SRC,
-            mapped_at_creation: false,
-        });
-        let readback = device.create_buffer(&wgpu::BufferDescriptor {
-            label: Some("readback"),
-            size,
-            usage: wgpu::BufferUsages::COPY_DST | wgpu::BufferUsages::MAP_READ,
             mapped_at_creation: false,
         });
         let entries: Vec<wgpu::BindGroupEntry> = buffers
@@ -95,14 +106,52 @@ impl Kernel<'_> {
             layout: &pipeline.get_bind_group_layout(self.group),
             entries: &entries,
         });
-        let mut encoder = device.create_command_encoder(&Default::default());
+        Ok(Prepared {
+            pipeline,
+            bind_group,
+            group: self.group,
+            output,
+            size,
+        })
+    }
+}
+
+/// A compiled kernel with its buffers bound (see [`Kernel::prepare`]).
+pub struct Prepared {
+    pipeline: wgpu::ComputePipeline,
+    bind_group: wgpu::BindGroup,
+    group: u32,
+    output: wgpu::Buffer,
+    size: u64,
+}
+
+impl Prepared {
+    /// Runs `invocations` invocations in workgroups of 64 and waits for
+    /// them: returns the wall-clock time from submission to completion.
+    pub fn dispatch(&self, gpu: &Gpu, invocations: usize) -> Result<Duration, String> {
+        let mut encoder = gpu.device.create_command_encoder(&Default::default());
         {
             let mut pass = encoder.begin_compute_pass(&Default::default());
-            pass.set_pipeline(&pipeline);
-            pass.set_bind_group(self.group, &bind_group, &[]);
+            pass.set_pipeline(&self.pipeline);
+            pass.set_bind_group(self.group, &self.bind_group, &[]);
             pass.dispatch_workgroups((invocations as u32).div_ceil(64), 1, 1);
         }
-        encoder.copy_buffer_to_buffer(&output, 0, &readback, 0, size);
+        let start = Instant::now();
+        gpu.queue.submit([encoder.finish()]);
+        gpu.wait().map_err(|e| e.to_string())?;
+        Ok(start.elapsed())
+    }
+
+    /// The results of the last dispatch, as values of `R`.
+    pub fn read<R: bytemuck::Pod>(&self, gpu: &Gpu) -> Result<Vec<R>, String> {
+        let readback = gpu.device.create_buffer(&wgpu::BufferDescriptor {
+            label: Some("readback"),
+            size: self.size,
+            usage: wgpu::BufferUsages::COPY_DST | wgpu::BufferUsages::MAP_READ,
+            mapped_at_creation: false,
+        });
+        let mut encoder = gpu.device.create_command_encoder(&Default::default());
+        encoder.copy_buffer_to_buffer(&self.output, 0, &readback, 0, self.size);
         gpu.queue.submit([encoder.finish()]);
         let slice = readback.slice(..);
         let (sender, mapped) = std::sync::mpsc::channel();
@@ -117,4 +166,15 @@ impl Kernel<'_> {
         let data = slice.get_mapped_range().map_err(|e| e.to_string())?;
         Ok(bytemuck::cast_slice(&data).to_vec())
     }
+}
+
+/// `source` with a compute kernel's WGSL (`name`, `text`) appended: the
+/// kernel calls the shader's own functions (`hit_triangle`, ...).
+pub fn with_kernel(source: &ShaderSource, name: &str, text: &str) -> ShaderSource {
+    ShaderSource::from_parts(
+        source
+            .parts()
+            .map(|(name, text)| (name.to_string(), text.to_string()))
+            .chain([(name.to_string(), text.to_string())]),
+    )
 }

@@ -15,7 +15,7 @@ use bytemuck::{Pod, Zeroable};
 use glam::DVec3;
 use rayon::prelude::*;
 
-use crate::gpu::compute::Kernel;
+use crate::gpu::compute::{Kernel, with_kernel};
 use crate::gpu::{Gpu, ShaderSource};
 use crate::reference::ray::Ray;
 use crate::reference::shapes::mesh::hit_triangle;
@@ -289,19 +289,6 @@ impl GpuInputs {
     }
 }
 
-/// The shader source with the counting kernel appended.
-fn kernel_source(source: &ShaderSource) -> ShaderSource {
-    ShaderSource::from_parts(
-        source
-            .parts()
-            .map(|(name, text)| (name.to_string(), text.to_string()))
-            .chain([(
-                "src/stress/leaks.wgsl".to_string(),
-                include_str!("leaks.wgsl").to_string(),
-            )]),
-    )
-}
-
 /// Leaks of the shader's `test` in f32 on the GPU.
 fn count_gpu(
     gpu: &Gpu,
@@ -358,7 +345,7 @@ const SEED: u64 = 0x9e37_79b9_7f4a_7c15;
 /// Counts the leaks of every test on every mesh of [`meshes`], `rays`
 /// rays per mesh (the same rays for every test).
 pub fn measure(gpu: &Gpu, source: &ShaderSource, rays: usize) -> Result<Vec<LeakRow>, String> {
-    let source = kernel_source(source);
+    let source = with_kernel(source, "src/stress/leaks.wgsl", include_str!("leaks.wgsl"));
     let mut rows = Vec::new();
     for mesh in meshes()? {
         let topology = Topology::of(&mesh);
