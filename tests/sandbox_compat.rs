@@ -343,3 +343,33 @@ fn check_all_prints_a_verdict_per_file_and_the_totals() {
         "{stdout}"
     );
 }
+
+/// Real shaders from glslsandbox.com and Shadertoy whose licence allows
+/// keeping them here (tests/shaders/real/SOURCES.md): each renders
+/// unchanged, with no warning, and each is listed with its source.
+#[test]
+fn real_shaders_with_open_licences_render_unchanged() {
+    let Some(gpu) = common::gpu() else { return };
+    let dir = Path::new(env!("CARGO_MANIFEST_DIR")).join("tests/shaders/real");
+    let sources = std::fs::read_to_string(dir.join("SOURCES.md")).unwrap();
+    let mut files: Vec<PathBuf> = std::fs::read_dir(&dir)
+        .unwrap()
+        .map(|e| e.unwrap().path())
+        .filter(|p| p.extension().is_some_and(|e| e != "md"))
+        .collect();
+    files.sort();
+    assert!(files.len() >= 20, "{files:?}");
+    let mut wrong = Vec::new();
+    for path in &files {
+        let name = path.file_name().unwrap().to_string_lossy();
+        if !sources.contains(&format!("| {name} |")) {
+            wrong.push(format!("{name}: not in SOURCES.md"));
+        }
+        match render_file(&gpu, path, SIZE, 1.0, None) {
+            Ok((_, stats)) if stats.warning().is_none() => {}
+            Ok((_, stats)) => wrong.push(format!("{name}: {:?}", stats.warning())),
+            Err(e) => wrong.push(format!("{name}: {e}")),
+        }
+    }
+    assert!(wrong.is_empty(), "{}", wrong.join("\n"));
+}
