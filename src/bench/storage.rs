@@ -182,6 +182,24 @@ pub struct StorageRow {
     pub runs: usize,
 }
 
+impl StorageRow {
+    /// The row's values, in the order of [`STORAGE_COLUMNS`], for the
+    /// Markdown table and the CSV alike.
+    fn fields(&self) -> [String; 9] {
+        [
+            self.mesh.to_string(),
+            self.triangles.to_string(),
+            self.tests.to_string(),
+            self.runs.to_string(),
+            format!("{:.3}", self.leaf_ns),
+            format!("{:.3}", self.indexed_ns),
+            format!("{:.3}", self.ratio),
+            format!("{:.1}", self.leaf_bytes),
+            format!("{:.1}", self.indexed_bytes),
+        ]
+    }
+}
+
 fn median(mut values: Vec<f64>) -> f64 {
     values.sort_by(f64::total_cmp);
     values[values.len() / 2]
@@ -251,19 +269,7 @@ pub fn markdown(rows: &[StorageRow]) -> String {
          | --- | ---: | ---: | ---: | ---: | ---: | ---: | ---: | ---: |\n",
     );
     for r in rows {
-        let _ = writeln!(
-            md,
-            "| {} | {} | {} | {} | {:.3} | {:.3} | {:.3} | {:.1} | {:.1} |",
-            r.mesh,
-            r.triangles,
-            r.tests,
-            r.runs,
-            r.leaf_ns,
-            r.indexed_ns,
-            r.ratio,
-            r.leaf_bytes,
-            r.indexed_bytes
-        );
+        let _ = writeln!(md, "| {} |", r.fields().join(" | "));
     }
     md
 }
@@ -274,19 +280,7 @@ pub const STORAGE_COLUMNS: &str = "mesh,triangles,tests_per_dispatch,runs,leaf_n
 pub fn csv(rows: &[StorageRow]) -> String {
     let mut out = format!("{STORAGE_COLUMNS}\n");
     for r in rows {
-        let _ = writeln!(
-            out,
-            "{},{},{},{},{:.4},{:.4},{:.4},{:.2},{:.2}",
-            r.mesh,
-            r.triangles,
-            r.tests,
-            r.runs,
-            r.leaf_ns,
-            r.indexed_ns,
-            r.ratio,
-            r.leaf_bytes,
-            r.indexed_bytes
-        );
+        let _ = writeln!(out, "{}", r.fields().join(","));
     }
     out
 }
