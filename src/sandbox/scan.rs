@@ -390,6 +390,15 @@ pub fn blank(text: &mut String, range: std::ops::Range<usize>) {
 mod tests {
     use super::*;
 
+    /// The tokens of `scan` that are code, not directives.
+    fn code_tokens<'a>(scan: &Scan<'a>) -> Vec<&'a str> {
+        scan.tokens
+            .iter()
+            .filter(|t| t.kind != Kind::Directive)
+            .map(|t| t.text)
+            .collect()
+    }
+
     #[test]
     fn tokens_comments_and_directives() {
         let text =
@@ -453,12 +462,7 @@ void other() {
 ";
         let mut scan = Scan::new(text);
         scan.drop_inactive_branches(&["GL_ES"]);
-        let code: Vec<&str> = scan
-            .tokens
-            .iter()
-            .filter(|t| t.kind != Kind::Directive)
-            .map(|t| t.text)
-            .collect();
+        let code = code_tokens(&scan);
         let joined = code.join(" ");
         assert!(
             joined.starts_with("precision mediump float ; void mainImage"),
@@ -501,12 +505,7 @@ int not_this;
 ";
         let mut scan = Scan::new(text);
         scan.drop_inactive_branches(&["GL_ES"]);
-        let code: Vec<&str> = scan
-            .tokens
-            .iter()
-            .filter(|t| t.kind != Kind::Directive)
-            .map(|t| t.text)
-            .collect();
+        let code = code_tokens(&scan);
         let joined = code.join(" ");
         assert_eq!(
             joined,

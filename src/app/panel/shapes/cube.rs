@@ -37,13 +37,7 @@ impl EditShape for Cube {
         );
         super::size_row(ui, &mut self.size, 0.002 * scale);
         ui.end_row();
-        field(
-            ui,
-            "rotation",
-            "Degrees about the world x, then y, then z axis",
-        );
-        vec3_row(ui, &mut self.rotation, 0.5, -360.0..=360.0);
-        ui.end_row();
+        super::placed::rotation_row(ui, &mut self.rotation);
         false
     }
 }

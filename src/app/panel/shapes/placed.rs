@@ -1,5 +1,6 @@
-//! The rows the implicit surfaces share: translate, scale, rotation
-//! (docs/scene-format.md, "Implicit surfaces").
+//! The placement rows the implicit surfaces share (translate, scale,
+//! rotation; docs/scene-format.md, "Implicit surfaces"), and the rotation
+//! row that cubes and meshes show too.
 
 use egui::Ui;
 use glam::DVec3;
@@ -26,6 +27,12 @@ pub(super) fn placement_rows(
         MIN_POSITIVE..=VALUE_LIMIT,
     ));
     ui.end_row();
+    rotation_row(ui, rotation);
+}
+
+/// The rotation row every rotated shape shows (Euler angles, x then y
+/// then z, as docs/scene-format.md defines them).
+pub(super) fn rotation_row(ui: &mut Ui, rotation: &mut DVec3) {
     field(
         ui,
         "rotation",
