@@ -2,10 +2,10 @@
 //! as an f64 CPU reference that measures how far the GPU is from exact.
 //!
 //! The same crate builds for the browser (`wasm32`, docs/web.md): there the
-//! page in [`web`] replaces the command line, the window viewer and the
-//! measurements, which need files, threads and a terminal.
+//! page in [`web`] replaces the command line, the window and the
+//! measurements, which need files, threads and a terminal; it shows the
+//! viewer's core ([`app::viewer`]) in the page's canvas.
 
-#[cfg(not(target_arch = "wasm32"))]
 pub mod app;
 #[cfg(not(target_arch = "wasm32"))]
 pub mod bench;

@@ -120,6 +120,11 @@ struct Browser {
 
 impl Browser {
     fn open(display: &common::xwindow::Display, url: &str) -> Browser {
+        Browser::open_sized(display, url, SIZE)
+    }
+
+    /// A window of `size` pixels.
+    fn open_sized(display: &common::xwindow::Display, url: &str, size: (u32, u32)) -> Browser {
         let profile = TempDir::new("raysandbox-chromium");
         let mut child = Command::new(chromium())
             .args(WEBGPU_FLAGS)
@@ -132,7 +137,7 @@ impl Browser {
                 "--enable-logging=stderr",
                 "--v=0",
                 "--window-position=0,0",
-                &format!("--window-size={},{}", SIZE.0, SIZE.1),
+                &format!("--window-size={},{}", size.0, size.1),
                 &format!("--user-data-dir={}", profile.0.display()),
                 &format!("--app={url}"),
             ])
@@ -227,6 +232,11 @@ impl Drop for TempDir {
 
 /// The top-left `SIZE` of the X screen, where the page's window is.
 fn capture_screen(display: &common::xwindow::Display) -> RgbaImage {
+    capture_screen_sized(display, SIZE)
+}
+
+/// The top-left `size` of the X screen.
+fn capture_screen_sized(display: &common::xwindow::Display, size: (u32, u32)) -> RgbaImage {
     let file = std::env::temp_dir().join(format!(
         "raysandbox-web-{}-{}.png",
         std::process::id(),
@@ -240,7 +250,7 @@ fn capture_screen(display: &common::xwindow::Display) -> RgbaImage {
     assert!(status.success(), "import failed");
     let screen = image::open(&file).expect("captured PNG").to_rgba8();
     let _ = std::fs::remove_file(&file);
-    common::xwindow::crop(&screen, (0, 0, SIZE.0, SIZE.1))
+    common::xwindow::crop(&screen, (0, 0, size.0, size.1))
 }
 
 /// The page's picture once it is on the X screen: the browser composites
@@ -262,7 +272,25 @@ fn capture_picture(display: &common::xwindow::Display) -> RgbaImage {
 /// |difference| <= 0.5, at most 0.5% of pixels off by more than 8, no
 /// non-finite pixels, not blank); saves both images when they differ.
 fn assert_like_reference(name: &str, page: &RgbaImage, scene: &Scene) {
-    let expected = reference::render_rgba8(scene, SIZE.0, SIZE.1, 1);
+    let (w, h) = page.dimensions();
+    assert_part_like_reference(name, page, scene, (0, 0, w, h));
+}
+
+/// As [`assert_like_reference`] for the `part` (x, y, w, h) of the page's
+/// picture that the panel leaves visible; the reference image is rendered
+/// at the page's size and cut the same way.
+fn assert_part_like_reference(
+    name: &str,
+    page: &RgbaImage,
+    scene: &Scene,
+    part: (u32, u32, u32, u32),
+) {
+    let (w, h) = page.dimensions();
+    let expected = reference::render_rgba8(scene, w, h, 1);
+    let (page, expected) = (
+        &common::xwindow::crop(page, part),
+        common::xwindow::crop(&expected, part),
+    );
     let d = diff_images(page, &expected);
     let nans = nan_pixels(page, &expected);
     eprintln!(
@@ -303,7 +331,7 @@ fn the_page_renders_the_whitted_scene_like_the_reference() {
         return;
     };
     let url = serve(page_dir());
-    let mut browser = Browser::open(&display, &format!("{url}?samples=1"));
+    let mut browser = Browser::open(&display, &format!("{url}?samples=1&panel=0"));
     assert_eq!(browser.wait_for("scene"), "whitted");
     let adapter = browser.wait_for("adapter");
     eprintln!("page adapter: {adapter}");
@@ -330,9 +358,97 @@ fn a_shared_link_reproduces_the_scene_in_a_fresh_browser() {
     let scene = Scene::from_toml_str(&edited, None).unwrap();
     assert_ne!(scene, original, "the edit changed the scene");
     let url = serve(page_dir());
-    let address = format!("{url}?samples=1#{}", link::scene_hash(&edited));
+    let address = format!("{url}?samples=1&panel=0#{}", link::scene_hash(&edited));
     let mut browser = Browser::open(&display, &address);
     assert_eq!(browser.wait_for("scene"), "from-link");
     browser.wait_for("ready");
     assert_like_reference("link", &capture_picture(&display), &scene);
+}
+
+/// Size of the window for the tests that use the panel: the panel takes
+/// the left part, the picture the rest.
+const PANEL_SIZE: (u32, u32) = (960, 540);
+/// The part of the picture the panel (default width, 330 logical pixels)
+/// and the status line leave visible at [`PANEL_SIZE`].
+const BESIDE_PANEL: (u32, u32, u32, u32) = (360, 40, 600, 460);
+
+/// Runs xdotool on the test's display; the page's window is at the top
+/// left of the screen, so page and screen coordinates are the same.
+fn xdotool(display: &common::xwindow::Display, args: &[&str]) {
+    let status = Command::new("xdotool")
+        .args(args)
+        .env("DISPLAY", display.name())
+        .status()
+        .expect("run xdotool (sudo apt-get install xdotool)");
+    assert!(status.success(), "xdotool {args:?} failed");
+}
+
+fn click(display: &common::xwindow::Display, (x, y): (u32, u32)) {
+    xdotool(
+        display,
+        &["mousemove", &x.to_string(), &y.to_string(), "click", "1"],
+    );
+}
+
+/// A left drag from `a` to `b` in ten steps, as a hand would.
+fn drag(display: &common::xwindow::Display, a: (u32, u32), b: (u32, u32)) {
+    let at = |(x, y): (u32, u32)| xdotool(display, &["mousemove", &x.to_string(), &y.to_string()]);
+    at(a);
+    xdotool(display, &["mousedown", "1"]);
+    for step in 1..=10 {
+        let lerp = |p: u32, q: u32| (p as f64 + (q as f64 - p as f64) * step as f64 / 10.0) as u32;
+        at((lerp(a.0, b.0), lerp(a.1, b.1)));
+        std::thread::sleep(Duration::from_millis(30));
+    }
+    xdotool(display, &["mouseup", "1"]);
+}
+
+/// The scene the page put in its address (`address FRAGMENT` event) after
+/// the last change.
+fn scene_in_address(browser: &mut Browser) -> Scene {
+    let fragment = browser.wait_for("address");
+    let text = link::scene_in_hash(&fragment)
+        .expect("the address carries a scene")
+        .expect("the address's scene decodes");
+    Scene::from_toml_str(&text, None).expect("the address's scene is valid")
+}
+
+/// The screen until it differs from `before` (the browser composites the
+/// canvas some time after the page presented it), or [`TIMEOUT`].
+fn capture_change(
+    display: &common::xwindow::Display,
+    size: (u32, u32),
+    before: &RgbaImage,
+) -> RgbaImage {
+    let deadline = Instant::now() + TIMEOUT;
+    loop {
+        std::thread::sleep(Duration::from_millis(300));
+        let screen = capture_screen_sized(display, size);
+        if diff_images(&screen, before).mean_abs > 1.0 || Instant::now() > deadline {
+            return screen;
+        }
+    }
+}
+
+/// Dragging over the picture orbits the camera: the picture changes, the
+/// address follows (after the drag), and the new picture is the reference
+/// renderer's for the scene in the address: nothing but the camera moved.
+#[test]
+fn orbiting_with_the_mouse_changes_the_picture_and_the_address() {
+    let Some(display) = common::xwindow::Display::start() else {
+        return;
+    };
+    let url = serve(page_dir());
+    let mut browser = Browser::open(&display, &format!("{url}?samples=1&panel=0"));
+    browser.wait_for("ready");
+    let before = capture_picture(&display);
+    drag(&display, (200, 135), (300, 150));
+    let scene = scene_in_address(&mut browser);
+    let (_, whitted) = whitted();
+    assert_ne!(scene.camera, whitted.camera, "the orbit moved the camera");
+    let mut unmoved = scene.clone();
+    unmoved.camera = whitted.camera.clone();
+    assert_eq!(unmoved, whitted, "only the camera changed");
+    let after = capture_change(&display, SIZE, &before);
+    assert_like_reference("orbit", &after, &scene);
 }

@@ -36,6 +36,17 @@ impl Document {
         })
     }
 
+    /// A scene that has no file (one carried in a link, in the web page).
+    pub fn untitled(scene: Scene) -> Self {
+        Document {
+            saved: scene.clone(),
+            scene,
+            path: None,
+            disk_text: None,
+            builtin_name: None,
+        }
+    }
+
     /// Reads a scene file.
     pub fn open(path: &Path) -> Result<Self, SceneError> {
         let text = std::fs::read_to_string(path).map_err(|e| SceneError::io(path, &e))?;

@@ -116,14 +116,16 @@ pub fn add_mesh(scene: &mut Scene, state: &mut PanelState, mesh: Mesh) {
 /// side panel with a scroll area) and edits `scene`/`view`/`state` in place.
 /// Returns the actions clicked this frame.
 ///
-/// `bundled` names the bundled example scenes; `file_label` is the current
-/// file (or "(built-in whitted scene)") and whether it has unsaved changes.
+/// `files` names the bundled example scenes offered beside Save and Open
+/// (`None`: no "File" section, where there are no files: the web page);
+/// `file_label` is the current file (or "(built-in whitted scene)") and
+/// whether it has unsaved changes.
 pub fn show(
     ui: &mut Ui,
     scene: &mut Scene,
     view: &mut ViewSettings,
     state: &mut PanelState,
-    bundled: &[&'static str],
+    files: Option<&[&'static str]>,
     file_label: &str,
 ) -> Vec<PanelAction> {
     state.selection = edit::checked_selection(scene, state.selection);
@@ -131,9 +133,11 @@ pub fn show(
     let mut actions = Vec::new();
 
     ui.label(RichText::new(file_label).strong());
-    section(ui, "File", false, |ui| {
-        file_section(ui, state, bundled, &mut actions);
-    });
+    if let Some(bundled) = files {
+        section(ui, "File", false, |ui| {
+            file_section(ui, state, bundled, &mut actions);
+        });
+    }
     section(ui, "Camera", true, |ui| {
         camera_section(ui, &mut scene.camera, scale, &mut actions);
     });
@@ -859,7 +863,7 @@ mod tests {
                     &mut scene,
                     &mut view,
                     &mut state,
-                    &["whitted"],
+                    Some(&["whitted"]),
                     "x.toml",
                 );
                 assert!(actions.is_empty());
@@ -871,7 +875,7 @@ mod tests {
         // The app swapped in a scene with fewer shapes: no index past the end.
         state.selection = Some(ShapeId::Cube(3));
         frames(|ui| {
-            show(ui, &mut scene, &mut view, &mut state, &[], "x.toml");
+            show(ui, &mut scene, &mut view, &mut state, Some(&[]), "x.toml");
         });
         assert_eq!(state.selection, None);
     }
@@ -955,7 +959,14 @@ mod tests {
                 };
                 let bundled = ["whitted", "cornell"];
                 ctx.run_ui(input, |ui| {
-                    show(ui, &mut scene, &mut view, &mut state, &bundled, "x.toml");
+                    show(
+                        ui,
+                        &mut scene,
+                        &mut view,
+                        &mut state,
+                        Some(&bundled),
+                        "x.toml",
+                    );
                     content = ui.min_rect();
                 })
                 .drop_without_applying_deltas();
@@ -992,7 +1003,7 @@ mod tests {
                 &mut scene,
                 &mut ViewSettings::default(),
                 &mut state,
-                &[],
+                None,
                 "",
             );
         });

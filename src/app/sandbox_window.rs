@@ -22,6 +22,7 @@ use super::controls::{self, ClockAction};
 use super::overlay;
 use super::shell::{self, EguiLayer, EventLog};
 use super::watch;
+use super::window::open_gpu_window;
 use crate::gpu::{EXPORT_FORMAT, Gpu, GpuTimer, Timing, Viewport};
 use crate::sandbox::channels::{self, CHANNELS};
 use crate::sandbox::clock::{Clock, Tick};
@@ -384,7 +385,7 @@ impl SandboxApp {
     fn create_graphics(&mut self, event_loop: &ActiveEventLoop) -> Result<Graphics, ViewerError> {
         let title = format!("raysandbox: {}", self.options.file.display());
         let (window, gpu, surface) =
-            shell::open_window(event_loop, &title, self.options.size, (1280.0, 720.0))?;
+            open_gpu_window(event_loop, &title, self.options.size, (1280.0, 720.0))?;
         let format = Viewport::output_formats(&gpu, &surface)[0];
         let size = window.inner_size();
         let config = wgpu::SurfaceConfiguration {

@@ -3,55 +3,11 @@
 //! the event lines for scripts. The scene viewer and the sandbox window
 //! differ only in what they draw under the UI.
 
-use std::sync::Arc;
-use std::time::{Duration, Instant};
-
+use web_time::{Duration, Instant};
 use winit::event_loop::{ActiveEventLoop, ControlFlow};
 use winit::window::{Fullscreen, Window};
 
-use super::ViewerError;
 use crate::gpu::Gpu;
-
-/// Opens a window of `size` physical pixels (or `default` logical ones) and
-/// a GPU device that can present to it.
-pub fn open_window(
-    event_loop: &ActiveEventLoop,
-    title: &str,
-    size: Option<(u32, u32)>,
-    default: (f64, f64),
-) -> Result<(Arc<Window>, Gpu, wgpu::Surface<'static>), ViewerError> {
-    let mut attributes = Window::default_attributes().with_title(title);
-    attributes = match size {
-        Some((w, h)) => attributes.with_inner_size(winit::dpi::PhysicalSize::new(w, h)),
-        None => attributes.with_inner_size(winit::dpi::LogicalSize::new(default.0, default.1)),
-    };
-    let window = Arc::new(
-        event_loop
-            .create_window(attributes)
-            .map_err(|e| ViewerError::NoDisplay(e.to_string()))?,
-    );
-    let instance =
-        wgpu::Instance::new(wgpu::InstanceDescriptor::new_without_display_handle_from_env());
-    let surface = instance
-        .create_surface(window.clone())
-        .map_err(|e| ViewerError::NoGpu(format!("cannot draw into the window: {e}")))?;
-    let gpu = Gpu::with_adapter(
-        instance,
-        &wgpu::RequestAdapterOptions {
-            power_preference: wgpu::PowerPreference::HighPerformance,
-            force_fallback_adapter: false,
-            compatible_surface: Some(&surface),
-            apply_limit_buckets: false,
-        },
-    )
-    .map_err(|e| ViewerError::NoGpu(e.to_string()))?;
-    log::info!("adapter: {}", gpu.describe());
-    if let Some(size) = size {
-        gpu.check_size(size)
-            .map_err(|e| ViewerError::Size(e.to_string()))?;
-    }
-    Ok((window, gpu, surface))
-}
 
 /// Switches between a borderless fullscreen window and a normal one.
 pub fn toggle_fullscreen(window: &Window) {

@@ -77,6 +77,42 @@ pub enum Command {
     KeepEdits,
     /// A value in "Shader parameters" changed: rebuild the pipelines.
     ShaderParamsChanged,
+    /// Put a link to the scene on the clipboard (the page's "Copy link").
+    CopyLink,
+}
+
+/// What the program around the panel offers: files (the window program),
+/// or a menu and links (the web page, which has no files).
+pub struct Host<'a> {
+    /// The bundled scenes, offered in the panel's "File" section beside
+    /// Save and Open; `None` hides that section.
+    pub files: Option<&'a [&'static str]>,
+    /// The menu at the top of the panel, in the order shown; empty: no menu.
+    pub menu: &'a [MenuItem],
+    /// A "Copy link" button at the top of the panel.
+    pub copy_link: bool,
+}
+
+/// One entry of the panel's menu: `label` under the menu `group`.
+#[derive(Debug, Clone)]
+pub struct MenuItem {
+    pub group: &'static str,
+    pub label: &'static str,
+    pub action: PanelAction,
+}
+
+impl MenuItem {
+    /// The bundled scenes, under "Scenes".
+    pub fn bundled_scenes() -> Vec<MenuItem> {
+        crate::scene::bundled::names()
+            .into_iter()
+            .map(|name| MenuItem {
+                group: "Scenes",
+                label: name,
+                action: PanelAction::OpenBundled(name),
+            })
+            .collect()
+    }
 }
 
 /// Mouse input over the image (not over the panel or a window), in physical
@@ -103,7 +139,7 @@ pub const SHORTCUTS: [(&str, &str); 9] = [
     ("Right / middle drag", "pan"),
     ("Wheel", "zoom (dolly towards the target)"),
     ("Click / double-click", "select an object / orbit around it"),
-    ("H", "show or hide the panel"),
+    ("H", "show or hide the panel and status line"),
     ("R / P", "reset camera / screenshot"),
     ("Ctrl+S", "save the scene"),
     ("F11 / Esc", "fullscreen / leave fullscreen"),
@@ -117,7 +153,7 @@ pub fn draw(
     editor: &mut Editor,
     shader_params: &mut ParamSet,
     status: &Status,
-    bundled: &[&'static str],
+    host: &Host,
 ) -> (Vec<Command>, ViewInput) {
     let mut commands = shortcuts(ui, editor);
     if editor.show_panel {
@@ -126,13 +162,14 @@ pub fn draw(
             .resizable(true)
             .default_size(330.0)
             .show(ui, |ui| {
+                menu_bar(ui, host, &mut commands);
                 egui::ScrollArea::vertical().show(ui, |ui| {
                     let actions = panel::show(
                         ui,
                         &mut doc.scene,
                         &mut editor.view,
                         &mut editor.panel,
-                        bundled,
+                        host.files,
                         &label,
                     );
                     commands.extend(actions.into_iter().map(Command::Panel));
@@ -141,12 +178,43 @@ pub fn draw(
                     }
                 });
             });
+        // Hiding the panel (H) leaves the picture alone, for a projector.
+        egui::Panel::bottom("status").show(ui, |ui| status_line(ui, status, editor));
     }
-    egui::Panel::bottom("status").show(ui, |ui| status_line(ui, status, editor));
     let mut input = egui::CentralPanel::no_frame().show(ui, view_input).inner;
     input.widget_dragging = !input.dragging && ui.ctx().dragged_id().is_some();
     overlays(ui.ctx(), editor, &mut commands);
     (commands, input)
+}
+
+/// The menu at the top of the panel: one drop-down per group, in the
+/// order of the entries, and "Copy link".
+fn menu_bar(ui: &mut egui::Ui, host: &Host, commands: &mut Vec<Command>) {
+    if host.menu.is_empty() && !host.copy_link {
+        return;
+    }
+    egui::MenuBar::new().ui(ui, |ui| {
+        let mut groups: Vec<&str> = host.menu.iter().map(|item| item.group).collect();
+        groups.dedup();
+        for group in groups {
+            ui.menu_button(group, |ui| {
+                for item in host.menu.iter().filter(|item| item.group == group) {
+                    if ui.button(item.label).clicked() {
+                        commands.push(Command::Panel(item.action.clone()));
+                    }
+                }
+            });
+        }
+        if host.copy_link
+            && ui
+                .button("Copy link")
+                .on_hover_text("A link that opens this scene, camera included")
+                .clicked()
+        {
+            commands.push(Command::CopyLink);
+        }
+    });
+    ui.separator();
 }
 
 /// The annotated constants of the shader folder, with the sandbox's

@@ -1,15 +1,17 @@
-//! The page's canvas and event loop: the scene from the address (or the
-//! bundled Whitted scene), drawn with progressive refinement. What happens is
-//! told on the browser's console as `raysandbox: EVENT` lines, for people and
-//! for tests.
+//! The page's canvas and event loop: the viewer's core (`app::viewer`, the
+//! same panel, orbit camera, selection and progressive refinement as the
+//! window program) on the scene from the address (or the bundled Whitted
+//! scene). What happens is told on the browser's console as
+//! `raysandbox: EVENT` lines, for people and for tests.
 //!
 //! In the browser nothing may block: the adapter, the device and the
 //! pipelines' validation arrive asynchronously, and the page hands them to
-//! the event loop as a [`Ready`] event once they are there.
+//! the event loop as [`PageEvent`]s once they are there.
 
 use std::sync::Arc;
 
 use wasm_bindgen::prelude::*;
+use web_time::{Duration, Instant};
 use winit::application::ApplicationHandler;
 use winit::event::WindowEvent;
 use winit::event_loop::{ActiveEventLoop, ControlFlow, EventLoop, EventLoopProxy};
@@ -17,7 +19,13 @@ use winit::platform::web::{EventLoopExtWebSys, WindowAttributesExtWebSys};
 use winit::window::{Window, WindowId};
 
 use super::{link, page};
-use crate::gpu::{FrameStatus, Gpu, Pipelines, ShaderOptions, ShaderSource, Viewport};
+use crate::app::document::Document;
+use crate::app::pipelines::Built;
+use crate::app::shell;
+use crate::app::ui::{Command, Host, MenuItem};
+use crate::app::viewer::{Platform, Viewer};
+use crate::gpu::{Gpu, Pipelines, ShaderSource, Viewport};
+use crate::sandbox::SourceParams;
 use crate::scene::{Scene, bundled};
 
 /// Samples per pixel the page accumulates before it stops drawing, as the
@@ -25,18 +33,40 @@ use crate::scene::{Scene, bundled};
 /// sets another limit.
 const MAX_SAMPLES: u32 = 64;
 
+/// How long the scene must stay unchanged before the address follows it
+/// (an orbit changes it every frame).
+const ADDRESS_DELAY: Duration = Duration::from_millis(500);
+
+/// What arrives asynchronously, handed to the event loop.
+pub enum PageEvent {
+    /// The adapter, the device and the first pipelines, or why not.
+    Ready(Result<Graphics, String>),
+    /// Pipelines built off the input path (a new feature set, new shader
+    /// parameters).
+    PipelinesBuilt(Box<Built>),
+    /// "Copy link" finished.
+    LinkCopied(Result<(), String>),
+}
+
+/// The GPU objects made asynchronously for the canvas.
+pub struct Graphics {
+    gpu: Gpu,
+    surface: wgpu::Surface<'static>,
+    pipelines: Pipelines,
+}
+
 /// Starts the page: called by the JavaScript glue once the module is loaded.
 #[wasm_bindgen(start)]
 pub fn start() {
     std::panic::set_hook(Box::new(|info| page::show_error(&info.to_string())));
-    let scene = match initial_scene() {
-        Ok(scene) => scene,
+    let doc = match initial_document() {
+        Ok(doc) => doc,
         Err(e) => {
             page::show_error(&e);
             return;
         }
     };
-    let event_loop = match EventLoop::<Ready>::with_user_event().build() {
+    let event_loop = match EventLoop::<PageEvent>::with_user_event().build() {
         Ok(event_loop) => event_loop,
         Err(e) => {
             page::show_error(&format!("cannot start the page's event loop: {e}"));
@@ -44,56 +74,76 @@ pub fn start() {
         }
     };
     event_loop.set_control_flow(ControlFlow::Wait);
-    let max_samples = page::query("samples")
+    let proxy = event_loop.create_proxy();
+    let shaders = ShaderSource::embedded();
+    let params = match SourceParams::read(&shaders) {
+        Ok(params) => params,
+        Err(e) => {
+            page::show_error(&e.to_string());
+            return;
+        }
+    };
+    let mut viewer = Viewer::new(doc, shaders, params, platform(proxy.clone()));
+    viewer.editor.view.max_samples = page::query("samples")
         .and_then(|n| n.parse::<u32>().ok())
         .map_or(MAX_SAMPLES, |n| n.max(1));
-    let app = Page {
-        proxy: event_loop.create_proxy(),
-        scene,
-        max_samples,
+    // `?panel=0`: the picture alone, as the H key leaves it.
+    viewer.editor.show_panel = page::query("panel").as_deref() != Some("0");
+    event_loop.spawn_app(Page {
+        proxy,
+        viewer,
         window: None,
-        gfx: None,
-    };
-    event_loop.spawn_app(app);
+        menu: MenuItem::bundled_scenes(),
+        address_due: None,
+    });
 }
 
-/// The scene the page opens with: the one in the address's `#scene=` link,
-/// else the bundled Whitted scene. A broken link is reported over the canvas
-/// and the Whitted scene shown.
-fn initial_scene() -> Result<Scene, String> {
+/// How the viewer's core reaches the page: events on the console, pipeline
+/// builds as futures whose results come back through the event loop.
+fn platform(proxy: EventLoopProxy<PageEvent>) -> Platform {
+    Platform {
+        event: Box::new(page::event),
+        build: Box::new(move |request| {
+            let proxy = proxy.clone();
+            wasm_bindgen_futures::spawn_local(async move {
+                let built = request.build().await;
+                let _ = proxy.send_event(PageEvent::PipelinesBuilt(Box::new(built)));
+            });
+        }),
+    }
+}
+
+/// The document the page opens with: the scene in the address's `#scene=`
+/// link, else the bundled Whitted scene. A broken link is reported over the
+/// canvas and the Whitted scene shown.
+fn initial_document() -> Result<Document, String> {
     if let Some(text) = page::hash().as_deref().and_then(link::scene_in_hash) {
         match text.and_then(|text| Scene::from_toml_str(&text, None).map_err(|e| e.to_string())) {
             Ok(scene) => {
                 page::event("scene from-link");
-                return Ok(scene);
+                return Ok(Document::untitled(scene));
             }
             Err(e) => page::show_error(&format!("the link's scene cannot be shown: {e}")),
         }
     }
     let name = bundled::names()[0];
-    let text = bundled::text(name).expect("a bundled scene has its text");
     page::event(&format!("scene {name}"));
-    Scene::from_toml_str(text, None).map_err(|e| e.to_string())
-}
-
-/// The GPU objects made asynchronously, handed to the event loop.
-pub struct Ready(Result<Graphics, String>);
-
-/// Everything that draws into the canvas.
-struct Graphics {
-    gpu: Gpu,
-    viewport: Viewport,
+    Document::bundled(name).map_err(|e| e.to_string())
 }
 
 struct Page {
-    proxy: EventLoopProxy<Ready>,
-    scene: Scene,
-    max_samples: u32,
+    proxy: EventLoopProxy<PageEvent>,
+    viewer: Viewer,
+    /// The canvas's window, from `resumed` on (the viewer gets it once the
+    /// GPU is there).
     window: Option<Arc<Window>>,
-    gfx: Option<Graphics>,
+    /// The panel's menu.
+    menu: Vec<MenuItem>,
+    /// When the address must take the scene as it is (see [`ADDRESS_DELAY`]).
+    address_due: Option<Instant>,
 }
 
-impl ApplicationHandler<Ready> for Page {
+impl ApplicationHandler<PageEvent> for Page {
     fn resumed(&mut self, event_loop: &ActiveEventLoop) {
         if self.window.is_some() {
             return;
@@ -110,101 +160,181 @@ impl ApplicationHandler<Ready> for Page {
         };
         self.window = Some(window.clone());
         let proxy = self.proxy.clone();
-        let scene = self.scene.clone();
+        let (source, options) = self.viewer.first_build();
         wasm_bindgen_futures::spawn_local(async move {
-            let gfx = create_graphics(window, &scene).await;
-            let _ = proxy.send_event(Ready(gfx));
+            let gfx = create_graphics(window, &source, &options).await;
+            let _ = proxy.send_event(PageEvent::Ready(gfx));
         });
     }
 
-    fn user_event(&mut self, _: &ActiveEventLoop, Ready(gfx): Ready) {
-        match gfx {
-            Ok(mut gfx) => {
+    fn user_event(&mut self, _: &ActiveEventLoop, event: PageEvent) {
+        match event {
+            PageEvent::Ready(Ok(gfx)) => {
+                let Some(window) = self.window.clone() else {
+                    return;
+                };
                 page::event(&format!("adapter {}", gfx.gpu.describe()));
-                // The canvas may have been laid out while the device was
-                // being made: draw at its size now.
-                if let Some(window) = &self.window {
-                    let size = window.inner_size();
-                    gfx.viewport.resize(&gfx.gpu, (size.width, size.height));
-                }
-                self.gfx = Some(gfx);
-                self.request_redraw();
+                self.viewer
+                    .attach(window, gfx.gpu, gfx.surface, gfx.pipelines);
             }
-            Err(e) => page::show_error(&e),
+            PageEvent::Ready(Err(e)) => page::show_error(&e),
+            PageEvent::PipelinesBuilt(built) => self.viewer.pipelines_built(*built),
+            PageEvent::LinkCopied(result) => {
+                let message = match result {
+                    Ok(()) => "link copied".to_string(),
+                    Err(e) => format!("the link was not copied: {e}"),
+                };
+                page::event(&message);
+                self.viewer.editor.message = Some(message);
+            }
         }
+        self.viewer.request_redraw();
     }
 
     fn window_event(&mut self, _: &ActiveEventLoop, _: WindowId, event: WindowEvent) {
+        let Some(gfx) = &mut self.viewer.gfx else {
+            return;
+        };
+        let response = gfx.egui.state.on_window_event(&gfx.window, &event);
         match event {
-            WindowEvent::Resized(size) => {
-                if let Some(gfx) = &mut self.gfx {
-                    gfx.viewport.resize(&gfx.gpu, (size.width, size.height));
-                }
-                self.request_redraw();
-            }
+            WindowEvent::Resized(size) => self.viewer.resize(size),
             WindowEvent::RedrawRequested => self.redraw(),
+            _ if response.repaint => gfx.window.request_redraw(),
             _ => {}
+        }
+    }
+
+    fn about_to_wait(&mut self, event_loop: &ActiveEventLoop) {
+        if shell::wait_for_repaint(&mut self.viewer.repaint_at, event_loop) {
+            self.viewer.request_redraw();
         }
     }
 }
 
 impl Page {
-    fn request_redraw(&self) {
-        if let Some(window) = &self.window {
-            window.request_redraw();
+    fn redraw(&mut self) {
+        let host = Host {
+            files: None,
+            menu: &self.menu,
+            copy_link: true,
+        };
+        let (start, mut ui) = self.viewer.begin_frame(&host);
+        for command in std::mem::take(&mut ui.commands) {
+            self.execute(command);
+        }
+        if self.viewer.end_frame(start, ui) {
+            self.address_due = Some(Instant::now() + ADDRESS_DELAY);
+        }
+        self.follow_address();
+    }
+
+    fn execute(&mut self, command: Command) {
+        use crate::app::panel::PanelAction;
+        match command {
+            Command::Panel(PanelAction::OpenBundled(name)) => match Document::bundled(name) {
+                Ok(doc) => {
+                    self.viewer.replace(doc);
+                    page::event(&format!("scene {name}"));
+                    self.address_due = Some(Instant::now());
+                }
+                Err(e) => self.viewer.editor.message = Some(e.to_string()),
+            },
+            Command::Panel(PanelAction::ResetCamera) => self.viewer.reset_camera(),
+            Command::ShaderParamsChanged => self.viewer.build_pipelines(),
+            Command::CopyLink => self.copy_link(),
+            Command::ToggleFullscreen => {
+                if let Some(window) = &self.window {
+                    shell::toggle_fullscreen(window);
+                }
+            }
+            Command::LeaveFullscreen => {
+                if let Some(window) = &self.window {
+                    window.set_fullscreen(None);
+                }
+            }
+            other => {
+                self.viewer.editor.message = Some(format!(
+                    "{other:?}: files and quitting are the native program's; \
+                     here \"Copy link\" shares the scene (docs/web.md)"
+                ));
+            }
         }
     }
 
-    /// Adds one sample per pixel until the limit, then stops drawing.
-    fn redraw(&mut self) {
-        let Some(gfx) = &mut self.gfx else { return };
-        let before = gfx.viewport.samples();
-        let new_samples = u32::from(before < self.max_samples);
-        let status = gfx.viewport.frame(&gfx.gpu, new_samples, |_, _| Vec::new());
-        let samples = gfx.viewport.samples();
-        if status == FrameStatus::Presented && before == 0 && samples > 0 {
-            let (w, h) = gfx.viewport.traced_resolution();
-            page::event(&format!("first-frame {w}x{h}"));
+    /// The address's `#scene=` link to the scene as it is now.
+    fn scene_fragment(&self) -> String {
+        link::scene_hash(&self.viewer.doc.scene.to_toml_string())
+    }
+
+    /// Puts the scene in the address once it has stayed unchanged for
+    /// [`ADDRESS_DELAY`], and wakes the loop then.
+    fn follow_address(&mut self) {
+        let Some(due) = self.address_due else { return };
+        if Instant::now() >= due {
+            self.address_due = None;
+            let fragment = self.scene_fragment();
+            match page::replace_hash(&fragment) {
+                // The tests read the scene shown from this line.
+                Ok(()) => page::event(&format!("address {fragment}")),
+                Err(e) => self.viewer.editor.message = Some(format!("address not updated: {e}")),
+            }
+        } else {
+            let at = self.viewer.repaint_at.map_or(due, |at| at.min(due));
+            self.viewer.repaint_at = Some(at);
         }
-        if new_samples > 0 && samples >= self.max_samples {
-            page::event(&format!("ready samples={samples}"));
-        }
-        if status == FrameStatus::Skipped || new_samples > 0 {
-            self.request_redraw();
-        }
+    }
+
+    /// Puts a link to the scene, camera included, on the clipboard (and in
+    /// the address at once).
+    fn copy_link(&mut self) {
+        let fragment = self.scene_fragment();
+        self.address_due = None;
+        let _ = page::replace_hash(&fragment);
+        let address = match page::address_with(&fragment) {
+            Ok(address) => address,
+            Err(e) => {
+                self.viewer.editor.message = Some(format!("no link: {e}"));
+                return;
+            }
+        };
+        let proxy = self.proxy.clone();
+        wasm_bindgen_futures::spawn_local(async move {
+            let result = page::copy_text(&address).await;
+            let _ = proxy.send_event(PageEvent::LinkCopied(result));
+        });
     }
 }
 
-/// The WebGPU adapter and device, and the tracer's pipelines for `scene`,
+/// The WebGPU adapter and device, and the tracer's first pipelines,
 /// validated before the first frame.
-async fn create_graphics(window: Arc<Window>, scene: &Scene) -> Result<Graphics, String> {
+async fn create_graphics(
+    window: Arc<Window>,
+    source: &ShaderSource,
+    options: &crate::gpu::ShaderOptions,
+) -> Result<Graphics, String> {
     let instance = wgpu::Instance::new(wgpu::InstanceDescriptor {
         backends: wgpu::Backends::BROWSER_WEBGPU,
         ..wgpu::InstanceDescriptor::new_without_display_handle()
     });
-    let size = window.inner_size();
     let surface = instance
         .create_surface(window)
         .map_err(|e| format!("cannot draw into the canvas: {e}"))?;
-    let options = wgpu::RequestAdapterOptions {
+    let adapter_options = wgpu::RequestAdapterOptions {
         power_preference: wgpu::PowerPreference::HighPerformance,
         force_fallback_adapter: false,
         compatible_surface: Some(&surface),
         apply_limit_buckets: false,
     };
-    let gpu = Gpu::request(instance, &options)
+    let gpu = Gpu::request(instance, &adapter_options)
         .await
         .map_err(|e| page::no_webgpu_help(&e.to_string()))?;
     let formats = Viewport::output_formats(&gpu, &surface);
-    let source = ShaderSource::embedded();
-    let pipelines = Pipelines::with_outline_async(
-        &gpu.device,
-        &source,
-        &formats,
-        &ShaderOptions::for_scene(scene),
-    )
-    .await
-    .map_err(|e| e.to_string())?;
-    let viewport = Viewport::new(&gpu, surface, (size.width, size.height), pipelines, scene);
-    Ok(Graphics { gpu, viewport })
+    let pipelines = Pipelines::with_outline_async(&gpu.device, source, &formats, options)
+        .await
+        .map_err(|e| e.to_string())?;
+    Ok(Graphics {
+        gpu,
+        surface,
+        pipelines,
+    })
 }

@@ -2,6 +2,7 @@
 //! canvas, the message box, and the console.
 
 use wasm_bindgen::JsCast;
+use wasm_bindgen::prelude::*;
 
 /// Id of the canvas the tracer draws into.
 const CANVAS_ID: &str = "raysandbox";
@@ -58,4 +59,54 @@ pub fn no_webgpu_help(error: &str) -> String {
          --enable-unsafe-webgpu --enable-features=Vulkan, or enable \
          chrome://flags/#enable-unsafe-webgpu."
     )
+}
+
+/// Puts `fragment` (without `#`) in the address without reloading the page
+/// or adding a history entry: the address always links to what is shown.
+pub fn replace_hash(fragment: &str) -> Result<(), String> {
+    let window = web_sys::window().ok_or("no browser window")?;
+    window
+        .history()
+        .and_then(|history| {
+            history.replace_state_with_url(&JsValue::NULL, "", Some(&format!("#{fragment}")))
+        })
+        .map_err(|e| describe(&e))
+}
+
+/// The page's address with `fragment` (without `#`) after it.
+pub fn address_with(fragment: &str) -> Result<String, String> {
+    let location = web_sys::window().ok_or("no browser window")?.location();
+    let href = location.href().map_err(|e| describe(&e))?;
+    let page = href.split('#').next().unwrap_or_default();
+    Ok(format!("{page}#{fragment}"))
+}
+
+/// Puts `text` on the clipboard; the browser may refuse (permissions, a
+/// page without focus), which the error says.
+pub async fn copy_text(text: &str) -> Result<(), String> {
+    let promise = write_text(text).map_err(|e| describe(&e))?;
+    wasm_bindgen_futures::JsFuture::from(promise)
+        .await
+        .map(|_| ())
+        .map_err(|e| describe(&e))
+}
+
+#[wasm_bindgen]
+extern "C" {
+    /// `navigator.clipboard.writeText` (web-sys has it only among its
+    /// unstable APIs).
+    #[wasm_bindgen(js_namespace = ["navigator", "clipboard"], js_name = writeText, catch)]
+    fn write_text(text: &str) -> Result<js_sys::Promise, JsValue>;
+}
+
+/// A JavaScript error as text.
+fn describe(error: &JsValue) -> String {
+    error
+        .as_string()
+        .or_else(|| {
+            error
+                .dyn_ref::<js_sys::Error>()
+                .map(|e| String::from(e.message()))
+        })
+        .unwrap_or_else(|| format!("{error:?}"))
 }

@@ -1,0 +1,429 @@
+//! The scene viewer's core, the same in the window program and in the web
+//! page (docs/web.md): the open [`Document`], the panel's [`Editor`], the
+//! orbit camera and selection, progressive refinement, and the pipeline
+//! cache. What differs between the two (opening the window or canvas, how a
+//! pipeline build runs off the input path, files, the address) is left to
+//! the program around it, which owns the event loop.
+
+use std::sync::Arc;
+
+use web_time::{Duration, Instant};
+use winit::window::Window;
+
+use super::document::Document;
+use super::orbit;
+use super::pipelines::{self, PipelineCache};
+use super::shell::EguiLayer;
+use super::ui::{self, Command, Editor, Host, Status, ViewInput};
+use crate::gpu::{FrameStatus, Gpu, Pipelines, ShaderOptions, ShaderSource, Viewport};
+use crate::reference;
+use crate::sandbox::SourceParams;
+use crate::scene::{Scene, SceneError};
+
+/// Width of the selection outline in logical pixels (scaled by the window's
+/// DPI factor).
+const OUTLINE_WIDTH: f64 = 2.0;
+
+/// Pipelines to build for `options` from `source`, handed to the program's
+/// worker: a thread natively, a future in the browser. The worker reports
+/// the [`pipelines::Built`] result through its event loop to
+/// [`Viewer::pipelines_built`].
+pub struct BuildRequest {
+    pub device: wgpu::Device,
+    pub source: ShaderSource,
+    pub formats: [wgpu::TextureFormat; 2],
+    pub options: ShaderOptions,
+    pub generation: u64,
+}
+
+impl BuildRequest {
+    /// Builds the pipelines; natively this future is ready at once (the
+    /// worker blocks on it), in the browser it waits for wgpu's validation.
+    pub async fn build(self) -> pipelines::Built {
+        let result =
+            Pipelines::with_outline_async(&self.device, &self.source, &self.formats, &self.options)
+                .await
+                .map_err(|e| e.to_string());
+        pipelines::Built {
+            generation: self.generation,
+            options: self.options,
+            result,
+        }
+    }
+}
+
+/// The window (or canvas) and everything that draws into it.
+pub struct Graphics {
+    pub window: Arc<Window>,
+    pub gpu: Gpu,
+    pub viewport: Viewport,
+    pub pipelines: PipelineCache,
+    pub egui: EguiLayer,
+}
+
+/// What the program around the viewer provides.
+pub struct Platform {
+    /// Tells scripts and tests what happened (`ready samples=N`, ...).
+    pub event: Box<dyn Fn(&str)>,
+    /// Starts a pipeline build off the input path.
+    pub build: Box<dyn Fn(BuildRequest)>,
+}
+
+pub struct Viewer {
+    pub doc: Document,
+    pub editor: Editor,
+    /// The shader source of the pipelines in use (the last good one).
+    pub shaders: ShaderSource,
+    /// Its annotated constants: the "Shader parameters" of the panel, whose
+    /// values are written into the source the pipelines are built from.
+    pub shader_params: SourceParams,
+    /// New shaders or parameter values validated; their pipelines are being built.
+    reload_pending: bool,
+    pub gfx: Option<Graphics>,
+    platform: Platform,
+    /// Eye-target distance when the current drag or zoom started.
+    drag_start_distance: Option<f64>,
+    was_dragging: bool,
+    /// When egui asked to be drawn again (animations, tooltips).
+    pub repaint_at: Option<Instant>,
+}
+
+/// The state a frame starts from, to tell what the frame's UI changed.
+pub struct FrameStart {
+    scene: Scene,
+    min_weight: f64,
+}
+
+/// What a frame's UI produced, before the program runs its commands.
+pub struct FrameUi {
+    pub commands: Vec<Command>,
+    input: ViewInput,
+    output: egui::FullOutput,
+}
+
+impl Viewer {
+    pub fn new(
+        doc: Document,
+        shaders: ShaderSource,
+        shader_params: SourceParams,
+        platform: Platform,
+    ) -> Self {
+        Viewer {
+            doc,
+            editor: Editor::default(),
+            shaders,
+            shader_params,
+            reload_pending: false,
+            gfx: None,
+            platform,
+            drag_start_distance: None,
+            was_dragging: false,
+            repaint_at: None,
+        }
+    }
+
+    pub fn event(&self, line: &str) {
+        (self.platform.event)(line);
+    }
+
+    /// The source the first pipelines are built from, and their options.
+    pub fn first_build(&self) -> (ShaderSource, ShaderOptions) {
+        (
+            self.shader_params.apply(&self.shaders),
+            ShaderOptions::for_scene(&self.doc.scene),
+        )
+    }
+
+    /// Starts drawing into `window` with the pipelines of
+    /// [`Viewer::first_build`].
+    pub fn attach(
+        &mut self,
+        window: Arc<Window>,
+        gpu: Gpu,
+        surface: wgpu::Surface<'static>,
+        first: Pipelines,
+    ) {
+        let (source, options) = self.first_build();
+        let cache = PipelineCache::new(source, options, first.clone());
+        let size = window.inner_size();
+        let viewport = Viewport::new(
+            &gpu,
+            surface,
+            (size.width, size.height),
+            first,
+            &self.shown_scene(),
+        );
+        let egui = EguiLayer::new(&window, &gpu, viewport.surface_format());
+        self.gfx = Some(Graphics {
+            window,
+            gpu,
+            viewport,
+            pipelines: cache,
+            egui,
+        });
+    }
+
+    pub fn request_redraw(&self) {
+        if let Some(gfx) = &self.gfx {
+            gfx.window.request_redraw();
+        }
+    }
+
+    pub fn resize(&mut self, size: winit::dpi::PhysicalSize<u32>) {
+        if let Some(gfx) = &mut self.gfx {
+            gfx.viewport.resize(&gfx.gpu, (size.width, size.height));
+            gfx.window.request_redraw();
+        }
+    }
+
+    /// Builds pipelines from the current source and parameter values off
+    /// the input path; the pipelines in use keep drawing until they are ready.
+    pub fn build_pipelines(&mut self) {
+        let Some(gfx) = &mut self.gfx else { return };
+        gfx.pipelines
+            .set_source(self.shader_params.apply(&self.shaders));
+        gfx.pipelines.current = None;
+        self.reload_pending = true;
+        self.ensure_pipelines();
+    }
+
+    /// Draws with the pipelines for the scene's feature set (and the current
+    /// shader source) once they are built; starts building them otherwise.
+    fn ensure_pipelines(&mut self) {
+        let Some(gfx) = &mut self.gfx else { return };
+        let wanted = ShaderOptions::for_scene(&self.doc.scene);
+        if gfx.pipelines.current.as_ref() == Some(&wanted) {
+            return;
+        }
+        let device = gfx.gpu.device.clone();
+        let formats = [gfx.viewport.surface_format(), crate::gpu::EXPORT_FORMAT];
+        let build = &self.platform.build;
+        let spawn = |source, generation| {
+            build(BuildRequest {
+                device,
+                source,
+                formats,
+                options: wanted.clone(),
+                generation,
+            });
+        };
+        if let Some(pipelines) = gfx.pipelines.get_or_build(wanted.clone(), spawn) {
+            gfx.viewport.set_pipelines(&gfx.gpu, pipelines);
+            gfx.pipelines.current = Some(wanted);
+            if std::mem::take(&mut self.reload_pending) {
+                self.editor.shader_error = None;
+                self.event("shaders-reloaded");
+            }
+        }
+    }
+
+    /// A build started by the worker has finished.
+    pub fn pipelines_built(&mut self, built: pipelines::Built) {
+        let Some(gfx) = &mut self.gfx else { return };
+        if let Err(e) = gfx.pipelines.finished(built) {
+            log::error!("{e}");
+            self.editor.shader_error = Some(e);
+            self.reload_pending = false;
+            self.event("shader-error");
+            return;
+        }
+        self.ensure_pipelines();
+        self.request_redraw();
+    }
+
+    /// Tells the viewport what changed: only the view (camera, render
+    /// settings: the globals) or the shapes too (buffers and BVH rebuilt).
+    /// A new feature set gets its own pipelines.
+    pub fn scene_changed(&mut self, before: Option<&Scene>) {
+        let shown = self.shown_scene();
+        if let Some(gfx) = &mut self.gfx {
+            match before {
+                Some(old) if same_shapes(old, &self.doc.scene) => gfx.viewport.set_view(&shown),
+                _ => gfx.viewport.set_scene(&gfx.gpu, &shown),
+            }
+        }
+        self.ensure_pipelines();
+    }
+
+    /// The scene as the viewer draws it: the file's, with `min_weight`
+    /// raised to the viewer's floor (the panel's "min weight").
+    fn shown_scene(&self) -> Scene {
+        let mut scene = self.doc.scene.clone();
+        let floor = self.editor.view.min_weight;
+        scene.render.min_weight = scene.render.min_weight.max(floor);
+        scene
+    }
+
+    /// Replaces the document (unless it has unsaved edits); returns whether
+    /// it did.
+    pub fn open(&mut self, doc: Result<Document, SceneError>) -> bool {
+        if self.doc.is_dirty() {
+            self.editor.message =
+                Some("unsaved edits: save them (Ctrl+S) before opening another scene".into());
+            return false;
+        }
+        match doc {
+            Ok(doc) => {
+                self.replace(doc);
+                true
+            }
+            Err(e) => {
+                self.editor.message = Some(e.to_string());
+                false
+            }
+        }
+    }
+
+    /// The part of a frame before the program runs the UI's commands.
+    pub fn begin_frame(&mut self, host: &Host) -> (FrameStart, FrameUi) {
+        let start = FrameStart {
+            scene: self.doc.scene.clone(),
+            min_weight: self.editor.view.min_weight,
+        };
+        let gfx = self.gfx.as_mut().expect("drawing needs graphics");
+        let status = Status {
+            frame_time: gfx.viewport.last_frame_time(),
+            timing: gfx.viewport.timing().describe(),
+            samples: gfx.viewport.samples(),
+            resolution: gfx.viewport.traced_resolution(),
+            adapter: gfx.gpu.adapter.get_info().name,
+            compiling: gfx.pipelines.building(),
+        };
+        let mut result = (Vec::new(), ViewInput::default());
+        let output = gfx.egui.run(&gfx.window, |ui| {
+            result = ui::draw(
+                ui,
+                &mut self.doc,
+                &mut self.editor,
+                &mut self.shader_params.params,
+                &status,
+                host,
+            );
+        });
+        let (commands, input) = result;
+        (
+            start,
+            FrameUi {
+                commands,
+                input,
+                output,
+            },
+        )
+    }
+
+    /// The part of a frame after the commands: the mouse over the image,
+    /// the changes to the GPU, painting. Returns whether the scene changed
+    /// (its camera included).
+    pub fn end_frame(&mut self, start: FrameStart, ui: FrameUi) -> bool {
+        let picked = self.apply_view_input(&ui.input);
+        let changed = self.doc.scene != start.scene;
+        if changed || self.editor.view.min_weight != start.min_weight {
+            self.scene_changed(Some(&start.scene));
+        }
+        self.paint(ui.output, ui.input.dragging || ui.input.widget_dragging);
+        if picked {
+            // Once the frame with its outline is on screen.
+            self.event(&format!("selected {:?}", self.editor.panel.selection));
+        }
+        changed
+    }
+
+    /// Shows `doc` instead of the document open now, unsaved edits or not
+    /// (the web page has no files to save them to).
+    pub fn replace(&mut self, doc: Document) {
+        self.doc = doc;
+        self.editor.panel.selection = None;
+        self.editor.scene_error = None;
+        self.scene_changed(None);
+        self.editor.message = Some(format!("opened {}", self.doc.label()));
+    }
+
+    /// Puts the camera back where the scene file has it.
+    pub fn reset_camera(&mut self) {
+        self.doc.scene.camera = self.doc.saved_camera().clone();
+    }
+
+    /// Mouse input over the image moves the camera or picks an object;
+    /// returns whether it picked.
+    fn apply_view_input(&mut self, input: &ViewInput) -> bool {
+        let Some(gfx) = &self.gfx else { return false };
+        let size = gfx.window.inner_size();
+        let camera = &mut self.doc.scene.camera;
+        if input.dragging || input.zoom != 0.0 {
+            let start = *self
+                .drag_start_distance
+                .get_or_insert((camera.from - camera.to).length());
+            orbit::orbit(camera, input.orbit.0, input.orbit.1);
+            orbit::pan(camera, input.pan.0, input.pan.1, f64::from(size.height));
+            orbit::zoom(camera, input.zoom, start);
+        } else {
+            self.drag_start_distance = None;
+        }
+        let click = input.click.or(input.double_click);
+        if let Some((x, y)) = click {
+            let scene = reference::PreparedScene::new(&self.doc.scene);
+            let hit = reference::pick(&scene, size.width, size.height, x, y);
+            self.editor.panel.selection = hit.map(|(id, _)| id);
+            if let (Some((_, point)), Some(_)) = (hit, input.double_click) {
+                orbit::recenter(&mut self.doc.scene.camera, point);
+            }
+        }
+        click.is_some()
+    }
+
+    /// Draws the image and the UI; keeps refining while samples are missing.
+    fn paint(&mut self, output: egui::FullOutput, dragging: bool) {
+        let Some(gfx) = &mut self.gfx else { return };
+        let scale = if dragging {
+            self.editor.view.interaction_scale
+        } else {
+            1.0
+        };
+        if dragging != self.was_dragging {
+            gfx.viewport.set_scale(&gfx.gpu, scale);
+            self.was_dragging = dragging;
+        }
+        let outline_width = (OUTLINE_WIDTH * gfx.window.scale_factor()).round() as u32;
+        gfx.viewport
+            .set_selection(&gfx.gpu, self.editor.panel.selection, outline_width);
+        let max_samples = if dragging {
+            1
+        } else {
+            self.editor.view.max_samples
+        };
+        let before = gfx.viewport.samples();
+        let new_samples = u32::from(before < max_samples);
+
+        let painting = gfx.egui.prepare(&gfx.gpu, &gfx.window, output);
+        let egui = &mut gfx.egui;
+        let gpu = &gfx.gpu;
+        gfx.window.pre_present_notify();
+        let status = gfx.viewport.frame(gpu, new_samples, |encoder, view| {
+            egui.paint(gpu, encoder, view, &painting)
+        });
+        let delay = gfx.egui.finish(painting);
+        // After a frame that added samples, draw once more: either the next
+        // sample, or (refinement done) only the display pass, so the status
+        // line shows the final count. Then nothing is drawn until something
+        // changes, and an idle window costs no CPU.
+        let samples = gfx.viewport.samples();
+        if status == FrameStatus::Skipped || new_samples > 0 {
+            gfx.window.request_redraw();
+        }
+        if status == FrameStatus::Presented && before == 0 && samples > 0 {
+            let (w, h) = gfx.viewport.traced_resolution();
+            self.event(&format!("first-frame {w}x{h}"));
+        }
+        if new_samples > 0 && samples >= max_samples && !dragging {
+            self.event(&format!("ready samples={samples}"));
+        }
+        if delay < Duration::from_secs(5) {
+            self.repaint_at = Some(Instant::now() + delay);
+        }
+    }
+}
+
+/// Whether two scenes differ at most in camera and render settings.
+fn same_shapes(a: &Scene, b: &Scene) -> bool {
+    a.lights == b.lights && a.materials == b.materials && a.same_shapes(b)
+}
