@@ -365,13 +365,6 @@ fn a_shared_link_reproduces_the_scene_in_a_fresh_browser() {
     assert_like_reference("link", &capture_picture(&display), &scene);
 }
 
-/// Size of the window for the tests that use the panel: the panel takes
-/// the left part, the picture the rest.
-const PANEL_SIZE: (u32, u32) = (960, 540);
-/// The part of the picture the panel (default width, 330 logical pixels)
-/// and the status line leave visible at [`PANEL_SIZE`].
-const BESIDE_PANEL: (u32, u32, u32, u32) = (360, 40, 600, 460);
-
 /// Runs xdotool on the test's display; the page's window is at the top
 /// left of the screen, so page and screen coordinates are the same.
 fn xdotool(display: &common::xwindow::Display, args: &[&str]) {
@@ -381,13 +374,6 @@ fn xdotool(display: &common::xwindow::Display, args: &[&str]) {
         .status()
         .expect("run xdotool (sudo apt-get install xdotool)");
     assert!(status.success(), "xdotool {args:?} failed");
-}
-
-fn click(display: &common::xwindow::Display, (x, y): (u32, u32)) {
-    xdotool(
-        display,
-        &["mousemove", &x.to_string(), &y.to_string(), "click", "1"],
-    );
 }
 
 /// A left drag from `a` to `b` in ten steps, as a hand would.
@@ -413,20 +399,25 @@ fn scene_in_address(browser: &mut Browser) -> Scene {
     Scene::from_toml_str(&text, None).expect("the address's scene is valid")
 }
 
-/// The screen until it differs from `before` (the browser composites the
-/// canvas some time after the page presented it), or [`TIMEOUT`].
+/// The screen once it differs from `before` and has settled (two captures
+/// in a row alike: the browser composites the canvas some time after the
+/// page presented it, and the first frames after a drag are at the
+/// interaction scale), or at [`TIMEOUT`].
 fn capture_change(
     display: &common::xwindow::Display,
     size: (u32, u32),
     before: &RgbaImage,
 ) -> RgbaImage {
     let deadline = Instant::now() + TIMEOUT;
+    let mut last = capture_screen_sized(display, size);
     loop {
-        std::thread::sleep(Duration::from_millis(300));
+        std::thread::sleep(Duration::from_millis(500));
         let screen = capture_screen_sized(display, size);
-        if diff_images(&screen, before).mean_abs > 1.0 || Instant::now() > deadline {
+        let settled = diff_images(&screen, &last).max_abs == 0;
+        if (settled && diff_images(&screen, before).mean_abs > 1.0) || Instant::now() > deadline {
             return screen;
         }
+        last = screen;
     }
 }
 
