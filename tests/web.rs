@@ -92,3 +92,97 @@ fn a_shared_link_reproduces_the_scene_in_a_fresh_browser() {
     page.wait_for("ready");
     assert_like_reference("link", &page.capture_picture(), &scene);
 }
+
+/// The error the page reports once it met one, which it must show over the
+/// canvas, where the user looks, as well as log. The message box is hidden
+/// afterwards so that the picture under it can be compared.
+fn error_shown(page: &mut Browser) -> String {
+    let logged = page.wait_for("error");
+    let shown = page.message();
+    assert_eq!(
+        shown.as_deref(),
+        Some(logged.as_str()),
+        "the error is shown over the canvas"
+    );
+    assert!(!logged.contains("panicked"), "the page panicked: {logged}");
+    page.evaluate("document.getElementById('message').className = ''");
+    logged
+}
+
+/// A link damaged on its way (cut short when copied) is reported over the
+/// canvas, and the page shows the bundled Whitted scene instead.
+#[test]
+fn a_damaged_link_is_reported_and_the_whitted_scene_shown() {
+    let Some(display) = common::xwindow::Display::start() else {
+        return;
+    };
+    let hash = link::scene_hash(&whitted().0);
+    let cut = &hash[..hash.len() / 2];
+    let url = browser::serve(browser::page_dir());
+    let mut page = Browser::open(&display, &format!("{url}?samples=1#{cut}"));
+    let error = error_shown(&mut page);
+    assert!(error.contains("the link is damaged"), "{error}");
+    assert_eq!(page.wait_for("scene"), "whitted");
+    page.wait_for("ready");
+    assert_like_reference("damaged-link", &page.capture_picture(), &whitted().1);
+    assert_eq!(page.exceptions(), Vec::<String>::new());
+}
+
+/// A link that decodes to a scene with a mistake (here a colour with two
+/// components) names the scene's line, and the Whitted scene is shown.
+#[test]
+fn a_link_to_a_bad_scene_names_the_line_and_the_whitted_scene_is_shown() {
+    let Some(display) = common::xwindow::Display::start() else {
+        return;
+    };
+    let text = whitted().0;
+    let bad = text.replace("ambient = [0.12, 0.12, 0.12]", "ambient = [0.12, 0.12]");
+    assert_ne!(bad, text, "the mistake was made");
+    let line = 1 + bad
+        .lines()
+        .position(|l| l.starts_with("ambient ="))
+        .unwrap();
+    let url = browser::serve(browser::page_dir());
+    let address = format!("{url}?samples=1#{}", link::scene_hash(&bad));
+    let mut page = Browser::open(&display, &address);
+    let error = error_shown(&mut page);
+    assert!(error.contains(&format!("<scene>:{line}:")), "{error}");
+    assert!(error.contains("ambient"), "{error}");
+    assert_eq!(page.wait_for("scene"), "whitted");
+    page.wait_for("ready");
+    assert_like_reference("bad-scene-link", &page.capture_picture(), &whitted().1);
+    assert_eq!(page.exceptions(), Vec::<String>::new());
+}
+
+/// In a browser without WebGPU (Chromium on Linux without its WebGPU
+/// flags) the page says so over the canvas, naming the browsers and the flag
+/// that have it, and nothing panics.
+#[test]
+fn without_webgpu_the_page_says_which_browsers_have_it() {
+    let Some(display) = common::xwindow::Display::start() else {
+        return;
+    };
+    let url = browser::serve(browser::page_dir());
+    let mut page = Browser::start(&display, browser::Options { webgpu: false });
+    page.navigate(&format!("{url}?samples=1"));
+    let gpu = page.evaluate(
+        "navigator.gpu ? navigator.gpu.requestAdapter().then(a => a ? 'adapter' : 'no adapter') \
+         : 'no navigator.gpu'",
+    );
+    eprintln!("without the WebGPU flags: {gpu}");
+    assert_ne!(gpu, "adapter", "this Chromium has WebGPU without its flags");
+    let error = error_shown(&mut page);
+    eprintln!("the page says: {error}");
+    for hint in [
+        "WebGPU is not available",
+        "Chrome",
+        "Firefox",
+        "Safari",
+        "--enable-unsafe-webgpu",
+    ] {
+        assert!(error.contains(hint), "{hint:?} is not in: {error}");
+    }
+    let later = page.events_within(std::time::Duration::from_secs(1));
+    assert!(later.is_empty(), "after the error the page said {later:?}");
+    assert_eq!(page.exceptions(), Vec::<String>::new());
+}
