@@ -199,16 +199,15 @@ fn scene_in_address(page: &mut Browser) -> Scene {
     Scene::from_toml_str(&text, None).expect("the address's scene is valid")
 }
 
-/// The screen once it differs from `before` and has settled (two captures
-/// in a row alike: the browser composites the canvas some time after the
-/// page presented it, and the frames during a drag are at the interaction
-/// scale), or at [`browser::TIMEOUT`].
-fn capture_change(page: &Browser, before: &RgbaImage) -> RgbaImage {
+/// The page's picture once it differs from `before` and has settled (two
+/// screenshots in a row alike: the frames during a drag are at the
+/// interaction scale), or at [`browser::TIMEOUT`].
+fn capture_change(page: &mut Browser, before: &RgbaImage) -> RgbaImage {
     let deadline = Instant::now() + browser::TIMEOUT;
-    let mut last = page.capture_screen();
+    let mut last = page.screenshot();
     loop {
         std::thread::sleep(Duration::from_millis(500));
-        let screen = page.capture_screen();
+        let screen = page.screenshot();
         let settled = diff_images(&screen, &last).max_abs == 0;
         if (settled && diff_images(&screen, before).mean_abs > 1.0) || Instant::now() > deadline {
             return screen;
@@ -236,5 +235,5 @@ fn orbiting_with_the_mouse_changes_the_picture_and_the_address() {
     let mut unmoved = scene.clone();
     unmoved.camera = whitted.camera.clone();
     assert_eq!(unmoved, whitted, "only the camera changed");
-    assert_like_reference("orbit", &capture_change(&page, &before), &scene);
+    assert_like_reference("orbit", &capture_change(&mut page, &before), &scene);
 }

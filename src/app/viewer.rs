@@ -84,6 +84,8 @@ pub struct Viewer {
     /// Eye-target distance when the current drag or zoom started.
     drag_start_distance: Option<f64>,
     was_dragging: bool,
+    /// A frame has been presented (the `first-frame` event is told once).
+    presented: bool,
     /// When egui asked to be drawn again (animations, tooltips).
     pub repaint_at: Option<Instant>,
 }
@@ -118,6 +120,7 @@ impl Viewer {
             platform,
             drag_start_distance: None,
             was_dragging: false,
+            presented: false,
             repaint_at: None,
         }
     }
@@ -391,8 +394,7 @@ impl Viewer {
         } else {
             self.editor.view.max_samples
         };
-        let before = gfx.viewport.samples();
-        let new_samples = u32::from(before < max_samples);
+        let new_samples = u32::from(gfx.viewport.samples() < max_samples);
 
         let painting = gfx.egui.prepare(&gfx.gpu, &gfx.window, output);
         let egui = &mut gfx.egui;
@@ -410,7 +412,8 @@ impl Viewer {
         if status == FrameStatus::Skipped || new_samples > 0 {
             gfx.window.request_redraw();
         }
-        if status == FrameStatus::Presented && before == 0 && samples > 0 {
+        if status == FrameStatus::Presented && samples > 0 && !self.presented {
+            self.presented = true;
             let (w, h) = gfx.viewport.traced_resolution();
             self.event(&format!("first-frame {w}x{h}"));
         }
