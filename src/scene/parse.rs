@@ -93,8 +93,8 @@ fn flattened_error(doc: &Document<'_>, table: &KeyPath) -> Option<toml::de::Erro
 /// The key of serde's "unknown field `key`" when serde blames the table
 /// `path` (a shape with flattened keys) rather than the key.
 fn unknown_flattened_key<'m>(path: &KeyPath, message: &'m str) -> Option<&'m str> {
-    let key = message.strip_prefix("unknown field `")?.strip_suffix('`')?;
-    (!path.ends_with_key(key)).then_some(key)
+    let (key, rest) = message.strip_prefix("unknown field `")?.split_once('`')?;
+    (rest.is_empty() && !path.ends_with_key(key)).then_some(key)
 }
 
 /// The key and message to show for serde's `message` about `path`.
