@@ -11,10 +11,10 @@ use web_time::{Duration, Instant};
 use winit::window::Window;
 
 use super::document::Document;
-use super::orbit;
 use super::pipelines::{self, PipelineCache};
 use super::shell::EguiLayer;
 use super::ui::{self, Command, Editor, Host, Status, ViewInput};
+use super::{orbit, panel};
 use crate::gpu::{FrameStatus, Gpu, Pipelines, ShaderOptions, ShaderSource, Viewport};
 use crate::reference;
 use crate::sandbox::SourceParams;
@@ -83,7 +83,6 @@ pub struct Viewer {
     platform: Platform,
     /// Eye-target distance when the current drag or zoom started.
     drag_start_distance: Option<f64>,
-    was_dragging: bool,
     /// A frame has been presented (the `first-frame` event is told once).
     presented: bool,
     /// When egui asked to be drawn again (animations, tooltips).
@@ -94,6 +93,8 @@ pub struct Viewer {
 pub struct FrameStart {
     scene: Scene,
     min_weight: f64,
+    /// When the frame began, for a moving frame's time in all.
+    at: Instant,
 }
 
 /// What a frame's UI produced, before the program runs its commands.
@@ -119,7 +120,6 @@ impl Viewer {
             gfx: None,
             platform,
             drag_start_distance: None,
-            was_dragging: false,
             presented: false,
             repaint_at: None,
         }
@@ -282,6 +282,7 @@ impl Viewer {
         let start = FrameStart {
             scene: self.doc.scene.clone(),
             min_weight: self.editor.view.min_weight,
+            at: Instant::now(),
         };
         let gfx = self.gfx.as_mut().expect("drawing needs graphics");
         let status = Status {
@@ -289,6 +290,7 @@ impl Viewer {
             timing: gfx.viewport.timing().describe(),
             samples: gfx.viewport.samples(),
             resolution: gfx.viewport.traced_resolution(),
+            scale: gfx.viewport.scale(),
             adapter: gfx.gpu.adapter.get_info().name,
             compiling: gfx.pipelines.building(),
         };
@@ -323,7 +325,8 @@ impl Viewer {
         if changed || self.editor.view.min_weight != start.min_weight {
             self.scene_changed(Some(&start.scene));
         }
-        self.paint(ui.output, ui.input.dragging || ui.input.widget_dragging);
+        let moving = ui.input.dragging || ui.input.widget_dragging;
+        self.paint(ui.output, moving, start.at);
         if picked {
             // Once the frame with its outline is on screen.
             self.event(&format!("selected {:?}", self.editor.panel.selection));
@@ -375,17 +378,13 @@ impl Viewer {
     }
 
     /// Draws the image and the UI; keeps refining while samples are missing.
-    fn paint(&mut self, output: egui::FullOutput, dragging: bool) {
+    /// While the view moves, one sample per pixel at the moving scale
+    /// ([`Viewer::moving_scale`]); full resolution once it stops. `start`:
+    /// when this redraw began, for the moving frame's time in all.
+    fn paint(&mut self, output: egui::FullOutput, dragging: bool, start: Instant) {
+        let scale = if dragging { self.moving_scale() } else { 1.0 };
         let Some(gfx) = &mut self.gfx else { return };
-        let scale = if dragging {
-            self.editor.view.interaction_scale
-        } else {
-            1.0
-        };
-        if dragging != self.was_dragging {
-            gfx.viewport.set_scale(&gfx.gpu, scale);
-            self.was_dragging = dragging;
-        }
+        gfx.viewport.set_scale(&gfx.gpu, scale);
         let outline_width = (OUTLINE_WIDTH * gfx.window.scale_factor()).round() as u32;
         gfx.viewport
             .set_selection(&gfx.gpu, self.editor.panel.selection, outline_width);
@@ -412,16 +411,46 @@ impl Viewer {
         if status == FrameStatus::Skipped || new_samples > 0 {
             gfx.window.request_redraw();
         }
+        let resolution = gfx.viewport.traced_resolution();
+        let traced = status == FrameStatus::Presented && new_samples > 0;
+        let moving_frame = (dragging && traced)
+            .then(|| gfx.viewport.last_frame_time())
+            .flatten()
+            .map(|time| (time, gfx.viewport.scale()));
         if status == FrameStatus::Presented && samples > 0 && !self.presented {
             self.presented = true;
-            let (w, h) = gfx.viewport.traced_resolution();
+            let (w, h) = resolution;
             self.event(&format!("first-frame {w}x{h}"));
+        }
+        if let Some((time, scale)) = moving_frame {
+            let wall = start.elapsed();
+            self.editor.view.moving_frame = Some(panel::MovingFrame { time, wall, scale });
+            self.event(&format!(
+                "moving-frame ms={:.1} wall_ms={:.1} scale={scale:.3}",
+                time.as_secs_f64() * 1e3,
+                wall.as_secs_f64() * 1e3
+            ));
         }
         if new_samples > 0 && samples >= max_samples && !dragging {
             self.event(&format!("ready samples={samples}"));
         }
         if delay < Duration::from_secs(5) {
             self.repaint_at = Some(Instant::now() + delay);
+        }
+    }
+
+    /// The resolution scale of a frame while the view moves: the panel's
+    /// moving scale, or with a frame budget the scale that the last moving
+    /// frame's time says fits it (gpu/interaction.rs). A new movement
+    /// starts where the last one ended: the scene is mostly the same.
+    fn moving_scale(&self) -> f32 {
+        let view = &self.editor.view;
+        match view.moving_frame {
+            Some(last) if view.adaptive_scale => {
+                let budget = Duration::from_secs_f32(view.frame_budget_ms / 1e3);
+                crate::gpu::interaction::next_scale(last.scale, last.time, budget)
+            }
+            _ => view.interaction_scale,
         }
     }
 }
