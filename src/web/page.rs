@@ -35,6 +35,18 @@ pub fn hash() -> Option<String> {
     Some(hash.trim_start_matches('#').to_string())
 }
 
+/// Replaces the address's fragment (`#` and `hash`) without adding a step
+/// to the browser's history or reloading.
+pub fn replace_hash(hash: &str) {
+    if let Some(history) = web_sys::window().and_then(|w| w.history().ok()) {
+        let _ = history.replace_state_with_url(
+            &wasm_bindgen::JsValue::NULL,
+            "",
+            Some(&format!("#{hash}")),
+        );
+    }
+}
+
 /// Logs one `raysandbox: EVENT` line on the console (tests read them).
 pub fn event(line: &str) {
     web_sys::console::log_1(&format!("raysandbox: {line}").into());
