@@ -20,7 +20,7 @@ use super::{BenchArgs, BenchError, cpu_model, fail, ms, timing_of};
 use crate::bvh::build_mesh_bvh;
 use crate::gpu::layout::PackedScene;
 use crate::gpu::{Gpu, ShaderOptions};
-use crate::scene::{CubeSize, Geometry, Scene, ShapeId, TriangleTest, load_file};
+use crate::scene::{CubeSize, Geometry, NamedOption, Scene, ShapeId, TriangleTest, load_file};
 use image::RgbaImage;
 
 /// The meshes, smallest first: name and file relative to the project. The

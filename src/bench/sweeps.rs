@@ -13,7 +13,7 @@ use super::measure::{self, ConvergedReference, REFERENCE_FACTOR};
 use super::plot::{log_range, register_font};
 use super::{BenchError, Environment, fail, ms};
 use crate::gpu::{Gpu, ShaderOptions};
-use crate::scene::{Scene, Sphere, TorusMethod, bundled};
+use crate::scene::{NamedOption, Scene, Sphere, TorusMethod, bundled};
 
 /// Samples per pixel of the images whose error is measured: enough that
 /// the knob's error, not the sampling's, separates the settings (the quick

@@ -45,45 +45,19 @@ pub struct Mesh {
     pub geometry: Loaded,
 }
 
-/// The ray-triangle tests the renderers offer (docs/rendering-model.md,
-/// "Triangle meshes"): the same hits in exact arithmetic, different
-/// rounding, speed and behaviour on shared edges.
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, Default)]
-pub enum TriangleTest {
-    /// Cramer's rule with signed volumes (determinants), as on the slides.
-    Cramer,
-    /// Möller and Trumbore 1997.
-    MollerTrumbore,
-    /// Woop, Benthin and Wald 2013, as in pbrt-v4: no ray slips between
-    /// two triangles that share an edge.
-    #[default]
-    Watertight,
-}
-
-impl TriangleTest {
-    pub const ALL: [TriangleTest; 3] = [
-        TriangleTest::Cramer,
-        TriangleTest::MollerTrumbore,
-        TriangleTest::Watertight,
-    ];
-
-    /// Its name on the command line and in reports.
-    pub fn name(self) -> &'static str {
-        match self {
-            TriangleTest::Cramer => "cramer",
-            TriangleTest::MollerTrumbore => "moller-trumbore",
-            TriangleTest::Watertight => "watertight",
-        }
-    }
-
-    /// The value of the shader's `TRIANGLE_TEST` constant.
-    pub fn number(self) -> u32 {
-        self as u32
-    }
-
-    /// The test named `name` ([`TriangleTest::name`]).
-    pub fn from_name(name: &str) -> Option<TriangleTest> {
-        TriangleTest::ALL.into_iter().find(|t| t.name() == name)
+crate::named_option! {
+    /// The ray-triangle tests the renderers offer (docs/rendering-model.md,
+    /// "Triangle meshes"): the same hits in exact arithmetic, different
+    /// rounding, speed and behaviour on shared edges.
+    pub enum TriangleTest {
+        /// Cramer's rule with signed volumes (determinants), as on the slides.
+        Cramer = "cramer",
+        /// Möller and Trumbore 1997.
+        MollerTrumbore = "moller-trumbore",
+        /// Woop, Benthin and Wald 2013, as in pbrt-v4: no ray slips between
+        /// two triangles that share an edge.
+        #[default]
+        Watertight = "watertight",
     }
 }
 

@@ -25,38 +25,17 @@ pub struct Torus {
     pub material: Option<String>,
 }
 
-/// How the GPU solves a torus's quartic (docs/implementation.md, "Torus"):
-/// the same root in exact arithmetic, different cost in f32. The f64
-/// reference always bisects to full precision.
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, Default)]
-pub enum TorusMethod {
-    /// The slope's zeros and the root by bisection on monotone pieces.
-    Bisection,
-    /// The slope's zeros in closed form (a depressed cubic), the root by
-    /// Newton steps kept inside its bracket.
-    #[default]
-    Newton,
-}
-
-impl TorusMethod {
-    pub const ALL: [TorusMethod; 2] = [TorusMethod::Bisection, TorusMethod::Newton];
-
-    /// Its name on the command line and in reports.
-    pub fn name(self) -> &'static str {
-        match self {
-            TorusMethod::Bisection => "bisection",
-            TorusMethod::Newton => "newton",
-        }
-    }
-
-    /// The value of the shader's `TORUS_METHOD` constant.
-    pub fn number(self) -> u32 {
-        self as u32
-    }
-
-    /// The method named `name` ([`TorusMethod::name`]).
-    pub fn from_name(name: &str) -> Option<TorusMethod> {
-        TorusMethod::ALL.into_iter().find(|t| t.name() == name)
+crate::named_option! {
+    /// How the GPU solves a torus's quartic (docs/implementation.md,
+    /// "Torus"): the same root in exact arithmetic, different cost in f32.
+    /// The f64 reference always bisects to full precision.
+    pub enum TorusMethod {
+        /// The slope's zeros and the root by bisection on monotone pieces.
+        Bisection = "bisection",
+        /// The slope's zeros in closed form (a depressed cubic), the root by
+        /// Newton steps kept inside its bracket.
+        #[default]
+        Newton = "newton",
     }
 }
 
