@@ -297,14 +297,15 @@ fn whitted() -> (String, Scene) {
 }
 
 /// Opened without link data, the page shows the bundled Whitted scene, and
-/// its first frame (1 sample per pixel) is the native renderer's picture.
+/// its first frame (1 sample per pixel) is the native renderer's picture
+/// (`ui=0`: the picture alone, without the page's controls over it).
 #[test]
 fn the_page_renders_the_whitted_scene_like_the_reference() {
     let Some(display) = common::xwindow::Display::start() else {
         return;
     };
     let url = serve(page_dir());
-    let mut browser = Browser::open(&display, &format!("{url}?samples=1"));
+    let mut browser = Browser::open(&display, &format!("{url}?samples=1&ui=0"));
     assert_eq!(browser.wait_for("scene"), "whitted");
     let adapter = browser.wait_for("adapter");
     eprintln!("page adapter: {adapter}");
@@ -331,7 +332,7 @@ fn a_shared_link_reproduces_the_scene_in_a_fresh_browser() {
     let scene = Scene::from_toml_str(&edited, None).unwrap();
     assert_ne!(scene, original, "the edit changed the scene");
     let url = serve(page_dir());
-    let address = format!("{url}?samples=1#{}", link::scene_hash(&edited));
+    let address = format!("{url}?samples=1&ui=0#{}", link::scene_hash(&edited));
     let mut browser = Browser::open(&display, &address);
     assert_eq!(browser.wait_for("scene"), "from-link");
     browser.wait_for("ready");

@@ -92,7 +92,7 @@ fn initial_scene() -> Result<(String, Scene), String> {
 /// What arrives asynchronously at the page's event loop.
 pub enum PageEvent {
     /// The GPU objects, made once.
-    Ready(Result<Graphics, String>),
+    Ready(Result<Box<Graphics>, String>),
     /// An edit, or a sandbox pipeline built.
     Work(WorkEvent),
     /// The tracer's pipelines built for a scene with other features.
@@ -114,7 +114,7 @@ struct Page {
     scene: Scene,
     max_samples: u32,
     window: Option<Arc<Window>>,
-    gfx: Option<Graphics>,
+    gfx: Option<Box<Graphics>>,
 }
 
 impl ApplicationHandler<PageEvent> for Page {
@@ -136,7 +136,7 @@ impl ApplicationHandler<PageEvent> for Page {
         let proxy = self.proxy.clone();
         let scene = self.scene.clone();
         wasm_bindgen_futures::spawn_local(async move {
-            let gfx = create_graphics(window, &scene).await;
+            let gfx = create_graphics(window, &scene).await.map(Box::new);
             let _ = proxy.send_event(PageEvent::Ready(gfx));
         });
     }
@@ -160,7 +160,7 @@ impl ApplicationHandler<PageEvent> for Page {
             }
             PageEvent::Ready(Err(e)) => page::show_error(&e),
             PageEvent::Work(event) => match self.work.handle(event) {
-                Outcome::Scene(scene) => self.replace_scene(scene),
+                Outcome::Scene(scene) => self.replace_scene(*scene),
                 Outcome::Redraw => self.request_redraw(),
                 Outcome::Nothing => {}
             },

@@ -24,14 +24,14 @@ const FIRST_SHADER: &str = "blobs.glsl";
 /// What the workbench hands to the page's event loop, and gets back.
 pub enum WorkEvent {
     Editor(EditorEvent),
-    Built(Built),
+    Built(Box<Built>),
 }
 
 /// What the page must do after an event.
 pub enum Outcome {
     Nothing,
     /// Replace the page's scene with this one (parsed from the editor).
-    Scene(Scene),
+    Scene(Box<Scene>),
     /// The canvas shows another document: draw again.
     Redraw,
 }
@@ -74,6 +74,9 @@ impl Workbench {
         };
         if page::query("editor").is_some() {
             super::editor::open_panel();
+        }
+        if page::query("ui").as_deref() == Some("0") {
+            page::hide_controls();
         }
         Workbench {
             editor,
@@ -139,7 +142,7 @@ impl Workbench {
                     return Outcome::Nothing;
                 };
                 let text = built.text().to_string();
-                if let Some(result) = shader.built(built) {
+                if let Some(result) = shader.built(*built) {
                     match &result {
                         Ok(_) => page::event("shader ok"),
                         Err(problem) => report("shader", problem),
@@ -167,7 +170,7 @@ impl Workbench {
             Ok(scene) => {
                 page::event("scene ok");
                 self.scene = scene.clone();
-                Outcome::Scene(scene.clone())
+                Outcome::Scene(Box::new(scene.clone()))
             }
             Err(problem) => {
                 report("scene", problem);
@@ -202,7 +205,9 @@ impl Workbench {
             return;
         };
         let send = self.send.clone();
-        if let Err(problem) = shader.compile(&text, move |built| send(WorkEvent::Built(built))) {
+        if let Err(problem) =
+            shader.compile(&text, move |built| send(WorkEvent::Built(Box::new(built))))
+        {
             report("shader", &problem);
             if let Some(editor) = &self.editor {
                 editor.show_result(Doc::Shader, &text, Err(problem));
