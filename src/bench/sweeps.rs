@@ -189,16 +189,24 @@ pub fn spheres_in_place(scene: &Scene) -> Scene {
         material: material.clone(),
     };
     for t in out.tori.drain(..) {
-        let radius = (t.major_radius + t.minor_radius) * t.scale;
-        out.spheres.push(sphere(t.translate, radius, &t.material));
+        let radius = (t.major_radius + t.minor_radius) * t.placement.scale;
+        out.spheres
+            .push(sphere(t.placement.translate, radius, &t.material));
     }
     for i in out.implicits.drain(..) {
         let side = (i.bounds[1] - i.bounds[0]).min_element();
-        out.spheres
-            .push(sphere(i.translate, 0.5 * side * i.scale, &i.material));
+        out.spheres.push(sphere(
+            i.placement.translate,
+            0.5 * side * i.placement.scale,
+            &i.material,
+        ));
     }
     for j in out.julias.drain(..) {
-        out.spheres.push(sphere(j.translate, j.scale, &j.material));
+        out.spheres.push(sphere(
+            j.placement.translate,
+            j.placement.scale,
+            &j.material,
+        ));
     }
     out
 }

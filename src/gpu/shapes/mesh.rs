@@ -39,7 +39,8 @@ impl PackShape for Mesh {
 
     /// The placement; the data offsets are set by [`PackShape::pack_kind`].
     fn pack(scene: &Scene, frame: &Frame, m: &scene::Mesh) -> Self {
-        let to_local = m.linear().inverse();
+        let linear = m.placement.linear();
+        let to_local = linear.inverse();
         let [lo, hi] = m.bounds();
         let error_scale = (lo - frame.origin)
             .abs()
@@ -47,10 +48,10 @@ impl PackShape for Mesh {
             .max_element();
         Mesh {
             to_local: columns(to_local),
-            origin: frame.point(m.translate),
+            origin: frame.point(m.placement.translate),
             material: scene.material_slot(m.material.as_deref()),
             normal_to_world: columns(to_local.transpose()),
-            to_world: columns(m.linear()),
+            to_world: columns(linear),
             node_start: 0,
             tri_start: 0,
             normal_start: 0,
@@ -195,9 +196,9 @@ mod tests {
 
         let mut moved = scene.clone();
         let mesh = &mut moved.meshes[0];
-        mesh.translate = DVec3::new(0.5, -0.25, 1.0);
-        mesh.rotation = DVec3::new(10.0, 45.0, 0.0);
-        mesh.scale = CubeSize::PerAxis(DVec3::new(2.0, 1.0, 0.5));
+        mesh.placement.translate = DVec3::new(0.5, -0.25, 1.0);
+        mesh.placement.rotation = DVec3::new(10.0, 45.0, 0.0);
+        mesh.placement.scale = CubeSize::PerAxis(DVec3::new(2.0, 1.0, 0.5));
         let after = PackedScene::new(&moved, 8, 8);
 
         let again = mesh_bvh_built(&moved.meshes[0].geometry.0);

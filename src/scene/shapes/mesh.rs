@@ -5,13 +5,13 @@
 use std::path::{Path, PathBuf};
 use std::sync::Arc;
 
-use glam::{DMat3, DVec3};
+use glam::DVec3;
 use serde::{Deserialize, Serialize};
 
-use super::{Context, CubeSize, Shape, rotation_degrees};
+use super::{Context, CubeSize, Placement, Shape};
 use crate::scene::key_path::KeyPath;
 use crate::scene::mesh_file::{self, Geometry};
-use crate::scene::validate::{Check, FINITE, Issue, POSITIVE, material_name, number, vector};
+use crate::scene::validate::{Check, Issue, material_name};
 
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
 #[serde(deny_unknown_fields)]
@@ -29,14 +29,9 @@ pub struct Mesh {
     pub normals: Vec<DVec3>,
     #[serde(default)]
     pub smooth: bool,
-    #[serde(default)]
-    pub translate: DVec3,
-    /// A number or `[x, y, z]`, like a cube's size.
-    #[serde(default = "unit_scale")]
-    pub scale: CubeSize,
-    /// Degrees about the world x, y, z axes, applied in that order.
-    #[serde(default)]
-    pub rotation: DVec3,
+    /// `scale` is a number or `[x, y, z]`, like a cube's size.
+    #[serde(flatten)]
+    pub placement: Placement<CubeSize>,
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub material: Option<String>,
     /// The geometry, loaded and checked by validation; shared between
@@ -59,10 +54,6 @@ crate::named_option! {
         #[default]
         Watertight = "watertight",
     }
-}
-
-fn unit_scale() -> CubeSize {
-    CubeSize::Uniform(1.0)
 }
 
 /// The loaded geometry of a mesh (empty before validation). Two are equal
@@ -121,9 +112,7 @@ impl Mesh {
             triangles: Vec::new(),
             normals: Vec::new(),
             smooth: false,
-            translate: DVec3::ZERO,
-            scale: unit_scale(),
-            rotation: DVec3::ZERO,
+            placement: Placement::default(),
             material: None,
             geometry: Loaded(Arc::new(geometry)),
         }
@@ -147,21 +136,6 @@ impl Mesh {
         let geometry = mesh_file::load_file(&full, self.smooth)?;
         self.geometry = Loaded(Arc::new(geometry));
         Ok(())
-    }
-
-    /// `Rz Ry Rx` of `rotation`, the cube's convention.
-    pub fn rotation_matrix(&self) -> DMat3 {
-        rotation_degrees(self.rotation)
-    }
-
-    /// The linear part of local to world: `R * diag(scale)`.
-    pub fn linear(&self) -> DMat3 {
-        self.rotation_matrix() * DMat3::from_diagonal(self.scale.edges())
-    }
-
-    /// A local point in the world: `translate + R (scale * p)`.
-    pub fn to_world(&self, p: DVec3) -> DVec3 {
-        self.translate + self.linear() * p
     }
 
     /// Where the geometry is loaded from, for messages and the panel.
@@ -193,12 +167,7 @@ impl Shape for Mesh {
     /// Checks the placement, then loads the geometry (file or inline) and
     /// keeps it; degenerate triangles dropped are reported as a warning.
     fn validate(&mut self, path: &KeyPath, context: &Context) -> Check {
-        vector(&path.key("translate"), self.translate, &FINITE)?;
-        match self.scale {
-            CubeSize::Uniform(s) => number(&path.key("scale"), s, &POSITIVE)?,
-            CubeSize::PerAxis(s) => vector(&path.key("scale"), s, &POSITIVE)?,
-        }
-        vector(&path.key("rotation"), self.rotation, &FINITE)?;
+        self.placement.validate(path)?;
         material_name(path, self.material.as_deref(), context.materials)?;
         let geometry = self.load(path, context)?;
         if geometry.dropped > 0 {
@@ -211,25 +180,17 @@ impl Shape for Mesh {
         Ok(())
     }
 
-    fn translate(&mut self, offset: DVec3) {
-        self.translate += offset;
-    }
+    type Flattened = Placement<CubeSize>;
 
-    fn material(&self) -> &Option<String> {
-        &self.material
-    }
-
-    fn material_mut(&mut self) -> &mut Option<String> {
-        &mut self.material
-    }
+    shape_accessors!(placement.translate);
 
     /// The world box of the transformed vertices.
     fn bounds(&self) -> [DVec3; 2] {
-        let m = self.linear();
+        let m = self.placement.linear();
         self.geometry.0.positions.iter().fold(
             [DVec3::INFINITY, DVec3::NEG_INFINITY],
             |[lo, hi], &p| {
-                let w = self.translate + m * p;
+                let w = self.placement.translate + m * p;
                 [lo.min(w), hi.max(w)]
             },
         )

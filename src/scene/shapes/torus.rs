@@ -3,8 +3,7 @@
 use glam::DVec3;
 use serde::{Deserialize, Serialize};
 
-use super::placement::{Placement, one};
-use super::{Context, Shape};
+use super::{Context, Placement, Shape};
 use crate::scene::key_path::KeyPath;
 use crate::scene::validate::{Check, Issue, POSITIVE, material_name, number};
 
@@ -15,12 +14,8 @@ use crate::scene::validate::{Check, Issue, POSITIVE, material_name, number};
 pub struct Torus {
     pub major_radius: f64,
     pub minor_radius: f64,
-    #[serde(default)]
-    pub translate: DVec3,
-    #[serde(default = "one")]
-    pub scale: f64,
-    #[serde(default)]
-    pub rotation: DVec3,
+    #[serde(flatten)]
+    pub placement: Placement,
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub material: Option<String>,
 }
@@ -39,16 +34,6 @@ crate::named_option! {
     }
 }
 
-impl Torus {
-    pub fn placement(&self) -> Placement {
-        Placement {
-            translate: self.translate,
-            scale: self.scale,
-            rotation: self.rotation,
-        }
-    }
-}
-
 impl Shape for Torus {
     fn validate(&mut self, path: &KeyPath, context: &Context) -> Check {
         number(&path.key("major_radius"), self.major_radius, &POSITIVE)?;
@@ -62,25 +47,17 @@ impl Shape for Torus {
                 ),
             ));
         }
-        self.placement().validate(path)?;
+        self.placement.validate(path)?;
         material_name(path, self.material.as_deref(), context.materials)
     }
 
-    fn translate(&mut self, offset: DVec3) {
-        self.translate += offset;
-    }
+    type Flattened = Placement;
 
-    fn material(&self) -> &Option<String> {
-        &self.material
-    }
-
-    fn material_mut(&mut self) -> &mut Option<String> {
-        &mut self.material
-    }
+    shape_accessors!(placement.translate);
 
     fn bounds(&self) -> [DVec3; 2] {
         let (big, r) = (self.major_radius + self.minor_radius, self.minor_radius);
-        self.placement()
+        self.placement
             .bounds([DVec3::new(-big, -r, -big), DVec3::new(big, r, big)])
     }
 }
