@@ -187,6 +187,13 @@ impl Workbench {
         outcome
     }
 
+    /// Opens the text of a dropped file in `doc` (see [`Editor::open_text`]).
+    pub fn open(&self, doc: Doc, text: &str) {
+        if let Some(editor) = &self.editor {
+            editor.open_text(doc, text);
+        }
+    }
+
     /// The page's scene changed elsewhere (the panel, the orbit, the menu):
     /// the scene document follows unless the user holds text of their own
     /// there (docs/web.md, "Edits from the panel").
