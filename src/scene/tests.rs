@@ -680,6 +680,12 @@ fn wrong_and_unknown_placement_keys_are_named_with_their_line() {
         "unknown key `scael`",
     );
     assert_eq!(e.line, Some(3));
+    for (text, key) in [
+        ("tori = [1]\n", "tori[0]"),
+        ("meshes = [[]]\n", "meshes[0]"),
+    ] {
+        rejects_with(text, key, "expected a table");
+    }
 }
 
 #[test]
