@@ -178,11 +178,10 @@ impl ApplicationHandler<PageEvent> for Page {
                 self.request_redraw();
             }
             PageEvent::Ready(Err(e)) => page::show_error(&e),
-            PageEvent::Work(event) => match self.work.handle(event) {
-                Outcome::Scene(scene) => self.replace_scene(*scene),
-                Outcome::Redraw => self.request_redraw(),
-                Outcome::Nothing => {}
-            },
+            PageEvent::Work(event) => {
+                let outcome = self.work.handle(event);
+                self.follow(outcome);
+            }
             PageEvent::Pipelines(options, built) => self.pipelines_built(options, built),
             PageEvent::Dropped(file) => self.dropped(file),
         }
@@ -238,6 +237,15 @@ impl Page {
         });
     }
 
+    /// Does what the workbench asks after an edit.
+    fn follow(&mut self, outcome: Outcome) {
+        match outcome {
+            Outcome::Scene(scene) => self.replace_scene(*scene),
+            Outcome::Redraw => self.request_redraw(),
+            Outcome::Nothing => {}
+        }
+    }
+
     /// A file dropped on the canvas (docs/web.md, "Dropping files"): a scene
     /// or a shader opens in its editor as if typed there, so the canvas shows
     /// it. A file that cannot be used is reported with its name (and line),
@@ -250,11 +258,17 @@ impl Page {
         match dropped {
             Ok((Dropped::Scene(text), name)) => {
                 match Scene::from_toml_str(&text, Some(Path::new(&name))) {
-                    Ok(_) => self.work.open(Doc::Scene, &text),
+                    Ok(_) => {
+                        let outcome = self.work.open(Doc::Scene, &text);
+                        self.follow(outcome);
+                    }
                     Err(e) => page::show_error(&e.to_string()),
                 }
             }
-            Ok((Dropped::Shader(text), _)) => self.work.open(Doc::Shader, &text),
+            Ok((Dropped::Shader(text), _)) => {
+                let outcome = self.work.open(Doc::Shader, &text);
+                self.follow(outcome);
+            }
             Err(e) => page::show_error(&e),
         }
     }
@@ -356,19 +370,15 @@ async fn create_graphics(window: Arc<Window>, scene: &Scene) -> Result<Graphics,
         })?;
     let formats = Viewport::output_formats(&gpu, &surface);
     let source = ShaderSource::embedded();
-    let pipelines = Pipelines::with_outline_async(
-        &gpu.device,
-        &source,
-        &formats,
-        &ShaderOptions::for_scene(scene),
-    )
-    .await
-    .map_err(|e| e.to_string())?;
+    let options = ShaderOptions::for_scene(scene);
+    let pipelines = Pipelines::with_outline_async(&gpu.device, &source, &formats, &options)
+        .await
+        .map_err(|e| e.to_string())?;
     let viewport = Viewport::new(&gpu, surface, (size.width, size.height), pipelines, scene);
     Ok(Graphics {
         gpu,
         viewport,
-        options: ShaderOptions::for_scene(scene),
+        options,
         formats,
     })
 }

@@ -210,17 +210,8 @@ impl Editor {
         self.send_now(doc);
     }
 
-    /// Opens a text that came from elsewhere (a file dropped on the page)
-    /// in `doc`, as if the user had typed it there: the document is shown,
-    /// the canvas shows it, and the text is compiled at once.
-    pub fn open_text(&self, doc: Doc, text: &str) {
-        self.show_doc(doc);
-        self.emit(EditorEvent::Show(doc));
-        self.load_text(doc, text);
-    }
-
-    /// Shows `doc`'s textarea and makes the canvas show it.
-    fn show_doc(&self, doc: Doc) {
+    /// Shows `doc`'s textarea (and its tab as chosen).
+    pub fn show_doc(&self, doc: Doc) {
         let mut state = self.0.borrow_mut();
         state.shown = doc;
         for other in Doc::ALL {
