@@ -396,3 +396,72 @@ fn a_shader_link_reproduces_the_shader_in_a_fresh_browser() {
     }
     assert_eq!(page.exceptions(), Vec::<String>::new());
 }
+
+/// Every example shader of the editor's menu compiles in the page and
+/// draws (the browser's WebGPU takes what naga writes for it).
+#[test]
+fn every_example_shader_in_the_menu_draws_in_the_page() {
+    let Some(display) = common::xwindow::Display::start() else {
+        return;
+    };
+    let url = browser::serve(browser::page_dir());
+    let mut page = Browser::open(&display, &format!("{url}?samples=1&ui=0&editor"));
+    page.wait_for("ready");
+    let mut previous = wait_for_picture(&page, "the scene", |p| distinct_colors(p, 16) >= 16);
+    for (name, _) in sandbox::bundled::SHADERS {
+        page.evaluate(&format!(
+            "(() => {{ const menu = document.getElementById('shader-examples'); \
+             menu.value = '{name}'; menu.dispatchEvent(new Event('change')); }})()"
+        ));
+        assert_eq!(page.wait_for("example"), name);
+        let ok = page.wait_for("shader ok");
+        eprintln!("{name}: {ok}");
+        let shown = page.evaluate("document.getElementById('shader').className");
+        assert_eq!(
+            shown.as_str(),
+            Some("doc shown"),
+            "the shader's tab is shown"
+        );
+        // A new picture: the example's (the examples are animated, so the
+        // two Whitted ones, alike at time 0, differ a moment later).
+        previous = wait_for_picture(&page, name, |p| {
+            distinct_colors(p, 16) >= 16 && diff_images(p, &previous).mean_abs > 1.0
+        });
+    }
+    assert_eq!(page.exceptions(), Vec::<String>::new());
+}
+
+/// The shader's mouse is the pointer's position in canvas pixels, y up
+/// (Shadertoy's `iMouse`): a click shows its position as a colour.
+#[test]
+fn the_shaders_mouse_is_the_pointer_y_up() {
+    let Some(display) = common::xwindow::Display::start() else {
+        return;
+    };
+    let text = "void mainImage(out vec4 fragColor, in vec2 fragCoord) {\n    \
+                fragColor = vec4(iMouse.xy / iResolution.xy, 0.0, 1.0);\n}\n";
+    let url = browser::serve(browser::page_dir());
+    let mut page = Browser::open(&display, &format!("{url}?ui=0#{}", link::shader_hash(text)));
+    page.wait_for("shader ok");
+    let at = (120.0, 60.0);
+    page.click(at);
+    let expected = [
+        (255.0 * at.0 / f64::from(SIZE.0)).round() as u8,
+        (255.0 * (f64::from(SIZE.1) - at.1) / f64::from(SIZE.1)).round() as u8,
+        0,
+    ];
+    let deadline = std::time::Instant::now() + browser::TIMEOUT;
+    loop {
+        let picture = page.capture_screen();
+        let p = picture.get_pixel(SIZE.0 / 2, SIZE.1 / 2);
+        if (0..3).all(|k| p[k].abs_diff(expected[k]) <= 2) {
+            break;
+        }
+        assert!(
+            std::time::Instant::now() < deadline,
+            "the picture is {p:?}, not the click's position {expected:?} as a colour"
+        );
+        std::thread::sleep(std::time::Duration::from_millis(300));
+    }
+    assert_eq!(page.exceptions(), Vec::<String>::new());
+}

@@ -283,19 +283,15 @@ async fn create_graphics(window: Arc<Window>, scene: &Scene) -> Result<Graphics,
         .map_err(|e| page::no_webgpu_help(&e.to_string()))?;
     let formats = Viewport::output_formats(&gpu, &surface);
     let source = ShaderSource::embedded();
-    let pipelines = Pipelines::with_outline_async(
-        &gpu.device,
-        &source,
-        &formats,
-        &ShaderOptions::for_scene(scene),
-    )
-    .await
-    .map_err(|e| e.to_string())?;
+    let options = ShaderOptions::for_scene(scene);
+    let pipelines = Pipelines::with_outline_async(&gpu.device, &source, &formats, &options)
+        .await
+        .map_err(|e| e.to_string())?;
     let viewport = Viewport::new(&gpu, surface, (size.width, size.height), pipelines, scene);
     Ok(Graphics {
         gpu,
         viewport,
-        options: ShaderOptions::for_scene(scene),
+        options,
         formats,
     })
 }
