@@ -67,6 +67,9 @@ pub struct Platform {
     pub event: Box<dyn Fn(&str)>,
     /// Starts a pipeline build off the input path.
     pub build: Box<dyn Fn(BuildRequest)>,
+    /// Ask for the next refinement sample only once the GPU has finished
+    /// the last (the browser: see the page's `platform`); natively at once.
+    pub next_sample_after_gpu: bool,
 }
 
 pub struct Viewer {
@@ -408,7 +411,14 @@ impl Viewer {
         // line shows the final count. Then nothing is drawn until something
         // changes, and an idle window costs no CPU.
         let samples = gfx.viewport.samples();
-        if status == FrameStatus::Skipped || new_samples > 0 {
+        if status == FrameStatus::Skipped {
+            gfx.window.request_redraw();
+        } else if new_samples > 0 && self.platform.next_sample_after_gpu {
+            let window = gfx.window.clone();
+            gfx.gpu
+                .queue
+                .on_submitted_work_done(move || window.request_redraw());
+        } else if new_samples > 0 {
             gfx.window.request_redraw();
         }
         let resolution = gfx.viewport.traced_resolution();

@@ -111,6 +111,7 @@ pub fn run(options: ViewerOptions) -> Result<(), ViewerError> {
                 let _ = proxy.send_event(UserEvent::PipelinesBuilt(Box::new(built)));
             });
         }),
+        next_sample_after_gpu: false,
     };
     let mut viewer = Viewer::new(doc, shaders, shader_params, platform);
     if let Some(n) = options.max_samples {

@@ -6,8 +6,10 @@
 //!
 //! In the browser nothing may block: the adapter, the device and the
 //! pipelines' validation arrive asynchronously, and the page hands them to
-//! the event loop as [`PageEvent`]s once they are there.
+//! the event loop as [`PageEvent`]s once they are there. The editors and
+//! the sandbox are the [`Workbench`]'s.
 
+use std::path::Path;
 use std::sync::Arc;
 
 use wasm_bindgen::prelude::*;
@@ -18,13 +20,16 @@ use winit::event_loop::{ActiveEventLoop, ControlFlow, EventLoop, EventLoopProxy}
 use winit::platform::web::{EventLoopExtWebSys, WindowAttributesExtWebSys};
 use winit::window::{Window, WindowId};
 
-use super::{link, page};
+use super::drop::{Dropped, DroppedFile};
+use super::editor::Doc;
+use super::workbench::{Outcome, WorkEvent, Workbench};
+use super::{drop, link, page};
 use crate::app::document::Document;
 use crate::app::pipelines::Built;
 use crate::app::shell;
 use crate::app::ui::{Command, Host, MenuItem};
 use crate::app::viewer::{Platform, Viewer};
-use crate::gpu::{Gpu, Pipelines, ShaderSource, Viewport};
+use crate::gpu::{Gpu, GpuError, Pipelines, ShaderSource, Viewport};
 use crate::sandbox::SourceParams;
 use crate::scene::{Scene, bundled};
 
@@ -46,6 +51,10 @@ pub enum PageEvent {
     PipelinesBuilt(Box<Built>),
     /// "Copy link" finished.
     LinkCopied(Result<(), String>),
+    /// An edit in the text editors, or a sandbox pipeline built.
+    Work(WorkEvent),
+    /// A file dropped on the canvas, read.
+    Dropped(Result<DroppedFile, String>),
 }
 
 /// The GPU objects made asynchronously for the canvas.
@@ -59,7 +68,8 @@ pub struct Graphics {
 #[wasm_bindgen(start)]
 pub fn start() {
     std::panic::set_hook(Box::new(|info| page::show_error(&info.to_string())));
-    let doc = match initial_document() {
+    page::timing("start");
+    let (text, doc) = match initial_document() {
         Ok(doc) => doc,
         Err(e) => {
             page::show_error(&e);
@@ -83,15 +93,30 @@ pub fn start() {
             return;
         }
     };
+    let to_page = proxy.clone();
+    let work = Workbench::new(&text, &doc.scene, move |e| {
+        let _ = to_page.send_event(PageEvent::Work(e));
+    });
+    if let Some(canvas) = page::canvas() {
+        let to_page = proxy.clone();
+        let listening = drop::listen(&canvas, move |file| {
+            let _ = to_page.send_event(PageEvent::Dropped(file));
+        });
+        if let Err(e) = listening {
+            page::show_error(&e);
+        }
+    }
     let mut viewer = Viewer::new(doc, shaders, params, platform(proxy.clone()));
     viewer.editor.view.max_samples = page::query("samples")
         .and_then(|n| n.parse::<u32>().ok())
         .map_or(MAX_SAMPLES, |n| n.max(1));
-    // `?panel=0`: the picture alone, as the H key leaves it.
-    viewer.editor.show_panel = page::query("panel").as_deref() != Some("0");
+    // `?ui=0`: the picture alone, as the H key leaves it.
+    viewer.editor.show_panel = page::query("ui").as_deref() != Some("0");
     event_loop.spawn_app(Page {
         proxy,
         viewer,
+        work,
+        input_seen: false,
         window: None,
         menu: MenuItem::bundled_scenes(),
         address_due: None,
@@ -102,7 +127,16 @@ pub fn start() {
 /// builds as futures whose results come back through the event loop.
 fn platform(proxy: EventLoopProxy<PageEvent>) -> Platform {
     Platform {
-        event: Box::new(page::event),
+        event: Box::new(|line| {
+            page::event(line);
+            if line.starts_with("first-frame") {
+                page::timing("first-frame");
+            }
+        }),
+        // Asked for at once, samples pile up in the browser's GPU process
+        // faster than SwiftShader draws them, and the page gets no input
+        // until the refinement ends (docs/web.md, "Start-up time").
+        next_sample_after_gpu: true,
         build: Box::new(move |request| {
             let proxy = proxy.clone();
             wasm_bindgen_futures::spawn_local(async move {
@@ -113,27 +147,36 @@ fn platform(proxy: EventLoopProxy<PageEvent>) -> Platform {
     }
 }
 
-/// The document the page opens with: the scene in the address's `#scene=`
-/// link, else the bundled Whitted scene. A broken link is reported over the
-/// canvas and the Whitted scene shown.
-fn initial_document() -> Result<Document, String> {
+/// The document the page opens with, and its text: the scene in the
+/// address's `#scene=` link, else the bundled Whitted scene. A broken link
+/// is reported over the canvas and the Whitted scene shown.
+fn initial_document() -> Result<(String, Document), String> {
     if let Some(text) = page::hash().as_deref().and_then(link::scene_in_hash) {
-        match text.and_then(|text| Scene::from_toml_str(&text, None).map_err(|e| e.to_string())) {
-            Ok(scene) => {
+        let parsed = text.and_then(|text| {
+            let scene = Scene::from_toml_str(&text, None).map_err(|e| e.to_string())?;
+            Ok((text, scene))
+        });
+        match parsed {
+            Ok((text, scene)) => {
                 page::event("scene from-link");
-                return Ok(Document::untitled(scene));
+                return Ok((text, Document::untitled(scene)));
             }
             Err(e) => page::show_error(&format!("the link's scene cannot be shown: {e}")),
         }
     }
     let name = bundled::names()[0];
+    let text = bundled::text(name).unwrap_or_default().to_string();
     page::event(&format!("scene {name}"));
-    Document::bundled(name).map_err(|e| e.to_string())
+    Ok((text, Document::bundled(name).map_err(|e| e.to_string())?))
 }
 
 struct Page {
     proxy: EventLoopProxy<PageEvent>,
     viewer: Viewer,
+    /// The text editors and the sandbox shader.
+    work: Workbench,
+    /// Whether the page handled the user's input yet (for start-up timing).
+    input_seen: bool,
     /// The canvas's window, from `resumed` on (the viewer gets it once the
     /// GPU is there).
     window: Option<Arc<Window>>,
@@ -174,8 +217,15 @@ impl ApplicationHandler<PageEvent> for Page {
                     return;
                 };
                 page::event(&format!("adapter {}", gfx.gpu.describe()));
+                page::timing("gpu");
+                let size = window.inner_size();
                 self.viewer
                     .attach(window, gfx.gpu, gfx.surface, gfx.pipelines);
+                if let Some(gfx) = &self.viewer.gfx {
+                    let format = gfx.viewport.surface_format();
+                    self.work
+                        .gpu_ready(&gfx.gpu, format, (size.width, size.height));
+                }
             }
             PageEvent::Ready(Err(e)) => page::show_error(&e),
             PageEvent::PipelinesBuilt(built) => self.viewer.pipelines_built(*built),
@@ -187,6 +237,11 @@ impl ApplicationHandler<PageEvent> for Page {
                 page::event(&message);
                 self.viewer.editor.message = Some(message);
             }
+            PageEvent::Work(event) => {
+                let outcome = self.work.handle(event);
+                self.follow(outcome);
+            }
+            PageEvent::Dropped(file) => self.dropped(file),
         }
         self.viewer.request_redraw();
     }
@@ -195,11 +250,22 @@ impl ApplicationHandler<PageEvent> for Page {
         let Some(gfx) = &mut self.viewer.gfx else {
             return;
         };
-        let response = gfx.egui.state.on_window_event(&gfx.window, &event);
+        if !self.input_seen && is_input(&event) {
+            self.input_seen = true;
+            page::timing("first-input");
+        }
+        if self.work.shows_shader() {
+            // The sandbox has the canvas: the pointer is the shader's mouse.
+            self.work.pointer(&event);
+        } else if gfx.egui.state.on_window_event(&gfx.window, &event).repaint {
+            gfx.window.request_redraw();
+        }
         match event {
-            WindowEvent::Resized(size) => self.viewer.resize(size),
+            WindowEvent::Resized(size) => {
+                self.work.resize(&gfx.gpu, (size.width, size.height));
+                self.viewer.resize(size);
+            }
             WindowEvent::RedrawRequested => self.redraw(),
-            _ if response.repaint => gfx.window.request_redraw(),
             _ => {}
         }
     }
@@ -212,7 +278,13 @@ impl ApplicationHandler<PageEvent> for Page {
 }
 
 impl Page {
+    /// Draws the scene with the panel over it; or, while the shader is
+    /// shown, the shader's next frame, frame after frame.
     fn redraw(&mut self) {
+        if self.work.shows_shader() {
+            self.draw_shader();
+            return;
+        }
         let host = Host {
             files: None,
             menu: &self.menu,
@@ -225,7 +297,63 @@ impl Page {
         if self.viewer.end_frame(start, ui) {
             self.address_due = Some(Instant::now() + ADDRESS_DELAY);
         }
+        self.work.follow_scene(&self.viewer.doc.scene);
         self.follow_address();
+    }
+
+    fn draw_shader(&mut self) {
+        let Some(gfx) = &mut self.viewer.gfx else {
+            return;
+        };
+        let format = gfx.viewport.surface_format();
+        let work = &mut self.work;
+        gfx.viewport.frame(&gfx.gpu, 0, |encoder, view| {
+            work.draw(&gfx.gpu, encoder, view, format);
+            Vec::new()
+        });
+        gfx.window.request_redraw();
+    }
+
+    /// Does what the workbench asks after an edit: a scene text that
+    /// validated replaces the scene (new pipelines, if it needs them, built
+    /// without blocking, the last picture kept meanwhile).
+    fn follow(&mut self, outcome: Outcome) {
+        match outcome {
+            Outcome::Scene(scene) => {
+                let before = std::mem::replace(&mut self.viewer.doc.scene, *scene);
+                self.viewer.scene_changed(Some(&before));
+                self.viewer.request_redraw();
+            }
+            Outcome::Redraw => self.viewer.request_redraw(),
+            Outcome::Nothing => {}
+        }
+    }
+
+    /// A file dropped on the canvas (docs/web.md, "Dropping files"): a scene
+    /// or a shader opens in its editor as if typed there, so the canvas shows
+    /// it. A file that cannot be used is reported with its name (and line),
+    /// and the picture kept.
+    fn dropped(&mut self, file: Result<DroppedFile, String>) {
+        let dropped = file.and_then(|file| {
+            page::event(&format!("dropped {}", file.name));
+            Ok((Dropped::of(&file)?, file.name))
+        });
+        match dropped {
+            Ok((Dropped::Scene(text), name)) => {
+                match Scene::from_toml_str(&text, Some(Path::new(&name))) {
+                    Ok(_) => {
+                        let outcome = self.work.open(Doc::Scene, &text);
+                        self.follow(outcome);
+                    }
+                    Err(e) => page::show_error(&e.to_string()),
+                }
+            }
+            Ok((Dropped::Shader(text), _)) => {
+                let outcome = self.work.open(Doc::Shader, &text);
+                self.follow(outcome);
+            }
+            Err(e) => page::show_error(&e),
+        }
     }
 
     fn execute(&mut self, command: Command) {
@@ -267,17 +395,19 @@ impl Page {
     }
 
     /// Puts the scene in the address once it has stayed unchanged for
-    /// [`ADDRESS_DELAY`], and wakes the loop then.
+    /// [`ADDRESS_DELAY`], and wakes the loop then. (While the shader is
+    /// shown, the address carries the shader: the workbench writes it.)
     fn follow_address(&mut self) {
         let Some(due) = self.address_due else { return };
+        if self.work.shows_shader() {
+            return;
+        }
         if Instant::now() >= due {
             self.address_due = None;
             let fragment = self.scene_fragment();
-            match page::replace_hash(&fragment) {
-                // The tests read the scene shown from this line.
-                Ok(()) => page::event(&format!("address {fragment}")),
-                Err(e) => self.viewer.editor.message = Some(format!("address not updated: {e}")),
-            }
+            page::replace_hash(&fragment);
+            // The tests read the scene shown from this line.
+            page::event(&format!("address {fragment}"));
         } else {
             let at = self.viewer.repaint_at.map_or(due, |at| at.min(due));
             self.viewer.repaint_at = Some(at);
@@ -289,7 +419,7 @@ impl Page {
     fn copy_link(&mut self) {
         let fragment = self.scene_fragment();
         self.address_due = None;
-        let _ = page::replace_hash(&fragment);
+        page::replace_hash(&fragment);
         let address = match page::address_with(&fragment) {
             Ok(address) => address,
             Err(e) => {
@@ -327,7 +457,11 @@ async fn create_graphics(
     };
     let gpu = Gpu::request(instance, &adapter_options)
         .await
-        .map_err(|e| page::no_webgpu_help(&e.to_string()))?;
+        .map_err(|e| match e {
+            // The native advice (installing a Vulkan driver) does not apply here.
+            GpuError::NoAdapter(reason) => page::no_webgpu_help(&reason),
+            other => other.to_string(),
+        })?;
     let formats = Viewport::output_formats(&gpu, &surface);
     let pipelines = Pipelines::with_outline_async(&gpu.device, source, &formats, options)
         .await
@@ -337,4 +471,15 @@ async fn create_graphics(
         surface,
         pipelines,
     })
+}
+
+/// Whether `event` is the user's (the mouse, the keyboard).
+fn is_input(event: &WindowEvent) -> bool {
+    matches!(
+        event,
+        WindowEvent::CursorMoved { .. }
+            | WindowEvent::MouseInput { .. }
+            | WindowEvent::MouseWheel { .. }
+            | WindowEvent::KeyboardInput { .. }
+    )
 }
