@@ -10,6 +10,7 @@ use common::browser::{self, Browser, SIZE};
 use image::RgbaImage;
 use raysandbox::compare::{diff_images, distinct_colors, nan_pixels};
 use raysandbox::reference;
+use raysandbox::sandbox;
 use raysandbox::scene::{Scene, bundled};
 use raysandbox::web::link;
 
@@ -52,14 +53,16 @@ fn whitted() -> (String, Scene) {
 }
 
 /// Opened without link data, the page shows the bundled Whitted scene, and
-/// its first frame (1 sample per pixel) is the native renderer's picture.
+/// its first frame (1 sample per pixel) is the native renderer's picture
+/// (`ui=0`, here and below: the picture alone, without the page's controls
+/// over it).
 #[test]
 fn the_page_renders_the_whitted_scene_like_the_reference() {
     let Some(display) = common::xwindow::Display::start() else {
         return;
     };
     let url = browser::serve(browser::page_dir());
-    let mut page = Browser::open(&display, &format!("{url}?samples=1"));
+    let mut page = Browser::open(&display, &format!("{url}?samples=1&ui=0"));
     assert_eq!(page.wait_for("scene"), "whitted");
     let adapter = page.wait_for("adapter");
     eprintln!("page adapter: {adapter}");
@@ -86,7 +89,7 @@ fn a_shared_link_reproduces_the_scene_in_a_fresh_browser() {
     let scene = Scene::from_toml_str(&edited, None).unwrap();
     assert_ne!(scene, original, "the edit changed the scene");
     let url = browser::serve(browser::page_dir());
-    let address = format!("{url}?samples=1#{}", link::scene_hash(&edited));
+    let address = format!("{url}?samples=1&ui=0#{}", link::scene_hash(&edited));
     let mut page = Browser::open(&display, &address);
     assert_eq!(page.wait_for("scene"), "from-link");
     page.wait_for("ready");
@@ -119,7 +122,7 @@ fn a_damaged_link_is_reported_and_the_whitted_scene_shown() {
     let hash = link::scene_hash(&whitted().0);
     let cut = &hash[..hash.len() / 2];
     let url = browser::serve(browser::page_dir());
-    let mut page = Browser::open(&display, &format!("{url}?samples=1#{cut}"));
+    let mut page = Browser::open(&display, &format!("{url}?samples=1&ui=0#{cut}"));
     let error = error_shown(&mut page);
     assert!(error.contains("the link is damaged"), "{error}");
     assert_eq!(page.wait_for("scene"), "whitted");
@@ -143,7 +146,7 @@ fn a_link_to_a_bad_scene_names_the_line_and_the_whitted_scene_is_shown() {
         .position(|l| l.starts_with("ambient ="))
         .unwrap();
     let url = browser::serve(browser::page_dir());
-    let address = format!("{url}?samples=1#{}", link::scene_hash(&bad));
+    let address = format!("{url}?samples=1&ui=0#{}", link::scene_hash(&bad));
     let mut page = Browser::open(&display, &address);
     let error = error_shown(&mut page);
     assert!(error.contains(&format!("<scene>:{line}:")), "{error}");
@@ -164,7 +167,7 @@ fn without_webgpu_the_page_says_which_browsers_have_it() {
     };
     let url = browser::serve(browser::page_dir());
     let mut page = Browser::start(&display, browser::Options { webgpu: false });
-    page.navigate(&format!("{url}?samples=1"));
+    page.navigate(&format!("{url}?samples=1&ui=0"));
     let gpu = page.evaluate(
         "navigator.gpu ? navigator.gpu.requestAdapter().then(a => a ? 'adapter' : 'no adapter') \
          : 'no navigator.gpu'",
@@ -182,7 +185,418 @@ fn without_webgpu_the_page_says_which_browsers_have_it() {
     ] {
         assert!(error.contains(hint), "{hint:?} is not in: {error}");
     }
+    assert!(
+        !error.contains("apt-get"),
+        "the native program's advice does not help in a browser: {error}"
+    );
     let later = page.events_within(std::time::Duration::from_secs(1));
     assert!(later.is_empty(), "after the error the page said {later:?}");
+    assert_eq!(page.exceptions(), Vec::<String>::new());
+}
+
+/// Width of the canvas beside the open editor panel, in the test's window
+/// (web/editor.css: the panel takes 46% of the width).
+const CANVAS_BESIDE_EDITOR: u32 = SIZE.0 * 54 / 100;
+
+/// The part of the screen where the canvas is while the editor is open.
+fn canvas_beside_editor(page: &Browser) -> RgbaImage {
+    common::xwindow::crop(&page.capture_screen(), (0, 0, CANVAS_BESIDE_EDITOR, SIZE.1))
+}
+
+/// Captures the canvas beside the editor until `shows` holds (the browser
+/// composites some time after the page drew); fails with the last picture
+/// saved when it does not within the browser module's timeout.
+fn wait_for_picture(page: &Browser, what: &str, shows: impl Fn(&RgbaImage) -> bool) -> RgbaImage {
+    let deadline = std::time::Instant::now() + browser::TIMEOUT;
+    loop {
+        let picture = canvas_beside_editor(page);
+        if shows(&picture) {
+            return picture;
+        }
+        if std::time::Instant::now() > deadline {
+            let file = std::env::temp_dir().join(format!("web-{}.png", what.replace(' ', "-")));
+            picture.save(&file).unwrap();
+            panic!(
+                "the canvas never showed {what} (saved in {})",
+                file.display()
+            );
+        }
+        std::thread::sleep(std::time::Duration::from_millis(300));
+    }
+}
+
+/// Whether the middle of `picture` is `rgb`, give or take 2.
+fn middle_is(picture: &RgbaImage, rgb: [u8; 3]) -> bool {
+    let p = picture.get_pixel(picture.width() / 2, picture.height() / 2);
+    (0..3).all(|k| p[k].abs_diff(rgb[k]) <= 2)
+}
+
+/// Puts `text` in place of a document's whole text, as a user selecting
+/// all and typing (one `input` event, as an input method sends).
+fn replace_text(page: &mut Browser, doc: &str, text: &str) {
+    page.evaluate(&format!(
+        "(() => {{ const t = document.getElementById('{doc}-text'); t.focus(); t.select(); }})()"
+    ));
+    page.insert_text(text);
+}
+
+/// The error under a document's editor, and the line its gutter marks.
+fn shown_problem(page: &mut Browser, doc: &str) -> (String, String) {
+    let status = page.evaluate(&format!(
+        "document.getElementById('{doc}-status').textContent"
+    ));
+    let marked = page.evaluate(&format!(
+        "(() => {{ const m = document.querySelector('#{doc}-gutter .error'); \
+         return m ? m.textContent : ''; }})()"
+    ));
+    (
+        status.as_str().unwrap_or_default().to_string(),
+        marked.as_str().unwrap_or_default().to_string(),
+    )
+}
+
+/// A syntax error typed at the end of the scene's TOML is shown under the
+/// editor at its line, that line is marked in the gutter, and the picture
+/// stays as it was; undoing the typing applies the scene again.
+#[test]
+fn a_syntax_error_typed_in_the_scene_editor_shows_its_line_and_keeps_the_picture() {
+    let Some(display) = common::xwindow::Display::start() else {
+        return;
+    };
+    let url = browser::serve(browser::page_dir());
+    let mut page = Browser::open(&display, &format!("{url}?samples=1&ui=0&editor"));
+    assert_eq!(page.wait_for("scene"), "whitted");
+    page.wait_for("ready");
+    let before = wait_for_picture(&page, "the scene", |p| distinct_colors(p, 16) >= 16);
+    let text = whitted().0;
+    page.evaluate(
+        "(() => { const t = document.getElementById('scene-text'); t.focus(); \
+         t.setSelectionRange(t.value.length, t.value.length); })()",
+    );
+    page.insert_text("\n[camera");
+    let line = format!("{text}\n[camera").lines().count();
+    assert_eq!(page.wait_for("scene-error"), format!("line={line}"));
+    let (status, marked) = shown_problem(&mut page, "scene");
+    assert!(status.starts_with(&format!("<scene>:{line}:")), "{status}");
+    assert_eq!(marked, line.to_string(), "the gutter marks the line");
+    // What the compositor shows a while after the error: the same picture.
+    std::thread::sleep(std::time::Duration::from_secs(2));
+    let after = canvas_beside_editor(&page);
+    let d = diff_images(&after, &before);
+    eprintln!(
+        "scene error: picture before vs after: mean |d| {:.4}, max {}",
+        d.mean_abs, d.max_abs
+    );
+    assert!(
+        d.mean_abs <= 0.05 && d.frac_over_8 == 0.0,
+        "the picture changed"
+    );
+    page.key("Control+z");
+    page.wait_for("scene ok");
+    let (status, marked) = shown_problem(&mut page, "scene");
+    assert_eq!((status.as_str(), marked.as_str()), ("scene: valid", ""));
+    // A good edit does change the picture: another sky.
+    let orange = text.replace(
+        "background = [0.25, 0.55, 0.95]",
+        "background = [0.9, 0.5, 0.2]",
+    );
+    assert_ne!(orange, text, "the edit was made");
+    replace_text(&mut page, "scene", &orange);
+    page.wait_for("scene ok");
+    // The sky's colour, from the reference renderer: the top-left corner.
+    let scene = Scene::from_toml_str(&orange, None).unwrap();
+    let sky = *reference::render_rgba8(&scene, 26, 27, 1).get_pixel(0, 0);
+    let after = wait_for_picture(&page, "the orange sky", |p| {
+        let corner = p.get_pixel(4, 4);
+        (0..3).all(|k| corner[k].abs_diff(sky[k]) <= 2)
+    });
+    assert!(
+        diff_images(&after, &before).mean_abs > 1.0,
+        "the picture changed"
+    );
+    assert_eq!(page.exceptions(), Vec::<String>::new());
+}
+
+/// A shader from a link draws (WGSL, red); a shader typed in its place
+/// draws (Shadertoy-style GLSL, green); a mistake typed at its third line
+/// is shown at that line while the green picture stays.
+#[test]
+fn a_shader_typed_in_the_editor_draws_and_its_error_is_at_the_users_line() {
+    let Some(display) = common::xwindow::Display::start() else {
+        return;
+    };
+    let red = "fn main_image(frag_coord: vec2<f32>) -> vec4<f32> {\n    \
+               return vec4(1.0, 0.0, 0.0, 1.0);\n}\n";
+    let url = browser::serve(browser::page_dir());
+    let address = format!("{url}?ui=0&editor#{}", link::shader_hash(red));
+    let mut page = Browser::open(&display, &address);
+    page.wait_for("shader from-link");
+    page.wait_for("shader ok");
+    wait_for_picture(&page, "red", |p| middle_is(p, [255, 0, 0]));
+
+    let green = "void mainImage(out vec4 fragColor, in vec2 fragCoord) {\n    \
+                 fragColor = vec4(0.0, 1.0, 0.0, 1.0);\n}\n";
+    replace_text(&mut page, "shader", green);
+    page.wait_for("shader ok");
+    let (status, _) = shown_problem(&mut page, "shader");
+    assert_eq!(status, "GLSL (Shadertoy style): compiled");
+    wait_for_picture(&page, "green", |p| middle_is(p, [0, 255, 0]));
+
+    let wrong = "void mainImage(out vec4 fragColor, in vec2 fragCoord) {\n    \
+                 vec3 blue = vec3(0.0, 0.0, 1.0);\n    \
+                 fragColor = vec4(blue, not_declared);\n}\n";
+    replace_text(&mut page, "shader", wrong);
+    assert_eq!(page.wait_for("shader-error"), "line=3");
+    let (status, marked) = shown_problem(&mut page, "shader");
+    assert!(status.starts_with("shader:3:"), "{status}");
+    assert!(status.contains("not_declared"), "{status}");
+    assert_eq!(marked, "3", "the gutter marks the line");
+    std::thread::sleep(std::time::Duration::from_secs(2));
+    assert!(
+        middle_is(&canvas_beside_editor(&page), [0, 255, 0]),
+        "the last good shader keeps drawing"
+    );
+    assert_eq!(page.exceptions(), Vec::<String>::new());
+}
+
+/// A `#shader=` link opened in a fresh browser draws that shader: the
+/// page's picture is the native sandbox's render of the same text.
+#[test]
+fn a_shader_link_reproduces_the_shader_in_a_fresh_browser() {
+    let Some(display) = common::xwindow::Display::start() else {
+        return;
+    };
+    let Some(gpu) = common::gpu() else { return };
+    let text = "// A gradient over the image and a disc in its middle.\n\
+                void mainImage(out vec4 fragColor, in vec2 fragCoord) {\n    \
+                vec2 uv = fragCoord / iResolution.xy;\n    \
+                float disc = step(length(fragCoord - 0.5 * iResolution.xy), 0.3 * iResolution.y);\n    \
+                fragColor = vec4(uv, disc, 1.0);\n}\n";
+    let compiled = sandbox::compile("shader", text).unwrap_or_else(|e| panic!("{e}"));
+    let frame = sandbox::FrameUniforms::at(0.0, 0, SIZE);
+    let (expected, _) = sandbox::render_once(&gpu, &compiled, &compiled.params, &frame).unwrap();
+    let url = browser::serve(browser::page_dir());
+    let mut page = Browser::open(&display, &format!("{url}?ui=0#{}", link::shader_hash(text)));
+    page.wait_for("shader from-link");
+    page.wait_for("shader ok");
+    let picture = page.capture_picture();
+    let d = diff_images(&picture, &expected);
+    eprintln!(
+        "shader link: page vs native: mean |d| {:.4}, {:.3}% > 8, max {}",
+        d.mean_abs,
+        d.frac_over_8 * 100.0,
+        d.max_abs
+    );
+    if d.mean_abs > 0.5 || d.frac_over_8 > 0.005 {
+        let out = std::env::temp_dir();
+        picture.save(out.join("web-shader-link-page.png")).unwrap();
+        expected
+            .save(out.join("web-shader-link-native.png"))
+            .unwrap();
+        panic!(
+            "the page's picture differs from the native render (both in {})",
+            out.display()
+        );
+    }
+    assert_eq!(page.exceptions(), Vec::<String>::new());
+}
+
+/// Every example shader of the editor's menu compiles in the page and
+/// draws (the browser's WebGPU takes what naga writes for it).
+#[test]
+fn every_example_shader_in_the_menu_draws_in_the_page() {
+    let Some(display) = common::xwindow::Display::start() else {
+        return;
+    };
+    let url = browser::serve(browser::page_dir());
+    let mut page = Browser::open(&display, &format!("{url}?samples=1&ui=0&editor"));
+    page.wait_for("ready");
+    let mut previous = wait_for_picture(&page, "the scene", |p| distinct_colors(p, 16) >= 16);
+    for (name, _) in sandbox::bundled::SHADERS {
+        page.evaluate(&format!(
+            "(() => {{ const menu = document.getElementById('shader-examples'); \
+             menu.value = '{name}'; menu.dispatchEvent(new Event('change')); }})()"
+        ));
+        assert_eq!(page.wait_for("example"), name);
+        let ok = page.wait_for("shader ok");
+        eprintln!("{name}: {ok}");
+        let shown = page.evaluate("document.getElementById('shader').className");
+        assert_eq!(
+            shown.as_str(),
+            Some("doc shown"),
+            "the shader's tab is shown"
+        );
+        // A new picture: the example's (the examples are animated, so the
+        // two Whitted ones, alike at time 0, differ a moment later).
+        previous = wait_for_picture(&page, name, |p| {
+            distinct_colors(p, 16) >= 16 && diff_images(p, &previous).mean_abs > 1.0
+        });
+    }
+    assert_eq!(page.exceptions(), Vec::<String>::new());
+}
+
+/// The shader's mouse is the pointer's position in canvas pixels, y up
+/// (Shadertoy's `iMouse`): a click shows its position as a colour.
+#[test]
+fn the_shaders_mouse_is_the_pointer_y_up() {
+    let Some(display) = common::xwindow::Display::start() else {
+        return;
+    };
+    let text = "void mainImage(out vec4 fragColor, in vec2 fragCoord) {\n    \
+                fragColor = vec4(iMouse.xy / iResolution.xy, 0.0, 1.0);\n}\n";
+    let url = browser::serve(browser::page_dir());
+    let mut page = Browser::open(&display, &format!("{url}?ui=0#{}", link::shader_hash(text)));
+    page.wait_for("shader ok");
+    let at = (120.0, 60.0);
+    page.click(at);
+    let expected = [
+        (255.0 * at.0 / f64::from(SIZE.0)).round() as u8,
+        (255.0 * (f64::from(SIZE.1) - at.1) / f64::from(SIZE.1)).round() as u8,
+        0,
+    ];
+    let deadline = std::time::Instant::now() + browser::TIMEOUT;
+    loop {
+        let picture = page.capture_screen();
+        let p = picture.get_pixel(SIZE.0 / 2, SIZE.1 / 2);
+        if (0..3).all(|k| p[k].abs_diff(expected[k]) <= 2) {
+            break;
+        }
+        assert!(
+            std::time::Instant::now() < deadline,
+            "the picture is {p:?}, not the click's position {expected:?} as a colour"
+        );
+        std::thread::sleep(std::time::Duration::from_millis(300));
+    }
+    assert_eq!(page.exceptions(), Vec::<String>::new());
+}
+
+/// Waits until the screen shows `scene` as the reference draws it (the
+/// browser composites a new picture some time after the page drew it), then
+/// asserts as [`assert_like_reference`].
+fn assert_shows(page: &Browser, name: &str, scene: &Scene) {
+    let expected = reference::render_rgba8(scene, SIZE.0, SIZE.1, 1);
+    let deadline = std::time::Instant::now() + std::time::Duration::from_secs(30);
+    let mut picture = page.capture_screen();
+    while diff_images(&picture, &expected).mean_abs > 0.5 && std::time::Instant::now() < deadline {
+        std::thread::sleep(std::time::Duration::from_millis(300));
+        picture = page.capture_screen();
+    }
+    assert_like_reference(name, &picture, scene);
+}
+
+/// A scene file dropped on the canvas replaces the picture with its own;
+/// a malformed one is reported with its file name and line, and the
+/// picture stays.
+#[test]
+fn a_dropped_scene_is_drawn_and_a_malformed_one_named_with_its_line() {
+    let Some(display) = common::xwindow::Display::start() else {
+        return;
+    };
+    let url = browser::serve(browser::page_dir());
+    // `ui=0`: no Edit button over the picture.
+    let mut page = Browser::open(&display, &format!("{url}?samples=1&ui=0"));
+    assert_eq!(page.wait_for("scene"), "whitted");
+    page.wait_for("ready");
+    let files = browser::TempDir::new("raysandbox-drop");
+
+    let orange = whitted().0.replace(
+        "background = [0.25, 0.55, 0.95]",
+        "background = [0.9, 0.5, 0.2]",
+    );
+    let scene = Scene::from_toml_str(&orange, None).unwrap();
+    assert_ne!(scene, whitted().1, "the edit changed the scene");
+    let path = common::write_file(&files.0, "orange-sky.toml", &orange);
+    page.drop_file(&path, (240.0, 135.0));
+    assert_eq!(page.wait_for("dropped"), "orange-sky.toml");
+    page.wait_for("scene ok");
+    page.wait_for("ready");
+    assert_shows(&page, "dropped-scene", &scene);
+
+    let bad = orange.replace("ambient = [0.12, 0.12, 0.12]", "ambient = [0.12, 0.12]");
+    let line = 1 + bad
+        .lines()
+        .position(|l| l.starts_with("ambient ="))
+        .unwrap();
+    let path = common::write_file(&files.0, "bad.toml", &bad);
+    page.drop_file(&path, (240.0, 135.0));
+    assert_eq!(page.wait_for("dropped"), "bad.toml");
+    let error = error_shown(&mut page);
+    assert!(error.starts_with(&format!("bad.toml:{line}: ")), "{error}");
+    assert!(error.contains("ambient"), "{error}");
+    let later = page.events_within(std::time::Duration::from_secs(1));
+    assert!(later.is_empty(), "after the error the page said {later:?}");
+    assert_shows(&page, "scene-kept", &scene);
+    assert_eq!(page.exceptions(), Vec::<String>::new());
+}
+
+/// A shader file dropped on the canvas opens in the shader editor and the
+/// canvas draws it.
+#[test]
+fn a_dropped_shader_is_drawn() {
+    let Some(display) = common::xwindow::Display::start() else {
+        return;
+    };
+    let url = browser::serve(browser::page_dir());
+    let mut page = Browser::open(&display, &format!("{url}?samples=1"));
+    page.wait_for("ready");
+    let files = browser::TempDir::new("raysandbox-drop");
+    let magenta = "void mainImage(out vec4 fragColor, in vec2 fragCoord) {\n    \
+                   fragColor = vec4(1.0, 0.0, 1.0, 1.0);\n}\n";
+    let path = common::write_file(&files.0, "magenta.frag", magenta);
+    page.drop_file(&path, (240.0, 135.0));
+    assert_eq!(page.wait_for("dropped"), "magenta.frag");
+    page.wait_for("shader ok");
+    let deadline = std::time::Instant::now() + browser::TIMEOUT;
+    while !middle_is(&page.capture_screen(), [255, 0, 255]) {
+        assert!(
+            std::time::Instant::now() < deadline,
+            "the canvas never showed the dropped shader's magenta"
+        );
+        std::thread::sleep(std::time::Duration::from_millis(300));
+    }
+    let text = page.evaluate("document.getElementById('shader-text').value");
+    assert_eq!(text, magenta, "the shader editor holds the dropped file");
+    assert_eq!(page.exceptions(), Vec::<String>::new());
+}
+
+/// A unit cube as an OBJ file: eight corners, six quads.
+const CUBE_OBJ: &str = "v 0 0 0\nv 1 0 0\nv 1 1 0\nv 0 1 0\nv 0 0 1\nv 1 0 1\nv 1 1 1\nv 0 1 1\n\
+                        f 1 4 3 2\nf 5 6 7 8\nf 1 2 6 5\nf 4 8 7 3\nf 1 5 8 4\nf 2 3 7 6\n";
+
+/// A model dropped on the canvas is added in front of the camera: the
+/// page's scene (which its scene editor follows) is drawn as the reference
+/// draws it. A malformed model is reported with its file name and line,
+/// and the picture stays.
+#[test]
+fn a_dropped_model_is_added_in_view_and_a_malformed_one_named_with_its_line() {
+    let Some(display) = common::xwindow::Display::start() else {
+        return;
+    };
+    let url = browser::serve(browser::page_dir());
+    let mut page = Browser::open(&display, &format!("{url}?samples=1&ui=0"));
+    assert_eq!(page.wait_for("scene"), "whitted");
+    page.wait_for("ready");
+    let files = browser::TempDir::new("raysandbox-drop");
+
+    let path = common::write_file(&files.0, "cube.obj", CUBE_OBJ);
+    page.drop_file(&path, (240.0, 135.0));
+    assert_eq!(page.wait_for("dropped"), "cube.obj");
+    assert_eq!(page.wait_for("mesh-added"), "cube.obj");
+    page.wait_for("ready");
+    let text = page.evaluate("document.getElementById('scene-text').value");
+    let scene = Scene::from_toml_str(text.as_str().unwrap(), None).unwrap();
+    assert_eq!(scene.meshes.len(), 1, "the page's scene has the model");
+    assert_eq!(scene.meshes[0].positions.len(), 8, "written inline");
+    assert_shows(&page, "dropped-model", &scene);
+
+    let bad = "v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 9\n";
+    let path = common::write_file(&files.0, "bad.obj", bad);
+    page.drop_file(&path, (240.0, 135.0));
+    assert_eq!(page.wait_for("dropped"), "bad.obj");
+    let error = error_shown(&mut page);
+    assert!(error.starts_with("bad.obj:4: "), "{error}");
+    let later = page.events_within(std::time::Duration::from_secs(1));
+    assert!(later.is_empty(), "after the error the page said {later:?}");
+    assert_shows(&page, "model-kept", &scene);
     assert_eq!(page.exceptions(), Vec::<String>::new());
 }

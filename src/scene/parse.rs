@@ -48,14 +48,22 @@ fn check_vector_lengths(doc: &Document<'_>) -> Result<(), SceneError> {
 /// unknown key that is the key, not its value). An empty span is how toml
 /// points at the root table, which has no place in the text.
 fn serde_error(doc: &Document<'_>, e: &toml::de::Error) -> SceneError {
-    let span = e.span().filter(|span| !span.is_empty());
-    let path = span
-        .as_ref()
-        .map(|span| doc.path_at(span))
-        .unwrap_or_default();
-    if let Some(e) = flattened_error(doc, &path) {
-        return serde_error(doc, &e);
+    match flattened_error(doc, &error_path(doc, e)) {
+        Some(at_key) => located_error(doc, &at_key),
+        None => located_error(doc, e),
     }
+}
+
+/// The path of the value or key that serde's error points at.
+fn error_path(doc: &Document<'_>, e: &toml::de::Error) -> KeyPath {
+    let span = e.span().filter(|span| !span.is_empty());
+    span.map(|span| doc.path_at(&span)).unwrap_or_default()
+}
+
+/// [`serde_error`] once flattened keys are accounted for.
+fn located_error(doc: &Document<'_>, e: &toml::de::Error) -> SceneError {
+    let span = e.span().filter(|span| !span.is_empty());
+    let path = error_path(doc, e);
     if let Some(key) = unknown_flattened_key(&path, e.message()) {
         return doc.error(&path.key(key), format!("unknown key `{key}`"));
     }
@@ -76,7 +84,8 @@ fn flattened_error(doc: &Document<'_>, table: &KeyPath) -> Option<toml::de::Erro
     let [Step::Key(array), Step::Index(_)] = table.steps() else {
         return None;
     };
-    let node = ValueDeserializer::from(doc.get(table)?.clone());
+    let node = doc.get(table).filter(|node| node.get_ref().is_table())?;
+    let node = ValueDeserializer::from(node.clone());
     macro_rules! read_flattened {
         ($($kind:ident: $field:ident),* $(,)?) => {
             match array.as_str() {

@@ -680,6 +680,12 @@ fn wrong_and_unknown_placement_keys_are_named_with_their_line() {
         "unknown key `scael`",
     );
     assert_eq!(e.line, Some(3));
+    for (text, key) in [
+        ("tori = [1]\n", "tori[0]"),
+        ("meshes = [[]]\n", "meshes[0]"),
+    ] {
+        rejects_with(text, key, "expected a table");
+    }
 }
 
 #[test]
@@ -1218,4 +1224,29 @@ mod properties {
             let _ = Scene::from_toml_str(&text, None);
         }
     }
+}
+
+// ------------------------------------------------- meshes from a file's bytes
+
+/// A unit square in the z = 0 plane, as two triangles of an OBJ file.
+const SQUARE_OBJ: &str = "v 0 0 0\nv 1 0 0\nv 1 1 0\nv 0 1 0\nf 1 2 3 4\n";
+
+#[test]
+fn a_mesh_from_bytes_is_inline_and_its_scene_text_carries_it() {
+    let mesh = super::Mesh::inline_from_bytes("square.obj", SQUARE_OBJ.as_bytes()).unwrap();
+    assert_eq!(mesh.file, None);
+    assert_eq!(mesh.positions.len(), 4);
+    assert_eq!(mesh.triangles.len(), 2);
+    let mut scene = loads(CAMERA);
+    scene.meshes.push(mesh);
+    assert_round_trip(&scene);
+}
+
+#[test]
+fn a_malformed_mesh_from_bytes_names_the_file_and_line() {
+    let bad = "v 0 0 0\nv 1 0 0\nf 1 2 7\n";
+    let e = super::Mesh::inline_from_bytes("bad.obj", bad.as_bytes()).unwrap_err();
+    assert!(e.starts_with("bad.obj:3:"), "{e}");
+    let e = super::Mesh::inline_from_bytes("model.stl", b"solid").unwrap_err();
+    assert!(e.starts_with("model.stl:"), "{e}");
 }

@@ -35,9 +35,39 @@ pub fn hash() -> Option<String> {
     Some(hash.trim_start_matches('#').to_string())
 }
 
+/// `?ui=0`: the picture alone, without the page's controls over it (for a
+/// projector, an embedded page, or a screenshot compared pixel by pixel).
+pub fn hide_controls() {
+    if let Some(body) = document().and_then(|d| d.body()) {
+        let _ = body.class_list().add_1("bare");
+    }
+}
+
+/// Replaces the address's fragment (`#` and `hash`) without adding a step
+/// to the browser's history or reloading.
+pub fn replace_hash(hash: &str) {
+    if let Some(history) = web_sys::window().and_then(|w| w.history().ok()) {
+        let _ = history.replace_state_with_url(
+            &wasm_bindgen::JsValue::NULL,
+            "",
+            Some(&format!("#{hash}")),
+        );
+    }
+}
+
 /// Logs one `raysandbox: EVENT` line on the console (tests read them).
 pub fn event(line: &str) {
     web_sys::console::log_1(&format!("raysandbox: {line}").into());
+}
+
+/// Logs `raysandbox: timing WHAT MS`, the milliseconds since the page's
+/// navigation started (`performance.now()`): how long the page takes to
+/// become usable, read by scripts/web-startup (docs/web.md, "Start-up time").
+pub fn timing(what: &str) {
+    let now = web_sys::window()
+        .and_then(|w| w.performance())
+        .map(|p| p.now());
+    event(&format!("timing {what} {:.0}", now.unwrap_or(f64::NAN)));
 }
 
 /// Shows `message` where the user looks (over the canvas) and logs it.

@@ -6,12 +6,11 @@
 
 use std::sync::Arc;
 
-use bytemuck::{Pod, Zeroable};
-use glam::DMat3;
-
+use super::placed::columns;
 use super::{Frame, PackShape, Words, round_out};
 use crate::bvh::mesh_bvh;
 use crate::scene::{self, Geometry, PerGeometry, Scene, Shape};
+use bytemuck::{Pod, Zeroable};
 
 #[repr(C)]
 #[derive(Debug, Clone, Copy, PartialEq, Pod, Zeroable)]
@@ -26,10 +25,6 @@ pub struct Mesh {
     pub tri_start: u32,
     pub normal_start: u32,
     pub error_scale: f32,
-}
-
-fn columns(m: DMat3) -> [[f32; 4]; 3] {
-    [m.x_axis, m.y_axis, m.z_axis].map(|c| c.as_vec3().extend(0.0).to_array())
 }
 
 impl PackShape for Mesh {

@@ -6,7 +6,7 @@ use serde::{Deserialize, Serialize};
 use serde::de::IgnoredAny;
 
 use super::placement::Scale;
-use super::{Context, Shape, rotation_degrees};
+use super::{Context, Placement, Shape, rotation_degrees};
 use crate::scene::key_path::KeyPath;
 use crate::scene::validate::{Check, FINITE, material_name, vector};
 
@@ -47,6 +47,16 @@ impl Cube {
     pub fn rotation_matrix(&self) -> DMat3 {
         rotation_degrees(self.rotation)
     }
+
+    /// The box as a placed shape: the local box of its `size` about the
+    /// origin, moved to `center` and turned by `rotation`, unscaled.
+    pub fn placement(&self) -> Placement {
+        Placement {
+            translate: self.center,
+            scale: 1.0,
+            rotation: self.rotation,
+        }
+    }
 }
 
 impl Shape for Cube {
@@ -61,11 +71,8 @@ impl Shape for Cube {
 
     shape_accessors!(center);
 
-    /// The box's extent along each world axis: |R| times the half size.
     fn bounds(&self) -> [DVec3; 2] {
-        let m = self.rotation_matrix();
-        let abs = DMat3::from_cols(m.x_axis.abs(), m.y_axis.abs(), m.z_axis.abs());
-        let e = abs * (self.size.edges() * 0.5);
-        [self.center - e, self.center + e]
+        let half = self.size.edges() * 0.5;
+        self.placement().bounds([-half, half])
     }
 }

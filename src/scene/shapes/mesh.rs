@@ -90,6 +90,19 @@ impl Mesh {
         Ok(mesh)
     }
 
+    /// A mesh from the `bytes` of a file named `name` that the scene cannot
+    /// name by a path (a file dropped on the web page): its geometry is
+    /// written inline (`positions`, `triangles`), so that the scene's text
+    /// and a link to it carry the mesh. Errors name the file and line.
+    pub fn inline_from_bytes(name: &str, bytes: &[u8]) -> Result<Mesh, String> {
+        let geometry = mesh_file::load_bytes(name, bytes, false)?;
+        Ok(Mesh {
+            positions: geometry.positions.clone(),
+            triangles: geometry.triangles.clone(),
+            ..Mesh::unplaced(geometry)
+        })
+    }
+
     /// `geometry` at the origin, unscaled, unrotated, flat shaded, with the
     /// default material and no source yet.
     fn unplaced(geometry: Geometry) -> Mesh {

@@ -97,7 +97,8 @@ impl<S: Scale> Placement<S> {
 }
 
 impl Placement {
-    /// The world box around the local box `[lo, hi]`.
+    /// The world box around the local box `[lo, hi]`: along each world
+    /// axis, its centre's image plus or minus `|R|` times its half size.
     pub fn bounds(&self, [lo, hi]: [DVec3; 2]) -> [DVec3; 2] {
         let m = self.rotation_matrix();
         let abs = DMat3::from_cols(m.x_axis.abs(), m.y_axis.abs(), m.z_axis.abs());
