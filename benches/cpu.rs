@@ -106,7 +106,7 @@ fn mesh_repack(c: &mut Criterion) {
     PackedScene::new(&scene, 1, 1);
     group.bench_function("moved", |b| {
         b.iter(|| {
-            scene.meshes[0].translate.x += 1e-3;
+            scene.meshes[0].placement.translate.x += 1e-3;
             PackedScene::new(black_box(&scene), 1, 1)
         })
     });

@@ -11,7 +11,7 @@ use raysandbox::gpu::{
     Gpu, GpuWaitError, OffscreenRenderer, RenderError, ShaderOptions, ShaderSource,
 };
 use raysandbox::reference;
-use raysandbox::scene::{Scene, TorusMethod, TriangleTest};
+use raysandbox::scene::{NamedOption, Scene, TorusMethod, TriangleTest};
 
 #[derive(Parser)]
 #[command(
@@ -99,11 +99,11 @@ struct RenderArgs {
     bvh: Switch,
     /// The ray-triangle test of meshes: cramer (Cramer's rule, as on the
     /// slides), moller-trumbore, or watertight (Woop, Benthin and Wald).
-    #[arg(long, default_value = "watertight", value_parser = triangle_test)]
+    #[arg(long, default_value = "watertight", value_parser = TriangleTest::from_name)]
     triangles: TriangleTest,
     /// How the GPU solves a torus's quartic: bisection, or newton (the
     /// slope's zeros in closed form, Newton steps kept inside the bracket).
-    #[arg(long, default_value = "newton", value_parser = torus_method)]
+    #[arg(long, default_value = "newton", value_parser = TorusMethod::from_name)]
     torus: TorusMethod,
     /// Render the image this many times after one warm-up render and print
     /// the median, fastest and slowest GPU time.
@@ -260,22 +260,6 @@ fn check(path: &Path) -> Result<(), Failure> {
     let scene = load_scene(path)?;
     println!("{}: ok: {}", path.display(), scene.summary());
     Ok(())
-}
-
-/// `--triangles NAME`.
-fn triangle_test(name: &str) -> Result<TriangleTest, String> {
-    TriangleTest::from_name(name).ok_or_else(|| {
-        let names: Vec<&str> = TriangleTest::ALL.iter().map(|t| t.name()).collect();
-        format!("one of {}", names.join(", "))
-    })
-}
-
-/// `--torus NAME`.
-fn torus_method(name: &str) -> Result<TorusMethod, String> {
-    TorusMethod::from_name(name).ok_or_else(|| {
-        let names: Vec<&str> = TorusMethod::ALL.iter().map(|t| t.name()).collect();
-        format!("one of {}", names.join(", "))
-    })
 }
 
 fn render(args: &RenderArgs) -> Result<(), Failure> {

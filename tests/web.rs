@@ -1,261 +1,18 @@
-//! The browser page (docs/web.md) in a real Chromium: WebGPU on SwiftShader,
-//! headed under an Xvfb server of the test's own (only there does a WebGPU
-//! canvas present), the page served from `dist/web/` (built by `scripts/web`,
-//! which `scripts/test` runs first) by a small HTTP server in the test.
-//! The page reports on the console (`raysandbox: EVENT` lines, read from
-//! Chromium's stderr); the screen is captured with ImageMagick's `import`.
+//! The browser page (docs/web.md) in a real Chromium, WebGPU on SwiftShader,
+//! driven through the DevTools protocol (tests/common/browser.rs): the page
+//! served from `dist/web/` (built by `scripts/web`, which `scripts/test` runs
+//! first) by a small HTTP server in the test, its console's
+//! `raysandbox: EVENT` lines awaited, the screen captured with `import`.
 
 mod common;
 
-use std::io::{BufRead, BufReader, Read, Write};
-use std::net::TcpListener;
-use std::path::{Path, PathBuf};
-use std::process::{Child, Command, Stdio};
-use std::sync::atomic::{AtomicU32, Ordering};
-use std::sync::mpsc::{Receiver, RecvTimeoutError, channel};
-use std::time::{Duration, Instant};
-
+use common::browser::{self, Browser, SIZE};
 use image::RgbaImage;
 use raysandbox::compare::{diff_images, distinct_colors, nan_pixels};
 use raysandbox::reference;
+use raysandbox::sandbox;
 use raysandbox::scene::{Scene, bundled};
 use raysandbox::web::link;
-
-/// Size of the browser window, and so of the page's canvas, in pixels.
-const SIZE: (u32, u32) = (480, 270);
-/// Chromium on SwiftShader compiles the tracer on the CPU, on two busy cores.
-const TIMEOUT: Duration = Duration::from_secs(180);
-
-/// The flags under which Chromium presents a WebGPU canvas without a GPU:
-/// Vulkan, ANGLE and the WebGPU adapter all on SwiftShader.
-const WEBGPU_FLAGS: [&str; 7] = [
-    "--enable-unsafe-webgpu",
-    "--enable-features=Vulkan",
-    "--use-vulkan=swiftshader",
-    "--use-angle=swiftshader",
-    "--use-webgpu-adapter=swiftshader",
-    "--disable-vulkan-surface",
-    "--ignore-gpu-blocklist",
-];
-
-/// The built page, or a failure saying how to build it.
-fn page_dir() -> PathBuf {
-    let dir = Path::new(env!("CARGO_MANIFEST_DIR")).join("dist/web");
-    assert!(
-        dir.join("raysandbox_bg.wasm").is_file() && dir.join("index.html").is_file(),
-        "the web page is not built in {}: run scripts/web (scripts/test does)",
-        dir.display()
-    );
-    dir
-}
-
-/// Serves the files of `dir` on a free port of 127.0.0.1 from a thread;
-/// returns the page's address.
-fn serve(dir: PathBuf) -> String {
-    let listener = TcpListener::bind("127.0.0.1:0").expect("bind a local port");
-    let address = format!("http://{}/", listener.local_addr().unwrap());
-    std::thread::spawn(move || {
-        for stream in listener.incoming().map_while(Result::ok) {
-            let dir = dir.clone();
-            std::thread::spawn(move || answer(stream, &dir));
-        }
-    });
-    address
-}
-
-/// Answers one GET request with the file it names (index.html for `/`).
-fn answer(mut stream: std::net::TcpStream, dir: &Path) {
-    let mut request = String::new();
-    if BufReader::new(&stream).read_line(&mut request).is_err() {
-        return;
-    }
-    let path = request.split_whitespace().nth(1).unwrap_or("/");
-    let path = path.split(['?', '#']).next().unwrap_or("/");
-    let name = match path.trim_start_matches('/') {
-        "" => "index.html",
-        name => name,
-    };
-    let file = dir.join(name);
-    let (status, body) = match std::fs::read(&file) {
-        Ok(body) if !name.contains("..") => ("200 OK", body),
-        _ => ("404 Not Found", Vec::new()),
-    };
-    let kind = match file.extension().and_then(|e| e.to_str()) {
-        Some("html") => "text/html; charset=utf-8",
-        Some("js") => "text/javascript",
-        Some("wasm") => "application/wasm",
-        _ => "application/octet-stream",
-    };
-    let header = format!(
-        "HTTP/1.1 {status}\r\nContent-Type: {kind}\r\nContent-Length: {}\r\nConnection: close\r\n\r\n",
-        body.len()
-    );
-    let _ = stream.write_all(header.as_bytes());
-    let _ = stream.write_all(&body);
-    let _ = stream.flush();
-    let _ = stream.read(&mut [0; 1]);
-}
-
-/// The Chromium binary, or a failure saying how to install it.
-fn chromium() -> &'static str {
-    let found = Command::new("chromium")
-        .arg("--version")
-        .output()
-        .is_ok_and(|o| o.status.success());
-    assert!(
-        found,
-        "the web tests need Chromium: install it with `sudo apt-get install chromium`, \
-         or run scripts/test, which does"
-    );
-    "chromium"
-}
-
-/// A Chromium window showing the page, with a fresh profile, and the page's
-/// `raysandbox:` console lines.
-struct Browser {
-    child: Child,
-    lines: Receiver<String>,
-    _profile: TempDir,
-}
-
-impl Browser {
-    fn open(display: &common::xwindow::Display, url: &str) -> Browser {
-        let profile = TempDir::new("raysandbox-chromium");
-        let mut child = Command::new(chromium())
-            .args(WEBGPU_FLAGS)
-            .args([
-                "--no-sandbox",
-                "--test-type",
-                "--no-first-run",
-                "--no-default-browser-check",
-                "--disable-extensions",
-                "--enable-logging=stderr",
-                "--v=0",
-                "--window-position=0,0",
-                &format!("--window-size={},{}", SIZE.0, SIZE.1),
-                &format!("--user-data-dir={}", profile.0.display()),
-                &format!("--app={url}"),
-            ])
-            .env("DISPLAY", display.name())
-            .env_remove("WAYLAND_DISPLAY")
-            .stdout(Stdio::null())
-            .stderr(Stdio::piped())
-            .spawn()
-            .unwrap_or_else(|e| panic!("cannot start Chromium: {e}"));
-        let stderr = child.stderr.take().unwrap();
-        let (tx, lines) = channel();
-        std::thread::spawn(move || {
-            for line in BufReader::new(stderr).lines().map_while(Result::ok) {
-                if let Some(event) = page_event(&line)
-                    && tx.send(event).is_err()
-                {
-                    break;
-                }
-            }
-        });
-        Browser {
-            child,
-            lines,
-            _profile: profile,
-        }
-    }
-
-    /// Waits for the page's event starting with `prefix`; returns the rest.
-    /// An error the page reports fails the test with its message.
-    fn wait_for(&mut self, prefix: &str) -> String {
-        let deadline = Instant::now() + TIMEOUT;
-        loop {
-            let left = deadline.saturating_duration_since(Instant::now());
-            match self.lines.recv_timeout(left) {
-                Ok(line) => {
-                    if let Some(rest) = line.strip_prefix(prefix) {
-                        return rest.trim().to_string();
-                    }
-                    assert!(
-                        !line.starts_with("error"),
-                        "the page reported: {line} (waiting for '{prefix}')"
-                    );
-                }
-                Err(RecvTimeoutError::Timeout) => {
-                    panic!("no '{prefix}' from the page within {TIMEOUT:?}")
-                }
-                Err(RecvTimeoutError::Disconnected) => panic!(
-                    "Chromium stopped while waiting for '{prefix}': {:?}",
-                    self.child.try_wait()
-                ),
-            }
-        }
-    }
-}
-
-impl Drop for Browser {
-    fn drop(&mut self) {
-        let _ = self.child.kill();
-        let _ = self.child.wait();
-    }
-}
-
-/// The page's own console line in a line of Chromium's log, e.g.
-/// `[...:INFO:CONSOLE(1)] "raysandbox: ready samples=1", source: ...`.
-fn page_event(log_line: &str) -> Option<String> {
-    let start = log_line.find("\"raysandbox: ")? + "\"raysandbox: ".len();
-    let rest = &log_line[start..];
-    let end = rest.rfind("\", source:").unwrap_or(rest.len());
-    Some(rest[..end].to_string())
-}
-
-/// A folder removed on drop.
-struct TempDir(PathBuf);
-
-impl TempDir {
-    fn new(prefix: &str) -> TempDir {
-        // Tests run in parallel: each folder gets its own number.
-        static NEXT: AtomicU32 = AtomicU32::new(0);
-        let n = NEXT.fetch_add(1, Ordering::SeqCst);
-        let dir = std::env::temp_dir().join(format!("{prefix}-{}-{n}", std::process::id()));
-        let _ = std::fs::remove_dir_all(&dir);
-        std::fs::create_dir_all(&dir).expect("create a temporary folder");
-        TempDir(dir)
-    }
-}
-
-impl Drop for TempDir {
-    fn drop(&mut self) {
-        let _ = std::fs::remove_dir_all(&self.0);
-    }
-}
-
-/// The top-left `SIZE` of the X screen, where the page's window is.
-fn capture_screen(display: &common::xwindow::Display) -> RgbaImage {
-    let file = std::env::temp_dir().join(format!(
-        "raysandbox-web-{}-{}.png",
-        std::process::id(),
-        display.name().trim_start_matches(':')
-    ));
-    let status = Command::new("import")
-        .args(["-window", "root", file.to_str().unwrap()])
-        .env("DISPLAY", display.name())
-        .status()
-        .expect("run import");
-    assert!(status.success(), "import failed");
-    let screen = image::open(&file).expect("captured PNG").to_rgba8();
-    let _ = std::fs::remove_file(&file);
-    common::xwindow::crop(&screen, (0, 0, SIZE.0, SIZE.1))
-}
-
-/// The page's picture once it is on the X screen: the browser composites
-/// the canvas some time after the page presented it, so the screen is
-/// captured until it shows more than a blank window (or [`TIMEOUT`]).
-fn capture_picture(display: &common::xwindow::Display) -> RgbaImage {
-    let deadline = Instant::now() + TIMEOUT;
-    loop {
-        let screen = capture_screen(display);
-        if distinct_colors(&screen, 16) >= 16 || Instant::now() > deadline {
-            return screen;
-        }
-        std::thread::sleep(Duration::from_millis(500));
-    }
-}
 
 /// Compares the page's picture with the reference image of `scene` at 1
 /// sample per pixel, within the budget of tests/gpu_vs_reference.rs (mean
@@ -296,21 +53,23 @@ fn whitted() -> (String, Scene) {
 }
 
 /// Opened without link data, the page shows the bundled Whitted scene, and
-/// its first frame (1 sample per pixel) is the native renderer's picture.
+/// its first frame (1 sample per pixel) is the native renderer's picture
+/// (`ui=0`, here and below: the picture alone, without the page's controls
+/// over it).
 #[test]
 fn the_page_renders_the_whitted_scene_like_the_reference() {
     let Some(display) = common::xwindow::Display::start() else {
         return;
     };
-    let url = serve(page_dir());
-    let mut browser = Browser::open(&display, &format!("{url}?samples=1"));
-    assert_eq!(browser.wait_for("scene"), "whitted");
-    let adapter = browser.wait_for("adapter");
+    let url = browser::serve(browser::page_dir());
+    let mut page = Browser::open(&display, &format!("{url}?samples=1&ui=0"));
+    assert_eq!(page.wait_for("scene"), "whitted");
+    let adapter = page.wait_for("adapter");
     eprintln!("page adapter: {adapter}");
-    let size = browser.wait_for("first-frame");
+    let size = page.wait_for("first-frame");
     assert_eq!(size, format!("{}x{}", SIZE.0, SIZE.1), "canvas size");
-    browser.wait_for("ready");
-    assert_like_reference("whitted", &capture_picture(&display), &whitted().1);
+    page.wait_for("ready");
+    assert_like_reference("whitted", &page.capture_picture(), &whitted().1);
 }
 
 /// A link made from an edited scene (another sky and camera) reproduces
@@ -329,10 +88,311 @@ fn a_shared_link_reproduces_the_scene_in_a_fresh_browser() {
         .replace("from = [0.2, 1.4, 5.8]", "from = [-2.0, 2.5, 5.0]");
     let scene = Scene::from_toml_str(&edited, None).unwrap();
     assert_ne!(scene, original, "the edit changed the scene");
-    let url = serve(page_dir());
-    let address = format!("{url}?samples=1#{}", link::scene_hash(&edited));
-    let mut browser = Browser::open(&display, &address);
-    assert_eq!(browser.wait_for("scene"), "from-link");
-    browser.wait_for("ready");
-    assert_like_reference("link", &capture_picture(&display), &scene);
+    let url = browser::serve(browser::page_dir());
+    let address = format!("{url}?samples=1&ui=0#{}", link::scene_hash(&edited));
+    let mut page = Browser::open(&display, &address);
+    assert_eq!(page.wait_for("scene"), "from-link");
+    page.wait_for("ready");
+    assert_like_reference("link", &page.capture_picture(), &scene);
+}
+
+/// The error the page reports once it met one, which it must show over the
+/// canvas, where the user looks, as well as log. The message box is hidden
+/// afterwards so that the picture under it can be compared.
+fn error_shown(page: &mut Browser) -> String {
+    let logged = page.wait_for("error");
+    let shown = page.message();
+    assert_eq!(
+        shown.as_deref(),
+        Some(logged.as_str()),
+        "the error is shown over the canvas"
+    );
+    assert!(!logged.contains("panicked"), "the page panicked: {logged}");
+    page.evaluate("document.getElementById('message').className = ''");
+    logged
+}
+
+/// A link damaged on its way (cut short when copied) is reported over the
+/// canvas, and the page shows the bundled Whitted scene instead.
+#[test]
+fn a_damaged_link_is_reported_and_the_whitted_scene_shown() {
+    let Some(display) = common::xwindow::Display::start() else {
+        return;
+    };
+    let hash = link::scene_hash(&whitted().0);
+    let cut = &hash[..hash.len() / 2];
+    let url = browser::serve(browser::page_dir());
+    let mut page = Browser::open(&display, &format!("{url}?samples=1&ui=0#{cut}"));
+    let error = error_shown(&mut page);
+    assert!(error.contains("the link is damaged"), "{error}");
+    assert_eq!(page.wait_for("scene"), "whitted");
+    page.wait_for("ready");
+    assert_like_reference("damaged-link", &page.capture_picture(), &whitted().1);
+    assert_eq!(page.exceptions(), Vec::<String>::new());
+}
+
+/// A link that decodes to a scene with a mistake (here a colour with two
+/// components) names the scene's line, and the Whitted scene is shown.
+#[test]
+fn a_link_to_a_bad_scene_names_the_line_and_the_whitted_scene_is_shown() {
+    let Some(display) = common::xwindow::Display::start() else {
+        return;
+    };
+    let text = whitted().0;
+    let bad = text.replace("ambient = [0.12, 0.12, 0.12]", "ambient = [0.12, 0.12]");
+    assert_ne!(bad, text, "the mistake was made");
+    let line = 1 + bad
+        .lines()
+        .position(|l| l.starts_with("ambient ="))
+        .unwrap();
+    let url = browser::serve(browser::page_dir());
+    let address = format!("{url}?samples=1&ui=0#{}", link::scene_hash(&bad));
+    let mut page = Browser::open(&display, &address);
+    let error = error_shown(&mut page);
+    assert!(error.contains(&format!("<scene>:{line}:")), "{error}");
+    assert!(error.contains("ambient"), "{error}");
+    assert_eq!(page.wait_for("scene"), "whitted");
+    page.wait_for("ready");
+    assert_like_reference("bad-scene-link", &page.capture_picture(), &whitted().1);
+    assert_eq!(page.exceptions(), Vec::<String>::new());
+}
+
+/// In a browser without WebGPU (Chromium on Linux without its WebGPU
+/// flags) the page says so over the canvas, naming the browsers and the flag
+/// that have it, and nothing panics.
+#[test]
+fn without_webgpu_the_page_says_which_browsers_have_it() {
+    let Some(display) = common::xwindow::Display::start() else {
+        return;
+    };
+    let url = browser::serve(browser::page_dir());
+    let mut page = Browser::start(&display, browser::Options { webgpu: false });
+    page.navigate(&format!("{url}?samples=1&ui=0"));
+    let gpu = page.evaluate(
+        "navigator.gpu ? navigator.gpu.requestAdapter().then(a => a ? 'adapter' : 'no adapter') \
+         : 'no navigator.gpu'",
+    );
+    eprintln!("without the WebGPU flags: {gpu}");
+    assert_ne!(gpu, "adapter", "this Chromium has WebGPU without its flags");
+    let error = error_shown(&mut page);
+    eprintln!("the page says: {error}");
+    for hint in [
+        "WebGPU is not available",
+        "Chrome",
+        "Firefox",
+        "Safari",
+        "--enable-unsafe-webgpu",
+    ] {
+        assert!(error.contains(hint), "{hint:?} is not in: {error}");
+    }
+    let later = page.events_within(std::time::Duration::from_secs(1));
+    assert!(later.is_empty(), "after the error the page said {later:?}");
+    assert_eq!(page.exceptions(), Vec::<String>::new());
+}
+
+/// Width of the canvas beside the open editor panel, in the test's window
+/// (web/editor.css: the panel takes 46% of the width).
+const CANVAS_BESIDE_EDITOR: u32 = SIZE.0 * 54 / 100;
+
+/// The part of the screen where the canvas is while the editor is open.
+fn canvas_beside_editor(page: &Browser) -> RgbaImage {
+    common::xwindow::crop(&page.capture_screen(), (0, 0, CANVAS_BESIDE_EDITOR, SIZE.1))
+}
+
+/// Captures the canvas beside the editor until `shows` holds (the browser
+/// composites some time after the page drew); fails with the last picture
+/// saved when it does not within the browser module's timeout.
+fn wait_for_picture(page: &Browser, what: &str, shows: impl Fn(&RgbaImage) -> bool) -> RgbaImage {
+    let deadline = std::time::Instant::now() + browser::TIMEOUT;
+    loop {
+        let picture = canvas_beside_editor(page);
+        if shows(&picture) {
+            return picture;
+        }
+        if std::time::Instant::now() > deadline {
+            let file = std::env::temp_dir().join(format!("web-{}.png", what.replace(' ', "-")));
+            picture.save(&file).unwrap();
+            panic!(
+                "the canvas never showed {what} (saved in {})",
+                file.display()
+            );
+        }
+        std::thread::sleep(std::time::Duration::from_millis(300));
+    }
+}
+
+/// Whether the middle of `picture` is `rgb`, give or take 2.
+fn middle_is(picture: &RgbaImage, rgb: [u8; 3]) -> bool {
+    let p = picture.get_pixel(picture.width() / 2, picture.height() / 2);
+    (0..3).all(|k| p[k].abs_diff(rgb[k]) <= 2)
+}
+
+/// Puts `text` in place of a document's whole text, as a user selecting
+/// all and typing (one `input` event, as an input method sends).
+fn replace_text(page: &mut Browser, doc: &str, text: &str) {
+    page.evaluate(&format!(
+        "(() => {{ const t = document.getElementById('{doc}-text'); t.focus(); t.select(); }})()"
+    ));
+    page.insert_text(text);
+}
+
+/// The error under a document's editor, and the line its gutter marks.
+fn shown_problem(page: &mut Browser, doc: &str) -> (String, String) {
+    let status = page.evaluate(&format!(
+        "document.getElementById('{doc}-status').textContent"
+    ));
+    let marked = page.evaluate(&format!(
+        "(() => {{ const m = document.querySelector('#{doc}-gutter .error'); \
+         return m ? m.textContent : ''; }})()"
+    ));
+    (
+        status.as_str().unwrap_or_default().to_string(),
+        marked.as_str().unwrap_or_default().to_string(),
+    )
+}
+
+/// A syntax error typed at the end of the scene's TOML is shown under the
+/// editor at its line, that line is marked in the gutter, and the picture
+/// stays as it was; undoing the typing applies the scene again.
+#[test]
+fn a_syntax_error_typed_in_the_scene_editor_shows_its_line_and_keeps_the_picture() {
+    let Some(display) = common::xwindow::Display::start() else {
+        return;
+    };
+    let url = browser::serve(browser::page_dir());
+    let mut page = Browser::open(&display, &format!("{url}?samples=1&ui=0&editor"));
+    assert_eq!(page.wait_for("scene"), "whitted");
+    page.wait_for("ready");
+    let before = wait_for_picture(&page, "the scene", |p| distinct_colors(p, 16) >= 16);
+    let text = whitted().0;
+    page.evaluate(
+        "(() => { const t = document.getElementById('scene-text'); t.focus(); \
+         t.setSelectionRange(t.value.length, t.value.length); })()",
+    );
+    page.insert_text("\n[camera");
+    let line = format!("{text}\n[camera").lines().count();
+    assert_eq!(page.wait_for("scene-error"), format!("line={line}"));
+    let (status, marked) = shown_problem(&mut page, "scene");
+    assert!(status.starts_with(&format!("<scene>:{line}:")), "{status}");
+    assert_eq!(marked, line.to_string(), "the gutter marks the line");
+    // What the compositor shows a while after the error: the same picture.
+    std::thread::sleep(std::time::Duration::from_secs(2));
+    let after = canvas_beside_editor(&page);
+    let d = diff_images(&after, &before);
+    eprintln!(
+        "scene error: picture before vs after: mean |d| {:.4}, max {}",
+        d.mean_abs, d.max_abs
+    );
+    assert!(
+        d.mean_abs <= 0.05 && d.frac_over_8 == 0.0,
+        "the picture changed"
+    );
+    page.key("Control+z");
+    page.wait_for("scene ok");
+    let (status, marked) = shown_problem(&mut page, "scene");
+    assert_eq!((status.as_str(), marked.as_str()), ("scene: valid", ""));
+    // A good edit does change the picture: another sky.
+    let orange = text.replace(
+        "background = [0.25, 0.55, 0.95]",
+        "background = [0.9, 0.5, 0.2]",
+    );
+    assert_ne!(orange, text, "the edit was made");
+    replace_text(&mut page, "scene", &orange);
+    page.wait_for("scene ok");
+    // The sky's colour, from the reference renderer: the top-left corner.
+    let scene = Scene::from_toml_str(&orange, None).unwrap();
+    let sky = *reference::render_rgba8(&scene, 26, 27, 1).get_pixel(0, 0);
+    let after = wait_for_picture(&page, "the orange sky", |p| {
+        let corner = p.get_pixel(4, 4);
+        (0..3).all(|k| corner[k].abs_diff(sky[k]) <= 2)
+    });
+    assert!(
+        diff_images(&after, &before).mean_abs > 1.0,
+        "the picture changed"
+    );
+    assert_eq!(page.exceptions(), Vec::<String>::new());
+}
+
+/// A shader from a link draws (WGSL, red); a shader typed in its place
+/// draws (Shadertoy-style GLSL, green); a mistake typed at its third line
+/// is shown at that line while the green picture stays.
+#[test]
+fn a_shader_typed_in_the_editor_draws_and_its_error_is_at_the_users_line() {
+    let Some(display) = common::xwindow::Display::start() else {
+        return;
+    };
+    let red = "fn main_image(frag_coord: vec2<f32>) -> vec4<f32> {\n    \
+               return vec4(1.0, 0.0, 0.0, 1.0);\n}\n";
+    let url = browser::serve(browser::page_dir());
+    let address = format!("{url}?ui=0&editor#{}", link::shader_hash(red));
+    let mut page = Browser::open(&display, &address);
+    page.wait_for("shader from-link");
+    page.wait_for("shader ok");
+    wait_for_picture(&page, "red", |p| middle_is(p, [255, 0, 0]));
+
+    let green = "void mainImage(out vec4 fragColor, in vec2 fragCoord) {\n    \
+                 fragColor = vec4(0.0, 1.0, 0.0, 1.0);\n}\n";
+    replace_text(&mut page, "shader", green);
+    page.wait_for("shader ok");
+    let (status, _) = shown_problem(&mut page, "shader");
+    assert_eq!(status, "GLSL (Shadertoy style): compiled");
+    wait_for_picture(&page, "green", |p| middle_is(p, [0, 255, 0]));
+
+    let wrong = "void mainImage(out vec4 fragColor, in vec2 fragCoord) {\n    \
+                 vec3 blue = vec3(0.0, 0.0, 1.0);\n    \
+                 fragColor = vec4(blue, not_declared);\n}\n";
+    replace_text(&mut page, "shader", wrong);
+    assert_eq!(page.wait_for("shader-error"), "line=3");
+    let (status, marked) = shown_problem(&mut page, "shader");
+    assert!(status.starts_with("shader:3:"), "{status}");
+    assert!(status.contains("not_declared"), "{status}");
+    assert_eq!(marked, "3", "the gutter marks the line");
+    std::thread::sleep(std::time::Duration::from_secs(2));
+    assert!(
+        middle_is(&canvas_beside_editor(&page), [0, 255, 0]),
+        "the last good shader keeps drawing"
+    );
+    assert_eq!(page.exceptions(), Vec::<String>::new());
+}
+
+/// A `#shader=` link opened in a fresh browser draws that shader: the
+/// page's picture is the native sandbox's render of the same text.
+#[test]
+fn a_shader_link_reproduces_the_shader_in_a_fresh_browser() {
+    let Some(display) = common::xwindow::Display::start() else {
+        return;
+    };
+    let Some(gpu) = common::gpu() else { return };
+    let text = "// A gradient over the image and a disc in its middle.\n\
+                void mainImage(out vec4 fragColor, in vec2 fragCoord) {\n    \
+                vec2 uv = fragCoord / iResolution.xy;\n    \
+                float disc = step(length(fragCoord - 0.5 * iResolution.xy), 0.3 * iResolution.y);\n    \
+                fragColor = vec4(uv, disc, 1.0);\n}\n";
+    let compiled = sandbox::compile("shader", text).unwrap_or_else(|e| panic!("{e}"));
+    let frame = sandbox::FrameUniforms::at(0.0, 0, SIZE);
+    let (expected, _) = sandbox::render_once(&gpu, &compiled, &compiled.params, &frame).unwrap();
+    let url = browser::serve(browser::page_dir());
+    let mut page = Browser::open(&display, &format!("{url}?ui=0#{}", link::shader_hash(text)));
+    page.wait_for("shader from-link");
+    page.wait_for("shader ok");
+    let picture = page.capture_picture();
+    let d = diff_images(&picture, &expected);
+    eprintln!(
+        "shader link: page vs native: mean |d| {:.4}, {:.3}% > 8, max {}",
+        d.mean_abs,
+        d.frac_over_8 * 100.0,
+        d.max_abs
+    );
+    if d.mean_abs > 0.5 || d.frac_over_8 > 0.005 {
+        let out = std::env::temp_dir();
+        picture.save(out.join("web-shader-link-page.png")).unwrap();
+        expected
+            .save(out.join("web-shader-link-native.png"))
+            .unwrap();
+        panic!(
+            "the page's picture differs from the native render (both in {})",
+            out.display()
+        );
+    }
+    assert_eq!(page.exceptions(), Vec::<String>::new());
 }

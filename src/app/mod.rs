@@ -127,7 +127,6 @@ pub fn run(options: ViewerOptions) -> Result<(), ViewerError> {
         watched_meshes: Vec::new(),
         fatal: None,
         drag_start_distance: None,
-        was_dragging: false,
         repaint_at: None,
         title: String::new(),
     };
@@ -174,7 +173,6 @@ struct App {
     fatal: Option<ViewerError>,
     /// Eye-target distance when the current drag or zoom started.
     drag_start_distance: Option<f64>,
-    was_dragging: bool,
     /// When egui asked to be drawn again (animations, tooltips).
     repaint_at: Option<Instant>,
     title: String,
@@ -534,6 +532,7 @@ impl App {
     }
 
     fn redraw(&mut self, event_loop: &ActiveEventLoop) {
+        let start = Instant::now();
         let before = self.doc.scene.clone();
         let view_before = self.editor.view.min_weight;
         let (commands, input, egui_output) = self.run_ui();
@@ -545,7 +544,7 @@ impl App {
             self.scene_changed(Some(&before));
         }
         self.update_title();
-        self.paint(egui_output, input.dragging || input.widget_dragging);
+        self.paint(egui_output, input.dragging || input.widget_dragging, start);
         if picked {
             // Once the frame with its outline is on screen.
             self.event(&format!("selected {:?}", self.editor.panel.selection));
@@ -560,6 +559,7 @@ impl App {
             timing: gfx.viewport.timing().describe(),
             samples: gfx.viewport.samples(),
             resolution: gfx.viewport.traced_resolution(),
+            scale: gfx.viewport.scale(),
             adapter: gfx.gpu.adapter.get_info().name,
             compiling: gfx.pipelines.building(),
         };
@@ -734,17 +734,13 @@ impl App {
     }
 
     /// Draws the image and the UI; keeps refining while samples are missing.
-    fn paint(&mut self, output: egui::FullOutput, dragging: bool) {
+    /// While the view moves, one sample per pixel at the moving scale
+    /// ([`App::moving_scale`]); full resolution once it stops. `start`: when
+    /// this redraw began, for the moving frame's time in all.
+    fn paint(&mut self, output: egui::FullOutput, dragging: bool, start: Instant) {
+        let scale = if dragging { self.moving_scale() } else { 1.0 };
         let Some(gfx) = &mut self.gfx else { return };
-        let scale = if dragging {
-            self.editor.view.interaction_scale
-        } else {
-            1.0
-        };
-        if dragging != self.was_dragging {
-            gfx.viewport.set_scale(&gfx.gpu, scale);
-            self.was_dragging = dragging;
-        }
+        gfx.viewport.set_scale(&gfx.gpu, scale);
         let outline_width = (OUTLINE_WIDTH * gfx.window.scale_factor()).round() as u32;
         gfx.viewport
             .set_selection(&gfx.gpu, self.editor.panel.selection, outline_width);
@@ -771,11 +767,36 @@ impl App {
         if status == FrameStatus::Skipped || new_samples > 0 {
             gfx.window.request_redraw();
         }
+        let traced = status == FrameStatus::Presented && new_samples > 0;
+        if let (true, true, Some(time)) = (dragging, traced, gfx.viewport.last_frame_time()) {
+            let (scale, wall) = (gfx.viewport.scale(), start.elapsed());
+            self.editor.view.moving_frame = Some(panel::MovingFrame { time, wall, scale });
+            self.event(&format!(
+                "moving-frame ms={:.1} wall_ms={:.1} scale={scale:.3}",
+                time.as_secs_f64() * 1e3,
+                wall.as_secs_f64() * 1e3
+            ));
+        }
         if new_samples > 0 && samples >= max_samples && !dragging {
             self.event(&format!("ready samples={samples}"));
         }
         if delay < Duration::from_secs(5) {
             self.repaint_at = Some(Instant::now() + delay);
+        }
+    }
+
+    /// The resolution scale of a frame while the view moves: the panel's
+    /// moving scale, or with a frame budget the scale that the last moving
+    /// frame's time says fits it (gpu/interaction.rs). A new movement
+    /// starts where the last one ended: the scene is mostly the same.
+    fn moving_scale(&self) -> f32 {
+        let view = &self.editor.view;
+        match view.moving_frame {
+            Some(last) if view.adaptive_scale => {
+                let budget = Duration::from_secs_f32(view.frame_budget_ms / 1e3);
+                crate::gpu::interaction::next_scale(last.scale, last.time, budget)
+            }
+            _ => view.interaction_scale,
         }
     }
 }

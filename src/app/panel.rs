@@ -17,7 +17,7 @@ mod widgets;
 
 use std::path::PathBuf;
 
-use crate::gpu::{DEFAULT_MAX_SAMPLES, DEFAULT_MIN_WEIGHT};
+use crate::gpu::{DEFAULT_MAX_SAMPLES, DEFAULT_MIN_WEIGHT, MIN_SCALE};
 use crate::scene::{Camera, Light, Material, Mesh, RenderSettings, Scene, ShapeId, ShapeKind};
 use egui::{
     Button, CollapsingHeader, ComboBox, Grid, Key, RichText, Slider, SliderClamping, TextEdit, Ui,
@@ -32,13 +32,35 @@ pub struct ViewSettings {
     /// Progressive refinement stops after this many samples per pixel
     /// (1..=1024).
     pub max_samples: u32,
-    /// Resolution scale while the camera moves (0.25..=1.0): fewer pixels
-    /// keep orbiting smooth on a weak GPU.
+    /// Resolution scale while the view moves (MIN_SCALE..=1.0): the camera
+    /// dragged or a slider held. Fewer pixels keep it smooth on a weak GPU.
+    /// With a frame budget, the scale of the first moving frame.
     pub interaction_scale: f32,
+    /// Pick the moving scale from the last frame's time so that frames take
+    /// about `frame_budget_ms` (gpu/interaction.rs).
+    pub adaptive_scale: bool,
+    /// Trace time per moving frame aimed at, in milliseconds (10..=1000).
+    pub frame_budget_ms: f32,
+    /// The last moving frame: its trace time and scale (shown, not edited).
+    pub moving_frame: Option<MovingFrame>,
     /// While viewing, secondary rays weaker than this are skipped even if
     /// the file's `min_weight` is lower (the file keeps its value). The
     /// default leaves no visible difference: docs/performance.md.
     pub min_weight: f64,
+}
+
+/// The frame budget while the view moves: 100 ms, ten frames a second,
+/// where a dragged slider still feels live (docs/performance.md).
+pub const DEFAULT_FRAME_BUDGET_MS: f32 = 100.0;
+
+/// A frame drawn while the view moved.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct MovingFrame {
+    /// GPU time of the trace (what the scale controls).
+    pub time: std::time::Duration,
+    /// The whole redraw: UI, scene upload, trace, outline, present.
+    pub wall: std::time::Duration,
+    pub scale: f32,
 }
 
 impl Default for ViewSettings {
@@ -46,6 +68,9 @@ impl Default for ViewSettings {
         Self {
             max_samples: DEFAULT_MAX_SAMPLES,
             interaction_scale: 0.5,
+            adaptive_scale: true,
+            frame_budget_ms: DEFAULT_FRAME_BUDGET_MS,
+            moving_frame: None,
             min_weight: DEFAULT_MIN_WEIGHT,
         }
     }
@@ -374,9 +399,41 @@ fn render_section(ui: &mut Ui, render: &mut RenderSettings, view: &mut ViewSetti
         field(
             ui,
             "moving scale",
-            "Resolution while the camera moves: lower keeps orbiting smooth",
+            "Resolution while the camera moves or a slider is dragged: lower keeps it \
+             smooth. With a frame budget, where the first moving frame starts",
         );
-        ui.add(Slider::new(&mut view.interaction_scale, 0.25..=1.0));
+        ui.add(Slider::new(&mut view.interaction_scale, MIN_SCALE..=1.0));
+        ui.end_row();
+
+        field(
+            ui,
+            "frame budget",
+            "While moving, pick the scale from the last frame's time so that a frame \
+             takes about this long (ms)",
+        );
+        ui.horizontal(|ui| {
+            ui.checkbox(&mut view.adaptive_scale, "");
+            ui.add_enabled(
+                view.adaptive_scale,
+                Slider::new(&mut view.frame_budget_ms, 10.0..=1000.0)
+                    .logarithmic(true)
+                    .suffix(" ms"),
+            );
+        });
+        ui.end_row();
+
+        field(
+            ui,
+            "last moving frame",
+            "Trace time and resolution scale of the last frame drawn while moving",
+        );
+        ui.label(view.moving_frame.map_or("-".to_string(), |f| {
+            format!(
+                "{:.1} ms at scale {:.2}",
+                f.time.as_secs_f64() * 1e3,
+                f.scale
+            )
+        }));
         ui.end_row();
 
         field(
@@ -965,7 +1022,8 @@ mod tests {
                 let selection = edit::checked_selection(&scene, state.selection);
                 assert_eq!(selection, state.selection);
                 assert!((1..=1024).contains(&view.max_samples));
-                assert!((0.25..=1.0).contains(&view.interaction_scale));
+                assert!((MIN_SCALE..=1.0).contains(&view.interaction_scale));
+                assert!((10.0..=1000.0).contains(&view.frame_budget_ms));
                 assert!((0.0..=0.1).contains(&view.min_weight));
             }
         }
@@ -975,6 +1033,8 @@ mod tests {
     fn view_defaults_are_in_range() {
         let view = ViewSettings::default();
         assert_eq!((view.max_samples, view.interaction_scale), (64, 0.5));
+        assert!(view.adaptive_scale);
+        assert_eq!(view.frame_budget_ms, DEFAULT_FRAME_BUDGET_MS);
         assert_eq!(view.min_weight, DEFAULT_MIN_WEIGHT);
     }
 

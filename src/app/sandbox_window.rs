@@ -25,13 +25,12 @@ use super::watch;
 use crate::gpu::{EXPORT_FORMAT, Gpu, GpuTimer, Timing, Viewport};
 use crate::sandbox::channels::{self, CHANNELS};
 use crate::sandbox::clock::{Clock, Tick};
+use crate::sandbox::mouse::Mouse;
 use crate::sandbox::render::{
     BuildFailed, Canvas, FRAME_LIMIT, PipelineBuilder, SandboxGpu, ShaderPipeline, build_too_slow,
 };
 use crate::sandbox::watchdog::Probe;
-use crate::sandbox::{
-    self, Compiled, FrameUniforms, ReloadError, SandboxError, Session, ShaderArgs, uniforms,
-};
+use crate::sandbox::{self, Compiled, ReloadError, SandboxError, Session, ShaderArgs};
 
 /// The sandbox window's keyboard shortcuts, for the help window.
 pub const SHORTCUTS: [(&str, &str); 10] = [
@@ -182,74 +181,6 @@ struct PanelState {
     help: bool,
     /// A short message ("screenshot saved to ...").
     message: Option<String>,
-}
-
-/// The mouse as Shadertoy reports it, in canvas pixels with y up.
-#[derive(Debug, Default, Clone, Copy, PartialEq)]
-struct Mouse {
-    /// Position while a button is held (kept after release).
-    position: [f32; 2],
-    /// Where the button went down.
-    click: [f32; 2],
-    down: bool,
-    /// The button went down since the last drawn frame.
-    just_clicked: bool,
-    /// The pointer over the image, in [0, 1]², y up (no click needed).
-    uv: [f32; 2],
-    surface: Surface,
-}
-
-/// GLSL Sandbox's surface: the part of the plane the image shows, for
-/// `surfacePosition` and `surfaceSize`. The wheel zooms about the pointer,
-/// a right drag pans, as on glslsandbox.com.
-#[derive(Debug, Clone, Copy, PartialEq)]
-struct Surface {
-    center: [f32; 2],
-    height: f32,
-}
-
-impl Default for Surface {
-    fn default() -> Self {
-        Surface {
-            center: [0.0; 2],
-            height: 1.0,
-        }
-    }
-}
-
-impl Surface {
-    /// Zooms by `factor` (< 1 zooms in) keeping the plane's point under the
-    /// pointer (`uv`, in [0, 1]²) where it is; `aspect` is width / height.
-    fn zoom(&mut self, factor: f32, uv: [f32; 2], aspect: f32) {
-        let offset = [(uv[0] - 0.5) * aspect, uv[1] - 0.5];
-        for (c, o) in self.center.iter_mut().zip(offset) {
-            *c += o * self.height * (1.0 - factor);
-        }
-        self.height = (self.height * factor).clamp(1e-6, 1e6);
-    }
-
-    /// Moves the plane with the pointer, which moved by `delta_uv`.
-    fn pan(&mut self, delta_uv: [f32; 2], aspect: f32) {
-        self.center[0] -= delta_uv[0] * aspect * self.height;
-        self.center[1] -= delta_uv[1] * self.height;
-    }
-}
-
-impl Mouse {
-    /// Shadertoy's `iMouse`: z > 0 while down, w > 0 only in the click's frame.
-    fn shadertoy(&self) -> [f32; 4] {
-        let z = if self.down {
-            self.click[0]
-        } else {
-            -self.click[0]
-        };
-        let w = if self.just_clicked {
-            self.click[1]
-        } else {
-            -self.click[1]
-        };
-        [self.position[0], self.position[1], z, w]
-    }
 }
 
 /// What the UI asks for in one frame.
@@ -809,20 +740,7 @@ impl SandboxApp {
         if draw {
             let tick = self.clock.tick(now);
             self.last_tick = Some(tick);
-            let size = gfx.canvas.size();
-            let uniforms = FrameUniforms {
-                resolution: [size.0 as f32, size.1 as f32],
-                pixel_aspect: 1.0,
-                time: tick.time as f32,
-                mouse: self.mouse.shadertoy(),
-                date: uniforms::date_now(),
-                time_delta: tick.delta as f32,
-                frame: tick.frame,
-                frame_rate: tick.rate as f32,
-                surface_height: self.mouse.surface.height,
-                mouse_uv: self.mouse.uv,
-                surface_center: self.mouse.surface.center,
-            };
+            let uniforms = self.mouse.frame_uniforms(&tick, gfx.canvas.size());
             let pipeline = self.session.pipeline().expect("checked above");
             let timer = gfx.timer.as_ref();
             if let Some(timer) = timer {
@@ -1060,46 +978,6 @@ fn help_window(ctx: &egui::Context, open: &mut bool) {
 #[cfg(test)]
 mod tests {
     use super::*;
-
-    #[test]
-    fn mouse_follows_the_shadertoy_convention() {
-        let mut mouse = Mouse {
-            position: [10.0, 20.0],
-            click: [10.0, 20.0],
-            down: true,
-            just_clicked: true,
-            uv: [0.0; 2],
-            surface: Surface::default(),
-        };
-        assert_eq!(
-            mouse.shadertoy(),
-            [10.0, 20.0, 10.0, 20.0],
-            "the click's frame"
-        );
-        mouse.just_clicked = false;
-        mouse.position = [30.0, 40.0];
-        assert_eq!(
-            mouse.shadertoy(),
-            [30.0, 40.0, 10.0, -20.0],
-            "held: z > 0, w < 0"
-        );
-        mouse.down = false;
-        assert_eq!(mouse.shadertoy(), [30.0, 40.0, -10.0, -20.0], "released");
-    }
-
-    #[test]
-    fn the_surface_zooms_about_the_pointer_and_pans_with_it() {
-        let mut surface = Surface::default();
-        // The plane's point under the pointer at uv (0.75, 0.5), aspect 2.
-        let under = |s: &Surface| s.center[0] + (0.75 - 0.5) * 2.0 * s.height;
-        let before = under(&surface);
-        surface.zoom(0.5, [0.75, 0.5], 2.0);
-        assert_eq!(surface.height, 0.5);
-        assert!((under(&surface) - before).abs() < 1e-6, "{surface:?}");
-        let mut panned = Surface::default();
-        panned.pan([0.25, -0.5], 2.0);
-        assert_eq!(panned.center, [-0.5, 0.5], "the plane follows the pointer");
-    }
 
     #[test]
     fn render_size_follows_the_scale() {

@@ -55,6 +55,8 @@ pub struct Status {
     pub timing: &'static str,
     pub samples: u32,
     pub resolution: (u32, u32),
+    /// The traced fraction of the window resolution (below 1 while moving).
+    pub scale: f32,
     pub adapter: String,
     /// Pipelines for a new feature set or shader are being compiled.
     pub compiling: bool,
@@ -219,7 +221,12 @@ fn status_line(ui: &mut egui::Ui, status: &Status, editor: &Editor) {
             status.samples, editor.view.max_samples
         ));
         ui.separator();
-        ui.label(format!("{} x {}", status.resolution.0, status.resolution.1));
+        let (w, h) = status.resolution;
+        if status.scale < 1.0 {
+            ui.label(format!("{w} x {h} (scale {:.2})", status.scale));
+        } else {
+            ui.label(format!("{w} x {h}"));
+        }
         ui.separator();
         ui.label(&status.adapter)
             .on_hover_text("the GPU adapter in use");

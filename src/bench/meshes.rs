@@ -20,7 +20,7 @@ use super::{BenchArgs, BenchError, cpu_model, fail, ms, timing_of};
 use crate::bvh::build_mesh_bvh;
 use crate::gpu::layout::PackedScene;
 use crate::gpu::{Gpu, ShaderOptions};
-use crate::scene::{CubeSize, Geometry, Scene, ShapeId, TriangleTest, load_file};
+use crate::scene::{CubeSize, Geometry, NamedOption, Scene, ShapeId, TriangleTest, load_file};
 use image::RgbaImage;
 
 /// The meshes, smallest first: name and file relative to the project. The
@@ -87,8 +87,8 @@ fn staged(path: &Path) -> Result<Scene, String> {
         .fold(DVec3::NEG_INFINITY, |a, &p| a.max(p));
     let s = 1.0 / (hi - lo).max_element();
     let centre = 0.5 * (lo + hi);
-    mesh.scale = CubeSize::Uniform(s);
-    mesh.translate = DVec3::new(-centre.x * s, -lo.y * s, -centre.z * s);
+    mesh.placement.scale = CubeSize::Uniform(s);
+    mesh.placement.translate = DVec3::new(-centre.x * s, -lo.y * s, -centre.z * s);
     Ok(scene)
 }
 
@@ -636,7 +636,12 @@ mod tests {
             let scene = staged(&project().join(file)).unwrap();
             let m = &scene.meshes[0];
             let g = &m.geometry.0;
-            let world: Vec<DVec3> = g.positions.iter().map(|&p| m.to_world(p)).collect();
+            let (translate, linear) = (m.placement.translate, m.placement.linear());
+            let world: Vec<DVec3> = g
+                .positions
+                .iter()
+                .map(|&p| translate + linear * p)
+                .collect();
             let lo = world.iter().fold(DVec3::INFINITY, |a, &p| a.min(p));
             let hi = world.iter().fold(DVec3::NEG_INFINITY, |a, &p| a.max(p));
             assert!(lo.y.abs() < 1e-12, "{file}: {lo}");

@@ -13,7 +13,7 @@ use super::measure::{self, ConvergedReference, REFERENCE_FACTOR};
 use super::plot::{log_range, register_font};
 use super::{BenchError, Environment, fail, ms};
 use crate::gpu::{Gpu, ShaderOptions};
-use crate::scene::{Scene, Sphere, TorusMethod, bundled};
+use crate::scene::{NamedOption, Scene, Sphere, TorusMethod, bundled};
 
 /// Samples per pixel of the images whose error is measured: enough that
 /// the knob's error, not the sampling's, separates the settings (the quick
@@ -196,16 +196,24 @@ pub fn spheres_in_place(scene: &Scene) -> Scene {
         material: material.clone(),
     };
     for t in out.tori.drain(..) {
-        let radius = (t.major_radius + t.minor_radius) * t.scale;
-        out.spheres.push(sphere(t.translate, radius, &t.material));
+        let radius = (t.major_radius + t.minor_radius) * t.placement.scale;
+        out.spheres
+            .push(sphere(t.placement.translate, radius, &t.material));
     }
     for i in out.implicits.drain(..) {
         let side = (i.bounds[1] - i.bounds[0]).min_element();
-        out.spheres
-            .push(sphere(i.translate, 0.5 * side * i.scale, &i.material));
+        out.spheres.push(sphere(
+            i.placement.translate,
+            0.5 * side * i.placement.scale,
+            &i.material,
+        ));
     }
     for j in out.julias.drain(..) {
-        out.spheres.push(sphere(j.translate, j.scale, &j.material));
+        out.spheres.push(sphere(
+            j.placement.translate,
+            j.placement.scale,
+            &j.material,
+        ));
     }
     out
 }

@@ -6,6 +6,7 @@ use web_time::{Duration, Instant};
 
 use super::context::{Gpu, GpuWaitError};
 use super::id_pass::FirstHit;
+use super::interaction::MIN_SCALE;
 use super::layout::PackedScene;
 use super::outline::Outline;
 use super::texture::render_target;
@@ -33,7 +34,7 @@ pub struct Viewport {
     pipelines: Pipelines,
     scene: SceneBuffers,
     accum: Accumulator,
-    /// Fraction of the window resolution that is traced (0.25..=1).
+    /// Fraction of the window resolution that is traced (MIN_SCALE..=1).
     scale: f32,
     /// GPU time of the last frame that traced samples (see [`Self::timing`]).
     last_frame_time: Option<Duration>,
@@ -93,7 +94,7 @@ impl Viewport {
     /// Sets the traced fraction of the window resolution; restarts refinement
     /// when the traced size changes.
     pub fn set_scale(&mut self, gpu: &Gpu, scale: f32) {
-        let scale = scale.clamp(0.25, 1.0);
+        let scale = scale.clamp(MIN_SCALE, 1.0);
         if scale != self.scale {
             self.scale = scale;
             self.resize_accumulator(gpu);
@@ -152,6 +153,11 @@ impl Viewport {
     /// Samples per pixel accumulated so far.
     pub fn samples(&self) -> u32 {
         self.accum.samples()
+    }
+
+    /// The traced fraction of the window resolution.
+    pub fn scale(&self) -> f32 {
+        self.scale
     }
 
     /// Size of the traced image in pixels.

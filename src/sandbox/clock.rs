@@ -3,7 +3,8 @@
 //! so it keeps running across reloads. Every method takes `now`, so tests
 //! can drive it without waiting.
 
-use std::time::Instant;
+// std's Instant panics in the browser; web-time's is std's natively.
+use web_time::Instant;
 
 /// How far one step (while paused) moves the clock: one frame at 60 Hz.
 pub const STEP: f64 = 1.0 / 60.0;

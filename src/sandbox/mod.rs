@@ -9,9 +9,11 @@
 //! | `gaps` | small source rewrites for what naga's GLSL front end does not take |
 //! | `params` | annotations, values, the bytes the GPU reads, the sidecar file |
 //! | `uniforms` | the per-frame values (time, mouse, resolution, date) |
+//! | `mouse` | the mouse uniforms: Shadertoy's click and drag, GLSL Sandbox's surface |
 //! | `clock` | pause, resume, restart, step |
 //! | `repair` | workarounds for naga bugs, applied to the parsed module |
 //! | `render` | the GPU passes: the user's shader into a canvas, the canvas shown, the previous frame kept |
+//! | `bundled` | the example shaders, embedded (the page's menu) |
 //! | `channels` | the images a shader samples: files, or the built-in noise |
 //! | `session` | one file: the last good pipeline, reloads, parameter values |
 //! | `watchdog` | the window's trial frame that refuses shaders too slow to run |
@@ -20,11 +22,13 @@
 //! The window is `app::sandbox_window` (`app::run_sandbox`), built on this
 //! module; it shares the viewer's window setup, error overlay and controls.
 
+pub mod bundled;
 pub mod channels;
 pub mod clock;
 pub mod compose;
 pub mod constants;
 mod gaps;
+pub mod mouse;
 pub mod params;
 pub mod render;
 mod repair;

@@ -290,6 +290,13 @@ impl PipelineBuilder {
     /// error here is rare (a limit of the adapter); it is returned, never
     /// panicked on, so the last good pipeline can keep running.
     pub fn build(&self, compiled: &Compiled) -> Result<ShaderPipeline, String> {
+        pollster::block_on(self.build_async(compiled))
+    }
+
+    /// [`build`](Self::build) without blocking: in the browser wgpu reports
+    /// a pipeline's validation errors only once control returns to the
+    /// page's event loop (docs/web.md); natively the future is ready at once.
+    pub async fn build_async(&self, compiled: &Compiled) -> Result<ShaderPipeline, String> {
         let device = &self.device;
         let scope = device.push_error_scope(wgpu::ErrorFilter::Validation);
         let module = device.create_shader_module(wgpu::ShaderModuleDescriptor {
@@ -304,7 +311,7 @@ impl PipelineBuilder {
             &[],
             CANVAS_FORMAT,
         );
-        match pollster::block_on(scope.pop()) {
+        match scope.pop().await {
             Some(error) => Err(format!(
                 "{}: wgpu rejected the shader: {error}",
                 compiled.file

@@ -2,7 +2,8 @@
 //! resolution, date, ...): one 80-byte uniform block, the same bytes for the
 //! WGSL struct `u` and for the GLSL blocks of both GLSL styles.
 
-use std::time::{SystemTime, UNIX_EPOCH};
+// std's SystemTime panics in the browser; web-time's is std's natively.
+use web_time::{SystemTime, UNIX_EPOCH};
 
 /// The uniform block at `@group(0) @binding(0)`. Field order and padding
 /// follow WGSL's uniform layout (and GLSL's std140, which agrees here); a

@@ -82,15 +82,22 @@ struct Raw {
 /// Reads `path` (`.obj` or `.ply`, by extension). Errors are messages that
 /// start with the file and line or element: `bunny.obj:12: ...`.
 pub fn load_file(path: &Path, smooth: bool) -> Result<Geometry, String> {
-    let name = path.display();
+    let name = path.display().to_string();
     let bytes = std::fs::read(path).map_err(|e| format!("{name}: cannot read the file: {e}"))?;
-    let extension = path
+    load_bytes(&name, &bytes, smooth)
+}
+
+/// Reads the `bytes` of a mesh file named `name` (`.obj` or `.ply`, by
+/// extension), e.g. a file dropped on the web page, which has no path.
+/// Errors start with `name` and the line or element, as [`load_file`]'s.
+pub fn load_bytes(name: &str, bytes: &[u8], smooth: bool) -> Result<Geometry, String> {
+    let extension = Path::new(name)
         .extension()
         .and_then(|e| e.to_str())
         .map(str::to_ascii_lowercase);
     let raw = match extension.as_deref() {
-        Some("obj") => read_obj(&bytes),
-        Some("ply") => read_ply(&bytes),
+        Some("obj") => read_obj(bytes),
+        Some("ply") => read_ply(bytes),
         _ => Err("unknown mesh format (the file name must end in .obj or .ply)".to_owned()),
     }
     .map_err(|e| format!("{name}:{e}"))?;

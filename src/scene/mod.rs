@@ -9,6 +9,7 @@ mod document;
 mod error;
 mod key_path;
 mod mesh_file;
+mod named;
 mod parse;
 mod shapes;
 #[cfg(test)]
@@ -24,8 +25,9 @@ use serde::{Deserialize, Serialize};
 
 pub use error::SceneError;
 pub use mesh_file::{Geometry, PerGeometry, load_file};
+pub use named::{NamedOption, named_option};
 pub use shapes::{
-    Cube, CubeSize, Implicit, Julia, Loaded, Mesh, Placement, Plane, Shape, Sphere, Torus,
+    Cube, CubeSize, Implicit, Julia, Loaded, Mesh, Placement, Plane, Scale, Shape, Sphere, Torus,
     TorusMethod, TriangleTest, for_each_shape_kind, implicit, julia, rotation_degrees,
 };
 

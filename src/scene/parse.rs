@@ -7,8 +7,8 @@ use toml::de::{DeValue, ValueDeserializer};
 
 use super::MAX_DEPTH;
 use super::document::{Document, Node};
-use super::key_path::KeyPath;
-use super::{Scene, SceneError};
+use super::key_path::{KeyPath, Step};
+use super::{Scene, SceneError, Shape, for_each_shape_kind};
 
 /// The scene the document describes, not yet checked against the ranges of
 /// the rendering model (that is [`super::validate`]'s job).
@@ -48,17 +48,62 @@ fn check_vector_lengths(doc: &Document<'_>) -> Result<(), SceneError> {
 /// unknown key that is the key, not its value). An empty span is how toml
 /// points at the root table, which has no place in the text.
 fn serde_error(doc: &Document<'_>, e: &toml::de::Error) -> SceneError {
+    match flattened_error(doc, &error_path(doc, e)) {
+        Some(at_key) => located_error(doc, &at_key),
+        None => located_error(doc, e),
+    }
+}
+
+/// The path of the value or key that serde's error points at.
+fn error_path(doc: &Document<'_>, e: &toml::de::Error) -> KeyPath {
     let span = e.span().filter(|span| !span.is_empty());
-    let path = span
-        .as_ref()
-        .map(|span| doc.path_at(span))
-        .unwrap_or_default();
+    span.map(|span| doc.path_at(&span)).unwrap_or_default()
+}
+
+/// [`serde_error`] once flattened keys are accounted for.
+fn located_error(doc: &Document<'_>, e: &toml::de::Error) -> SceneError {
+    let span = e.span().filter(|span| !span.is_empty());
+    let path = error_path(doc, e);
+    if let Some(key) = unknown_flattened_key(&path, e.message()) {
+        return doc.error(&path.key(key), format!("unknown key `{key}`"));
+    }
     let (path, message) = explain(doc, path, e.message());
     let error = doc.error(&path, message);
     match span {
         Some(span) => error.at(doc.position(span.start)),
         None => error,
     }
+}
+
+/// serde reads a placement flattened into its shape (docs/implementation.md,
+/// "Adding a shape kind"), from keys that no longer know their place in the
+/// text, and blames an error in one on the shape's table at `table`. Read
+/// alone from the table, the shape's [`Shape::Flattened`] keys give the
+/// error at the key.
+fn flattened_error(doc: &Document<'_>, table: &KeyPath) -> Option<toml::de::Error> {
+    let [Step::Key(array), Step::Index(_)] = table.steps() else {
+        return None;
+    };
+    let node = doc.get(table).filter(|node| node.get_ref().is_table())?;
+    let node = ValueDeserializer::from(node.clone());
+    macro_rules! read_flattened {
+        ($($kind:ident: $field:ident),* $(,)?) => {
+            match array.as_str() {
+                $(stringify!($field) => {
+                    <super::$kind as Shape>::Flattened::deserialize(node).err()
+                })*
+                _ => None,
+            }
+        };
+    }
+    for_each_shape_kind!(read_flattened)
+}
+
+/// The key of serde's "unknown field `key`" when serde blames the table
+/// `path` (a shape with flattened keys) rather than the key.
+fn unknown_flattened_key<'m>(path: &KeyPath, message: &'m str) -> Option<&'m str> {
+    let (key, rest) = message.strip_prefix("unknown field `")?.split_once('`')?;
+    (rest.is_empty() && !path.ends_with_key(key)).then_some(key)
 }
 
 /// The key and message to show for serde's `message` about `path`.

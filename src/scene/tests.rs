@@ -5,7 +5,7 @@ use std::path::{Path, PathBuf};
 
 use glam::DVec3;
 
-use super::{CubeSize, Material, RenderSettings, Scene, SceneError};
+use super::{CubeSize, Material, Placement, RenderSettings, Scale, Scene, SceneError};
 
 /// A valid camera, for tests about other sections. Three lines long.
 const CAMERA: &str = "[camera]\nfrom = [0, 1, 5]\nto = [0, 0, 0]\n";
@@ -649,6 +649,45 @@ fn unknown_nested_keys_are_named_with_their_line() {
     rejects_with("[camera.lens]\n", "camera.lens", "unknown key `lens`");
 }
 
+/// A placement is read flattened into its shape, where serde no longer
+/// knows where its keys are: the error still names the key and its line.
+#[test]
+fn wrong_and_unknown_placement_keys_are_named_with_their_line() {
+    let torus = "[[tori]]\nmajor_radius = 1\nminor_radius = 0.5\n";
+    let e = rejects_with(
+        &format!("{torus}scale = \"big\"\n"),
+        "tori[0].scale",
+        "invalid type: string \"big\", expected a number",
+    );
+    assert_eq!(e.line, Some(4));
+    let e = rejects_with(
+        &format!("{torus}rotation = [1, 2]\n"),
+        "tori[0].rotation",
+        "invalid length 2, expected an array of 3 numbers",
+    );
+    assert_eq!(e.line, Some(4));
+    let text = "[[meshes]]\npositions = [[0, 0, 0], [1, 0, 0], [0, 1, 0]]\n\
+                triangles = [[0, 1, 2]]\nscale = true\n";
+    let e = rejects(
+        text,
+        "meshes[0].scale",
+        "must be a number or an array of 3 numbers, got true",
+    );
+    assert_eq!(e.line, Some(4));
+    let e = rejects(
+        "[[julias]]\nc = [0, 0, 0, 0]\nscael = 2\n",
+        "julias[0].scael",
+        "unknown key `scael`",
+    );
+    assert_eq!(e.line, Some(3));
+    for (text, key) in [
+        ("tori = [1]\n", "tori[0]"),
+        ("meshes = [[]]\n", "meshes[0]"),
+    ] {
+        rejects_with(text, key, "expected a table");
+    }
+}
+
 #[test]
 fn missing_camera_is_named() {
     for text in ["", "# only a comment\n", "[render]\nmax_depth = 3\n"] {
@@ -941,6 +980,62 @@ fn every_asset_scene_loads_and_round_trips() {
     }
 }
 
+/// The placement a placed shape's table writes, read key by key from the
+/// TOML with the defaults of docs/scene-format.md: what the scene must hold
+/// however [`Placement`] is read (flattened into the shape).
+fn written_placement<S: Scale + serde::de::DeserializeOwned>(table: &toml::Table) -> Placement<S> {
+    fn key_or<T: serde::de::DeserializeOwned>(table: &toml::Table, key: &str, default: T) -> T {
+        table.get(key).map_or(default, |value| {
+            value.clone().try_into().expect("the scene loaded")
+        })
+    }
+    Placement {
+        translate: key_or(table, "translate", DVec3::ZERO),
+        scale: key_or(table, "scale", S::ONE),
+        rotation: key_or(table, "rotation", DVec3::ZERO),
+    }
+}
+
+/// The tables of the array `key` of a scene file.
+fn tables<'a>(file: &'a toml::Table, key: &str) -> Vec<&'a toml::Table> {
+    let tables = file.get(key).and_then(toml::Value::as_array);
+    let tables = tables.map(|array| array.iter().filter_map(toml::Value::as_table));
+    tables.into_iter().flatten().collect()
+}
+
+#[test]
+fn every_asset_scene_places_its_shapes_as_written() {
+    let dir = Path::new(env!("CARGO_MANIFEST_DIR")).join("assets/scenes");
+    let mut placed = 0;
+    for path in toml_files(&dir) {
+        let scene = Scene::load(&path).unwrap_or_else(|e| panic!("{e}"));
+        let text = std::fs::read_to_string(&path).unwrap();
+        let file: toml::Table = text.parse().unwrap();
+        let got: Vec<Placement> = (scene.tori.iter().map(|s| s.placement))
+            .chain(scene.implicits.iter().map(|s| s.placement))
+            .chain(scene.julias.iter().map(|s| s.placement))
+            .collect();
+        let want: Vec<Placement> = ["tori", "implicits", "julias"]
+            .into_iter()
+            .flat_map(|key| tables(&file, key))
+            .map(written_placement)
+            .collect();
+        assert_eq!(got, want, "{}", path.display());
+        let meshes: Vec<Placement<CubeSize>> = scene.meshes.iter().map(|m| m.placement).collect();
+        let want: Vec<Placement<CubeSize>> = tables(&file, "meshes")
+            .into_iter()
+            .map(written_placement)
+            .collect();
+        assert_eq!(meshes, want, "{}", path.display());
+        placed += got.len() + meshes.len();
+    }
+    assert!(
+        placed >= 10,
+        "only {placed} placed shapes in {}",
+        dir.display()
+    );
+}
+
 mod properties {
     //! Round trips and robustness over generated scenes and texts.
 
@@ -951,8 +1046,8 @@ mod properties {
     use proptest::sample::Index;
 
     use super::super::{
-        Camera, Checker, Cube, CubeSize, Implicit, Julia, Light, Material, Plane, RenderSettings,
-        Scene, Sphere, Torus,
+        Camera, Checker, Cube, CubeSize, Implicit, Julia, Light, Material, Placement, Plane,
+        RenderSettings, Scene, Sphere, Torus,
     };
     use super::FULL;
 
@@ -1071,9 +1166,7 @@ mod properties {
             let tori = tori.into_iter().map(|(major, translate, scale, m)| Torus {
                 major_radius: major,
                 minor_radius: 0.5 * major,
-                translate,
-                scale,
-                rotation: DVec3::new(10.0, 20.0, 30.0),
+                placement: Placement { translate, scale, rotation: DVec3::new(10.0, 20.0, 30.0) },
                 material: pick(&names, m),
             }).collect();
             let implicits = implicits.into_iter().map(|(which, translate, steps, m)| Implicit {
@@ -1081,9 +1174,7 @@ mod properties {
                     .to_string(),
                 bounds: [DVec3::splat(-1.0), DVec3::new(1.0, 2.0, 3.0)],
                 steps,
-                translate,
-                scale: 2.0,
-                rotation: DVec3::ZERO,
+                placement: Placement { translate, scale: 2.0, rotation: DVec3::ZERO },
                 material: pick(&names, m),
             }).collect();
             let julias = julias.into_iter().map(|(c, iterations, epsilon, m)| Julia {
@@ -1092,9 +1183,7 @@ mod properties {
                 iterations,
                 epsilon,
                 footprint: iterations % 2 == 0,
-                translate: DVec3::ZERO,
-                scale: 1.0,
-                rotation: DVec3::ZERO,
+                placement: Placement::default(),
                 material: pick(&names, m),
             }).collect();
             Scene { render, camera, lights, materials, spheres, planes, cubes, tori, implicits, julias, meshes: Vec::new() }
@@ -1135,4 +1224,29 @@ mod properties {
             let _ = Scene::from_toml_str(&text, None);
         }
     }
+}
+
+// ------------------------------------------------- meshes from a file's bytes
+
+/// A unit square in the z = 0 plane, as two triangles of an OBJ file.
+const SQUARE_OBJ: &str = "v 0 0 0\nv 1 0 0\nv 1 1 0\nv 0 1 0\nf 1 2 3 4\n";
+
+#[test]
+fn a_mesh_from_bytes_is_inline_and_its_scene_text_carries_it() {
+    let mesh = super::Mesh::inline_from_bytes("square.obj", SQUARE_OBJ.as_bytes()).unwrap();
+    assert_eq!(mesh.file, None);
+    assert_eq!(mesh.positions.len(), 4);
+    assert_eq!(mesh.triangles.len(), 2);
+    let mut scene = loads(CAMERA);
+    scene.meshes.push(mesh);
+    assert_round_trip(&scene);
+}
+
+#[test]
+fn a_malformed_mesh_from_bytes_names_the_file_and_line() {
+    let bad = "v 0 0 0\nv 1 0 0\nf 1 2 7\n";
+    let e = super::Mesh::inline_from_bytes("bad.obj", bad.as_bytes()).unwrap_err();
+    assert!(e.starts_with("bad.obj:3:"), "{e}");
+    let e = super::Mesh::inline_from_bytes("model.stl", b"solid").unwrap_err();
+    assert!(e.starts_with("model.stl:"), "{e}");
 }

@@ -19,7 +19,7 @@ use crate::gpu::compute::{Kernel, with_kernel};
 use crate::gpu::{Gpu, ShaderSource};
 use crate::reference::ray::Ray;
 use crate::reference::shapes::mesh::hit_triangle;
-use crate::scene::TriangleTest;
+use crate::scene::{NamedOption, TriangleTest};
 
 /// A mesh to aim at, its vertices already rounded to f32 (as the GPU gets
 /// them), so that the f64 count and the f32 count test the same triangles.

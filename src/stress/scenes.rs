@@ -7,7 +7,7 @@ use std::sync::Arc;
 
 use glam::DVec3;
 
-use crate::scene::{CubeSize, Geometry, Loaded, Scene};
+use crate::scene::{CubeSize, Geometry, Loaded, Placement, Scene};
 
 /// Declares the embedded scene files: `(name, TOML text)`.
 macro_rules! stress_scenes {
@@ -171,30 +171,31 @@ pub fn round_to_f32(scene: &Scene) -> Scene {
         cube.size = CubeSize::PerAxis(v(cube.size.edges()));
         cube.rotation = v(cube.rotation);
     }
-    let placement = |translate: &mut DVec3, scale: &mut f64, rotation: &mut DVec3| {
-        *translate = at(*translate);
-        *scale = r(*scale);
-        *rotation = v(*rotation);
+    let placement = |p: &mut Placement| {
+        p.translate = at(p.translate);
+        p.scale = r(p.scale);
+        p.rotation = v(p.rotation);
     };
     for t in &mut s.tori {
-        placement(&mut t.translate, &mut t.scale, &mut t.rotation);
+        placement(&mut t.placement);
         t.major_radius = r(t.major_radius);
         t.minor_radius = r(t.minor_radius);
     }
     for i in &mut s.implicits {
-        placement(&mut i.translate, &mut i.scale, &mut i.rotation);
+        placement(&mut i.placement);
         i.bounds = i.bounds.map(v);
     }
     for j in &mut s.julias {
-        placement(&mut j.translate, &mut j.scale, &mut j.rotation);
+        placement(&mut j.placement);
         j.c = j.c.map(r);
         j.slice = r(j.slice);
         j.epsilon = r(j.epsilon);
     }
     for m in &mut s.meshes {
-        m.translate = at(m.translate);
-        m.scale = CubeSize::PerAxis(v(m.scale.edges()));
-        m.rotation = v(m.rotation);
+        let p = &mut m.placement;
+        p.translate = at(p.translate);
+        p.scale = CubeSize::PerAxis(v(p.scale.edges()));
+        p.rotation = v(p.rotation);
         // The GPU gets the vertices in the mesh's own coordinates, in f32.
         let g = &m.geometry.0;
         let rounded = Geometry {
@@ -242,18 +243,13 @@ pub fn scaled(scene: &Scene, factor: f64) -> Scene {
     }
     // The implicit surfaces are written in local units: scaling the scene
     // scales their placement.
-    for t in &mut s.tori {
-        t.translate *= factor;
-        t.scale *= factor;
-    }
-    for i in &mut s.implicits {
-        i.translate *= factor;
-        i.scale *= factor;
-    }
-    for j in &mut s.julias {
-        j.translate *= factor;
-        j.scale *= factor;
-    }
+    let grow = |p: &mut Placement| {
+        p.translate *= factor;
+        p.scale *= factor;
+    };
+    s.tori.iter_mut().for_each(|t| grow(&mut t.placement));
+    s.implicits.iter_mut().for_each(|i| grow(&mut i.placement));
+    s.julias.iter_mut().for_each(|j| grow(&mut j.placement));
     s
 }
 

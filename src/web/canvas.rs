@@ -5,7 +5,8 @@
 //!
 //! In the browser nothing may block: the adapter, the device and the
 //! pipelines' validation arrive asynchronously, and the page hands them to
-//! the event loop as a [`Ready`] event once they are there.
+//! the event loop as a [`PageEvent`] once they are there. The editors and
+//! the sandbox are the [`Workbench`]'s.
 
 use std::sync::Arc;
 
@@ -16,6 +17,7 @@ use winit::event_loop::{ActiveEventLoop, ControlFlow, EventLoop, EventLoopProxy}
 use winit::platform::web::{EventLoopExtWebSys, WindowAttributesExtWebSys};
 use winit::window::{Window, WindowId};
 
+use super::workbench::{Outcome, WorkEvent, Workbench};
 use super::{link, page};
 use crate::gpu::{FrameStatus, Gpu, Pipelines, ShaderOptions, ShaderSource, Viewport};
 use crate::scene::{Scene, bundled};
@@ -29,14 +31,14 @@ const MAX_SAMPLES: u32 = 64;
 #[wasm_bindgen(start)]
 pub fn start() {
     std::panic::set_hook(Box::new(|info| page::show_error(&info.to_string())));
-    let scene = match initial_scene() {
+    let (scene_text, scene) = match initial_scene() {
         Ok(scene) => scene,
         Err(e) => {
             page::show_error(&e);
             return;
         }
     };
-    let event_loop = match EventLoop::<Ready>::with_user_event().build() {
+    let event_loop = match EventLoop::<PageEvent>::with_user_event().build() {
         Ok(event_loop) => event_loop,
         Err(e) => {
             page::show_error(&format!("cannot start the page's event loop: {e}"));
@@ -47,8 +49,14 @@ pub fn start() {
     let max_samples = page::query("samples")
         .and_then(|n| n.parse::<u32>().ok())
         .map_or(MAX_SAMPLES, |n| n.max(1));
+    let proxy = event_loop.create_proxy();
+    let to_page = proxy.clone();
+    let work = Workbench::new(&scene_text, &scene, move |e| {
+        let _ = to_page.send_event(PageEvent::Work(e));
+    });
     let app = Page {
-        proxy: event_loop.create_proxy(),
+        proxy,
+        work,
         scene,
         max_samples,
         window: None,
@@ -58,11 +66,15 @@ pub fn start() {
 }
 
 /// The scene the page opens with: the one in the address's `#scene=` link,
-/// else the bundled Whitted scene. A broken link is reported over the canvas
-/// and the Whitted scene shown.
-fn initial_scene() -> Result<Scene, String> {
+/// else the bundled Whitted scene, with its text. A broken link is reported
+/// over the canvas and the Whitted scene shown.
+fn initial_scene() -> Result<(String, Scene), String> {
     if let Some(text) = page::hash().as_deref().and_then(link::scene_in_hash) {
-        match text.and_then(|text| Scene::from_toml_str(&text, None).map_err(|e| e.to_string())) {
+        let parsed = text.and_then(|text| {
+            let scene = Scene::from_toml_str(&text, None).map_err(|e| e.to_string())?;
+            Ok((text, scene))
+        });
+        match parsed {
             Ok(scene) => {
                 page::event("scene from-link");
                 return Ok(scene);
@@ -73,27 +85,39 @@ fn initial_scene() -> Result<Scene, String> {
     let name = bundled::names()[0];
     let text = bundled::text(name).expect("a bundled scene has its text");
     page::event(&format!("scene {name}"));
-    Scene::from_toml_str(text, None).map_err(|e| e.to_string())
+    let scene = Scene::from_toml_str(text, None).map_err(|e| e.to_string())?;
+    Ok((text.to_string(), scene))
 }
 
-/// The GPU objects made asynchronously, handed to the event loop.
-pub struct Ready(Result<Graphics, String>);
+/// What arrives asynchronously at the page's event loop.
+pub enum PageEvent {
+    /// The GPU objects, made once.
+    Ready(Result<Box<Graphics>, String>),
+    /// An edit, or a sandbox pipeline built.
+    Work(WorkEvent),
+    /// The tracer's pipelines built for a scene with other features.
+    Pipelines(ShaderOptions, Result<Pipelines, String>),
+}
 
 /// Everything that draws into the canvas.
-struct Graphics {
+pub struct Graphics {
     gpu: Gpu,
     viewport: Viewport,
+    /// What the viewport's pipelines were built for.
+    options: ShaderOptions,
+    formats: [wgpu::TextureFormat; 2],
 }
 
 struct Page {
-    proxy: EventLoopProxy<Ready>,
+    proxy: EventLoopProxy<PageEvent>,
+    work: Workbench,
     scene: Scene,
     max_samples: u32,
     window: Option<Arc<Window>>,
-    gfx: Option<Graphics>,
+    gfx: Option<Box<Graphics>>,
 }
 
-impl ApplicationHandler<Ready> for Page {
+impl ApplicationHandler<PageEvent> for Page {
     fn resumed(&mut self, event_loop: &ActiveEventLoop) {
         if self.window.is_some() {
             return;
@@ -112,25 +136,35 @@ impl ApplicationHandler<Ready> for Page {
         let proxy = self.proxy.clone();
         let scene = self.scene.clone();
         wasm_bindgen_futures::spawn_local(async move {
-            let gfx = create_graphics(window, &scene).await;
-            let _ = proxy.send_event(Ready(gfx));
+            let gfx = create_graphics(window, &scene).await.map(Box::new);
+            let _ = proxy.send_event(PageEvent::Ready(gfx));
         });
     }
 
-    fn user_event(&mut self, _: &ActiveEventLoop, Ready(gfx): Ready) {
-        match gfx {
-            Ok(mut gfx) => {
+    fn user_event(&mut self, _: &ActiveEventLoop, event: PageEvent) {
+        match event {
+            PageEvent::Ready(Ok(mut gfx)) => {
                 page::event(&format!("adapter {}", gfx.gpu.describe()));
                 // The canvas may have been laid out while the device was
                 // being made: draw at its size now.
-                if let Some(window) = &self.window {
-                    let size = window.inner_size();
-                    gfx.viewport.resize(&gfx.gpu, (size.width, size.height));
-                }
+                let size = self
+                    .window
+                    .as_ref()
+                    .map(|w| (w.inner_size().width, w.inner_size().height))
+                    .unwrap_or((1, 1));
+                gfx.viewport.resize(&gfx.gpu, size);
+                let format = gfx.viewport.surface_format();
+                self.work.gpu_ready(&gfx.gpu, format, size);
                 self.gfx = Some(gfx);
                 self.request_redraw();
             }
-            Err(e) => page::show_error(&e),
+            PageEvent::Ready(Err(e)) => page::show_error(&e),
+            PageEvent::Work(event) => match self.work.handle(event) {
+                Outcome::Scene(scene) => self.replace_scene(*scene),
+                Outcome::Redraw => self.request_redraw(),
+                Outcome::Nothing => {}
+            },
+            PageEvent::Pipelines(options, built) => self.pipelines_built(options, built),
         }
     }
 
@@ -139,11 +173,12 @@ impl ApplicationHandler<Ready> for Page {
             WindowEvent::Resized(size) => {
                 if let Some(gfx) = &mut self.gfx {
                     gfx.viewport.resize(&gfx.gpu, (size.width, size.height));
+                    self.work.resize(&gfx.gpu, (size.width, size.height));
                 }
                 self.request_redraw();
             }
             WindowEvent::RedrawRequested => self.redraw(),
-            _ => {}
+            event => self.work.pointer(&event),
         }
     }
 }
@@ -155,9 +190,60 @@ impl Page {
         }
     }
 
-    /// Adds one sample per pixel until the limit, then stops drawing.
+    /// Replaces the scene (edited as text). A scene with the same features
+    /// goes to the GPU buffers at once; one that needs other pipelines has
+    /// them built without blocking, the last picture kept meanwhile.
+    fn replace_scene(&mut self, scene: Scene) {
+        self.scene = scene;
+        let Some(gfx) = &mut self.gfx else { return };
+        let options = ShaderOptions::for_scene(&self.scene);
+        if options == gfx.options {
+            gfx.viewport.set_scene(&gfx.gpu, &self.scene);
+            self.request_redraw();
+            return;
+        }
+        let (device, formats, proxy) = (gfx.gpu.device.clone(), gfx.formats, self.proxy.clone());
+        wasm_bindgen_futures::spawn_local(async move {
+            let source = ShaderSource::embedded();
+            let built = Pipelines::with_outline_async(&device, &source, &formats, &options)
+                .await
+                .map_err(|e| e.to_string());
+            let _ = proxy.send_event(PageEvent::Pipelines(options, built));
+        });
+    }
+
+    /// Pipelines built for a scene: used if the scene still needs them.
+    fn pipelines_built(&mut self, options: ShaderOptions, built: Result<Pipelines, String>) {
+        let Some(gfx) = &mut self.gfx else { return };
+        if options != ShaderOptions::for_scene(&self.scene) {
+            return;
+        }
+        match built {
+            Ok(pipelines) => {
+                gfx.viewport.set_pipelines(&gfx.gpu, pipelines);
+                gfx.viewport.set_scene(&gfx.gpu, &self.scene);
+                gfx.options = options;
+                self.request_redraw();
+            }
+            Err(e) => page::show_error(&e),
+        }
+    }
+
+    /// Adds one sample per pixel until the limit, then stops drawing; or,
+    /// while the shader is shown, draws its next frame, frame after frame.
     fn redraw(&mut self) {
         let Some(gfx) = &mut self.gfx else { return };
+        if self.work.shows_shader() {
+            let format = gfx.viewport.surface_format();
+            let work = &mut self.work;
+            gfx.viewport.frame(&gfx.gpu, 0, |encoder, view| {
+                work.draw(&gfx.gpu, encoder, view, format);
+                Vec::new()
+            });
+            self.request_redraw();
+            return;
+        }
+        self.work.follow_scene(&self.scene);
         let before = gfx.viewport.samples();
         let new_samples = u32::from(before < self.max_samples);
         let status = gfx.viewport.frame(&gfx.gpu, new_samples, |_, _| Vec::new());
@@ -206,5 +292,10 @@ async fn create_graphics(window: Arc<Window>, scene: &Scene) -> Result<Graphics,
     .await
     .map_err(|e| e.to_string())?;
     let viewport = Viewport::new(&gpu, surface, (size.width, size.height), pipelines, scene);
-    Ok(Graphics { gpu, viewport })
+    Ok(Graphics {
+        gpu,
+        viewport,
+        options: ShaderOptions::for_scene(scene),
+        formats,
+    })
 }

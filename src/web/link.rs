@@ -1,7 +1,7 @@
-//! A scene carried in a link: its TOML text, deflated and written in
-//! URL-safe base64 after `#scene=` in the page's address (docs/web.md,
-//! "Sharing a scene"). The fragment never reaches the server, so any static
-//! host serves shared scenes.
+//! A scene or a sandbox shader carried in a link: its text, deflated and
+//! written in URL-safe base64 after `#scene=` or `#shader=` in the page's
+//! address (docs/web.md, "Sharing a scene or a shader"). The fragment never
+//! reaches the server, so any static host serves shared work.
 
 use base64::Engine;
 use base64::engine::general_purpose::URL_SAFE_NO_PAD;
@@ -9,19 +9,42 @@ use base64::engine::general_purpose::URL_SAFE_NO_PAD;
 /// What precedes the encoded scene in the address's fragment.
 const SCENE_KEY: &str = "scene=";
 
-/// Deflate level: the best compression; scenes are a few kilobytes.
+/// What precedes the encoded sandbox shader in the address's fragment.
+const SHADER_KEY: &str = "shader=";
+
+/// Deflate level: the best compression; scenes and shaders are a few kilobytes.
 const LEVEL: u8 = 10;
 
-/// The fragment (without `#`) that carries `toml`.
+/// The fragment (without `#`) that carries the scene `toml`.
 pub fn scene_hash(toml: &str) -> String {
-    let deflated = miniz_oxide::deflate::compress_to_vec(toml.as_bytes(), LEVEL);
-    format!("{SCENE_KEY}{}", URL_SAFE_NO_PAD.encode(deflated))
+    encode(SCENE_KEY, toml)
 }
 
 /// The scene text in a fragment: `None` when it carries no scene, an error
 /// saying what is wrong with a damaged one (cut short when copied, edited).
 pub fn scene_in_hash(hash: &str) -> Option<Result<String, String>> {
-    let encoded = hash.trim_start_matches('#').strip_prefix(SCENE_KEY)?;
+    decode_after(SCENE_KEY, hash)
+}
+
+/// The fragment (without `#`) that carries a sandbox shader's text. The
+/// text alone tells its language and style (docs/sandbox.md, "Which kind
+/// of file"), so no file name travels with it.
+pub fn shader_hash(text: &str) -> String {
+    encode(SHADER_KEY, text)
+}
+
+/// The shader text in a fragment, as [`scene_in_hash`] for scenes.
+pub fn shader_in_hash(hash: &str) -> Option<Result<String, String>> {
+    decode_after(SHADER_KEY, hash)
+}
+
+fn encode(key: &str, text: &str) -> String {
+    let deflated = miniz_oxide::deflate::compress_to_vec(text.as_bytes(), LEVEL);
+    format!("{key}{}", URL_SAFE_NO_PAD.encode(deflated))
+}
+
+fn decode_after(key: &str, hash: &str) -> Option<Result<String, String>> {
+    let encoded = hash.trim_start_matches('#').strip_prefix(key)?;
     Some(decode(encoded))
 }
 
@@ -31,12 +54,13 @@ fn decode(encoded: &str) -> Result<String, String> {
         .map_err(|e| format!("the link is damaged (not base64: {e})"))?;
     let bytes = miniz_oxide::inflate::decompress_to_vec(&deflated)
         .map_err(|e| format!("the link is damaged or cut short ({e:?})"))?;
-    String::from_utf8(bytes).map_err(|_| "the link's scene is not UTF-8 text".to_string())
+    String::from_utf8(bytes).map_err(|_| "the link's text is not UTF-8".to_string())
 }
 
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::sandbox::bundled as shaders;
     use crate::scene::bundled;
 
     #[test]
@@ -50,6 +74,22 @@ mod tests {
                 scene_in_hash(&format!("#{hash}")),
                 Some(Ok(text.to_string()))
             );
+            assert_eq!(shader_in_hash(&hash), None, "a scene is not a shader");
+        }
+    }
+
+    #[test]
+    fn every_bundled_shader_survives_a_link() {
+        for (name, text) in shaders::SHADERS {
+            let hash = shader_hash(text);
+            assert!(hash.starts_with("shader="), "{name}");
+            assert!(hash.len() < text.len(), "{name}: the link is not shorter");
+            assert_eq!(shader_in_hash(&hash), Some(Ok(text.to_string())), "{name}");
+            assert_eq!(
+                shader_in_hash(&format!("#{hash}")),
+                Some(Ok(text.to_string()))
+            );
+            assert_eq!(scene_in_hash(&hash), None, "a shader is not a scene");
         }
     }
 
@@ -61,5 +101,15 @@ mod tests {
         assert!(scene_in_hash("scene=%%%").unwrap().is_err());
         assert_eq!(scene_in_hash(""), None);
         assert_eq!(scene_in_hash("other=1"), None);
+        let shader = shader_hash(shaders::SHADERS[0].1);
+        let cut = &shader[..shader.len() / 2];
+        assert!(
+            shader_in_hash(cut)
+                .unwrap()
+                .unwrap_err()
+                .contains("damaged")
+        );
+        assert!(shader_in_hash("shader=").unwrap().is_err());
+        assert_eq!(shader_in_hash(""), None);
     }
 }

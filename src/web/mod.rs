@@ -1,10 +1,18 @@
 //! The browser page (docs/web.md): the GPU tracer drawing a scene into the
-//! page's canvas through WebGPU ([`canvas`], built for `wasm32` only), and
-//! the scene carried in the page's address ([`link`]), which the native
-//! program and the tests can write too.
+//! page's canvas through WebGPU ([`canvas`], built for `wasm32` only), the
+//! scene and shader editors ([`editor`], [`workbench`]) and the sandbox in
+//! the page ([`sandbox_page`]), and the scene or shader carried in the
+//! page's address ([`link`]), which the native program and the tests can
+//! write too.
 
 #[cfg(target_arch = "wasm32")]
 mod canvas;
+#[cfg(target_arch = "wasm32")]
+mod editor;
 pub mod link;
 #[cfg(target_arch = "wasm32")]
 mod page;
+#[cfg(target_arch = "wasm32")]
+mod sandbox_page;
+#[cfg(target_arch = "wasm32")]
+mod workbench;

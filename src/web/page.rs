@@ -35,6 +35,26 @@ pub fn hash() -> Option<String> {
     Some(hash.trim_start_matches('#').to_string())
 }
 
+/// `?ui=0`: the picture alone, without the page's controls over it (for a
+/// projector, an embedded page, or a screenshot compared pixel by pixel).
+pub fn hide_controls() {
+    if let Some(body) = document().and_then(|d| d.body()) {
+        let _ = body.class_list().add_1("bare");
+    }
+}
+
+/// Replaces the address's fragment (`#` and `hash`) without adding a step
+/// to the browser's history or reloading.
+pub fn replace_hash(hash: &str) {
+    if let Some(history) = web_sys::window().and_then(|w| w.history().ok()) {
+        let _ = history.replace_state_with_url(
+            &wasm_bindgen::JsValue::NULL,
+            "",
+            Some(&format!("#{hash}")),
+        );
+    }
+}
+
 /// Logs one `raysandbox: EVENT` line on the console (tests read them).
 pub fn event(line: &str) {
     web_sys::console::log_1(&format!("raysandbox: {line}").into());

@@ -3,6 +3,7 @@
 //! Each test binary compiles this module and uses only part of it.
 #![allow(dead_code)]
 
+pub mod browser;
 pub mod xwindow;
 
 use std::path::{Path, PathBuf};

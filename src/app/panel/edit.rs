@@ -7,7 +7,7 @@ use glam::DVec3;
 
 use super::shapes::{self, Placement};
 use crate::scene::{
-    Camera, Checker, CubeSize, Light, Material, Mesh, Scene, Shape, ShapeId, ShapeKind,
+    self, Camera, Checker, CubeSize, Light, Material, Mesh, Scene, Shape, ShapeId, ShapeKind,
 };
 
 /// Smallest value the panel writes into a field that must be > 0 (radius,
@@ -197,13 +197,11 @@ const NEW_MESH_SIZE: f64 = 0.4;
 /// [`NEW_MESH_SIZE`] of the scene scale. Returns its id.
 pub(super) fn add_mesh(scene: &mut Scene, mut mesh: Mesh) -> ShapeId {
     let at = placement(scene);
-    mesh.translate = DVec3::ZERO;
-    mesh.scale = CubeSize::Uniform(1.0);
-    mesh.rotation = DVec3::ZERO;
+    mesh.placement = scene::Placement::default();
     let [lo, hi] = mesh.bounds();
     let size = NEW_MESH_SIZE * at.scale / (hi - lo).max_element().max(f64::MIN_POSITIVE);
-    mesh.scale = CubeSize::Uniform(size);
-    mesh.translate = at.target - 0.5 * (lo + hi) * size;
+    mesh.placement.scale = CubeSize::Uniform(size);
+    mesh.placement.translate = at.target - 0.5 * (lo + hi) * size;
     scene.meshes.push(mesh);
     ShapeId::Mesh(scene.meshes.len() - 1)
 }
@@ -496,7 +494,7 @@ mod tests {
             DVec3::new(10.0, 0.0, 1.0),
         ];
         let mut mesh = Mesh::inline(&positions, &[[0, 1, 2], [0, 2, 3]]).unwrap();
-        mesh.translate = DVec3::splat(100.0);
+        mesh.placement.translate = DVec3::splat(100.0);
         let id = add_mesh(&mut s, mesh);
         assert_eq!(id, ShapeId::Mesh(0));
         let [lo, hi] = s.meshes[0].bounds();

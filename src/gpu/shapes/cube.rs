@@ -1,10 +1,8 @@
 //! A rotated box as `shaders/shapes/cube.wgsl` reads it.
 
-use bytemuck::{Pod, Zeroable};
-use glam::DVec3;
-
-use super::{Frame, PackShape, f32x3};
+use super::{Frame, PackShape, f32x3, placed};
 use crate::scene::{self, Scene};
+use bytemuck::{Pod, Zeroable};
 
 #[repr(C)]
 #[derive(Debug, Clone, Copy, PartialEq, Pod, Zeroable)]
@@ -22,14 +20,12 @@ impl PackShape for Cube {
     const WGSL: &'static str = include_str!("../../../shaders/shapes/cube.wgsl");
 
     fn pack(scene: &Scene, frame: &Frame, c: &scene::Cube) -> Self {
-        let m = c.rotation_matrix();
-        let column = |v: DVec3| v.as_vec3().extend(0.0).to_array();
         Cube {
             center: frame.point(c.center),
             material: scene.material_slot(c.material.as_deref()),
             half_size: f32x3(c.size.edges() * 0.5),
             _pad: 0,
-            rotation: [column(m.x_axis), column(m.y_axis), column(m.z_axis)],
+            rotation: placed::rotation_columns(&c.placement()),
         }
     }
 }

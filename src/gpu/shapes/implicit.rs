@@ -43,7 +43,7 @@ impl PackShape for Implicit {
     const WGSL: &'static str = include_str!("../../../shaders/shapes/implicit.wgsl");
 
     fn pack(scene: &Scene, frame: &Frame, i: &scene::Implicit) -> Self {
-        let placement = i.placement();
+        let placement = &i.placement;
         let function = functions(scene)
             .iter()
             .position(|f| *f == i.f)
@@ -51,7 +51,7 @@ impl PackShape for Implicit {
         Implicit {
             center: frame.point(placement.translate),
             scale: placement.scale as f32,
-            rotation: placed::rotation_columns(&placement),
+            rotation: placed::rotation_columns(placement),
             bounds_min: f32x3(i.bounds[0]),
             function,
             bounds_max: f32x3(i.bounds[1]),

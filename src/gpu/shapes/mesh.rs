@@ -6,12 +6,11 @@
 
 use std::sync::Arc;
 
-use bytemuck::{Pod, Zeroable};
-use glam::DMat3;
-
+use super::placed::columns;
 use super::{Frame, PackShape, Words, round_out};
 use crate::bvh::mesh_bvh;
 use crate::scene::{self, Geometry, PerGeometry, Scene, Shape};
+use bytemuck::{Pod, Zeroable};
 
 #[repr(C)]
 #[derive(Debug, Clone, Copy, PartialEq, Pod, Zeroable)]
@@ -28,10 +27,6 @@ pub struct Mesh {
     pub error_scale: f32,
 }
 
-fn columns(m: DMat3) -> [[f32; 4]; 3] {
-    [m.x_axis, m.y_axis, m.z_axis].map(|c| c.as_vec3().extend(0.0).to_array())
-}
-
 impl PackShape for Mesh {
     type Source = scene::Mesh;
     const WGSL: &'static str = include_str!("../../../shaders/shapes/mesh.wgsl");
@@ -39,7 +34,8 @@ impl PackShape for Mesh {
 
     /// The placement; the data offsets are set by [`PackShape::pack_kind`].
     fn pack(scene: &Scene, frame: &Frame, m: &scene::Mesh) -> Self {
-        let to_local = m.linear().inverse();
+        let linear = m.placement.linear();
+        let to_local = linear.inverse();
         let [lo, hi] = m.bounds();
         let error_scale = (lo - frame.origin)
             .abs()
@@ -47,10 +43,10 @@ impl PackShape for Mesh {
             .max_element();
         Mesh {
             to_local: columns(to_local),
-            origin: frame.point(m.translate),
+            origin: frame.point(m.placement.translate),
             material: scene.material_slot(m.material.as_deref()),
             normal_to_world: columns(to_local.transpose()),
-            to_world: columns(m.linear()),
+            to_world: columns(linear),
             node_start: 0,
             tri_start: 0,
             normal_start: 0,
@@ -195,9 +191,9 @@ mod tests {
 
         let mut moved = scene.clone();
         let mesh = &mut moved.meshes[0];
-        mesh.translate = DVec3::new(0.5, -0.25, 1.0);
-        mesh.rotation = DVec3::new(10.0, 45.0, 0.0);
-        mesh.scale = CubeSize::PerAxis(DVec3::new(2.0, 1.0, 0.5));
+        mesh.placement.translate = DVec3::new(0.5, -0.25, 1.0);
+        mesh.placement.rotation = DVec3::new(10.0, 45.0, 0.0);
+        mesh.placement.scale = CubeSize::PerAxis(DVec3::new(2.0, 1.0, 0.5));
         let after = PackedScene::new(&moved, 8, 8);
 
         let again = mesh_bvh_built(&moved.meshes[0].geometry.0);

@@ -36,7 +36,7 @@ impl Prepare for scene::Implicit {
         // A validated scene's function parses; the fallback is never used.
         let f = Function::parse(&self.f).unwrap_or_else(|_| Function::parse("1").unwrap());
         Implicit {
-            placed: Placed::new(&self.placement()),
+            placed: Placed::new(&self.placement),
             f: Arc::new(f),
             bounds: self.bounds,
             steps: self.steps,

@@ -40,7 +40,7 @@ impl Prepare for scene::Julia {
 
     fn prepare(&self, material: usize) -> Julia {
         Julia {
-            placed: Placed::new(&self.placement()),
+            placed: Placed::new(&self.placement),
             c: DVec4::from_array(self.c),
             slice: self.slice,
             iterations: self.iterations,
@@ -150,9 +150,10 @@ mod tests {
             iterations: 6,
             epsilon: 1e-3,
             footprint,
-            translate: DVec3::ZERO,
-            scale: 2.0,
-            rotation: DVec3::ZERO,
+            placement: scene::Placement {
+                scale: 2.0,
+                ..Default::default()
+            },
             material: None,
         };
         scene.prepare(0)

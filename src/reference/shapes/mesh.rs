@@ -35,11 +35,11 @@ impl Prepare for scene::Mesh {
     fn prepare(&self, material: usize) -> Mesh {
         use crate::scene::Shape;
         let [lo, hi] = self.bounds();
-        let linear = self.linear();
+        let linear = self.placement.linear();
         Mesh {
             geometry: self.geometry.0.clone(),
             bvh: mesh_bvh(&self.geometry.0),
-            translate: self.translate,
+            translate: self.placement.translate,
             linear,
             inverse: linear.inverse(),
             material,

@@ -25,7 +25,7 @@ impl Prepare for scene::Torus {
 
     fn prepare(&self, material: usize) -> Torus {
         Torus {
-            placed: Placed::new(&self.placement()),
+            placed: Placed::new(&self.placement),
             major: self.major_radius,
             minor: self.minor_radius,
             material,

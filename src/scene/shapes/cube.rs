@@ -3,9 +3,12 @@
 use glam::{DMat3, DVec3};
 use serde::{Deserialize, Serialize};
 
-use super::{Context, Shape, rotation_degrees};
+use serde::de::IgnoredAny;
+
+use super::placement::Scale;
+use super::{Context, Placement, Shape, rotation_degrees};
 use crate::scene::key_path::KeyPath;
-use crate::scene::validate::{Check, FINITE, POSITIVE, material_name, number, vector};
+use crate::scene::validate::{Check, FINITE, material_name, vector};
 
 /// A box: `center + Rz(rz) Ry(ry) Rx(rx) p_local` for `p_local` in the box of
 /// edge lengths `size` centred at the origin.
@@ -44,36 +47,32 @@ impl Cube {
     pub fn rotation_matrix(&self) -> DMat3 {
         rotation_degrees(self.rotation)
     }
+
+    /// The box as a placed shape: the local box of its `size` about the
+    /// origin, moved to `center` and turned by `rotation`, unscaled.
+    pub fn placement(&self) -> Placement {
+        Placement {
+            translate: self.center,
+            scale: 1.0,
+            rotation: self.rotation,
+        }
+    }
 }
 
 impl Shape for Cube {
     fn validate(&mut self, path: &KeyPath, context: &Context) -> Check {
         vector(&path.key("center"), self.center, &FINITE)?;
-        match self.size {
-            CubeSize::Uniform(size) => number(&path.key("size"), size, &POSITIVE)?,
-            CubeSize::PerAxis(size) => vector(&path.key("size"), size, &POSITIVE)?,
-        }
+        self.size.validate(&path.key("size"))?;
         vector(&path.key("rotation"), self.rotation, &FINITE)?;
         material_name(path, self.material.as_deref(), context.materials)
     }
 
-    fn translate(&mut self, offset: DVec3) {
-        self.center += offset;
-    }
+    type Flattened = IgnoredAny;
 
-    fn material(&self) -> &Option<String> {
-        &self.material
-    }
+    shape_accessors!(center);
 
-    fn material_mut(&mut self) -> &mut Option<String> {
-        &mut self.material
-    }
-
-    /// The box's extent along each world axis: |R| times the half size.
     fn bounds(&self) -> [DVec3; 2] {
-        let m = self.rotation_matrix();
-        let abs = DMat3::from_cols(m.x_axis.abs(), m.y_axis.abs(), m.z_axis.abs());
-        let e = abs * (self.size.edges() * 0.5);
-        [self.center - e, self.center + e]
+        let half = self.size.edges() * 0.5;
+        self.placement().bounds([-half, half])
     }
 }

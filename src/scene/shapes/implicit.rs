@@ -4,8 +4,7 @@
 use glam::DVec3;
 use serde::{Deserialize, Serialize};
 
-use super::placement::{Placement, one};
-use super::{Context, Shape};
+use super::{Context, Placement, Shape};
 use crate::expr::Function;
 use crate::scene::key_path::KeyPath;
 use crate::scene::validate::{Check, FINITE, Issue, material_name, vector};
@@ -21,12 +20,8 @@ pub struct Implicit {
     pub bounds: [DVec3; 2],
     #[serde(default = "default_steps")]
     pub steps: u32,
-    #[serde(default)]
-    pub translate: DVec3,
-    #[serde(default = "one")]
-    pub scale: f64,
-    #[serde(default)]
-    pub rotation: DVec3,
+    #[serde(flatten)]
+    pub placement: Placement,
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub material: Option<String>,
 }
@@ -36,16 +31,6 @@ pub const MAX_STEPS: u32 = 4096;
 
 fn default_steps() -> u32 {
     256
-}
-
-impl Implicit {
-    pub fn placement(&self) -> Placement {
-        Placement {
-            translate: self.translate,
-            scale: self.scale,
-            rotation: self.rotation,
-        }
-    }
 }
 
 impl Shape for Implicit {
@@ -69,23 +54,15 @@ impl Shape for Implicit {
                 format!("must be 1..={MAX_STEPS}, got {}", self.steps),
             ));
         }
-        self.placement().validate(path)?;
+        self.placement.validate(path)?;
         material_name(path, self.material.as_deref(), context.materials)
     }
 
-    fn translate(&mut self, offset: DVec3) {
-        self.translate += offset;
-    }
+    type Flattened = Placement;
 
-    fn material(&self) -> &Option<String> {
-        &self.material
-    }
-
-    fn material_mut(&mut self) -> &mut Option<String> {
-        &mut self.material
-    }
+    shape_accessors!(placement.translate);
 
     fn bounds(&self) -> [DVec3; 2] {
-        self.placement().bounds(self.bounds)
+        self.placement.bounds(self.bounds)
     }
 }

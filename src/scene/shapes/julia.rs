@@ -4,8 +4,7 @@
 use glam::{DVec3, DVec4};
 use serde::{Deserialize, Serialize};
 
-use super::placement::{Placement, one};
-use super::{Context, Shape};
+use super::{Context, Placement, Shape};
 use crate::scene::key_path::KeyPath;
 use crate::scene::validate::{Check, FINITE, Issue, POSITIVE, material_name, number};
 
@@ -28,12 +27,8 @@ pub struct Julia {
     /// one pixel wide at any zoom.
     #[serde(default, skip_serializing_if = "is_false")]
     pub footprint: bool,
-    #[serde(default)]
-    pub translate: DVec3,
-    #[serde(default = "one")]
-    pub scale: f64,
-    #[serde(default)]
-    pub rotation: DVec3,
+    #[serde(flatten)]
+    pub placement: Placement,
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub material: Option<String>,
 }
@@ -51,16 +46,6 @@ fn default_epsilon() -> f64 {
 
 fn is_false(b: &bool) -> bool {
     !*b
-}
-
-impl Julia {
-    pub fn placement(&self) -> Placement {
-        Placement {
-            translate: self.translate,
-            scale: self.scale,
-            rotation: self.rotation,
-        }
-    }
 }
 
 impl Shape for Julia {
@@ -84,27 +69,19 @@ impl Shape for Julia {
             ));
         }
         number(&path.key("epsilon"), self.epsilon, &POSITIVE)?;
-        self.placement().validate(path)?;
+        self.placement.validate(path)?;
         material_name(path, self.material.as_deref(), context.materials)
     }
 
-    fn translate(&mut self, offset: DVec3) {
-        self.translate += offset;
-    }
+    type Flattened = Placement;
 
-    fn material(&self) -> &Option<String> {
-        &self.material
-    }
-
-    fn material_mut(&mut self) -> &mut Option<String> {
-        &mut self.material
-    }
+    shape_accessors!(placement.translate);
 
     const OPAQUE: bool = true;
 
     /// The sphere of radius 2 that holds the set.
     fn bounds(&self) -> [DVec3; 2] {
-        self.placement()
+        self.placement
             .bounds([DVec3::splat(-2.0), DVec3::splat(2.0)])
     }
 }

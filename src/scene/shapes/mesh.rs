@@ -5,13 +5,13 @@
 use std::path::{Path, PathBuf};
 use std::sync::Arc;
 
-use glam::{DMat3, DVec3};
+use glam::DVec3;
 use serde::{Deserialize, Serialize};
 
-use super::{Context, CubeSize, Shape, rotation_degrees};
+use super::{Context, CubeSize, Placement, Shape};
 use crate::scene::key_path::KeyPath;
 use crate::scene::mesh_file::{self, Geometry};
-use crate::scene::validate::{Check, FINITE, Issue, POSITIVE, material_name, number, vector};
+use crate::scene::validate::{Check, Issue, material_name};
 
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
 #[serde(deny_unknown_fields)]
@@ -29,14 +29,9 @@ pub struct Mesh {
     pub normals: Vec<DVec3>,
     #[serde(default)]
     pub smooth: bool,
-    #[serde(default)]
-    pub translate: DVec3,
-    /// A number or `[x, y, z]`, like a cube's size.
-    #[serde(default = "unit_scale")]
-    pub scale: CubeSize,
-    /// Degrees about the world x, y, z axes, applied in that order.
-    #[serde(default)]
-    pub rotation: DVec3,
+    /// `scale` is a number or `[x, y, z]`, like a cube's size.
+    #[serde(flatten)]
+    pub placement: Placement<CubeSize>,
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub material: Option<String>,
     /// The geometry, loaded and checked by validation; shared between
@@ -45,50 +40,20 @@ pub struct Mesh {
     pub geometry: Loaded,
 }
 
-/// The ray-triangle tests the renderers offer (docs/rendering-model.md,
-/// "Triangle meshes"): the same hits in exact arithmetic, different
-/// rounding, speed and behaviour on shared edges.
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, Default)]
-pub enum TriangleTest {
-    /// Cramer's rule with signed volumes (determinants), as on the slides.
-    Cramer,
-    /// Möller and Trumbore 1997.
-    MollerTrumbore,
-    /// Woop, Benthin and Wald 2013, as in pbrt-v4: no ray slips between
-    /// two triangles that share an edge.
-    #[default]
-    Watertight,
-}
-
-impl TriangleTest {
-    pub const ALL: [TriangleTest; 3] = [
-        TriangleTest::Cramer,
-        TriangleTest::MollerTrumbore,
-        TriangleTest::Watertight,
-    ];
-
-    /// Its name on the command line and in reports.
-    pub fn name(self) -> &'static str {
-        match self {
-            TriangleTest::Cramer => "cramer",
-            TriangleTest::MollerTrumbore => "moller-trumbore",
-            TriangleTest::Watertight => "watertight",
-        }
+crate::named_option! {
+    /// The ray-triangle tests the renderers offer (docs/rendering-model.md,
+    /// "Triangle meshes"): the same hits in exact arithmetic, different
+    /// rounding, speed and behaviour on shared edges.
+    pub enum TriangleTest {
+        /// Cramer's rule with signed volumes (determinants), as on the slides.
+        Cramer = "cramer",
+        /// Möller and Trumbore 1997.
+        MollerTrumbore = "moller-trumbore",
+        /// Woop, Benthin and Wald 2013, as in pbrt-v4: no ray slips between
+        /// two triangles that share an edge.
+        #[default]
+        Watertight = "watertight",
     }
-
-    /// The value of the shader's `TRIANGLE_TEST` constant.
-    pub fn number(self) -> u32 {
-        self as u32
-    }
-
-    /// The test named `name` ([`TriangleTest::name`]).
-    pub fn from_name(name: &str) -> Option<TriangleTest> {
-        TriangleTest::ALL.into_iter().find(|t| t.name() == name)
-    }
-}
-
-fn unit_scale() -> CubeSize {
-    CubeSize::Uniform(1.0)
 }
 
 /// The loaded geometry of a mesh (empty before validation). Two are equal
@@ -125,6 +90,19 @@ impl Mesh {
         Ok(mesh)
     }
 
+    /// A mesh from the `bytes` of a file named `name` that the scene cannot
+    /// name by a path (a file dropped on the web page): its geometry is
+    /// written inline (`positions`, `triangles`), so that the scene's text
+    /// and a link to it carry the mesh. Errors name the file and line.
+    pub fn inline_from_bytes(name: &str, bytes: &[u8]) -> Result<Mesh, String> {
+        let geometry = mesh_file::load_bytes(name, bytes, false)?;
+        Ok(Mesh {
+            positions: geometry.positions.clone(),
+            triangles: geometry.triangles.clone(),
+            ..Mesh::unplaced(geometry)
+        })
+    }
+
     /// `geometry` at the origin, unscaled, unrotated, flat shaded, with the
     /// default material and no source yet.
     fn unplaced(geometry: Geometry) -> Mesh {
@@ -134,9 +112,7 @@ impl Mesh {
             triangles: Vec::new(),
             normals: Vec::new(),
             smooth: false,
-            translate: DVec3::ZERO,
-            scale: unit_scale(),
-            rotation: DVec3::ZERO,
+            placement: Placement::default(),
             material: None,
             geometry: Loaded(Arc::new(geometry)),
         }
@@ -160,21 +136,6 @@ impl Mesh {
         let geometry = mesh_file::load_file(&full, self.smooth)?;
         self.geometry = Loaded(Arc::new(geometry));
         Ok(())
-    }
-
-    /// `Rz Ry Rx` of `rotation`, the cube's convention.
-    pub fn rotation_matrix(&self) -> DMat3 {
-        rotation_degrees(self.rotation)
-    }
-
-    /// The linear part of local to world: `R * diag(scale)`.
-    pub fn linear(&self) -> DMat3 {
-        self.rotation_matrix() * DMat3::from_diagonal(self.scale.edges())
-    }
-
-    /// A local point in the world: `translate + R (scale * p)`.
-    pub fn to_world(&self, p: DVec3) -> DVec3 {
-        self.translate + self.linear() * p
     }
 
     /// Where the geometry is loaded from, for messages and the panel.
@@ -206,12 +167,7 @@ impl Shape for Mesh {
     /// Checks the placement, then loads the geometry (file or inline) and
     /// keeps it; degenerate triangles dropped are reported as a warning.
     fn validate(&mut self, path: &KeyPath, context: &Context) -> Check {
-        vector(&path.key("translate"), self.translate, &FINITE)?;
-        match self.scale {
-            CubeSize::Uniform(s) => number(&path.key("scale"), s, &POSITIVE)?,
-            CubeSize::PerAxis(s) => vector(&path.key("scale"), s, &POSITIVE)?,
-        }
-        vector(&path.key("rotation"), self.rotation, &FINITE)?;
+        self.placement.validate(path)?;
         material_name(path, self.material.as_deref(), context.materials)?;
         let geometry = self.load(path, context)?;
         if geometry.dropped > 0 {
@@ -224,25 +180,17 @@ impl Shape for Mesh {
         Ok(())
     }
 
-    fn translate(&mut self, offset: DVec3) {
-        self.translate += offset;
-    }
+    type Flattened = Placement<CubeSize>;
 
-    fn material(&self) -> &Option<String> {
-        &self.material
-    }
-
-    fn material_mut(&mut self) -> &mut Option<String> {
-        &mut self.material
-    }
+    shape_accessors!(placement.translate);
 
     /// The world box of the transformed vertices.
     fn bounds(&self) -> [DVec3; 2] {
-        let m = self.linear();
+        let m = self.placement.linear();
         self.geometry.0.positions.iter().fold(
             [DVec3::INFINITY, DVec3::NEG_INFINITY],
             |[lo, hi], &p| {
-                let w = self.translate + m * p;
+                let w = self.placement.translate + m * p;
                 [lo.min(w), hi.max(w)]
             },
         )

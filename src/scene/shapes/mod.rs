@@ -5,6 +5,26 @@
 //! kind that one of them does not handle is a compile error there (see
 //! docs/implementation.md, "Adding a shape kind").
 
+/// The [`Shape`] methods every kind writes alike: `translate` moves the
+/// point at `$point` (a sphere's `center`, a placed kind's
+/// `placement.translate`); `material` and `material_mut` give the
+/// `material` key.
+macro_rules! shape_accessors {
+    ($($point:ident).+) => {
+        fn translate(&mut self, offset: glam::DVec3) {
+            self.$($point).+ += offset;
+        }
+
+        fn material(&self) -> &Option<String> {
+            &self.material
+        }
+
+        fn material_mut(&mut self) -> &mut Option<String> {
+            &mut self.material
+        }
+    };
+}
+
 mod cube;
 pub mod implicit;
 pub mod julia;
@@ -18,7 +38,7 @@ pub use cube::{Cube, CubeSize};
 pub use implicit::Implicit;
 pub use julia::Julia;
 pub use mesh::{Loaded, Mesh, TriangleTest};
-pub use placement::Placement;
+pub use placement::{Placement, Scale};
 pub use plane::Plane;
 pub use sphere::Sphere;
 pub use torus::{Torus, TorusMethod};
@@ -73,6 +93,13 @@ pub trait Shape: Clone {
     /// (ranges, finiteness, known material names); `path` names the shape in
     /// messages. May make values canonical (a plane's unit normal).
     fn validate(&mut self, path: &KeyPath, context: &Context) -> Check;
+
+    /// The keys serde reads flattened into the shape: a [`Placement`], or
+    /// [`serde::de::IgnoredAny`] for a kind placed by its own keys. serde
+    /// sees flattened keys without their place in the text and would blame
+    /// an error in one on its table; the parser reads them alone to name
+    /// the key (src/scene/parse.rs).
+    type Flattened: serde::de::DeserializeOwned;
 
     /// Moves the shape by `offset` (`Scene::translated`).
     fn translate(&mut self, offset: DVec3);

@@ -3,6 +3,8 @@
 use glam::DVec3;
 use serde::{Deserialize, Serialize};
 
+use serde::de::IgnoredAny;
+
 use super::{Context, Shape};
 use crate::scene::key_path::KeyPath;
 use crate::scene::validate::{Check, FINITE, direction, material_name, unit, vector};
@@ -30,17 +32,9 @@ impl Shape for Plane {
         material_name(path, self.material.as_deref(), context.materials)
     }
 
-    fn translate(&mut self, offset: DVec3) {
-        self.point += offset;
-    }
+    type Flattened = IgnoredAny;
 
-    fn material(&self) -> &Option<String> {
-        &self.material
-    }
-
-    fn material_mut(&mut self) -> &mut Option<String> {
-        &mut self.material
-    }
+    shape_accessors!(point);
 
     /// All of space: a plane is unbounded.
     fn bounds(&self) -> [DVec3; 2] {

@@ -3,6 +3,8 @@
 use glam::DVec3;
 use serde::{Deserialize, Serialize};
 
+use serde::de::IgnoredAny;
+
 use super::{Context, Shape};
 use crate::scene::key_path::KeyPath;
 use crate::scene::validate::{Check, FINITE, POSITIVE, material_name, number, vector};
@@ -23,17 +25,9 @@ impl Shape for Sphere {
         material_name(path, self.material.as_deref(), context.materials)
     }
 
-    fn translate(&mut self, offset: DVec3) {
-        self.center += offset;
-    }
+    type Flattened = IgnoredAny;
 
-    fn material(&self) -> &Option<String> {
-        &self.material
-    }
-
-    fn material_mut(&mut self) -> &mut Option<String> {
-        &mut self.material
-    }
+    shape_accessors!(center);
 
     fn bounds(&self) -> [DVec3; 2] {
         let r = DVec3::splat(self.radius);

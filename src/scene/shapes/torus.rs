@@ -3,8 +3,7 @@
 use glam::DVec3;
 use serde::{Deserialize, Serialize};
 
-use super::placement::{Placement, one};
-use super::{Context, Shape};
+use super::{Context, Placement, Shape};
 use crate::scene::key_path::KeyPath;
 use crate::scene::validate::{Check, Issue, POSITIVE, material_name, number};
 
@@ -15,58 +14,23 @@ use crate::scene::validate::{Check, Issue, POSITIVE, material_name, number};
 pub struct Torus {
     pub major_radius: f64,
     pub minor_radius: f64,
-    #[serde(default)]
-    pub translate: DVec3,
-    #[serde(default = "one")]
-    pub scale: f64,
-    #[serde(default)]
-    pub rotation: DVec3,
+    #[serde(flatten)]
+    pub placement: Placement,
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub material: Option<String>,
 }
 
-/// How the GPU solves a torus's quartic (docs/implementation.md, "Torus"):
-/// the same root in exact arithmetic, different cost in f32. The f64
-/// reference always bisects to full precision.
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, Default)]
-pub enum TorusMethod {
-    /// The slope's zeros and the root by bisection on monotone pieces.
-    Bisection,
-    /// The slope's zeros in closed form (a depressed cubic), the root by
-    /// Newton steps kept inside its bracket.
-    #[default]
-    Newton,
-}
-
-impl TorusMethod {
-    pub const ALL: [TorusMethod; 2] = [TorusMethod::Bisection, TorusMethod::Newton];
-
-    /// Its name on the command line and in reports.
-    pub fn name(self) -> &'static str {
-        match self {
-            TorusMethod::Bisection => "bisection",
-            TorusMethod::Newton => "newton",
-        }
-    }
-
-    /// The value of the shader's `TORUS_METHOD` constant.
-    pub fn number(self) -> u32 {
-        self as u32
-    }
-
-    /// The method named `name` ([`TorusMethod::name`]).
-    pub fn from_name(name: &str) -> Option<TorusMethod> {
-        TorusMethod::ALL.into_iter().find(|t| t.name() == name)
-    }
-}
-
-impl Torus {
-    pub fn placement(&self) -> Placement {
-        Placement {
-            translate: self.translate,
-            scale: self.scale,
-            rotation: self.rotation,
-        }
+crate::named_option! {
+    /// How the GPU solves a torus's quartic (docs/implementation.md,
+    /// "Torus"): the same root in exact arithmetic, different cost in f32.
+    /// The f64 reference always bisects to full precision.
+    pub enum TorusMethod {
+        /// The slope's zeros and the root by bisection on monotone pieces.
+        Bisection = "bisection",
+        /// The slope's zeros in closed form (a depressed cubic), the root by
+        /// Newton steps kept inside its bracket.
+        #[default]
+        Newton = "newton",
     }
 }
 
@@ -83,25 +47,17 @@ impl Shape for Torus {
                 ),
             ));
         }
-        self.placement().validate(path)?;
+        self.placement.validate(path)?;
         material_name(path, self.material.as_deref(), context.materials)
     }
 
-    fn translate(&mut self, offset: DVec3) {
-        self.translate += offset;
-    }
+    type Flattened = Placement;
 
-    fn material(&self) -> &Option<String> {
-        &self.material
-    }
-
-    fn material_mut(&mut self) -> &mut Option<String> {
-        &mut self.material
-    }
+    shape_accessors!(placement.translate);
 
     fn bounds(&self) -> [DVec3; 2] {
         let (big, r) = (self.major_radius + self.minor_radius, self.minor_radius);
-        self.placement()
+        self.placement
             .bounds([DVec3::new(-big, -r, -big), DVec3::new(big, r, big)])
     }
 }

@@ -11,8 +11,8 @@ use super::{EditShape, Placement};
 use crate::app::panel::field;
 use crate::app::panel::widgets::{COORDINATES, vec3_row};
 use crate::expr::Function;
-use crate::scene::Implicit;
 use crate::scene::implicit::MAX_STEPS;
+use crate::scene::{self, Implicit};
 
 /// A preset: name, function, local box.
 pub struct Preset {
@@ -86,9 +86,11 @@ impl EditShape for Implicit {
             f: preset.f.to_string(),
             bounds: preset.bounds.map(DVec3::from_array),
             steps: 256,
-            translate: at.target,
-            scale: 0.1 * at.scale,
-            rotation: DVec3::ZERO,
+            placement: scene::Placement {
+                translate: at.target,
+                scale: 0.1 * at.scale,
+                rotation: DVec3::ZERO,
+            },
             material: None,
         }
     }
@@ -96,7 +98,8 @@ impl EditShape for Implicit {
     /// Moved right by its box's width.
     fn beside(&self, at: &Placement) -> Self {
         let mut copy = self.clone();
-        copy.translate += at.right * ((self.bounds[1].x - self.bounds[0].x) * self.scale);
+        copy.placement.translate +=
+            at.right * ((self.bounds[1].x - self.bounds[0].x) * self.placement.scale);
         copy
     }
 
@@ -136,13 +139,7 @@ impl EditShape for Implicit {
         field(ui, "steps", "Samples along the ray inside the box");
         ui.add(egui::Slider::new(&mut self.steps, 1..=MAX_STEPS).logarithmic(true));
         ui.end_row();
-        placement_rows(
-            ui,
-            &mut self.translate,
-            &mut self.scale,
-            &mut self.rotation,
-            scale,
-        );
+        placement_rows(ui, &mut self.placement, scale);
         held
     }
 

@@ -8,8 +8,8 @@ use glam::{DVec3, DVec4};
 use super::placed::placement_rows;
 use super::{EditShape, Placement};
 use crate::app::panel::field;
-use crate::scene::Julia;
 use crate::scene::julia::MAX_ITERATIONS;
+use crate::scene::{self, Julia};
 
 impl EditShape for Julia {
     /// Crane's example c, a tenth of the scene scale in size.
@@ -20,9 +20,11 @@ impl EditShape for Julia {
             iterations: 10,
             epsilon: 1e-3,
             footprint: false,
-            translate: at.target + at.up * (0.25 * at.scale),
-            scale: 0.1 * at.scale,
-            rotation: DVec3::ZERO,
+            placement: scene::Placement {
+                translate: at.target + at.up * (0.25 * at.scale),
+                scale: 0.1 * at.scale,
+                rotation: DVec3::ZERO,
+            },
             material: None,
         }
     }
@@ -30,7 +32,7 @@ impl EditShape for Julia {
     /// Moved right by its width.
     fn beside(&self, at: &Placement) -> Self {
         let mut copy = self.clone();
-        copy.translate += at.right * (4.0 * self.scale);
+        copy.placement.translate += at.right * (4.0 * self.placement.scale);
         copy
     }
 
@@ -69,13 +71,7 @@ impl EditShape for Julia {
         );
         ui.checkbox(&mut self.footprint, "epsilon at least one pixel");
         ui.end_row();
-        placement_rows(
-            ui,
-            &mut self.translate,
-            &mut self.scale,
-            &mut self.rotation,
-            scale,
-        );
+        placement_rows(ui, &mut self.placement, scale);
         held
     }
 }

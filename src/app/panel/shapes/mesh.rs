@@ -4,9 +4,8 @@
 use egui::Ui;
 use glam::DVec3;
 
-use super::{EditShape, Placement, size_row};
+use super::{EditShape, Placement};
 use crate::app::panel::field;
-use crate::app::panel::widgets::{COORDINATES, vec3_row};
 use crate::bvh::{MAX_DEPTH, mesh_bvh_built};
 use crate::scene::{CubeSize, Mesh};
 
@@ -23,8 +22,9 @@ impl EditShape for Mesh {
         let triangles = [[0, 2, 1], [0, 1, 3], [1, 2, 3], [2, 0, 3]];
         let mut mesh = Mesh::inline(&positions, &triangles)
             .expect("the tetrahedron has four non-degenerate faces");
-        mesh.translate = at.target + at.right * (0.25 * at.scale) - at.up * (0.1 * at.scale);
-        mesh.scale = CubeSize::Uniform(0.1 * at.scale);
+        mesh.placement.translate =
+            at.target + at.right * (0.25 * at.scale) - at.up * (0.1 * at.scale);
+        mesh.placement.scale = CubeSize::Uniform(0.1 * at.scale);
         mesh
     }
 
@@ -32,23 +32,13 @@ impl EditShape for Mesh {
     fn beside(&self, at: &Placement) -> Self {
         let mut copy = self.clone();
         let [lo, hi] = crate::scene::Shape::bounds(self);
-        copy.translate += at.right * (hi - lo).max_element();
+        copy.placement.translate += at.right * (hi - lo).max_element();
         copy
     }
 
     fn edit(&mut self, ui: &mut Ui, scale: f64) -> bool {
         geometry_rows(ui, self);
-        field(ui, "translate", "Where the mesh's origin goes (x, y, z)");
-        vec3_row(ui, &mut self.translate, 0.005 * scale, COORDINATES);
-        ui.end_row();
-        field(
-            ui,
-            "scale",
-            "One factor, or factors along the mesh's own x, y, z",
-        );
-        size_row(ui, &mut self.scale, 0.002 * scale);
-        ui.end_row();
-        super::placed::rotation_row(ui, &mut self.rotation);
+        super::placed::placement_rows(ui, &mut self.placement, scale);
         false
     }
 }

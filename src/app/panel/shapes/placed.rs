@@ -1,6 +1,6 @@
-//! The placement rows the implicit surfaces share (translate, scale,
-//! rotation; docs/scene-format.md, "Implicit surfaces"), and the rotation
-//! row that cubes and meshes show too.
+//! The placement rows of the placed shapes (translate, scale, rotation;
+//! docs/scene-format.md, "Implicit surfaces" and "Triangle meshes"), and the
+//! rotation row that cubes show too.
 
 use egui::Ui;
 use glam::DVec3;
@@ -8,26 +8,49 @@ use glam::DVec3;
 use crate::app::panel::edit::MIN_POSITIVE;
 use crate::app::panel::field;
 use crate::app::panel::widgets::{COORDINATES, VALUE_LIMIT, number, vec3_row};
+use crate::scene::{CubeSize, Placement, Scale};
+
+/// The row of a placement's `scale`: its hover text and its widget.
+pub(super) trait ScaleRow: Scale {
+    const HINT: &'static str;
+
+    fn row(&mut self, ui: &mut Ui, speed: f64);
+}
+
+impl ScaleRow for f64 {
+    const HINT: &'static str = "Local units to world units (> 0)";
+
+    fn row(&mut self, ui: &mut Ui, speed: f64) {
+        ui.add(number(self, speed, MIN_POSITIVE..=VALUE_LIMIT));
+    }
+}
+
+impl ScaleRow for CubeSize {
+    const HINT: &'static str = "One factor, or factors along the local x, y, z (> 0)";
+
+    fn row(&mut self, ui: &mut Ui, speed: f64) {
+        super::size_row(ui, self, speed);
+    }
+}
 
 /// The three placement rows of a `Grid` of two columns.
-pub(super) fn placement_rows(
+pub(super) fn placement_rows<S: ScaleRow>(
     ui: &mut Ui,
-    translate: &mut DVec3,
-    scale: &mut f64,
-    rotation: &mut DVec3,
+    placement: &mut Placement<S>,
     scene_scale: f64,
 ) {
     field(ui, "translate", "Where the local origin is (x, y, z)");
-    vec3_row(ui, translate, 0.005 * scene_scale, COORDINATES);
+    vec3_row(
+        ui,
+        &mut placement.translate,
+        0.005 * scene_scale,
+        COORDINATES,
+    );
     ui.end_row();
-    field(ui, "scale", "Local units to world units (> 0)");
-    ui.add(number(
-        scale,
-        0.002 * scene_scale,
-        MIN_POSITIVE..=VALUE_LIMIT,
-    ));
+    field(ui, "scale", S::HINT);
+    placement.scale.row(ui, 0.002 * scene_scale);
     ui.end_row();
-    rotation_row(ui, rotation);
+    rotation_row(ui, &mut placement.rotation);
 }
 
 /// The rotation row every rotated shape shows (Euler angles, x then y

@@ -1,14 +1,12 @@
 //! The torus's editor: the two radii and the placement.
 
-use egui::Ui;
-use glam::DVec3;
-
 use super::placed::placement_rows;
 use super::{EditShape, Placement};
 use crate::app::panel::edit::MIN_POSITIVE;
 use crate::app::panel::field;
 use crate::app::panel::widgets::{VALUE_LIMIT, number};
-use crate::scene::Torus;
+use crate::scene::{self, Torus};
+use egui::Ui;
 
 impl EditShape for Torus {
     /// Below the target, lying flat, a fifth of the scene scale across.
@@ -16,9 +14,10 @@ impl EditShape for Torus {
         Torus {
             major_radius: 0.1 * at.scale,
             minor_radius: 0.03 * at.scale,
-            translate: at.target - at.up * (0.25 * at.scale),
-            scale: 1.0,
-            rotation: DVec3::ZERO,
+            placement: scene::Placement {
+                translate: at.target - at.up * (0.25 * at.scale),
+                ..Default::default()
+            },
             material: None,
         }
     }
@@ -26,7 +25,8 @@ impl EditShape for Torus {
     /// Moved right by its width.
     fn beside(&self, at: &Placement) -> Self {
         let mut copy = self.clone();
-        copy.translate += at.right * (2.0 * (self.major_radius + self.minor_radius) * self.scale);
+        copy.placement.translate +=
+            at.right * (2.0 * (self.major_radius + self.minor_radius) * self.placement.scale);
         copy
     }
 
@@ -45,13 +45,7 @@ impl EditShape for Torus {
             MIN_POSITIVE..=self.major_radius * (1.0 - 1e-6),
         ));
         ui.end_row();
-        placement_rows(
-            ui,
-            &mut self.translate,
-            &mut self.scale,
-            &mut self.rotation,
-            scale,
-        );
+        placement_rows(ui, &mut self.placement, scale);
         false
     }
 

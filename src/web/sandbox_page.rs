@@ -1,0 +1,213 @@
+//! The sandbox in the page (docs/web.md, "The shader editor"): the shader
+//! document drawn full-screen into the canvas with the sandbox's uniforms,
+//! animated frame after frame, as the native sandbox window does
+//! (docs/sandbox.md). A new text is compiled by naga at once (quick), its
+//! pipeline built without blocking; until it is ready, and when it fails,
+//! the last good shader keeps drawing.
+
+use std::path::Path;
+
+use web_time::Instant;
+use winit::event::{ElementState, MouseButton, MouseScrollDelta, WindowEvent};
+
+use super::editor::Problem;
+use crate::gpu::{Gpu, ShaderError};
+use crate::sandbox::clock::Clock;
+use crate::sandbox::mouse::Mouse;
+use crate::sandbox::render::{Canvas, NanColor, PipelineBuilder, SandboxGpu, ShaderPipeline};
+use crate::sandbox::{Compiled, ReloadError, Session, compile};
+
+/// The name errors give the shader document: no extension, so its text
+/// tells its language (docs/sandbox.md, "Which kind of file").
+pub const SHADER_NAME: &str = "shader";
+
+/// A pipeline built for a text, handed back to the page's event loop.
+pub struct Built {
+    generation: u64,
+    /// The text it was built from.
+    text: String,
+    compiled: Compiled,
+    result: Result<ShaderPipeline, String>,
+}
+
+impl Built {
+    pub fn text(&self) -> &str {
+        &self.text
+    }
+}
+
+/// The shader document on the GPU: the last good pipeline, the clock, the
+/// mouse and the canvas the shader draws into.
+pub struct ShaderView {
+    sandbox: SandboxGpu,
+    builder: PipelineBuilder,
+    canvas: Canvas,
+    session: Session,
+    clock: Clock,
+    mouse: Mouse,
+    /// Counts texts sent to be built: a build finishing after a newer text
+    /// was sent is dropped.
+    generation: u64,
+    /// The canvas's size in physical pixels, for the mouse.
+    size: (u32, u32),
+    /// The right button is down: the pointer pans GLSL Sandbox's surface.
+    panning: bool,
+}
+
+impl ShaderView {
+    /// The sandbox's passes for a surface of `format` and `size` pixels.
+    pub fn new(gpu: &Gpu, format: wgpu::TextureFormat, size: (u32, u32)) -> Self {
+        let sandbox = SandboxGpu::new(gpu, &[format], NanColor::Black);
+        let builder = sandbox.builder(&gpu.device);
+        let canvas = Canvas::new(gpu, &sandbox, size);
+        ShaderView {
+            sandbox,
+            builder,
+            canvas,
+            session: Session::new(Path::new(SHADER_NAME)),
+            clock: Clock::new(false, Instant::now()),
+            mouse: Mouse::default(),
+            generation: 0,
+            size,
+            panning: false,
+        }
+    }
+
+    /// Compiles `text` (naga, on this thread: quick) and, when it compiles,
+    /// starts building its pipeline without blocking; `done` receives the
+    /// build for [`Self::built`]. A compile error is returned at once, at
+    /// the user's line.
+    pub fn compile(
+        &mut self,
+        text: &str,
+        done: impl FnOnce(Built) + 'static,
+    ) -> Result<(), Problem> {
+        let compiled = compile(SHADER_NAME, text).map_err(|e| shader_problem(&e))?;
+        self.generation += 1;
+        let generation = self.generation;
+        let builder = self.builder.clone();
+        let text = text.to_string();
+        wasm_bindgen_futures::spawn_local(async move {
+            let result = builder.build_async(&compiled).await;
+            done(Built {
+                generation,
+                text,
+                compiled,
+                result,
+            });
+        });
+        Ok(())
+    }
+
+    /// Takes a finished build: `None` for a build of an older text (dropped),
+    /// else what to show under the editor (the style, or wgpu's error).
+    pub fn built(&mut self, built: Built) -> Option<Result<String, Problem>> {
+        if built.generation != self.generation {
+            return None;
+        }
+        Some(match built.result {
+            Ok(pipeline) => {
+                let style = built.compiled.style.describe();
+                self.session.install(built.compiled, pipeline);
+                Ok(format!("{style}: compiled"))
+            }
+            Err(message) => {
+                self.session.fail(ReloadError::Gpu(message.clone()));
+                Err(Problem {
+                    message,
+                    line: None,
+                })
+            }
+        })
+    }
+
+    /// Whether a shader has compiled yet.
+    pub fn has_shader(&self) -> bool {
+        self.session.pipeline().is_some()
+    }
+
+    /// Follows the canvas's size.
+    pub fn resize(&mut self, gpu: &Gpu, size: (u32, u32)) {
+        self.size = size;
+        self.canvas.resize(gpu, &self.sandbox, size);
+    }
+
+    /// Encodes one frame of the shader (the clock advances) and shows it on
+    /// `target`.
+    pub fn draw(
+        &mut self,
+        gpu: &Gpu,
+        encoder: &mut wgpu::CommandEncoder,
+        target: &wgpu::TextureView,
+        format: wgpu::TextureFormat,
+    ) {
+        if let Some(pipeline) = self.session.pipeline() {
+            let tick = self.clock.tick(Instant::now());
+            let uniforms = self.mouse.frame_uniforms(&tick, self.canvas.size());
+            self.canvas.draw(
+                gpu,
+                &self.sandbox,
+                encoder,
+                pipeline,
+                &uniforms,
+                &self.session.params,
+            );
+            self.mouse.just_clicked = false;
+        }
+        self.canvas.show(&self.sandbox, encoder, target, format);
+    }
+
+    /// The pointer over the canvas, as the shader's mouse uniforms
+    /// (docs/sandbox.md, "The values every shader gets").
+    pub fn pointer(&mut self, event: &WindowEvent) {
+        let (w, h) = (self.size.0.max(1) as f32, self.size.1.max(1) as f32);
+        match event {
+            WindowEvent::CursorMoved { position, .. } => {
+                let at = [position.x as f32, h - position.y as f32];
+                let moved = [at[0] / w - self.mouse.uv[0], at[1] / h - self.mouse.uv[1]];
+                self.mouse.uv = [at[0] / w, at[1] / h];
+                if self.mouse.down {
+                    self.mouse.position = at;
+                }
+                if self.panning {
+                    self.mouse.surface.pan(moved, w / h);
+                }
+            }
+            WindowEvent::MouseInput { state, button, .. } => {
+                let pressed = *state == ElementState::Pressed;
+                match button {
+                    MouseButton::Left => {
+                        if pressed && !self.mouse.down {
+                            let at = [self.mouse.uv[0] * w, self.mouse.uv[1] * h];
+                            self.mouse.click = at;
+                            self.mouse.position = at;
+                            self.mouse.just_clicked = true;
+                        }
+                        self.mouse.down = pressed;
+                    }
+                    MouseButton::Right => self.panning = pressed,
+                    _ => {}
+                }
+            }
+            WindowEvent::MouseWheel { delta, .. } => {
+                let lines = match delta {
+                    MouseScrollDelta::LineDelta(_, y) => *y * 40.0,
+                    MouseScrollDelta::PixelDelta(p) => p.y as f32,
+                };
+                self.mouse
+                    .surface
+                    .zoom(0.998_f32.powf(lines), self.mouse.uv, w / h);
+            }
+            _ => {}
+        }
+    }
+}
+
+/// A shader error as the editor shows it: the message (the user's file and
+/// line, the line and a caret) and the line to mark.
+pub fn shader_problem(e: &ShaderError) -> Problem {
+    Problem {
+        message: e.to_string(),
+        line: (e.line > 0).then_some(e.line as usize),
+    }
+}

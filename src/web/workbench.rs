@@ -1,0 +1,280 @@
+//! The page's two documents and what the canvas shows (docs/web.md,
+//! "Editing in the page"): the scene's TOML, drawn by the ray tracer, and a
+//! sandbox shader, drawn by the sandbox. Edits arrive from the [`Editor`]
+//! debounced; a scene text that parses and validates replaces the page's
+//! scene, a shader text that compiles replaces the running shader once its
+//! pipeline is built. A text that fails leaves the picture as it was and
+//! shows the error at the user's line.
+
+use std::rc::Rc;
+
+use wgpu::TextureFormat;
+use winit::event::WindowEvent;
+
+use super::editor::{Doc, Editor, EditorEvent, Problem};
+use super::sandbox_page::{Built, ShaderView};
+use super::{link, page};
+use crate::gpu::Gpu;
+use crate::sandbox::bundled as shaders;
+use crate::scene::Scene;
+
+/// The example shader in the shader document when no link brings one.
+const FIRST_SHADER: &str = "blobs.glsl";
+
+/// What the workbench hands to the page's event loop, and gets back.
+pub enum WorkEvent {
+    Editor(EditorEvent),
+    Built(Box<Built>),
+}
+
+/// What the page must do after an event.
+pub enum Outcome {
+    Nothing,
+    /// Replace the page's scene with this one (parsed from the editor).
+    Scene(Box<Scene>),
+    /// The canvas shows another document: draw again.
+    Redraw,
+}
+
+pub struct Workbench {
+    editor: Option<Editor>,
+    send: Rc<dyn Fn(WorkEvent)>,
+    shown: Doc,
+    shader: Option<ShaderView>,
+    /// The shader text to compile once the GPU is there.
+    pending_shader: Option<String>,
+    /// The scene the scene document's text stands for.
+    scene: Scene,
+}
+
+impl Workbench {
+    /// The page's documents: the scene text (already parsed into `scene`),
+    /// and the shader of the address's `#shader=` link (then the canvas
+    /// shows it) or an example. `send` posts to the page's event loop.
+    pub fn new(scene_text: &str, scene: &Scene, send: impl Fn(WorkEvent) + 'static) -> Self {
+        let send: Rc<dyn Fn(WorkEvent)> = Rc::new(send);
+        let (shader_text, shown) = match initial_shader() {
+            Some(text) => (text, Doc::Shader),
+            None => (
+                shaders::text(FIRST_SHADER).unwrap_or_default().to_string(),
+                Doc::Scene,
+            ),
+        };
+        let examples: Vec<&str> = shaders::SHADERS.iter().map(|(name, _)| *name).collect();
+        let to_page = send.clone();
+        let editor = Editor::attach(scene_text, &shader_text, shown, &examples, move |e| {
+            to_page(WorkEvent::Editor(e))
+        });
+        let editor = match editor {
+            Ok(editor) => Some(editor),
+            Err(e) => {
+                page::show_error(&format!("the editor cannot start: {e}"));
+                None
+            }
+        };
+        if page::query("editor").is_some() {
+            super::editor::open_panel();
+        }
+        if page::query("ui").as_deref() == Some("0") {
+            page::hide_controls();
+        }
+        Workbench {
+            editor,
+            send,
+            shown,
+            shader: None,
+            pending_shader: Some(shader_text),
+            scene: scene.clone(),
+        }
+    }
+
+    /// Whether the canvas shows the shader (the sandbox) rather than the
+    /// scene (the ray tracer).
+    pub fn shows_shader(&self) -> bool {
+        self.shown == Doc::Shader
+    }
+
+    /// The GPU is there: the sandbox's passes are made for the canvas's
+    /// surface, and the shader compiled if it is shown.
+    pub fn gpu_ready(&mut self, gpu: &Gpu, format: TextureFormat, size: (u32, u32)) {
+        self.shader = Some(ShaderView::new(gpu, format, size));
+        if self.shows_shader() {
+            self.compile_pending_shader();
+        }
+    }
+
+    /// Follows the canvas's size.
+    pub fn resize(&mut self, gpu: &Gpu, size: (u32, u32)) {
+        if let Some(shader) = &mut self.shader {
+            shader.resize(gpu, size);
+        }
+    }
+
+    /// Handles an event of the editor or of a pipeline build.
+    pub fn handle(&mut self, event: WorkEvent) -> Outcome {
+        match event {
+            WorkEvent::Editor(EditorEvent::Changed(Doc::Scene, text)) => self.scene_text(&text),
+            WorkEvent::Editor(EditorEvent::Changed(Doc::Shader, text)) => {
+                self.pending_shader = Some(text);
+                if self.shader.is_some() {
+                    self.compile_pending_shader();
+                }
+                Outcome::Nothing
+            }
+            WorkEvent::Editor(EditorEvent::Show(doc)) => {
+                self.shown = doc;
+                page::event(&format!("showing {}", doc_name(doc)));
+                if doc == Doc::Shader && self.shader.is_some() {
+                    self.compile_pending_shader();
+                }
+                self.write_link();
+                Outcome::Redraw
+            }
+            WorkEvent::Editor(EditorEvent::Example(name)) => {
+                if let (Some(editor), Some(text)) = (&self.editor, shaders::text(&name)) {
+                    page::event(&format!("example {name}"));
+                    editor.load_text(Doc::Shader, text);
+                }
+                Outcome::Nothing
+            }
+            WorkEvent::Built(built) => {
+                let Some(shader) = &mut self.shader else {
+                    return Outcome::Nothing;
+                };
+                let text = built.text().to_string();
+                if let Some(result) = shader.built(*built) {
+                    match &result {
+                        Ok(_) => page::event("shader ok"),
+                        Err(problem) => report("shader", problem),
+                    }
+                    if result.is_ok() && self.shows_shader() {
+                        self.write_link();
+                    }
+                    if let Some(editor) = &self.editor {
+                        editor.show_result(Doc::Shader, &text, result);
+                    }
+                }
+                Outcome::Redraw
+            }
+        }
+    }
+
+    /// A scene text from the editor: parsed and validated; a good one
+    /// replaces the page's scene.
+    fn scene_text(&mut self, text: &str) -> Outcome {
+        let result = Scene::from_toml_str(text, None).map_err(|e| Problem {
+            message: e.to_string(),
+            line: e.line,
+        });
+        let outcome = match &result {
+            Ok(scene) => {
+                page::event("scene ok");
+                self.scene = scene.clone();
+                Outcome::Scene(Box::new(scene.clone()))
+            }
+            Err(problem) => {
+                report("scene", problem);
+                Outcome::Nothing
+            }
+        };
+        if let Some(editor) = &self.editor {
+            let summary = result.map(|_| "scene: valid".to_string());
+            editor.show_result(Doc::Scene, text, summary);
+        }
+        if matches!(outcome, Outcome::Scene(_)) && !self.shows_shader() {
+            self.write_link();
+        }
+        outcome
+    }
+
+    /// The page's scene changed elsewhere (the panel, the orbit, the menu):
+    /// the scene document follows unless the user holds text of their own
+    /// there (docs/web.md, "Edits from the panel").
+    pub fn follow_scene(&mut self, scene: &Scene) {
+        if *scene == self.scene {
+            return;
+        }
+        let Some(editor) = &self.editor else { return };
+        if editor.offer_text(Doc::Scene, &scene.to_toml_string()) {
+            self.scene = scene.clone();
+        }
+    }
+
+    fn compile_pending_shader(&mut self) {
+        let (Some(shader), Some(text)) = (&mut self.shader, self.pending_shader.take()) else {
+            return;
+        };
+        let send = self.send.clone();
+        if let Err(problem) =
+            shader.compile(&text, move |built| send(WorkEvent::Built(Box::new(built))))
+        {
+            report("shader", &problem);
+            if let Some(editor) = &self.editor {
+                editor.show_result(Doc::Shader, &text, Err(problem));
+            }
+        }
+    }
+
+    /// Draws the shader's next frame onto `target` (the shader is shown).
+    pub fn draw(
+        &mut self,
+        gpu: &Gpu,
+        encoder: &mut wgpu::CommandEncoder,
+        target: &wgpu::TextureView,
+        format: TextureFormat,
+    ) {
+        if let Some(shader) = &mut self.shader {
+            shader.draw(gpu, encoder, target, format);
+        }
+    }
+
+    /// The pointer over the canvas, for the shader's mouse uniforms.
+    pub fn pointer(&mut self, event: &WindowEvent) {
+        if let (true, Some(shader)) = (self.shows_shader(), &mut self.shader) {
+            shader.pointer(event);
+        }
+    }
+
+    /// Keeps the shown document in the address, so that a copied link
+    /// reproduces it (docs/web.md, "Sharing a scene or a shader").
+    fn write_link(&self) {
+        let Some(editor) = &self.editor else { return };
+        let hash = match self.shown {
+            Doc::Shader if self.shader.as_ref().is_some_and(ShaderView::has_shader) => {
+                link::shader_hash(&editor.applied(Doc::Shader))
+            }
+            Doc::Shader => return,
+            Doc::Scene => link::scene_hash(&editor.applied(Doc::Scene)),
+        };
+        page::replace_hash(&hash);
+    }
+}
+
+/// The shader text of the address's `#shader=` link; a broken link is
+/// reported over the canvas.
+fn initial_shader() -> Option<String> {
+    match page::hash().as_deref().and_then(link::shader_in_hash)? {
+        Ok(text) => {
+            page::event("shader from-link");
+            Some(text)
+        }
+        Err(e) => {
+            page::show_error(&format!("the link's shader cannot be shown: {e}"));
+            None
+        }
+    }
+}
+
+fn doc_name(doc: Doc) -> &'static str {
+    match doc {
+        Doc::Scene => "scene",
+        Doc::Shader => "shader",
+    }
+}
+
+/// Logs an error of the user's text with its line, for people reading the
+/// console and for tests.
+fn report(what: &str, problem: &Problem) {
+    let line = problem.line.map_or("?".to_string(), |l| l.to_string());
+    page::event(&format!("{what}-error line={line}"));
+}
