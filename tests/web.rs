@@ -185,6 +185,10 @@ fn without_webgpu_the_page_says_which_browsers_have_it() {
     ] {
         assert!(error.contains(hint), "{hint:?} is not in: {error}");
     }
+    assert!(
+        !error.contains("apt-get"),
+        "the native program's advice does not help in a browser: {error}"
+    );
     let later = page.events_within(std::time::Duration::from_secs(1));
     assert!(later.is_empty(), "after the error the page said {later:?}");
     assert_eq!(page.exceptions(), Vec::<String>::new());
@@ -394,5 +398,163 @@ fn a_shader_link_reproduces_the_shader_in_a_fresh_browser() {
             out.display()
         );
     }
+    assert_eq!(page.exceptions(), Vec::<String>::new());
+}
+
+/// Every example shader of the editor's menu compiles in the page and
+/// draws (the browser's WebGPU takes what naga writes for it).
+#[test]
+fn every_example_shader_in_the_menu_draws_in_the_page() {
+    let Some(display) = common::xwindow::Display::start() else {
+        return;
+    };
+    let url = browser::serve(browser::page_dir());
+    let mut page = Browser::open(&display, &format!("{url}?samples=1&ui=0&editor"));
+    page.wait_for("ready");
+    let mut previous = wait_for_picture(&page, "the scene", |p| distinct_colors(p, 16) >= 16);
+    for (name, _) in sandbox::bundled::SHADERS {
+        page.evaluate(&format!(
+            "(() => {{ const menu = document.getElementById('shader-examples'); \
+             menu.value = '{name}'; menu.dispatchEvent(new Event('change')); }})()"
+        ));
+        assert_eq!(page.wait_for("example"), name);
+        let ok = page.wait_for("shader ok");
+        eprintln!("{name}: {ok}");
+        let shown = page.evaluate("document.getElementById('shader').className");
+        assert_eq!(
+            shown.as_str(),
+            Some("doc shown"),
+            "the shader's tab is shown"
+        );
+        // A new picture: the example's (the examples are animated, so the
+        // two Whitted ones, alike at time 0, differ a moment later).
+        previous = wait_for_picture(&page, name, |p| {
+            distinct_colors(p, 16) >= 16 && diff_images(p, &previous).mean_abs > 1.0
+        });
+    }
+    assert_eq!(page.exceptions(), Vec::<String>::new());
+}
+
+/// The shader's mouse is the pointer's position in canvas pixels, y up
+/// (Shadertoy's `iMouse`): a click shows its position as a colour.
+#[test]
+fn the_shaders_mouse_is_the_pointer_y_up() {
+    let Some(display) = common::xwindow::Display::start() else {
+        return;
+    };
+    let text = "void mainImage(out vec4 fragColor, in vec2 fragCoord) {\n    \
+                fragColor = vec4(iMouse.xy / iResolution.xy, 0.0, 1.0);\n}\n";
+    let url = browser::serve(browser::page_dir());
+    let mut page = Browser::open(&display, &format!("{url}?ui=0#{}", link::shader_hash(text)));
+    page.wait_for("shader ok");
+    let at = (120.0, 60.0);
+    page.click(at);
+    let expected = [
+        (255.0 * at.0 / f64::from(SIZE.0)).round() as u8,
+        (255.0 * (f64::from(SIZE.1) - at.1) / f64::from(SIZE.1)).round() as u8,
+        0,
+    ];
+    let deadline = std::time::Instant::now() + browser::TIMEOUT;
+    loop {
+        let picture = page.capture_screen();
+        let p = picture.get_pixel(SIZE.0 / 2, SIZE.1 / 2);
+        if (0..3).all(|k| p[k].abs_diff(expected[k]) <= 2) {
+            break;
+        }
+        assert!(
+            std::time::Instant::now() < deadline,
+            "the picture is {p:?}, not the click's position {expected:?} as a colour"
+        );
+        std::thread::sleep(std::time::Duration::from_millis(300));
+    }
+    assert_eq!(page.exceptions(), Vec::<String>::new());
+}
+
+/// Waits until the screen shows `scene` as the reference draws it (the
+/// browser composites a new picture some time after the page drew it), then
+/// asserts as [`assert_like_reference`].
+fn assert_shows(page: &Browser, name: &str, scene: &Scene) {
+    let expected = reference::render_rgba8(scene, SIZE.0, SIZE.1, 1);
+    let deadline = std::time::Instant::now() + std::time::Duration::from_secs(30);
+    let mut picture = page.capture_screen();
+    while diff_images(&picture, &expected).mean_abs > 0.5 && std::time::Instant::now() < deadline {
+        std::thread::sleep(std::time::Duration::from_millis(300));
+        picture = page.capture_screen();
+    }
+    assert_like_reference(name, &picture, scene);
+}
+
+/// A scene file dropped on the canvas replaces the picture with its own;
+/// a malformed one is reported with its file name and line, and the
+/// picture stays.
+#[test]
+fn a_dropped_scene_is_drawn_and_a_malformed_one_named_with_its_line() {
+    let Some(display) = common::xwindow::Display::start() else {
+        return;
+    };
+    let url = browser::serve(browser::page_dir());
+    // `ui=0`: no Edit button over the picture.
+    let mut page = Browser::open(&display, &format!("{url}?samples=1&ui=0"));
+    assert_eq!(page.wait_for("scene"), "whitted");
+    page.wait_for("ready");
+    let files = browser::TempDir::new("raysandbox-drop");
+
+    let orange = whitted().0.replace(
+        "background = [0.25, 0.55, 0.95]",
+        "background = [0.9, 0.5, 0.2]",
+    );
+    let scene = Scene::from_toml_str(&orange, None).unwrap();
+    assert_ne!(scene, whitted().1, "the edit changed the scene");
+    let path = common::write_file(&files.0, "orange-sky.toml", &orange);
+    page.drop_file(&path, (240.0, 135.0));
+    assert_eq!(page.wait_for("dropped"), "orange-sky.toml");
+    page.wait_for("scene ok");
+    page.wait_for("ready");
+    assert_shows(&page, "dropped-scene", &scene);
+
+    let bad = orange.replace("ambient = [0.12, 0.12, 0.12]", "ambient = [0.12, 0.12]");
+    let line = 1 + bad
+        .lines()
+        .position(|l| l.starts_with("ambient ="))
+        .unwrap();
+    let path = common::write_file(&files.0, "bad.toml", &bad);
+    page.drop_file(&path, (240.0, 135.0));
+    assert_eq!(page.wait_for("dropped"), "bad.toml");
+    let error = error_shown(&mut page);
+    assert!(error.starts_with(&format!("bad.toml:{line}: ")), "{error}");
+    assert!(error.contains("ambient"), "{error}");
+    let later = page.events_within(std::time::Duration::from_secs(1));
+    assert!(later.is_empty(), "after the error the page said {later:?}");
+    assert_shows(&page, "scene-kept", &scene);
+    assert_eq!(page.exceptions(), Vec::<String>::new());
+}
+
+/// A shader file dropped on the canvas opens in the shader editor and the
+/// canvas draws it.
+#[test]
+fn a_dropped_shader_is_drawn() {
+    let Some(display) = common::xwindow::Display::start() else {
+        return;
+    };
+    let url = browser::serve(browser::page_dir());
+    let mut page = Browser::open(&display, &format!("{url}?samples=1"));
+    page.wait_for("ready");
+    let files = browser::TempDir::new("raysandbox-drop");
+    let magenta = "void mainImage(out vec4 fragColor, in vec2 fragCoord) {\n    \
+                   fragColor = vec4(1.0, 0.0, 1.0, 1.0);\n}\n";
+    let path = common::write_file(&files.0, "magenta.frag", magenta);
+    page.drop_file(&path, (240.0, 135.0));
+    assert_eq!(page.wait_for("dropped"), "magenta.frag");
+    page.wait_for("shader ok");
+    let deadline = std::time::Instant::now() + browser::TIMEOUT;
+    while !middle_is(&page.capture_screen(), [255, 0, 255]) {
+        assert!(
+            std::time::Instant::now() < deadline,
+            "the canvas never showed the dropped shader's magenta"
+        );
+        std::thread::sleep(std::time::Duration::from_millis(300));
+    }
+    let text = page.evaluate("document.getElementById('shader-text').value");
+    assert_eq!(text, magenta, "the shader editor holds the dropped file");
     assert_eq!(page.exceptions(), Vec::<String>::new());
 }

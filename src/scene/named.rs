@@ -63,3 +63,27 @@ macro_rules! named_option {
     };
 }
 pub use named_option;
+
+#[cfg(test)]
+mod tests {
+    use super::NamedOption;
+    use crate::scene::{TorusMethod, TriangleTest};
+
+    /// Every value is found by its name, and a wrong name is answered
+    /// with the list the command line shows.
+    fn names_round_trip<T: NamedOption + PartialEq + std::fmt::Debug>(list: &str) {
+        for &value in T::all() {
+            assert_eq!(T::from_name(value.name()), Ok(value));
+        }
+        assert_eq!(T::from_name("nope"), Err(format!("one of {list}")));
+    }
+
+    #[test]
+    fn options_are_chosen_by_their_names() {
+        names_round_trip::<TriangleTest>("cramer, moller-trumbore, watertight");
+        names_round_trip::<TorusMethod>("bisection, newton");
+        assert_eq!(TriangleTest::default(), TriangleTest::Watertight);
+        assert_eq!(TorusMethod::default(), TorusMethod::Newton);
+        assert_eq!(TorusMethod::Newton.number(), 1);
+    }
+}

@@ -8,6 +8,7 @@
 //! the event loop as a [`PageEvent`] once they are there. The editors and
 //! the sandbox are the [`Workbench`]'s.
 
+use std::path::Path;
 use std::sync::Arc;
 
 use wasm_bindgen::prelude::*;
@@ -17,9 +18,11 @@ use winit::event_loop::{ActiveEventLoop, ControlFlow, EventLoop, EventLoopProxy}
 use winit::platform::web::{EventLoopExtWebSys, WindowAttributesExtWebSys};
 use winit::window::{Window, WindowId};
 
+use super::drop::{Dropped, DroppedFile};
+use super::editor::Doc;
 use super::workbench::{Outcome, WorkEvent, Workbench};
-use super::{link, page};
-use crate::gpu::{FrameStatus, Gpu, Pipelines, ShaderOptions, ShaderSource, Viewport};
+use super::{drop, link, page};
+use crate::gpu::{FrameStatus, Gpu, GpuError, Pipelines, ShaderOptions, ShaderSource, Viewport};
 use crate::scene::{Scene, bundled};
 
 /// Samples per pixel the page accumulates before it stops drawing, as the
@@ -31,6 +34,7 @@ const MAX_SAMPLES: u32 = 64;
 #[wasm_bindgen(start)]
 pub fn start() {
     std::panic::set_hook(Box::new(|info| page::show_error(&info.to_string())));
+    page::timing("start");
     let (scene_text, scene) = match initial_scene() {
         Ok(scene) => scene,
         Err(e) => {
@@ -54,6 +58,15 @@ pub fn start() {
     let work = Workbench::new(&scene_text, &scene, move |e| {
         let _ = to_page.send_event(PageEvent::Work(e));
     });
+    if let Some(canvas) = page::canvas() {
+        let to_page = proxy.clone();
+        let listening = drop::listen(&canvas, move |file| {
+            let _ = to_page.send_event(PageEvent::Dropped(file));
+        });
+        if let Err(e) = listening {
+            page::show_error(&e);
+        }
+    }
     let app = Page {
         proxy,
         work,
@@ -61,6 +74,7 @@ pub fn start() {
         max_samples,
         window: None,
         gfx: None,
+        input_seen: false,
     };
     event_loop.spawn_app(app);
 }
@@ -97,6 +111,8 @@ pub enum PageEvent {
     Work(WorkEvent),
     /// The tracer's pipelines built for a scene with other features.
     Pipelines(ShaderOptions, Result<Pipelines, String>),
+    /// A file dropped on the canvas, read.
+    Dropped(Result<DroppedFile, String>),
 }
 
 /// Everything that draws into the canvas.
@@ -115,6 +131,8 @@ struct Page {
     max_samples: u32,
     window: Option<Arc<Window>>,
     gfx: Option<Box<Graphics>>,
+    /// Whether the page handled the user's input yet (for start-up timing).
+    input_seen: bool,
 }
 
 impl ApplicationHandler<PageEvent> for Page {
@@ -145,6 +163,7 @@ impl ApplicationHandler<PageEvent> for Page {
         match event {
             PageEvent::Ready(Ok(mut gfx)) => {
                 page::event(&format!("adapter {}", gfx.gpu.describe()));
+                page::timing("gpu");
                 // The canvas may have been laid out while the device was
                 // being made: draw at its size now.
                 let size = self
@@ -159,12 +178,12 @@ impl ApplicationHandler<PageEvent> for Page {
                 self.request_redraw();
             }
             PageEvent::Ready(Err(e)) => page::show_error(&e),
-            PageEvent::Work(event) => match self.work.handle(event) {
-                Outcome::Scene(scene) => self.replace_scene(*scene),
-                Outcome::Redraw => self.request_redraw(),
-                Outcome::Nothing => {}
-            },
+            PageEvent::Work(event) => {
+                let outcome = self.work.handle(event);
+                self.follow(outcome);
+            }
             PageEvent::Pipelines(options, built) => self.pipelines_built(options, built),
+            PageEvent::Dropped(file) => self.dropped(file),
         }
     }
 
@@ -178,7 +197,13 @@ impl ApplicationHandler<PageEvent> for Page {
                 self.request_redraw();
             }
             WindowEvent::RedrawRequested => self.redraw(),
-            event => self.work.pointer(&event),
+            event => {
+                if !self.input_seen && self.gfx.is_some() && is_input(&event) {
+                    self.input_seen = true;
+                    page::timing("first-input");
+                }
+                self.work.pointer(&event);
+            }
         }
     }
 }
@@ -210,6 +235,42 @@ impl Page {
                 .map_err(|e| e.to_string());
             let _ = proxy.send_event(PageEvent::Pipelines(options, built));
         });
+    }
+
+    /// Does what the workbench asks after an edit.
+    fn follow(&mut self, outcome: Outcome) {
+        match outcome {
+            Outcome::Scene(scene) => self.replace_scene(*scene),
+            Outcome::Redraw => self.request_redraw(),
+            Outcome::Nothing => {}
+        }
+    }
+
+    /// A file dropped on the canvas (docs/web.md, "Dropping files"): a scene
+    /// or a shader opens in its editor as if typed there, so the canvas shows
+    /// it. A file that cannot be used is reported with its name (and line),
+    /// and the picture kept.
+    fn dropped(&mut self, file: Result<DroppedFile, String>) {
+        let dropped = file.and_then(|file| {
+            page::event(&format!("dropped {}", file.name));
+            Ok((Dropped::of(&file)?, file.name))
+        });
+        match dropped {
+            Ok((Dropped::Scene(text), name)) => {
+                match Scene::from_toml_str(&text, Some(Path::new(&name))) {
+                    Ok(_) => {
+                        let outcome = self.work.open(Doc::Scene, &text);
+                        self.follow(outcome);
+                    }
+                    Err(e) => page::show_error(&e.to_string()),
+                }
+            }
+            Ok((Dropped::Shader(text), _)) => {
+                let outcome = self.work.open(Doc::Shader, &text);
+                self.follow(outcome);
+            }
+            Err(e) => page::show_error(&e),
+        }
     }
 
     /// Pipelines built for a scene: used if the scene still needs them.
@@ -251,14 +312,36 @@ impl Page {
         if status == FrameStatus::Presented && before == 0 && samples > 0 {
             let (w, h) = gfx.viewport.traced_resolution();
             page::event(&format!("first-frame {w}x{h}"));
+            page::timing("first-frame");
         }
         if new_samples > 0 && samples >= self.max_samples {
             page::event(&format!("ready samples={samples}"));
         }
-        if status == FrameStatus::Skipped || new_samples > 0 {
+        if status == FrameStatus::Skipped {
             self.request_redraw();
+        } else if new_samples > 0
+            && let Some(window) = self.window.clone()
+        {
+            // The next sample once the GPU has finished this one: asked for
+            // at once, samples pile up in the browser's GPU process faster
+            // than SwiftShader draws them, and the page then gets no input
+            // until the refinement ends (docs/web.md, "Start-up time").
+            gfx.gpu
+                .queue
+                .on_submitted_work_done(move || window.request_redraw());
         }
     }
+}
+
+/// Whether `event` is the user's (the mouse, the keyboard).
+fn is_input(event: &WindowEvent) -> bool {
+    matches!(
+        event,
+        WindowEvent::CursorMoved { .. }
+            | WindowEvent::MouseInput { .. }
+            | WindowEvent::MouseWheel { .. }
+            | WindowEvent::KeyboardInput { .. }
+    )
 }
 
 /// The WebGPU adapter and device, and the tracer's pipelines for `scene`,
@@ -280,22 +363,22 @@ async fn create_graphics(window: Arc<Window>, scene: &Scene) -> Result<Graphics,
     };
     let gpu = Gpu::request(instance, &options)
         .await
-        .map_err(|e| page::no_webgpu_help(&e.to_string()))?;
+        .map_err(|e| match e {
+            // The native advice (installing a Vulkan driver) does not apply here.
+            GpuError::NoAdapter(reason) => page::no_webgpu_help(&reason),
+            other => other.to_string(),
+        })?;
     let formats = Viewport::output_formats(&gpu, &surface);
     let source = ShaderSource::embedded();
-    let pipelines = Pipelines::with_outline_async(
-        &gpu.device,
-        &source,
-        &formats,
-        &ShaderOptions::for_scene(scene),
-    )
-    .await
-    .map_err(|e| e.to_string())?;
+    let options = ShaderOptions::for_scene(scene);
+    let pipelines = Pipelines::with_outline_async(&gpu.device, &source, &formats, &options)
+        .await
+        .map_err(|e| e.to_string())?;
     let viewport = Viewport::new(&gpu, surface, (size.width, size.height), pipelines, scene);
     Ok(Graphics {
         gpu,
         viewport,
-        options: ShaderOptions::for_scene(scene),
+        options,
         formats,
     })
 }

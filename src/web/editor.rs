@@ -210,8 +210,8 @@ impl Editor {
         self.send_now(doc);
     }
 
-    /// Shows `doc`'s textarea and makes the canvas show it.
-    fn show_doc(&self, doc: Doc) {
+    /// Shows `doc`'s textarea (and its tab as chosen).
+    pub fn show_doc(&self, doc: Doc) {
         let mut state = self.0.borrow_mut();
         state.shown = doc;
         for other in Doc::ALL {

@@ -8,6 +8,8 @@
 #[cfg(target_arch = "wasm32")]
 mod canvas;
 #[cfg(target_arch = "wasm32")]
+mod drop;
+#[cfg(target_arch = "wasm32")]
 mod editor;
 pub mod link;
 #[cfg(target_arch = "wasm32")]

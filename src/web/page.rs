@@ -60,6 +60,16 @@ pub fn event(line: &str) {
     web_sys::console::log_1(&format!("raysandbox: {line}").into());
 }
 
+/// Logs `raysandbox: timing WHAT MS`, the milliseconds since the page's
+/// navigation started (`performance.now()`): how long the page takes to
+/// become usable, read by scripts/web-startup (docs/web.md, "Start-up time").
+pub fn timing(what: &str) {
+    let now = web_sys::window()
+        .and_then(|w| w.performance())
+        .map(|p| p.now());
+    event(&format!("timing {what} {:.0}", now.unwrap_or(f64::NAN)));
+}
+
 /// Shows `message` where the user looks (over the canvas) and logs it.
 pub fn show_error(message: &str) {
     web_sys::console::error_1(&format!("raysandbox: error {message}").into());

@@ -7,7 +7,7 @@
 
 use std::path::Path;
 
-use web_time::Instant;
+use web_time::{Duration, Instant};
 use winit::event::{ElementState, MouseButton, MouseScrollDelta, WindowEvent};
 
 use super::editor::Problem;
@@ -26,6 +26,9 @@ pub struct Built {
     generation: u64,
     /// The text it was built from.
     text: String,
+    /// How long naga took (composing, parsing, validating), then the
+    /// pipeline's build (wgpu and the browser).
+    times: (Duration, Duration),
     compiled: Compiled,
     result: Result<ShaderPipeline, String>,
 }
@@ -33,6 +36,16 @@ pub struct Built {
 impl Built {
     pub fn text(&self) -> &str {
         &self.text
+    }
+
+    /// `naga=MS pipeline=MS`: how long the text took to compile and to build.
+    pub fn times(&self) -> String {
+        let ms = |d: Duration| d.as_secs_f64() * 1e3;
+        format!(
+            "naga={:.0}ms pipeline={:.0}ms",
+            ms(self.times.0),
+            ms(self.times.1)
+        )
     }
 }
 
@@ -82,7 +95,9 @@ impl ShaderView {
         text: &str,
         done: impl FnOnce(Built) + 'static,
     ) -> Result<(), Problem> {
+        let start = Instant::now();
         let compiled = compile(SHADER_NAME, text).map_err(|e| shader_problem(&e))?;
+        let compiled_at = Instant::now();
         self.generation += 1;
         let generation = self.generation;
         let builder = self.builder.clone();
@@ -92,6 +107,7 @@ impl ShaderView {
             done(Built {
                 generation,
                 text,
+                times: (compiled_at - start, compiled_at.elapsed()),
                 compiled,
                 result,
             });

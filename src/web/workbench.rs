@@ -8,6 +8,7 @@
 
 use std::rc::Rc;
 
+use web_time::Instant;
 use wgpu::TextureFormat;
 use winit::event::WindowEvent;
 
@@ -121,30 +122,22 @@ impl Workbench {
                 }
                 Outcome::Nothing
             }
-            WorkEvent::Editor(EditorEvent::Show(doc)) => {
-                self.shown = doc;
-                page::event(&format!("showing {}", doc_name(doc)));
-                if doc == Doc::Shader && self.shader.is_some() {
-                    self.compile_pending_shader();
-                }
-                self.write_link();
-                Outcome::Redraw
-            }
+            WorkEvent::Editor(EditorEvent::Show(doc)) => self.show(doc),
             WorkEvent::Editor(EditorEvent::Example(name)) => {
-                if let (Some(editor), Some(text)) = (&self.editor, shaders::text(&name)) {
-                    page::event(&format!("example {name}"));
-                    editor.load_text(Doc::Shader, text);
-                }
-                Outcome::Nothing
+                let Some(text) = shaders::text(&name) else {
+                    return Outcome::Nothing;
+                };
+                page::event(&format!("example {name}"));
+                self.open(Doc::Shader, text)
             }
             WorkEvent::Built(built) => {
                 let Some(shader) = &mut self.shader else {
                     return Outcome::Nothing;
                 };
-                let text = built.text().to_string();
+                let (text, times) = (built.text().to_string(), built.times());
                 if let Some(result) = shader.built(*built) {
                     match &result {
-                        Ok(_) => page::event("shader ok"),
+                        Ok(_) => page::event(&format!("shader ok {times}")),
                         Err(problem) => report("shader", problem),
                     }
                     if result.is_ok() && self.shows_shader() {
@@ -159,16 +152,42 @@ impl Workbench {
         }
     }
 
+    /// Opens a text chosen by the user (an example shader, a dropped file)
+    /// in `doc` as if typed there: the document shown, on the canvas too,
+    /// and the text compiled at once.
+    pub fn open(&mut self, doc: Doc, text: &str) -> Outcome {
+        let Some(editor) = self.editor.clone() else {
+            return Outcome::Nothing;
+        };
+        editor.show_doc(doc);
+        let outcome = self.show(doc);
+        editor.load_text(doc, text);
+        outcome
+    }
+
+    /// Makes the canvas show `doc`.
+    fn show(&mut self, doc: Doc) -> Outcome {
+        self.shown = doc;
+        page::event(&format!("showing {}", doc_name(doc)));
+        if doc == Doc::Shader && self.shader.is_some() {
+            self.compile_pending_shader();
+        }
+        self.write_link();
+        Outcome::Redraw
+    }
+
     /// A scene text from the editor: parsed and validated; a good one
     /// replaces the page's scene.
     fn scene_text(&mut self, text: &str) -> Outcome {
+        let start = Instant::now();
         let result = Scene::from_toml_str(text, None).map_err(|e| Problem {
             message: e.to_string(),
             line: e.line,
         });
+        let parse_ms = start.elapsed().as_secs_f64() * 1e3;
         let outcome = match &result {
             Ok(scene) => {
-                page::event("scene ok");
+                page::event(&format!("scene ok parse={parse_ms:.0}ms"));
                 self.scene = scene.clone();
                 Outcome::Scene(Box::new(scene.clone()))
             }

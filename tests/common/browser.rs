@@ -468,6 +468,24 @@ impl Browser {
         self.call("Input.dispatchMouseEvent", params);
     }
 
+    /// Drops the file at `path` at `at` as a person dragging it from a file
+    /// manager would: `dragenter`, `dragover` and `drop` events whose
+    /// `DataTransfer` holds the file (`Input.dispatchDragEvent`).
+    pub fn drop_file(&mut self, path: &Path, at: (f64, f64)) {
+        let path = path.canonicalize().expect("the file to drop exists");
+        let data = json!({
+            "items": [],
+            "files": [path.to_str().expect("a UTF-8 path")],
+            "dragOperationsMask": 1,
+        });
+        for kind in ["dragEnter", "dragOver", "drop"] {
+            self.call(
+                "Input.dispatchDragEvent",
+                json!({ "type": kind, "x": at.0, "y": at.1, "data": data }),
+            );
+        }
+    }
+
     /// Types `text` into the focused element as an input method would (one
     /// `input` event; what an HTML text field or textarea takes). A canvas
     /// drawn by egui reads key events instead: use [`Browser::key`].

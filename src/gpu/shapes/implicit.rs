@@ -43,15 +43,15 @@ impl PackShape for Implicit {
     const WGSL: &'static str = include_str!("../../../shaders/shapes/implicit.wgsl");
 
     fn pack(scene: &Scene, frame: &Frame, i: &scene::Implicit) -> Self {
-        let placement = &i.placement;
+        let (center, scale, rotation) = placed::pack(frame, &i.placement);
         let function = functions(scene)
             .iter()
             .position(|f| *f == i.f)
             .expect("every implicit's function is in the set") as u32;
         Implicit {
-            center: frame.point(placement.translate),
-            scale: placement.scale as f32,
-            rotation: placed::rotation_columns(placement),
+            center,
+            scale,
+            rotation,
             bounds_min: f32x3(i.bounds[0]),
             function,
             bounds_max: f32x3(i.bounds[1]),

@@ -29,11 +29,11 @@ impl PackShape for Julia {
     const WGSL: &'static str = include_str!("../../../shaders/shapes/julia.wgsl");
 
     fn pack(scene: &Scene, frame: &Frame, j: &scene::Julia) -> Self {
-        let placement = &j.placement;
+        let (center, scale, rotation) = placed::pack(frame, &j.placement);
         Julia {
-            center: frame.point(placement.translate),
-            scale: placement.scale as f32,
-            rotation: placed::rotation_columns(placement),
+            center,
+            scale,
+            rotation,
             c: j.c.map(|x| x as f32),
             slice: j.slice as f32,
             iterations: j.iterations,

@@ -3,6 +3,7 @@
 
 use glam::DMat3;
 
+use super::Frame;
 use crate::scene::Placement;
 
 /// `m` rounded to f32, as three columns padded to 16 bytes.
@@ -13,4 +14,14 @@ pub fn columns(m: DMat3) -> [[f32; 4]; 3] {
 /// `Rz Ry Rx` as three columns padded to 16 bytes.
 pub fn rotation_columns(placement: &Placement) -> [[f32; 4]; 3] {
     columns(placement.rotation_matrix())
+}
+
+/// The fields `center`, `scale` and `rotation` that every packed implicit
+/// surface starts with: the centre relative to the frame origin, in f32.
+pub fn pack(frame: &Frame, placement: &Placement) -> ([f32; 3], f32, [[f32; 4]; 3]) {
+    (
+        frame.point(placement.translate),
+        placement.scale as f32,
+        rotation_columns(placement),
+    )
 }

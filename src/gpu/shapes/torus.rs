@@ -24,11 +24,11 @@ impl PackShape for Torus {
     const OCCLUDES: bool = true;
 
     fn pack(scene: &Scene, frame: &Frame, t: &scene::Torus) -> Self {
-        let placement = &t.placement;
+        let (center, scale, rotation) = placed::pack(frame, &t.placement);
         Torus {
-            center: frame.point(placement.translate),
-            scale: placement.scale as f32,
-            rotation: placed::rotation_columns(placement),
+            center,
+            scale,
+            rotation,
             major: t.major_radius as f32,
             minor: t.minor_radius as f32,
             material: scene.material_slot(t.material.as_deref()),

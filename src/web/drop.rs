@@ -1,0 +1,89 @@
+//! Files dropped on the page's canvas (docs/web.md, "Dropping files"): the
+//! browser's `dragover` and `drop` events, each dropped file read whole
+//! (`File.arrayBuffer()`) and handed to the page's event loop with its name.
+//! What a file becomes depends on its extension ([`Dropped::of`]), as when
+//! a file is dropped on the native window.
+
+use std::rc::Rc;
+
+use wasm_bindgen::JsCast;
+use wasm_bindgen::prelude::*;
+use wasm_bindgen_futures::JsFuture;
+
+/// A dropped file, read.
+pub struct DroppedFile {
+    pub name: String,
+    pub bytes: Vec<u8>,
+}
+
+/// What a dropped file is for, told by its extension.
+pub enum Dropped {
+    /// A scene's TOML text: it replaces the scene.
+    Scene(String),
+    /// A sandbox shader (WGSL, or GLSL in GLSL Sandbox or Shadertoy style).
+    Shader(String),
+}
+
+impl Dropped {
+    /// The file as what it is for; an error names the file.
+    pub fn of(file: &DroppedFile) -> Result<Dropped, String> {
+        let name = &file.name;
+        let text =
+            || String::from_utf8(file.bytes.clone()).map_err(|_| format!("{name}: not UTF-8 text"));
+        let extension = name.rsplit_once('.').map(|(_, e)| e.to_ascii_lowercase());
+        match extension.as_deref() {
+            Some("toml") => text().map(Dropped::Scene),
+            Some("wgsl" | "glsl" | "frag") => text().map(Dropped::Shader),
+            _ => Err(format!(
+                "{name}: the page opens scenes (.toml) and shaders (.wgsl, .glsl, .frag)"
+            )),
+        }
+    }
+}
+
+/// Lets files be dropped on `canvas`; `dropped` gets each one once read.
+/// The listeners live as long as the page.
+pub fn listen(
+    canvas: &web_sys::HtmlCanvasElement,
+    dropped: impl Fn(Result<DroppedFile, String>) + 'static,
+) -> Result<(), String> {
+    // The browser opens a file dropped on the page unless `dragover` says
+    // that the canvas takes it.
+    let over = Closure::<dyn FnMut(web_sys::DragEvent)>::new(|event: web_sys::DragEvent| {
+        event.prevent_default();
+        if let Some(transfer) = event.data_transfer() {
+            transfer.set_drop_effect("copy");
+        }
+    });
+    let dropped = Rc::new(dropped);
+    let drop = Closure::<dyn FnMut(web_sys::DragEvent)>::new(move |event: web_sys::DragEvent| {
+        event.prevent_default();
+        let Some(files) = event.data_transfer().and_then(|t| t.files()) else {
+            return;
+        };
+        for file in (0..files.length()).filter_map(|i| files.get(i)) {
+            let dropped = dropped.clone();
+            wasm_bindgen_futures::spawn_local(async move { dropped(read(file).await) });
+        }
+    });
+    for (kind, listener) in [("dragover", &over), ("drop", &drop)] {
+        canvas
+            .add_event_listener_with_callback(kind, listener.as_ref().unchecked_ref())
+            .map_err(|e| format!("cannot listen to {kind} on the canvas: {e:?}"))?;
+    }
+    over.forget();
+    drop.forget();
+    Ok(())
+}
+
+/// The whole content of a dropped file.
+async fn read(file: web_sys::File) -> Result<DroppedFile, String> {
+    let name = file.name();
+    let buffer = JsFuture::from(file.array_buffer())
+        .await
+        .map_err(|e| format!("{name}: cannot be read: {e:?}"))?;
+    Ok(DroppedFile {
+        name,
+        bytes: js_sys::Uint8Array::new(&buffer).to_vec(),
+    })
+}
