@@ -558,3 +558,45 @@ fn a_dropped_shader_is_drawn() {
     assert_eq!(text, magenta, "the shader editor holds the dropped file");
     assert_eq!(page.exceptions(), Vec::<String>::new());
 }
+
+/// A unit cube as an OBJ file: eight corners, six quads.
+const CUBE_OBJ: &str = "v 0 0 0\nv 1 0 0\nv 1 1 0\nv 0 1 0\nv 0 0 1\nv 1 0 1\nv 1 1 1\nv 0 1 1\n\
+                        f 1 4 3 2\nf 5 6 7 8\nf 1 2 6 5\nf 4 8 7 3\nf 1 5 8 4\nf 2 3 7 6\n";
+
+/// A model dropped on the canvas is added in front of the camera: the
+/// page's scene (which its scene editor follows) is drawn as the reference
+/// draws it. A malformed model is reported with its file name and line,
+/// and the picture stays.
+#[test]
+fn a_dropped_model_is_added_in_view_and_a_malformed_one_named_with_its_line() {
+    let Some(display) = common::xwindow::Display::start() else {
+        return;
+    };
+    let url = browser::serve(browser::page_dir());
+    let mut page = Browser::open(&display, &format!("{url}?samples=1&ui=0"));
+    assert_eq!(page.wait_for("scene"), "whitted");
+    page.wait_for("ready");
+    let files = browser::TempDir::new("raysandbox-drop");
+
+    let path = common::write_file(&files.0, "cube.obj", CUBE_OBJ);
+    page.drop_file(&path, (240.0, 135.0));
+    assert_eq!(page.wait_for("dropped"), "cube.obj");
+    assert_eq!(page.wait_for("mesh-added"), "cube.obj");
+    page.wait_for("ready");
+    let text = page.evaluate("document.getElementById('scene-text').value");
+    let scene = Scene::from_toml_str(text.as_str().unwrap(), None).unwrap();
+    assert_eq!(scene.meshes.len(), 1, "the page's scene has the model");
+    assert_eq!(scene.meshes[0].positions.len(), 8, "written inline");
+    assert_shows(&page, "dropped-model", &scene);
+
+    let bad = "v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 9\n";
+    let path = common::write_file(&files.0, "bad.obj", bad);
+    page.drop_file(&path, (240.0, 135.0));
+    assert_eq!(page.wait_for("dropped"), "bad.obj");
+    let error = error_shown(&mut page);
+    assert!(error.starts_with("bad.obj:4: "), "{error}");
+    let later = page.events_within(std::time::Duration::from_secs(1));
+    assert!(later.is_empty(), "after the error the page said {later:?}");
+    assert_shows(&page, "model-kept", &scene);
+    assert_eq!(page.exceptions(), Vec::<String>::new());
+}

@@ -248,7 +248,7 @@ impl Page {
 
     /// A file dropped on the canvas (docs/web.md, "Dropping files"): a scene
     /// or a shader opens in its editor as if typed there, so the canvas shows
-    /// it. A file that cannot be used is reported with its name (and line),
+    /// it; a model is added in front of the camera, as on the native window. A file that cannot be used is reported with its name (and line),
     /// and the picture kept.
     fn dropped(&mut self, file: Result<DroppedFile, String>) {
         let dropped = file.and_then(|file| {
@@ -264,6 +264,12 @@ impl Page {
                     }
                     Err(e) => page::show_error(&e.to_string()),
                 }
+            }
+            Ok((Dropped::Mesh(mesh), name)) => {
+                let mut scene = self.scene.clone();
+                scene.add_mesh_in_view(*mesh);
+                self.replace_scene(scene);
+                page::event(&format!("mesh-added {name}"));
             }
             Ok((Dropped::Shader(text), _)) => {
                 let outcome = self.work.open(Doc::Shader, &text);
