@@ -600,3 +600,50 @@ fn a_dropped_model_is_added_in_view_and_a_malformed_one_named_with_its_line() {
     assert_shows(&page, "model-kept", &scene);
     assert_eq!(page.exceptions(), Vec::<String>::new());
 }
+
+/// The scene editor follows changes made elsewhere (here a dropped model)
+/// only while it holds no text of the user's own: with a mistake typed and
+/// not yet fixed the text stays as typed; once a good text is applied, the
+/// next change is written into it (docs/web.md, "Edits from the panel").
+#[test]
+fn the_scene_editor_follows_other_changes_but_never_overwrites_the_users_text() {
+    let Some(display) = common::xwindow::Display::start() else {
+        return;
+    };
+    let url = browser::serve(browser::page_dir());
+    let mut page = Browser::open(&display, &format!("{url}?samples=1&ui=0&editor"));
+    page.wait_for("ready");
+    let files = browser::TempDir::new("raysandbox-follow");
+    let model = common::write_file(&files.0, "cube.obj", CUBE_OBJ);
+    let on_canvas = (
+        f64::from(CANVAS_BESIDE_EDITOR) / 2.0,
+        f64::from(SIZE.1) / 2.0,
+    );
+    let scene_text = |page: &mut Browser| {
+        let value = page.evaluate("document.getElementById('scene-text').value");
+        value.as_str().unwrap().to_string()
+    };
+
+    page.evaluate(
+        "(() => { const t = document.getElementById('scene-text'); t.focus(); \
+         t.setSelectionRange(t.value.length, t.value.length); })()",
+    );
+    page.insert_text("\n[camera");
+    page.wait_for("scene-error");
+    let typed = scene_text(&mut page);
+    page.drop_file(&model, on_canvas);
+    assert_eq!(page.wait_for("mesh-added"), "cube.obj");
+    page.wait_for("ready");
+    assert_eq!(scene_text(&mut page), typed, "the user's text stays");
+
+    // A good text replaces the scene (without the model: the text has none);
+    // the next model dropped is written into the text.
+    replace_text(&mut page, "scene", &whitted().0);
+    page.wait_for("scene ok");
+    page.drop_file(&model, on_canvas);
+    assert_eq!(page.wait_for("mesh-added"), "cube.obj");
+    page.wait_for("ready");
+    let followed = Scene::from_toml_str(&scene_text(&mut page), None).unwrap();
+    assert_eq!(followed.meshes.len(), 1, "the text has the dropped model");
+    assert_eq!(page.exceptions(), Vec::<String>::new());
+}
