@@ -133,7 +133,7 @@ fn hit_bounded_bvh(ray: Ray, best_in: Hit, any: bool) -> Hit {
         }
         for (var i = node.first; i < node.first + node.count; i++) {
             let shape = bvh_shapes[i];
-            best = hit_bounded(shape >> KIND_SHIFT, shape & INDEX_MASK, ray, best);
+            best = hit_bounded(shape >> KIND_SHIFT, shape & INDEX_MASK, ray, best, any);
         }
         if any && best.kind != KIND_NONE {
             return best;

@@ -140,29 +140,82 @@ fn slope_roots(k: Quartic) -> vec3<f32> {
     // d < 0 needs p < 0: three real roots 2 sqrt(-p/3) cos(phi + 2 pi j / 3),
     // phi in [0, pi/3]: j = 1 gives the smallest (its angle is in
     // [2pi/3, pi]), j = 2 the middle one, j = 0 the largest.
+    // cos(phi -+ 2pi/3) = -cos(phi) / 2 -+ sin(phi) sqrt(3) / 2, sin(phi) >= 0:
+    // one cosine instead of three.
     let r = sqrt(-p / 3.0);
     let phi = acos(clamp(-0.5 * q / (r * r * r), -1.0, 1.0)) / 3.0;
-    let third = 2.0943951;
-    return 2.0 * r * vec3(cos(phi + third), cos(phi + 2.0 * third), cos(phi));
+    let c = cos(phi);
+    let s = 0.8660254 * sqrt(max(0.0, 1.0 - c * c));
+    return 2.0 * r * vec3(-0.5 * c - s, -0.5 * c + s, c);
 }
 
-/// The root in (a, b] of the quartic, monotone there, when its ends differ
-/// in sign (or the far one is 0): Newton steps from the middle, each kept
-/// inside the shrinking bracket (a step that would leave it halves the
-/// bracket instead), until a step is below 1e-6 of the piece or 24 steps;
-/// T_FAR when there is no root.
-fn quartic_newton(k: Quartic, a_in: f32, b_in: f32) -> f32 {
-    var a = a_in;
-    var b = b_in;
-    let ga = quartic_at(k, false, a);
-    let gb = quartic_at(k, false, b);
-    if gb == 0.0 && ga != 0.0 {
-        return b;
+/// A piece (a, b] of the search interval on which the quartic is
+/// monotone, and its value `ga` at a.
+struct Piece {
+    a: f32,
+    ga: f32,
+    b: f32,
+}
+
+/// The first of the pieces that the slope's zeros (in closed form) cut
+/// (lo, hi] into whose ends differ in sign, or the last piece when none
+/// does (it then holds no root). The nearest root is in this piece or
+/// nowhere.
+///
+/// Straight-line code on purpose: llvmpipe runs a fragment shader on a
+/// group of pixels at once and runs every branch that any of them takes,
+/// and every loop until all of them are done, so one refinement loop on
+/// the right piece costs far less than a loop per piece
+/// (docs/performance.md, "Implicit surfaces").
+fn first_sign_change(k: Quartic, lo: f32, hi: f32) -> Piece {
+    let roots = slope_roots(k);
+    var piece = Piece(lo, quartic_at(k, false, lo), hi);
+    var found = false;
+    for (var i = 0u; i < 3u; i++) {
+        let x = roots[i];
+        if !found && x > piece.a && x < hi {
+            let gx = quartic_at(k, false, x);
+            if piece.ga != 0.0 && (gx == 0.0 || (piece.ga < 0.0) != (gx < 0.0)) {
+                piece.b = x;
+                found = true;
+            } else {
+                piece.a = x;
+                piece.ga = gx;
+            }
+        }
     }
-    if ga == 0.0 || (ga < 0.0) == (gb < 0.0) {
+    return piece;
+}
+
+/// Whether the piece holds a root: its ends differ in sign, or its far end
+/// (`gb` the value there) is one and its near end is not.
+fn holds_root(p: Piece, gb: f32) -> bool {
+    return p.ga != 0.0 && (gb == 0.0 || (p.ga < 0.0) != (gb < 0.0));
+}
+
+/// The first root in (lo, hi] as in quartic_first_root, with the slope's
+/// zeros from the closed-form cubic and Newton steps instead of halvings,
+/// on the first piece with a sign change only; T_FAR when there is none.
+fn quartic_first_root_newton(k: Quartic, lo: f32, hi: f32) -> f32 {
+    let piece = first_sign_change(k, lo, hi);
+    let gb = quartic_at(k, false, piece.b);
+    if !holds_root(piece, gb) {
         return T_FAR;
     }
-    let a_negative = ga < 0.0;
+    if gb == 0.0 {
+        return piece.b;
+    }
+    return quartic_newton(k, piece);
+}
+
+/// The root in (a, b] of the quartic, monotone there, whose ends differ in
+/// sign: Newton steps from the middle, each kept inside the shrinking
+/// bracket (a step that would leave it halves the bracket instead), until
+/// a step is below 1e-6 of the piece or 24 steps.
+fn quartic_newton(k: Quartic, piece: Piece) -> f32 {
+    var a = piece.a;
+    var b = piece.b;
+    let a_negative = piece.ga < 0.0;
     let tolerance = 1e-6 * (b - a);
     var x = 0.5 * (a + b);
     for (var i = 0; i < 24; i++) {
@@ -188,22 +241,17 @@ fn quartic_newton(k: Quartic, a_in: f32, b_in: f32) -> f32 {
     return x;
 }
 
-/// The first root in (lo, hi] as in quartic_first_root, with the slope's
-/// zeros from the closed-form cubic and Newton steps instead of halvings.
-fn quartic_first_root_newton(k: Quartic, lo: f32, hi: f32) -> f32 {
-    let roots = slope_roots(k);
-    var a = lo;
-    for (var i = 0u; i < 3u; i++) {
-        let x = roots[i];
-        if x > a && x < hi {
-            let u = quartic_newton(k, a, x);
-            if u <= hi {
-                return u;
-            }
-            a = x;
-        }
+/// The part (lo, hi] of the torus's local ray to search: inside the
+/// bounding sphere of radius R + r (|u| <= h) and inside t_min < t < t_max;
+/// empty (lo >= hi) when the ray misses the sphere.
+fn torus_span(l: LocalRay, s: Torus, t_min: f32, t_max: f32) -> vec2<f32> {
+    let outer = s.major + s.minor;
+    let qq = dot(l.q, l.q);
+    if qq >= outer * outer {
+        return vec2(0.0);
     }
-    return quartic_newton(k, a, hi);
+    let h = sqrt(outer * outer - qq);
+    return vec2(max(-h, local_u(l, t_min)), min(h, local_u(l, t_max)));
 }
 
 /// Torus: the first root of its quartic inside the bounding sphere of
@@ -211,24 +259,35 @@ fn quartic_first_root_newton(k: Quartic, lo: f32, hi: f32) -> f32 {
 /// normal is the gradient's direction written as p - R (x, 0, z) / |(x, 0, z)|.
 fn hit_torus(ray: Ray, s: Torus, index: u32, best: Hit) -> Hit {
     let l = local_ray(ray, s.center, s.scale, s.rotation);
-    let outer = s.major + s.minor;
-    let qq = dot(l.q, l.q);
-    if qq >= outer * outer {
+    let span = torus_span(l, s, ray.t_min, best.t);
+    if span.x >= span.y {
         return best;
     }
-    let h = sqrt(outer * outer - qq);
-    let lo = max(-h, local_u(l, ray.t_min));
-    let hi = min(h, local_u(l, best.t));
-    if lo >= hi {
-        return best;
-    }
-    let u = quartic_first_root(torus_quartic(l.q, l.d, s.major, s.minor), lo, hi);
-    if u > hi {
+    let u = quartic_first_root(torus_quartic(l.q, l.d, s.major, s.minor), span.x, span.y);
+    if u > span.y {
         return best;
     }
     let p = l.q + u * l.d;
     let rho = length(p.xz);
     let ring = select(vec3(0.0), vec3(p.x, 0.0, p.z) * (s.major / rho), rho > 0.0);
-    let error_scale = max3(abs(s.center)) + s.scale * outer;
+    let error_scale = max3(abs(s.center)) + s.scale * (s.major + s.minor);
     return placed_hit(ray, best, l, u, p - ring, s.center, s.rotation, KIND_TORUS, index, error_scale);
+}
+
+/// Whether the torus blocks the ray somewhere in t_min < t < t_max (shadow
+/// rays): whether its quartic has a root there. With Newton's method that
+/// is whether the first piece with a sign change exists, so no root is
+/// refined at all; bisection finds the root as for a hit.
+fn occludes_torus(ray: Ray, s: Torus, t_max: f32) -> bool {
+    let l = local_ray(ray, s.center, s.scale, s.rotation);
+    let span = torus_span(l, s, ray.t_min, t_max);
+    if span.x >= span.y {
+        return false;
+    }
+    let k = torus_quartic(l.q, l.d, s.major, s.minor);
+    if TORUS_METHOD == 0u {
+        return quartic_first_root(k, span.x, span.y) <= span.y;
+    }
+    let piece = first_sign_change(k, span.x, span.y);
+    return holds_root(piece, quartic_at(k, false, piece.b));
 }

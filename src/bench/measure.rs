@@ -62,6 +62,54 @@ pub fn paired_scene_times(
     size: (u32, u32),
     frames: u32,
 ) -> Result<([Duration; 2], f64), String> {
+    let paired = paired_renders(gpu, renders, size, frames)?;
+    Ok((paired.gpu.times, paired.gpu.ratio))
+}
+
+/// One measure of a paired run: the median per render and the median of
+/// the per-pair ratios B / A.
+#[derive(Debug, Clone, Copy)]
+pub struct PairedTimes {
+    pub times: [Duration; 2],
+    pub ratio: f64,
+}
+
+impl PairedTimes {
+    fn of(pairs: &[[Duration; 2]]) -> PairedTimes {
+        let mut ratios: Vec<f64> = pairs
+            .iter()
+            .map(|[a, b]| b.as_secs_f64() / a.as_secs_f64().max(1e-9))
+            .collect();
+        ratios.sort_by(f64::total_cmp);
+        let median = |i: usize| {
+            let mut t: Vec<Duration> = pairs.iter().map(|p| p[i]).collect();
+            t.sort();
+            t[t.len() / 2]
+        };
+        PairedTimes {
+            times: [median(0), median(1)],
+            ratio: ratios[ratios.len() / 2],
+        }
+    }
+}
+
+/// A paired run measured two ways: GPU time, and the CPU time this process
+/// spent per frame where the system reports it (`process_cpu_time`).
+pub struct Paired {
+    pub gpu: PairedTimes,
+    pub cpu: Option<PairedTimes>,
+}
+
+/// As [`paired_scene_times`], with the CPU time of each frame too. On
+/// lavapipe the GPU is this process's own threads, so their CPU time is the
+/// work of the frame, which other programs on a loaded machine do not
+/// stretch as they stretch its wall-clock (and timestamp) time.
+pub fn paired_renders(
+    gpu: &Gpu,
+    renders: [(&ShaderOptions, &Scene); 2],
+    size: (u32, u32),
+    frames: u32,
+) -> Result<Paired, String> {
     let source = ShaderSource::embedded();
     let wait = |e: crate::gpu::GpuWaitError| e.to_string();
     let mut renderers = Vec::new();
@@ -71,22 +119,40 @@ pub fn paired_scene_times(
         r.render(gpu, 1).map_err(wait)?;
         renderers.push(r);
     }
-    let mut times = [Vec::new(), Vec::new()];
-    let mut ratios = Vec::new();
+    let mut gpu_pairs = Vec::new();
+    let mut cpu_pairs = Vec::new();
     for _ in 0..frames.max(1) {
+        let c0 = process_cpu_time();
         let a = renderers[0].render(gpu, 1).map_err(wait)?;
+        let c1 = process_cpu_time();
         let b = renderers[1].render(gpu, 1).map_err(wait)?;
-        ratios.push(b.as_secs_f64() / a.as_secs_f64().max(1e-9));
-        times[0].push(a);
-        times[1].push(b);
+        let c2 = process_cpu_time();
+        gpu_pairs.push([a, b]);
+        if let (Some(c0), Some(c1), Some(c2)) = (c0, c1, c2) {
+            cpu_pairs.push([c1.saturating_sub(c0), c2.saturating_sub(c1)]);
+        }
     }
-    ratios.sort_by(f64::total_cmp);
-    let median = |mut t: Vec<Duration>| {
-        t.sort();
-        t[t.len() / 2]
-    };
-    let [a, b] = times;
-    Ok(([median(a), median(b)], ratios[ratios.len() / 2]))
+    Ok(Paired {
+        gpu: PairedTimes::of(&gpu_pairs),
+        cpu: (cpu_pairs.len() == gpu_pairs.len()).then(|| PairedTimes::of(&cpu_pairs)),
+    })
+}
+
+/// The CPU time all threads of this process have used so far (lavapipe
+/// renders on threads of ours), the sum of the first field of
+/// `/proc/self/task/*/schedstat` (nanoseconds on the CPU); `None` where
+/// the system has no such files.
+pub fn process_cpu_time() -> Option<Duration> {
+    let mut total = 0u64;
+    for task in std::fs::read_dir("/proc/self/task").ok()? {
+        let path = task.ok()?.path().join("schedstat");
+        // A thread that ended since the listing no longer counts.
+        let Ok(text) = std::fs::read_to_string(path) else {
+            continue;
+        };
+        total += text.split_whitespace().next()?.parse::<u64>().ok()?;
+    }
+    Some(Duration::from_nanos(total))
 }
 
 /// How many times the largest sample count measured the converged reference

@@ -67,6 +67,20 @@ impl Features {
         }
     }
 
+    /// The ray-tree stack a scene needs: `max_depth + 1` entries, but one
+    /// when no material reflects or transmits, since then no ray has a
+    /// child and the camera ray is the only entry. On lavapipe a stack
+    /// larger than it needs costs time even when it is never filled
+    /// (docs/performance.md, "Implicit surfaces": an opaque torus scene
+    /// 1.3x faster with one entry than with nine).
+    pub fn stack_size(&self, max_depth: u32) -> u32 {
+        if self.mirrors || self.transparency {
+            max_depth + 1
+        } else {
+            1
+        }
+    }
+
     /// Whether shapes of `kind` are present.
     pub fn has(&self, kind: ShapeKind) -> bool {
         self.shape_kinds & (1 << kind.number()) != 0
@@ -81,9 +95,10 @@ pub struct ShaderOptions {
     /// textbook versions (false), to show what the robust ones fix.
     pub robust: bool,
     pub features: Features,
-    /// Entries of the ray-tree stack: the scene's `max_depth + 1` (not a
+    /// Entries of the ray-tree stack: the scene's `max_depth + 1`, or 1 when
+    /// it has no mirror and no glass (see [`Features::stack_size`]). Not a
     /// pipeline constant: WGSL sizes arrays only with `const`s, so it is
-    /// written into the source, see `ShaderSource::with_stack_size`).
+    /// written into the source, see `ShaderSource::with_stack_size`.
     pub stack_size: u32,
     /// The ray-triangle test of meshes (`TRIANGLE_TEST`).
     pub triangles: TriangleTest,
@@ -121,10 +136,11 @@ impl ShaderOptions {
 
     /// The robust pipeline specialised for `scene`.
     pub fn for_scene(scene: &Scene) -> Self {
+        let features = Features::of(scene);
         ShaderOptions {
             robust: true,
-            features: Features::of(scene),
-            stack_size: scene.render.max_depth + 1,
+            features,
+            stack_size: features.stack_size(scene.render.max_depth),
             triangles: TriangleTest::default(),
             torus: TorusMethod::default(),
             functions: super::shapes::implicit::functions(scene),
@@ -195,6 +211,19 @@ mod tests {
         .unwrap();
         let f = Features::of(&scene);
         assert!(f.has(ShapeKind::Sphere) && !f.transparency && !f.mirrors && !f.lights);
+    }
+
+    #[test]
+    fn only_scenes_with_child_rays_get_a_deep_stack() {
+        let glass = bundled_scene("torus");
+        assert_eq!(ShaderOptions::for_scene(&glass).stack_size, 9);
+        let mut opaque = glass.clone();
+        for m in opaque.materials.values_mut() {
+            m.transparency = 0.0;
+            m.mirror = 0.0;
+        }
+        assert_eq!(opaque.render.max_depth, 8);
+        assert_eq!(ShaderOptions::for_scene(&opaque).stack_size, 1);
     }
 
     #[test]

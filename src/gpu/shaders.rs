@@ -208,13 +208,17 @@ fn shape_glue(kinds: &[KindInfo], bound_kinds: u32) -> String {
         .iter()
         .map(|k| {
             format!(
-                "        case {}: {{ if {} {{ return hit_{}(ray, {}[index], index, best); }} }}\n",
+                "        case {}: {{ if {} {{ return {}; }} }}\n",
                 kind_const(k),
                 has_flag(k.kind),
-                k.name(),
-                k.kind.key()
+                visit(k, &format!("{}[index]", k.kind.key()), "index")
             )
         })
+        .collect();
+    let queries: String = kinds
+        .iter()
+        .filter(|k| k.occludes)
+        .map(occlusion_query)
         .collect();
     let materials: String = kinds
         .iter()
@@ -247,9 +251,10 @@ fn shape_glue(kinds: &[KindInfo], bound_kinds: u32) -> String {
         opaque.join(" || ")
     };
     format!(
-        "{declarations}\n\
-         /// The hit of one bounded shape, by kind number and index (BVH leaves).\n\
-         fn hit_bounded(kind: u32, index: u32, ray: Ray, best: Hit) -> Hit {{\n\
+        "{declarations}\n{queries}\
+         /// The hit of one bounded shape, by kind number and index (BVH leaves);\n\
+         /// with `any`, any hit will do.\n\
+         fn hit_bounded(kind: u32, index: u32, ray: Ray, best: Hit, any: bool) -> Hit {{\n\
          \x20   switch kind {{\n{cases}\
          \x20       default: {{}}\n\
          \x20   }}\n\
@@ -300,7 +305,7 @@ fn kind_loops(kinds: &[&KindInfo]) -> String {
             format!(
                 "    if {flag} {{\n\
                  \x20       for (var i = 0u; i < shape_counts[{kind}]; i++) {{\n\
-                 \x20           best = hit_{name}(ray, {array}[i], i, best);\n\
+                 \x20           best = {visit};\n\
                  \x20           if any && best.kind != KIND_NONE {{\n\
                  \x20               return best;\n\
                  \x20           }}\n\
@@ -308,11 +313,46 @@ fn kind_loops(kinds: &[&KindInfo]) -> String {
                  \x20   }}\n",
                 flag = has_flag(k.kind),
                 kind = kind_const(k),
-                name = k.name(),
-                array = k.kind.key(),
+                visit = visit(k, &format!("{}[i]", k.kind.key()), "i"),
             )
         })
         .collect()
+}
+
+/// The call that tests `shape` (number `index`) of kind `k` against `ray`
+/// and `best`: `hit_<kind>`, or for a kind with `occludes_<kind>` its
+/// [`occlusion_query`], which needs `any`.
+fn visit(k: &KindInfo, shape: &str, index: &str) -> String {
+    if k.occludes {
+        format!("query_{}(ray, {shape}, {index}, best, any)", k.name())
+    } else {
+        format!("hit_{}(ray, {shape}, {index}, best)", k.name())
+    }
+}
+
+/// `query_<kind>`: the nearest hit by `hit_<kind>`, or for shadow rays
+/// (`any`) only whether `occludes_<kind>` finds one, reported as a hit of
+/// the shape at `best.t` (an any-hit query reads no more than the kind).
+/// `any` is a constant wherever the query is inlined, so each use keeps one
+/// of the two branches.
+fn occlusion_query(k: &KindInfo) -> String {
+    format!(
+        "/// The {name} for nearest-hit (hit_{name}) or any-hit (occludes_{name}) queries.\n\
+         fn query_{name}(ray: Ray, s: {ty}, index: u32, best: Hit, any: bool) -> Hit {{\n\
+         \x20   if !any {{\n\
+         \x20       return hit_{name}(ray, s, index, best);\n\
+         \x20   }}\n\
+         \x20   var blocked = best;\n\
+         \x20   if occludes_{name}(ray, s, best.t) {{\n\
+         \x20       blocked.kind = {kind};\n\
+         \x20       blocked.index = index;\n\
+         \x20   }}\n\
+         \x20   return blocked;\n\
+         }}\n\n",
+        name = k.name(),
+        ty = k.wgsl_struct,
+        kind = kind_const(k),
+    )
 }
 
 impl ShaderSource {

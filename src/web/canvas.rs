@@ -25,6 +25,7 @@ use super::editor::Doc;
 use super::workbench::{Outcome, WorkEvent, Workbench};
 use super::{drop, link, page};
 use crate::app::document::Document;
+use crate::app::panel;
 use crate::app::pipelines::Built;
 use crate::app::shell;
 use crate::app::ui::{Command, Host, MenuItem};
@@ -331,8 +332,9 @@ impl Page {
 
     /// A file dropped on the canvas (docs/web.md, "Dropping files"): a scene
     /// or a shader opens in its editor as if typed there, so the canvas shows
-    /// it. A file that cannot be used is reported with its name (and line),
-    /// and the picture kept.
+    /// it; a model is added in front of the camera, as on the native window.
+    /// A file that cannot be used is reported with its name (and line), and
+    /// the picture kept.
     fn dropped(&mut self, file: Result<DroppedFile, String>) {
         let dropped = file.and_then(|file| {
             page::event(&format!("dropped {}", file.name));
@@ -348,6 +350,16 @@ impl Page {
                     Err(e) => page::show_error(&e.to_string()),
                 }
             }
+            Ok((Dropped::Mesh(mesh), name)) => {
+                // In front of the camera, as natively (not selected: the
+                // picture stays the scene's alone).
+                let before = self.viewer.doc.scene.clone();
+                self.viewer.doc.scene.add_mesh_in_view(*mesh);
+                self.viewer.scene_changed(Some(&before));
+                self.viewer.request_redraw();
+                self.address_due = Some(Instant::now());
+                page::event(&format!("mesh-added {name}"));
+            }
             Ok((Dropped::Shader(text), _)) => {
                 let outcome = self.work.open(Doc::Shader, &text);
                 self.follow(outcome);
@@ -357,17 +369,18 @@ impl Page {
     }
 
     fn execute(&mut self, command: Command) {
-        use crate::app::panel::PanelAction;
         match command {
-            Command::Panel(PanelAction::OpenBundled(name)) => match Document::bundled(name) {
-                Ok(doc) => {
-                    self.viewer.replace(doc);
-                    page::event(&format!("scene {name}"));
-                    self.address_due = Some(Instant::now());
+            Command::Panel(panel::PanelAction::OpenBundled(name)) => {
+                match Document::bundled(name) {
+                    Ok(doc) => {
+                        self.viewer.replace(doc);
+                        page::event(&format!("scene {name}"));
+                        self.address_due = Some(Instant::now());
+                    }
+                    Err(e) => self.viewer.editor.message = Some(e.to_string()),
                 }
-                Err(e) => self.viewer.editor.message = Some(e.to_string()),
-            },
-            Command::Panel(PanelAction::ResetCamera) => self.viewer.reset_camera(),
+            }
+            Command::Panel(panel::PanelAction::ResetCamera) => self.viewer.reset_camera(),
             Command::ShaderParamsChanged => self.viewer.build_pipelines(),
             Command::CopyLink => self.copy_link(),
             Command::ToggleFullscreen => {

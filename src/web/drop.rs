@@ -10,6 +10,8 @@ use wasm_bindgen::JsCast;
 use wasm_bindgen::prelude::*;
 use wasm_bindgen_futures::JsFuture;
 
+use crate::scene::Mesh;
+
 /// A dropped file, read.
 pub struct DroppedFile {
     pub name: String,
@@ -20,12 +22,15 @@ pub struct DroppedFile {
 pub enum Dropped {
     /// A scene's TOML text: it replaces the scene.
     Scene(String),
+    /// An OBJ or PLY model, added to the scene in front of the camera.
+    Mesh(Box<Mesh>),
     /// A sandbox shader (WGSL, or GLSL in GLSL Sandbox or Shadertoy style).
     Shader(String),
 }
 
 impl Dropped {
-    /// The file as what it is for; an error names the file.
+    /// The file as what it is for; an error names the file (and the line,
+    /// for a model that cannot be read).
     pub fn of(file: &DroppedFile) -> Result<Dropped, String> {
         let name = &file.name;
         let text =
@@ -33,9 +38,13 @@ impl Dropped {
         let extension = name.rsplit_once('.').map(|(_, e)| e.to_ascii_lowercase());
         match extension.as_deref() {
             Some("toml") => text().map(Dropped::Scene),
+            Some("obj" | "ply") => {
+                Mesh::inline_from_bytes(name, &file.bytes).map(|mesh| Dropped::Mesh(Box::new(mesh)))
+            }
             Some("wgsl" | "glsl" | "frag") => text().map(Dropped::Shader),
             _ => Err(format!(
-                "{name}: the page opens scenes (.toml) and shaders (.wgsl, .glsl, .frag)"
+                "{name}: the page opens scenes (.toml), models (.obj, .ply) and shaders \
+                 (.wgsl, .glsl, .frag)"
             )),
         }
     }

@@ -6,9 +6,7 @@
 use glam::DVec3;
 
 use super::shapes::{self, Placement};
-use crate::scene::{
-    self, Camera, Checker, CubeSize, Light, Material, Mesh, Scene, Shape, ShapeId, ShapeKind,
-};
+use crate::scene::{Camera, Checker, Light, Material, Mesh, Scene, ShapeId, ShapeKind};
 
 /// Smallest value the panel writes into a field that must be > 0 (radius,
 /// exposure, ior...): the rendering model only asks for > 0, and a drag must not stop at 0.
@@ -18,12 +16,7 @@ pub(super) const MIN_POSITIVE: f64 = 1e-6;
 /// drag speeds and the sizes of new shapes scale with it, so the panel feels
 /// the same for a scene in millimetres and one in kilometres.
 pub(super) fn scene_scale(scene: &Scene) -> f64 {
-    let distance = (scene.camera.from - scene.camera.to).length();
-    if distance.is_finite() {
-        distance.clamp(1e-3, 1e6)
-    } else {
-        1.0
-    }
+    scene.view_scale()
 }
 
 /// Unit vectors to the right of the view and up (the camera's `up`), the
@@ -187,23 +180,10 @@ pub(super) fn add_shape(scene: &mut Scene, kind: ShapeKind) -> ShapeId {
     shapes::add(scene, kind, &at)
 }
 
-/// How large a mesh from a file appears, relative to the scene scale: files
-/// come in any unit (the bunny is 0.15 across, the teapot 6), so it is
-/// scaled to be seen whole beside the target.
-const NEW_MESH_SIZE: f64 = 0.4;
-
-/// Appends a mesh just read from a file in front of the camera: the centre
-/// of its box on the target, scaled uniformly so that its longest side is
-/// [`NEW_MESH_SIZE`] of the scene scale. Returns its id.
-pub(super) fn add_mesh(scene: &mut Scene, mut mesh: Mesh) -> ShapeId {
-    let at = placement(scene);
-    mesh.placement = scene::Placement::default();
-    let [lo, hi] = mesh.bounds();
-    let size = NEW_MESH_SIZE * at.scale / (hi - lo).max_element().max(f64::MIN_POSITIVE);
-    mesh.placement.scale = CubeSize::Uniform(size);
-    mesh.placement.translate = at.target - 0.5 * (lo + hi) * size;
-    scene.meshes.push(mesh);
-    ShapeId::Mesh(scene.meshes.len() - 1)
+/// Appends a mesh just read from a file in front of the camera
+/// ([`Scene::add_mesh_in_view`]). Returns its id.
+pub(super) fn add_mesh(scene: &mut Scene, mesh: Mesh) -> ShapeId {
+    ShapeId::Mesh(scene.add_mesh_in_view(mesh))
 }
 
 /// Copies the selected shape to the end of its list, moved to the right of
@@ -242,6 +222,7 @@ fn selection_after_removal(selected: ShapeId, removed: ShapeId) -> Option<ShapeI
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::scene::Shape;
 
     fn scene() -> Scene {
         let text = r#"
@@ -501,7 +482,7 @@ mod tests {
         let centre = 0.5 * (lo + hi);
         assert!((centre - s.camera.to).length() < 1e-9, "{centre}");
         let longest = (hi - lo).max_element();
-        assert!((longest - NEW_MESH_SIZE * scene_scale(&s)).abs() < 1e-9);
+        assert!((longest - crate::scene::NEW_MESH_SIZE * scene_scale(&s)).abs() < 1e-9);
         assert!(Scene::from_toml_str(&s.to_toml_string(), None).is_ok());
     }
 

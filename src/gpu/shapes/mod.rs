@@ -94,6 +94,13 @@ pub trait PackShape: Pod + Zeroable {
     /// its shapes share (a mesh's triangles and BVH), if it has one.
     const DATA: Option<&'static str> = None;
 
+    /// Whether the kind's WGSL also has `occludes_<kind>(ray, shape, t_max)
+    /// -> bool`, which shadow rays call instead of `hit_<kind>`: they need
+    /// only whether something blocks them, not the nearest hit, and a shape
+    /// whose hit is costly to refine (the torus) answers that for less
+    /// (docs/implementation.md, "Torus").
+    const OCCLUDES: bool = false;
+
     /// Packs every shape of the kind and the second buffer's contents
     /// (empty without [`PackShape::DATA`]); by default each shape alone.
     fn pack_kind(scene: &Scene, frame: &Frame) -> (Vec<Self>, Words) {
@@ -141,6 +148,8 @@ pub struct KindInfo {
     pub wgsl: &'static str,
     /// The name of its second buffer ([`PackShape::DATA`]).
     pub data: Option<&'static str>,
+    /// Whether shadow rays call its `occludes_<kind>` ([`PackShape::OCCLUDES`]).
+    pub occludes: bool,
 }
 
 impl KindInfo {
@@ -171,6 +180,7 @@ pub fn kinds() -> Vec<KindInfo> {
                 wgsl_struct: $wgsl,
                 wgsl: <$t as PackShape>::WGSL,
                 data: <$t as PackShape>::DATA,
+                occludes: <$t as PackShape>::OCCLUDES,
             });
         };
     }

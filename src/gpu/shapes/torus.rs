@@ -21,6 +21,7 @@ pub struct Torus {
 impl PackShape for Torus {
     type Source = scene::Torus;
     const WGSL: &'static str = include_str!("../../../shaders/shapes/torus.wgsl");
+    const OCCLUDES: bool = true;
 
     fn pack(scene: &Scene, frame: &Frame, t: &scene::Torus) -> Self {
         let (center, scale, rotation) = placed::pack(frame, &t.placement);
