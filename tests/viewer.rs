@@ -106,6 +106,30 @@ fn dragging_in_the_view_orbits_but_dragging_on_the_panel_does_not() {
     assert!(viewer.is_running());
 }
 
+/// Dragging a slider of the panel (the camera's fov, in the Camera section
+/// open at the start) traces at a moving scale below 1, and the image
+/// refines once the slider is let go (docs/performance.md, "Julia sets:
+/// dragging c").
+#[test]
+fn dragging_a_slider_traces_at_the_moving_scale_then_refines() {
+    let _serial = serial();
+    let Some(display) = Display::start() else {
+        return;
+    };
+    let path = scene_path("mirror_cube");
+    let mut viewer = open(&display, &[path.to_str().unwrap()]);
+    viewer.drag("1", (100, 145), (150, 145));
+    let moving = viewer.wait_for("moving-frame");
+    let scale: f32 = moving
+        .split_whitespace()
+        .find_map(|field| field.strip_prefix("scale="))
+        .and_then(|s| s.parse().ok())
+        .unwrap_or_else(|| panic!("no scale in {moving:?}"));
+    assert!((0.125..1.0).contains(&scale), "{moving}");
+    viewer.wait_for("ready");
+    assert!(viewer.is_running());
+}
+
 #[test]
 fn clicking_an_object_selects_it_in_the_panel() {
     let _serial = serial();

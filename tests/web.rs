@@ -121,14 +121,8 @@ fn a_damaged_link_is_reported_and_the_whitted_scene_shown() {
     };
     let hash = link::scene_hash(&whitted().0);
     let cut = &hash[..hash.len() / 2];
-    let url = browser::serve(browser::page_dir());
-    let mut page = Browser::open(&display, &format!("{url}?samples=1&ui=0#{cut}"));
-    let error = error_shown(&mut page);
+    let error = whitted_instead_of(&display, "damaged-link", cut);
     assert!(error.contains("the link is damaged"), "{error}");
-    assert_eq!(page.wait_for("scene"), "whitted");
-    page.wait_for("ready");
-    assert_like_reference("damaged-link", &page.capture_picture(), &whitted().1);
-    assert_eq!(page.exceptions(), Vec::<String>::new());
 }
 
 /// A link that decodes to a scene with a mistake (here a colour with two
@@ -138,23 +132,36 @@ fn a_link_to_a_bad_scene_names_the_line_and_the_whitted_scene_is_shown() {
     let Some(display) = common::xwindow::Display::start() else {
         return;
     };
-    let text = whitted().0;
+    let (bad, line) = with_bad_ambient(&whitted().0);
+    let error = whitted_instead_of(&display, "bad-scene-link", &link::scene_hash(&bad));
+    assert!(error.contains(&format!("<scene>:{line}:")), "{error}");
+    assert!(error.contains("ambient"), "{error}");
+}
+
+/// Opens the page with the broken link `fragment`: returns the error it
+/// shows, once it drew the Whitted scene instead (as the reference does)
+/// without throwing.
+fn whitted_instead_of(display: &common::xwindow::Display, name: &str, fragment: &str) -> String {
+    let url = browser::serve(browser::page_dir());
+    let mut page = Browser::open(display, &format!("{url}?samples=1&ui=0#{fragment}"));
+    let error = error_shown(&mut page);
+    assert_eq!(page.wait_for("scene"), "whitted");
+    page.wait_for("ready");
+    assert_like_reference(name, &page.capture_picture(), &whitted().1);
+    assert_eq!(page.exceptions(), Vec::<String>::new());
+    error
+}
+
+/// `text` with its `ambient` colour given two components, a mistake that
+/// validation names, and the mistake's line.
+fn with_bad_ambient(text: &str) -> (String, usize) {
     let bad = text.replace("ambient = [0.12, 0.12, 0.12]", "ambient = [0.12, 0.12]");
     assert_ne!(bad, text, "the mistake was made");
     let line = 1 + bad
         .lines()
         .position(|l| l.starts_with("ambient ="))
         .unwrap();
-    let url = browser::serve(browser::page_dir());
-    let address = format!("{url}?samples=1&ui=0#{}", link::scene_hash(&bad));
-    let mut page = Browser::open(&display, &address);
-    let error = error_shown(&mut page);
-    assert!(error.contains(&format!("<scene>:{line}:")), "{error}");
-    assert!(error.contains("ambient"), "{error}");
-    assert_eq!(page.wait_for("scene"), "whitted");
-    page.wait_for("ready");
-    assert_like_reference("bad-scene-link", &page.capture_picture(), &whitted().1);
-    assert_eq!(page.exceptions(), Vec::<String>::new());
+    (bad, line)
 }
 
 /// In a browser without WebGPU (Chromium on Linux without its WebGPU
@@ -484,6 +491,22 @@ fn assert_shows(page: &Browser, name: &str, scene: &Scene) {
     assert_like_reference(name, &picture, scene);
 }
 
+/// Drops a file `name` holding `text` on the middle of the page, and waits
+/// until the page has read it.
+fn drop_on_page(page: &mut Browser, files: &browser::TempDir, name: &str, text: &str) {
+    let path = common::write_file(&files.0, name, text);
+    page.drop_file(&path, (f64::from(SIZE.0) / 2.0, f64::from(SIZE.1) / 2.0));
+    assert_eq!(page.wait_for("dropped"), name);
+}
+
+/// After a reported error: the page does nothing more, and the screen
+/// still shows `scene`.
+fn nothing_more_and_still_shown(page: &mut Browser, name: &str, scene: &Scene) {
+    let later = page.events_within(std::time::Duration::from_secs(1));
+    assert!(later.is_empty(), "after the error the page said {later:?}");
+    assert_shows(page, name, scene);
+}
+
 /// A scene file dropped on the canvas replaces the picture with its own;
 /// a malformed one is reported with its file name and line, and the
 /// picture stays.
@@ -505,27 +528,17 @@ fn a_dropped_scene_is_drawn_and_a_malformed_one_named_with_its_line() {
     );
     let scene = Scene::from_toml_str(&orange, None).unwrap();
     assert_ne!(scene, whitted().1, "the edit changed the scene");
-    let path = common::write_file(&files.0, "orange-sky.toml", &orange);
-    page.drop_file(&path, (240.0, 135.0));
-    assert_eq!(page.wait_for("dropped"), "orange-sky.toml");
+    drop_on_page(&mut page, &files, "orange-sky.toml", &orange);
     page.wait_for("scene ok");
     page.wait_for("ready");
     assert_shows(&page, "dropped-scene", &scene);
 
-    let bad = orange.replace("ambient = [0.12, 0.12, 0.12]", "ambient = [0.12, 0.12]");
-    let line = 1 + bad
-        .lines()
-        .position(|l| l.starts_with("ambient ="))
-        .unwrap();
-    let path = common::write_file(&files.0, "bad.toml", &bad);
-    page.drop_file(&path, (240.0, 135.0));
-    assert_eq!(page.wait_for("dropped"), "bad.toml");
+    let (bad, line) = with_bad_ambient(&orange);
+    drop_on_page(&mut page, &files, "bad.toml", &bad);
     let error = error_shown(&mut page);
     assert!(error.starts_with(&format!("bad.toml:{line}: ")), "{error}");
     assert!(error.contains("ambient"), "{error}");
-    let later = page.events_within(std::time::Duration::from_secs(1));
-    assert!(later.is_empty(), "after the error the page said {later:?}");
-    assert_shows(&page, "scene-kept", &scene);
+    nothing_more_and_still_shown(&mut page, "scene-kept", &scene);
     assert_eq!(page.exceptions(), Vec::<String>::new());
 }
 
@@ -542,9 +555,7 @@ fn a_dropped_shader_is_drawn() {
     let files = browser::TempDir::new("raysandbox-drop");
     let magenta = "void mainImage(out vec4 fragColor, in vec2 fragCoord) {\n    \
                    fragColor = vec4(1.0, 0.0, 1.0, 1.0);\n}\n";
-    let path = common::write_file(&files.0, "magenta.frag", magenta);
-    page.drop_file(&path, (240.0, 135.0));
-    assert_eq!(page.wait_for("dropped"), "magenta.frag");
+    drop_on_page(&mut page, &files, "magenta.frag", magenta);
     page.wait_for("shader ok");
     let deadline = std::time::Instant::now() + browser::TIMEOUT;
     while !middle_is(&page.capture_screen(), [255, 0, 255]) {
@@ -578,9 +589,7 @@ fn a_dropped_model_is_added_in_view_and_a_malformed_one_named_with_its_line() {
     page.wait_for("ready");
     let files = browser::TempDir::new("raysandbox-drop");
 
-    let path = common::write_file(&files.0, "cube.obj", CUBE_OBJ);
-    page.drop_file(&path, (240.0, 135.0));
-    assert_eq!(page.wait_for("dropped"), "cube.obj");
+    drop_on_page(&mut page, &files, "cube.obj", CUBE_OBJ);
     assert_eq!(page.wait_for("mesh-added"), "cube.obj");
     page.wait_for("ready");
     let text = page.evaluate("document.getElementById('scene-text').value");
@@ -590,13 +599,86 @@ fn a_dropped_model_is_added_in_view_and_a_malformed_one_named_with_its_line() {
     assert_shows(&page, "dropped-model", &scene);
 
     let bad = "v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 9\n";
-    let path = common::write_file(&files.0, "bad.obj", bad);
-    page.drop_file(&path, (240.0, 135.0));
-    assert_eq!(page.wait_for("dropped"), "bad.obj");
+    drop_on_page(&mut page, &files, "bad.obj", bad);
     let error = error_shown(&mut page);
     assert!(error.starts_with("bad.obj:4: "), "{error}");
-    let later = page.events_within(std::time::Duration::from_secs(1));
-    assert!(later.is_empty(), "after the error the page said {later:?}");
-    assert_shows(&page, "model-kept", &scene);
+    nothing_more_and_still_shown(&mut page, "model-kept", &scene);
+    assert_eq!(page.exceptions(), Vec::<String>::new());
+}
+
+/// The scene editor follows changes made elsewhere (here a dropped model)
+/// only while it holds no text of the user's own: with a mistake typed and
+/// not yet fixed the text stays as typed; once a good text is applied, the
+/// next change is written into it (docs/web.md, "Edits from the panel").
+#[test]
+fn the_scene_editor_follows_other_changes_but_never_overwrites_the_users_text() {
+    let Some(display) = common::xwindow::Display::start() else {
+        return;
+    };
+    let url = browser::serve(browser::page_dir());
+    let mut page = Browser::open(&display, &format!("{url}?samples=1&ui=0&editor"));
+    page.wait_for("ready");
+    let files = browser::TempDir::new("raysandbox-follow");
+    let model = common::write_file(&files.0, "cube.obj", CUBE_OBJ);
+    let on_canvas = (
+        f64::from(CANVAS_BESIDE_EDITOR) / 2.0,
+        f64::from(SIZE.1) / 2.0,
+    );
+    let scene_text = |page: &mut Browser| {
+        let value = page.evaluate("document.getElementById('scene-text').value");
+        value.as_str().unwrap().to_string()
+    };
+
+    page.evaluate(
+        "(() => { const t = document.getElementById('scene-text'); t.focus(); \
+         t.setSelectionRange(t.value.length, t.value.length); })()",
+    );
+    page.insert_text("\n[camera");
+    page.wait_for("scene-error");
+    let typed = scene_text(&mut page);
+    page.drop_file(&model, on_canvas);
+    assert_eq!(page.wait_for("mesh-added"), "cube.obj");
+    page.wait_for("ready");
+    assert_eq!(scene_text(&mut page), typed, "the user's text stays");
+
+    // A good text replaces the scene (without the model: the text has none);
+    // the next model dropped is written into the text.
+    replace_text(&mut page, "scene", &whitted().0);
+    page.wait_for("scene ok");
+    page.drop_file(&model, on_canvas);
+    assert_eq!(page.wait_for("mesh-added"), "cube.obj");
+    page.wait_for("ready");
+    let followed = Scene::from_toml_str(&scene_text(&mut page), None).unwrap();
+    assert_eq!(followed.meshes.len(), 1, "the text has the dropped model");
+    assert_eq!(page.exceptions(), Vec::<String>::new());
+}
+
+/// Ctrl+E opens the editor panel with the shown document's text focused,
+/// and Tab there indents by four spaces instead of leaving the editor.
+#[test]
+fn ctrl_e_opens_the_editor_and_tab_indents() {
+    let Some(display) = common::xwindow::Display::start() else {
+        return;
+    };
+    let url = browser::serve(browser::page_dir());
+    let mut page = Browser::open(&display, &format!("{url}?samples=1&ui=0"));
+    page.wait_for("ready");
+    let open = "document.body.classList.contains('editing')";
+    assert_eq!(page.evaluate(open), false, "the panel starts closed");
+    page.key("Control+e");
+    assert_eq!(page.evaluate(open), true, "Ctrl+E opened the panel");
+    let focused = page.evaluate("document.activeElement.id");
+    assert_eq!(focused.as_str(), Some("scene-text"));
+    page.evaluate("document.getElementById('scene-text').setSelectionRange(0, 0)");
+    page.key("Tab");
+    let text = page.evaluate("document.getElementById('scene-text').value");
+    assert!(text.as_str().unwrap().starts_with("    # "), "Tab indented");
+    assert_eq!(
+        page.evaluate("document.activeElement.id").as_str(),
+        Some("scene-text"),
+        "the editor kept the focus"
+    );
+    page.key("Control+e");
+    assert_eq!(page.evaluate(open), false, "Ctrl+E closed the panel");
     assert_eq!(page.exceptions(), Vec::<String>::new());
 }

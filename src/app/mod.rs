@@ -741,9 +741,18 @@ impl App {
         let scale = if dragging { self.moving_scale() } else { 1.0 };
         let Some(gfx) = &mut self.gfx else { return };
         gfx.viewport.set_scale(&gfx.gpu, scale);
+        // The outline searches (2 width + 3)^2 id texels per window pixel,
+        // several times the cost of a moving frame's trace on lavapipe
+        // (docs/performance.md, "Julia sets: dragging c"): it is left out
+        // while the view moves and drawn again once it rests.
+        let outlined = if dragging {
+            None
+        } else {
+            self.editor.panel.selection
+        };
         let outline_width = (OUTLINE_WIDTH * gfx.window.scale_factor()).round() as u32;
         gfx.viewport
-            .set_selection(&gfx.gpu, self.editor.panel.selection, outline_width);
+            .set_selection(&gfx.gpu, outlined, outline_width);
         let max_samples = if dragging {
             1
         } else {
