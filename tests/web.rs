@@ -655,6 +655,36 @@ fn the_scene_editor_follows_other_changes_but_never_overwrites_the_users_text() 
     assert_eq!(page.exceptions(), Vec::<String>::new());
 }
 
+/// Ctrl+E opens the editor panel with the shown document's text focused,
+/// and Tab there indents by four spaces instead of leaving the editor.
+#[test]
+fn ctrl_e_opens_the_editor_and_tab_indents() {
+    let Some(display) = common::xwindow::Display::start() else {
+        return;
+    };
+    let url = browser::serve(browser::page_dir());
+    let mut page = Browser::open(&display, &format!("{url}?samples=1&ui=0"));
+    page.wait_for("ready");
+    let open = "document.body.classList.contains('editing')";
+    assert_eq!(page.evaluate(open), false, "the panel starts closed");
+    page.key("Control+e");
+    assert_eq!(page.evaluate(open), true, "Ctrl+E opened the panel");
+    let focused = page.evaluate("document.activeElement.id");
+    assert_eq!(focused.as_str(), Some("scene-text"));
+    page.evaluate("document.getElementById('scene-text').setSelectionRange(0, 0)");
+    page.key("Tab");
+    let text = page.evaluate("document.getElementById('scene-text').value");
+    assert!(text.as_str().unwrap().starts_with("    # "), "Tab indented");
+    assert_eq!(
+        page.evaluate("document.activeElement.id").as_str(),
+        Some("scene-text"),
+        "the editor kept the focus"
+    );
+    page.key("Control+e");
+    assert_eq!(page.evaluate(open), false, "Ctrl+E closed the panel");
+    assert_eq!(page.exceptions(), Vec::<String>::new());
+}
+
 /// The scene the page put in its address (`address FRAGMENT` event) after
 /// the last change.
 fn scene_in_address(page: &mut Browser) -> Scene {
