@@ -121,6 +121,9 @@ pub enum PanelAction {
     Open(PathBuf),
     /// Switch to the bundled example scene of this name.
     OpenBundled(&'static str),
+    /// Open the example shader of this file name (`assets/shaders/`) in the
+    /// page's shader editor (the web page's menu only).
+    OpenExampleShader(&'static str),
     /// Put the camera back where the scene file has it.
     ResetCamera,
     /// Save the current image.

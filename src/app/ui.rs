@@ -115,6 +115,18 @@ impl MenuItem {
             })
             .collect()
     }
+
+    /// The example shaders of the sandbox, under "Shaders".
+    pub fn example_shaders() -> Vec<MenuItem> {
+        crate::sandbox::bundled::SHADERS
+            .iter()
+            .map(|(name, _)| MenuItem {
+                group: "Shaders",
+                label: name,
+                action: PanelAction::OpenExampleShader(name),
+            })
+            .collect()
+    }
 }
 
 /// Mouse input over the image (not over the panel or a window), in physical

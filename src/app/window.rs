@@ -530,6 +530,8 @@ impl App {
                     self.restart_watch();
                 }
             }
+            // Not in the window's panel: `raysandbox shader FILE` runs shaders.
+            PanelAction::OpenExampleShader(_) => {}
             PanelAction::ResetCamera => self.viewer.reset_camera(),
             PanelAction::Screenshot => self.screenshot(),
             PanelAction::PickMeshFile => self.pick_mesh_file(),

@@ -119,7 +119,7 @@ pub fn start() {
         work,
         input_seen: false,
         window: None,
-        menu: MenuItem::bundled_scenes(),
+        menu: [MenuItem::bundled_scenes(), MenuItem::example_shaders()].concat(),
         address_due: None,
     });
 }
@@ -378,6 +378,13 @@ impl Page {
                         self.address_due = Some(Instant::now());
                     }
                     Err(e) => self.viewer.editor.message = Some(e.to_string()),
+                }
+            }
+            Command::Panel(panel::PanelAction::OpenExampleShader(name)) => {
+                if let Some(text) = crate::sandbox::bundled::text(name) {
+                    page::event(&format!("example {name}"));
+                    let outcome = self.work.open(Doc::Shader, text);
+                    self.follow(outcome);
                 }
             }
             Command::Panel(panel::PanelAction::ResetCamera) => self.viewer.reset_camera(),
