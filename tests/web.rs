@@ -764,6 +764,34 @@ fn assert_beside_panel_like_reference(name: &str, page: &RgbaImage, scene: &Scen
     }
 }
 
+/// The panel's "Scenes" menu (at the top left of the panel) shows the
+/// bundled scene chosen there, as the reference draws it.
+#[test]
+fn choosing_a_bundled_scene_in_the_menu_shows_it() {
+    let Some(display) = common::xwindow::Display::start() else {
+        return;
+    };
+    let url = browser::serve(browser::page_dir());
+    let mut page = Browser::open(&display, &format!("{url}?samples=1"));
+    page.wait_for("ready");
+    let before = page.capture_picture();
+    page.click((29.0, 12.0));
+    // The menu opens on the next frame.
+    std::thread::sleep(Duration::from_secs(1));
+    // The menu lists the bundled scenes in order, one row each.
+    assert_eq!(bundled::names()[1], "cornell");
+    page.click((37.0, 62.0));
+    assert_eq!(page.wait_for("scene"), "cornell");
+    let scene = Scene::from_toml_str(bundled::text("cornell").unwrap(), None).unwrap();
+    assert_eq!(
+        scene_in_address(&mut page),
+        scene,
+        "the address has the scene"
+    );
+    let after = capture_change(&mut page, &before);
+    assert_beside_panel_like_reference("menu-cornell", &after, &scene);
+}
+
 /// Dragging the panel's field-of-view slider changes the scene's `fov` and
 /// nothing else, and the picture beside the panel is the reference's for
 /// the changed scene.
