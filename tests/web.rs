@@ -733,3 +733,90 @@ fn orbiting_with_the_mouse_changes_the_picture_and_the_address() {
     assert_eq!(unmoved, whitted, "only the camera changed");
     assert_like_reference("orbit", &capture_change(&mut page, &before), &scene);
 }
+
+/// The part of the page's picture that the panel (330 logical pixels wide,
+/// on the left), the Edit button (top right) and the status line (at the
+/// bottom) leave visible.
+const BESIDE_PANEL: (u32, u32, u32, u32) = (340, 40, SIZE.0 - 340, SIZE.1 - 70);
+
+/// As [`assert_like_reference`] for the picture beside the panel.
+fn assert_beside_panel_like_reference(name: &str, page: &RgbaImage, scene: &Scene) {
+    let expected = reference::render_rgba8(scene, SIZE.0, SIZE.1, 1);
+    let crop = |image: &RgbaImage| common::xwindow::crop(image, BESIDE_PANEL);
+    let (page, expected) = (crop(page), crop(&expected));
+    let d = diff_images(&page, &expected);
+    eprintln!(
+        "{name}: beside the panel vs reference: mean |d| {:.4}, {:.3}% > 8, max {}",
+        d.mean_abs,
+        d.frac_over_8 * 100.0,
+        d.max_abs
+    );
+    if d.mean_abs > 0.5 || d.frac_over_8 > 0.005 {
+        let out = std::env::temp_dir();
+        page.save(out.join(format!("web-{name}-page.png"))).unwrap();
+        expected
+            .save(out.join(format!("web-{name}-reference.png")))
+            .unwrap();
+        panic!(
+            "{name}: the picture beside the panel differs from the reference (both saved in {})",
+            out.display()
+        );
+    }
+}
+
+/// The panel's "Scenes" menu (at the top left of the panel) shows the
+/// bundled scene chosen there, as the reference draws it.
+#[test]
+fn choosing_a_bundled_scene_in_the_menu_shows_it() {
+    let Some(display) = common::xwindow::Display::start() else {
+        return;
+    };
+    let url = browser::serve(browser::page_dir());
+    let mut page = Browser::open(&display, &format!("{url}?samples=1"));
+    page.wait_for("ready");
+    let before = page.capture_picture();
+    page.click((29.0, 12.0));
+    // The menu opens on the next frame.
+    std::thread::sleep(Duration::from_secs(1));
+    // The menu lists the bundled scenes in order, one row each.
+    assert_eq!(bundled::names()[1], "cornell");
+    page.click((37.0, 62.0));
+    assert_eq!(page.wait_for("scene"), "cornell");
+    let scene = Scene::from_toml_str(bundled::text("cornell").unwrap(), None).unwrap();
+    assert_eq!(
+        scene_in_address(&mut page),
+        scene,
+        "the address has the scene"
+    );
+    let after = capture_change(&mut page, &before);
+    assert_beside_panel_like_reference("menu-cornell", &after, &scene);
+}
+
+/// Dragging the panel's field-of-view slider changes the scene's `fov` and
+/// nothing else, and the picture beside the panel is the reference's for
+/// the changed scene.
+#[test]
+fn dragging_a_slider_in_the_panel_changes_the_picture() {
+    let Some(display) = common::xwindow::Display::start() else {
+        return;
+    };
+    let url = browser::serve(browser::page_dir());
+    let mut page = Browser::open(&display, &format!("{url}?samples=1"));
+    page.wait_for("ready");
+    let before = page.capture_picture();
+    // The Camera section is open: its fourth row is the `fov` slider.
+    page.drag(Button::Left, (110.0, 154.0), (150.0, 154.0));
+    let scene = scene_in_address(&mut page);
+    let (_, whitted) = whitted();
+    assert!(
+        scene.camera.fov > whitted.camera.fov,
+        "the slider widened the view: {} -> {}",
+        whitted.camera.fov,
+        scene.camera.fov
+    );
+    let mut unchanged = scene.clone();
+    unchanged.camera.fov = whitted.camera.fov;
+    assert_eq!(unchanged, whitted, "nothing else changed");
+    let after = capture_change(&mut page, &before);
+    assert_beside_panel_like_reference("slider-fov", &after, &scene);
+}
