@@ -46,7 +46,7 @@ const ADDRESS_DELAY: Duration = Duration::from_millis(500);
 /// What arrives asynchronously, handed to the event loop.
 pub enum PageEvent {
     /// The adapter, the device and the first pipelines, or why not.
-    Ready(Result<Graphics, String>),
+    Ready(Result<Box<Graphics>, String>),
     /// Pipelines built off the input path (a new feature set, new shader
     /// parameters).
     PipelinesBuilt(Box<Built>),
@@ -207,7 +207,7 @@ impl ApplicationHandler<PageEvent> for Page {
         let (source, options) = self.viewer.first_build();
         wasm_bindgen_futures::spawn_local(async move {
             let gfx = create_graphics(window, &source, &options).await;
-            let _ = proxy.send_event(PageEvent::Ready(gfx));
+            let _ = proxy.send_event(PageEvent::Ready(gfx.map(Box::new)));
         });
     }
 
@@ -400,11 +400,14 @@ impl Page {
                     window.set_fullscreen(None);
                 }
             }
-            other => {
-                self.viewer.editor.message = Some(format!(
-                    "{other:?}: files and quitting are the native program's; \
-                     here \"Copy link\" shares the scene (docs/web.md)"
-                ));
+            // Save, Open, screenshots, reloads and quitting: files and the
+            // window belong to the native program.
+            _ => {
+                self.viewer.editor.message = Some(
+                    "The page has no files: \"Copy link\" shares the scene, \
+                     dropping a file on the page opens it (docs/web.md)"
+                        .to_string(),
+                );
             }
         }
     }
