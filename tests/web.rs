@@ -74,6 +74,30 @@ fn the_page_renders_the_whitted_scene_like_the_reference() {
     assert_like_reference("whitted", &page.capture_picture(), &whitted().1);
 }
 
+/// Every bundled scene, opened from a link in one browser, is the native
+/// renderer's picture at its first frame: the page's specialised pipelines
+/// (only the scene's shape kinds bound, WebGPU's storage-buffer limit) draw
+/// tori, implicit surfaces and Julia sets as the window does.
+#[test]
+fn every_bundled_scene_from_a_link_is_drawn_like_the_reference() {
+    let Some(display) = common::xwindow::Display::start() else {
+        return;
+    };
+    let url = browser::serve(browser::page_dir());
+    let mut page = Browser::start(&display, browser::Options::default());
+    for (n, name) in bundled::names().into_iter().enumerate() {
+        let text = bundled::text(name).unwrap();
+        let scene = Scene::from_toml_str(text, None).unwrap();
+        // A new query for each scene: a change of fragment alone would not
+        // load the page again.
+        let address = format!("{url}?samples=1&ui=0&n={n}#{}", link::scene_hash(text));
+        page.navigate(&address);
+        assert_eq!(page.wait_for("scene"), "from-link", "{name}");
+        page.wait_for("ready");
+        assert_like_reference(name, &page.capture_picture(), &scene);
+    }
+}
+
 /// A link made from an edited scene (another sky and camera) reproduces
 /// that scene, not the default one, in a fresh browser.
 #[test]

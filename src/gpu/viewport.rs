@@ -2,6 +2,8 @@
 //! resolution scale and the selection outline. Knows nothing of egui: whoever draws on top of the
 //! image gets the frame's encoder and view through a callback.
 
+use std::sync::{Arc, Mutex, PoisonError};
+
 use web_time::{Duration, Instant};
 
 use super::context::{Gpu, GpuWaitError};
@@ -37,7 +39,10 @@ pub struct Viewport {
     /// Fraction of the window resolution that is traced (MIN_SCALE..=1).
     scale: f32,
     /// GPU time of the last frame that traced samples (see [`Self::timing`]).
-    last_frame_time: Option<Duration>,
+    /// Shared with the queue's work-done callback, which writes it without
+    /// timestamps: natively during the blocking wait after submission, in
+    /// the browser (which cannot block) when the GPU reports the work done.
+    last_frame_time: Arc<Mutex<Option<Duration>>>,
     timer: Option<GpuTimer>,
     /// The selected shape's outline, drawn over the image.
     outline: Outline,
@@ -65,7 +70,7 @@ impl Viewport {
             scene,
             accum,
             scale: 1.0,
-            last_frame_time: None,
+            last_frame_time: Arc::default(),
             timer: GpuTimer::new(gpu),
             outline: Outline::new(&gpu.device),
         }
@@ -175,7 +180,10 @@ impl Viewport {
 
     /// GPU time of the last frame that traced samples.
     pub fn last_frame_time(&self) -> Option<Duration> {
-        self.last_frame_time
+        *self
+            .last_frame_time
+            .lock()
+            .unwrap_or_else(PoisonError::into_inner)
     }
 
     /// Draws a frame: `new_samples` more samples per pixel (0 = only show the
@@ -248,14 +256,22 @@ impl Viewport {
         buffers.push(encoder.finish());
         let start = Instant::now();
         gpu.queue.submit(buffers);
+        if new_samples > 0 && timer.is_none() {
+            let slot = Arc::clone(&self.last_frame_time);
+            gpu.queue.on_submitted_work_done(move || {
+                *slot.lock().unwrap_or_else(PoisonError::into_inner) = Some(start.elapsed());
+            });
+        }
         // Waiting here keeps the frame time honest and input latency low;
         // frames are only drawn on demand, so nothing else is waiting for us.
+        // (The browser cannot wait: there this returns at once.)
         let _ = gpu.device.poll(wgpu::PollType::wait_indefinitely());
-        if new_samples > 0 {
-            self.last_frame_time = match timer {
-                Some(timer) => timer.read(gpu),
-                None => Some(start.elapsed()),
-            };
+        if let Some(timer) = timer {
+            let time = timer.read(gpu);
+            *self
+                .last_frame_time
+                .lock()
+                .unwrap_or_else(PoisonError::into_inner) = time;
         }
         gpu.queue.present(frame);
         FrameStatus::Presented
