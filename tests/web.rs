@@ -60,11 +60,9 @@ fn whitted() -> (String, Scene) {
 /// over it).
 #[test]
 fn the_page_renders_the_whitted_scene_like_the_reference() {
-    let Some(display) = common::xwindow::Display::start() else {
+    let Some((_display, mut page)) = browser::open_page("?samples=1&ui=0") else {
         return;
     };
-    let url = browser::serve(browser::page_dir());
-    let mut page = Browser::open(&display, &format!("{url}?samples=1&ui=0"));
     assert_eq!(page.wait_for("scene"), "whitted");
     let adapter = page.wait_for("adapter");
     eprintln!("page adapter: {adapter}");
@@ -293,11 +291,9 @@ fn shown_problem(page: &mut Browser, doc: &str) -> (String, String) {
 /// stays as it was; undoing the typing applies the scene again.
 #[test]
 fn a_syntax_error_typed_in_the_scene_editor_shows_its_line_and_keeps_the_picture() {
-    let Some(display) = common::xwindow::Display::start() else {
+    let Some((_display, mut page)) = browser::open_page("?samples=1&ui=0&editor") else {
         return;
     };
-    let url = browser::serve(browser::page_dir());
-    let mut page = Browser::open(&display, &format!("{url}?samples=1&ui=0&editor"));
     assert_eq!(page.wait_for("scene"), "whitted");
     page.wait_for("ready");
     let before = wait_for_picture(&page, "the scene", |p| distinct_colors(p, 16) >= 16);
@@ -438,11 +434,9 @@ fn a_shader_link_reproduces_the_shader_in_a_fresh_browser() {
 /// draws (the browser's WebGPU takes what naga writes for it).
 #[test]
 fn every_example_shader_in_the_menu_draws_in_the_page() {
-    let Some(display) = common::xwindow::Display::start() else {
+    let Some((_display, mut page)) = browser::open_page("?samples=1&ui=0&editor") else {
         return;
     };
-    let url = browser::serve(browser::page_dir());
-    let mut page = Browser::open(&display, &format!("{url}?samples=1&ui=0&editor"));
     page.wait_for("ready");
     let mut previous = wait_for_picture(&page, "the scene", |p| distinct_colors(p, 16) >= 16);
     for (name, _) in sandbox::bundled::SHADERS {
@@ -572,11 +566,9 @@ fn a_dropped_scene_is_drawn_and_a_malformed_one_named_with_its_line() {
 /// canvas draws it.
 #[test]
 fn a_dropped_shader_is_drawn() {
-    let Some(display) = common::xwindow::Display::start() else {
+    let Some((_display, mut page)) = browser::open_page("?samples=1") else {
         return;
     };
-    let url = browser::serve(browser::page_dir());
-    let mut page = Browser::open(&display, &format!("{url}?samples=1"));
     page.wait_for("ready");
     let files = browser::TempDir::new("raysandbox-drop");
     let magenta = "void mainImage(out vec4 fragColor, in vec2 fragCoord) {\n    \
@@ -606,11 +598,9 @@ const CUBE_OBJ: &str = "v 0 0 0\nv 1 0 0\nv 1 1 0\nv 0 1 0\nv 0 0 1\nv 1 0 1\nv 
 /// and the picture stays.
 #[test]
 fn a_dropped_model_is_added_in_view_and_a_malformed_one_named_with_its_line() {
-    let Some(display) = common::xwindow::Display::start() else {
+    let Some((_display, mut page)) = browser::open_page("?samples=1&ui=0") else {
         return;
     };
-    let url = browser::serve(browser::page_dir());
-    let mut page = Browser::open(&display, &format!("{url}?samples=1&ui=0"));
     assert_eq!(page.wait_for("scene"), "whitted");
     page.wait_for("ready");
     let files = browser::TempDir::new("raysandbox-drop");
@@ -638,11 +628,9 @@ fn a_dropped_model_is_added_in_view_and_a_malformed_one_named_with_its_line() {
 /// next change is written into it (docs/web.md, "Edits from the panel").
 #[test]
 fn the_scene_editor_follows_other_changes_but_never_overwrites_the_users_text() {
-    let Some(display) = common::xwindow::Display::start() else {
+    let Some((_display, mut page)) = browser::open_page("?samples=1&ui=0&editor") else {
         return;
     };
-    let url = browser::serve(browser::page_dir());
-    let mut page = Browser::open(&display, &format!("{url}?samples=1&ui=0&editor"));
     page.wait_for("ready");
     let files = browser::TempDir::new("raysandbox-follow");
     let model = common::write_file(&files.0, "cube.obj", CUBE_OBJ);
@@ -683,11 +671,9 @@ fn the_scene_editor_follows_other_changes_but_never_overwrites_the_users_text() 
 /// and Tab there indents by four spaces instead of leaving the editor.
 #[test]
 fn ctrl_e_opens_the_editor_and_tab_indents() {
-    let Some(display) = common::xwindow::Display::start() else {
+    let Some((_display, mut page)) = browser::open_page("?samples=1&ui=0") else {
         return;
     };
-    let url = browser::serve(browser::page_dir());
-    let mut page = Browser::open(&display, &format!("{url}?samples=1&ui=0"));
     page.wait_for("ready");
     let open = "document.body.classList.contains('editing')";
     assert_eq!(page.evaluate(open), false, "the panel starts closed");
@@ -741,11 +727,9 @@ fn capture_change(page: &mut Browser, before: &RgbaImage) -> RgbaImage {
 /// renderer's for the scene in the address: nothing but the camera moved.
 #[test]
 fn orbiting_with_the_mouse_changes_the_picture_and_the_address() {
-    let Some(display) = common::xwindow::Display::start() else {
+    let Some((_display, mut page)) = browser::open_page("?samples=1&ui=0") else {
         return;
     };
-    let url = browser::serve(browser::page_dir());
-    let mut page = Browser::open(&display, &format!("{url}?samples=1&ui=0"));
     page.wait_for("ready");
     let before = page.capture_picture();
     page.drag(Button::Left, (200.0, 135.0), (300.0, 150.0));
@@ -792,11 +776,9 @@ fn assert_beside_panel_like_reference(name: &str, page: &RgbaImage, scene: &Scen
 /// bundled scene chosen there, as the reference draws it.
 #[test]
 fn choosing_a_bundled_scene_in_the_menu_shows_it() {
-    let Some(display) = common::xwindow::Display::start() else {
+    let Some((_display, mut page)) = browser::open_page("?samples=1") else {
         return;
     };
-    let url = browser::serve(browser::page_dir());
-    let mut page = Browser::open(&display, &format!("{url}?samples=1"));
     page.wait_for("ready");
     let before = page.capture_picture();
     page.click((29.0, 12.0));
@@ -821,11 +803,9 @@ fn choosing_a_bundled_scene_in_the_menu_shows_it() {
 /// the changed scene.
 #[test]
 fn dragging_a_slider_in_the_panel_changes_the_picture() {
-    let Some(display) = common::xwindow::Display::start() else {
+    let Some((_display, mut page)) = browser::open_page("?samples=1") else {
         return;
     };
-    let url = browser::serve(browser::page_dir());
-    let mut page = Browser::open(&display, &format!("{url}?samples=1"));
     page.wait_for("ready");
     let before = page.capture_picture();
     // The Camera section is open: its fourth row is the `fov` slider.

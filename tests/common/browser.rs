@@ -13,9 +13,8 @@
 //! A test typically does:
 //!
 //! ```ignore
-//! let display = common::xwindow::Display::start()?;   // Xvfb
-//! let url = browser::serve(browser::page_dir());     // dist/web over http
-//! let mut page = Browser::open(&display, &format!("{url}?samples=1"));
+//! // Xvfb, dist/web served over http, Chromium showing the page:
+//! let Some((_display, mut page)) = browser::open_page("?samples=1") else { return };
 //! page.wait_for("ready");                            // a `raysandbox: ready ...` line
 //! page.drag(Button::Left, (240.0, 135.0), (300.0, 135.0));
 //! let picture = page.capture_picture();              // the X screen, top-left SIZE
@@ -84,6 +83,18 @@ pub fn page_dir() -> PathBuf {
         dir.display()
     );
     dir
+}
+
+/// An Xvfb server and Chromium showing the built page at `query` (what
+/// follows the page's address: `?samples=1&ui=0#scene=...`); `None` only
+/// when the GPU and window tests are skipped explicitly (see
+/// [`Display::start`]). Keep the display alive as long as the browser: the
+/// tuple's browser is dropped first when both are bound by one `let`.
+pub fn open_page(query: &str) -> Option<(Display, Browser)> {
+    let display = Display::start()?;
+    let url = serve(page_dir());
+    let page = Browser::open(&display, &format!("{url}{query}"));
+    Some((display, page))
 }
 
 /// Serves the files of `dir` on a free port of 127.0.0.1 from a thread;
