@@ -18,7 +18,7 @@ impl Timing {
     pub fn describe(self) -> &'static str {
         match self {
             Timing::GpuTimestamps => "GPU timestamps",
-            Timing::SubmitToDone => "submit to done (wall time)",
+            Timing::SubmitToDone => "submit to done, wall time",
         }
     }
 }
