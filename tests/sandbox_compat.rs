@@ -260,17 +260,6 @@ void main() { mainImage(gl_FragColor, gl_FragCoord.xy); }
     assert_eq!(compiled.style, raysandbox::sandbox::Style::GlslSandbox);
 }
 
-/// The shader files of a suite folder, sorted (its `.md` notes left out).
-fn shader_files(dir: &Path) -> Vec<PathBuf> {
-    let mut files: Vec<PathBuf> = std::fs::read_dir(dir)
-        .unwrap()
-        .map(|e| e.unwrap().path())
-        .filter(|p| p.extension().is_some_and(|e| e != "md"))
-        .collect();
-    files.sort();
-    files
-}
-
 /// What the first line of a suite file expects: `None` for `pass`, else the
 /// start of the error's first line after the file name.
 fn expectation(path: &Path) -> Option<String> {
@@ -294,7 +283,7 @@ fn expectation(path: &Path) -> Option<String> {
 fn the_compatibility_suite_gives_the_expected_result_per_file() {
     let Some(gpu) = common::gpu() else { return };
     let dir = Path::new(env!("CARGO_MANIFEST_DIR")).join("tests/shaders/compat");
-    let files = shader_files(&dir);
+    let files = common::shader_files(&dir);
     assert!(files.len() >= 10, "{files:?}");
     let mut wrong = Vec::new();
     for path in &files {
@@ -358,7 +347,7 @@ fn real_shaders_with_open_licences_render_unchanged() {
     let Some(gpu) = common::gpu() else { return };
     let dir = Path::new(env!("CARGO_MANIFEST_DIR")).join("tests/shaders/real");
     let sources = std::fs::read_to_string(dir.join("SOURCES.md")).unwrap();
-    let files = shader_files(&dir);
+    let files = common::shader_files(&dir);
     assert!(files.len() >= 20, "{files:?}");
     let mut wrong = Vec::new();
     for path in &files {

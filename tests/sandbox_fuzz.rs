@@ -5,6 +5,8 @@
 //! panic or hang, and every error must name the mutant's file and a line
 //! of it.
 
+mod common;
+
 use std::path::{Path, PathBuf};
 use std::sync::mpsc;
 use std::time::Duration;
@@ -76,14 +78,7 @@ fn mutate(text: &str, random: &mut Random) -> String {
 }
 
 fn suite() -> Vec<PathBuf> {
-    let dir = Path::new(env!("CARGO_MANIFEST_DIR")).join("tests/shaders/compat");
-    let mut files: Vec<PathBuf> = std::fs::read_dir(dir)
-        .unwrap()
-        .map(|e| e.unwrap().path())
-        .filter(|p| p.extension().is_some_and(|e| e != "md"))
-        .collect();
-    files.sort();
-    files
+    common::shader_files(&Path::new(env!("CARGO_MANIFEST_DIR")).join("tests/shaders/compat"))
 }
 
 #[test]

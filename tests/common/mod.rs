@@ -74,10 +74,20 @@ pub fn scenes_dir() -> PathBuf {
 
 /// Every `*.toml` directly in `dir`, sorted by name.
 pub fn toml_files(dir: &Path) -> Vec<PathBuf> {
+    files_in(dir, |extension| extension == "toml")
+}
+
+/// The shader files of a suite folder, sorted (its `.md` notes left out).
+pub fn shader_files(dir: &Path) -> Vec<PathBuf> {
+    files_in(dir, |extension| extension != "md")
+}
+
+/// The files of `dir` (not below it) whose extension `keep` accepts, sorted.
+fn files_in(dir: &Path, keep: impl Fn(&std::ffi::OsStr) -> bool) -> Vec<PathBuf> {
     let mut files: Vec<PathBuf> = std::fs::read_dir(dir)
         .unwrap_or_else(|e| panic!("{}: {e}", dir.display()))
         .map(|entry| entry.expect("directory entry").path())
-        .filter(|p| p.extension().is_some_and(|e| e == "toml"))
+        .filter(|p| p.extension().is_some_and(&keep))
         .collect();
     files.sort();
     files
