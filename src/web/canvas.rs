@@ -381,11 +381,8 @@ impl Page {
                 }
             }
             Command::Panel(panel::PanelAction::OpenExampleShader(name)) => {
-                if let Some(text) = crate::sandbox::bundled::text(name) {
-                    page::event(&format!("example {name}"));
-                    let outcome = self.work.open(Doc::Shader, text);
-                    self.follow(outcome);
-                }
+                let outcome = self.work.open_example(name);
+                self.follow(outcome);
             }
             Command::Panel(panel::PanelAction::ResetCamera) => self.viewer.reset_camera(),
             Command::ShaderParamsChanged => self.viewer.build_pipelines(),

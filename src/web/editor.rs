@@ -179,18 +179,24 @@ impl Editor {
         self.number_lines(doc);
     }
 
+    /// Whether the user holds text of their own in `doc`: typed and not yet
+    /// compiled, or not compiling.
+    pub fn holds_own_text(&self, doc: Doc) -> bool {
+        let state = self.0.borrow();
+        let view = &state.docs[doc.index()];
+        view.timer.is_some() || view.error_line.is_some() || view.text.value() != view.applied
+    }
+
     /// Replaces a document's text with one made elsewhere (the scene panel,
     /// the orbit, an example shader) unless the user holds text of their
     /// own there: typed and not yet compiled, or not compiling. Returns
     /// whether the text was replaced (docs/web.md, "Edits from the panel").
     pub fn offer_text(&self, doc: Doc, text: &str) -> bool {
-        let mut state = self.0.borrow_mut();
-        let view = &mut state.docs[doc.index()];
-        let holds_own =
-            view.timer.is_some() || view.error_line.is_some() || view.text.value() != view.applied;
-        if holds_own {
+        if self.holds_own_text(doc) {
             return false;
         }
+        let mut state = self.0.borrow_mut();
+        let view = &mut state.docs[doc.index()];
         view.text.set_value(text);
         view.applied = text.to_string();
         view.lines = 0;

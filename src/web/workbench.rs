@@ -123,13 +123,7 @@ impl Workbench {
                 Outcome::Nothing
             }
             WorkEvent::Editor(EditorEvent::Show(doc)) => self.show(doc),
-            WorkEvent::Editor(EditorEvent::Example(name)) => {
-                let Some(text) = shaders::text(&name) else {
-                    return Outcome::Nothing;
-                };
-                page::event(&format!("example {name}"));
-                self.open(Doc::Shader, text)
-            }
+            WorkEvent::Editor(EditorEvent::Example(name)) => self.open_example(&name),
             WorkEvent::Built(built) => {
                 let Some(shader) = &mut self.shader else {
                     return Outcome::Nothing;
@@ -206,6 +200,16 @@ impl Workbench {
         outcome
     }
 
+    /// Opens the bundled example shader `name` in the shader document (the
+    /// editor's Examples menu and the panel's Shaders menu).
+    pub fn open_example(&mut self, name: &str) -> Outcome {
+        let Some(text) = shaders::text(name) else {
+            return Outcome::Nothing;
+        };
+        page::event(&format!("example {name}"));
+        self.open(Doc::Shader, text)
+    }
+
     /// The page's scene changed elsewhere (the panel, the orbit, the menu):
     /// the scene document follows unless the user holds text of their own
     /// there (docs/web.md, "Edits from the panel").
@@ -214,6 +218,12 @@ impl Workbench {
             return;
         }
         let Some(editor) = &self.editor else { return };
+        // Checked before the scene is written out: while the user's text
+        // stays, this runs every frame (redraw) and would serialise the
+        // scene each time for nothing.
+        if editor.holds_own_text(Doc::Scene) {
+            return;
+        }
         if editor.offer_text(Doc::Scene, &scene.to_toml_string()) {
             self.scene = scene.clone();
         }
