@@ -232,10 +232,17 @@ pub fn error(image: &RgbaImage, reference: &RgbaImage) -> (f64, f64) {
 
 /// Median time of building the BVH of `scene`, over `runs` builds.
 pub fn bvh_build_time(scene: &Scene, runs: usize) -> Duration {
+    median_time(runs, || {
+        std::hint::black_box(Bvh::build(std::hint::black_box(scene)));
+    })
+}
+
+/// Median of `runs` timings of `f`.
+pub fn median_time(runs: usize, mut f: impl FnMut()) -> Duration {
     let mut times: Vec<Duration> = (0..runs.max(1))
         .map(|_| {
             let start = Instant::now();
-            std::hint::black_box(Bvh::build(std::hint::black_box(scene)));
+            f();
             start.elapsed()
         })
         .collect();

@@ -10,11 +10,10 @@
 
 use std::fmt::Write as _;
 use std::path::Path;
-use std::time::{Duration, Instant};
 
 use glam::DVec3;
 
-use super::measure;
+use super::measure::{self, median_time};
 use super::storage::{self, StorageRow};
 use super::{BenchArgs, BenchError, cpu_model, fail, ms, timing_of};
 use crate::bvh::build_mesh_bvh;
@@ -90,19 +89,6 @@ fn staged(path: &Path) -> Result<Scene, String> {
     mesh.placement.scale = CubeSize::Uniform(s);
     mesh.placement.translate = DVec3::new(-centre.x * s, -lo.y * s, -centre.z * s);
     Ok(scene)
-}
-
-/// Median of `runs` timings of `f`.
-fn median_time(runs: usize, mut f: impl FnMut()) -> Duration {
-    let mut times: Vec<Duration> = (0..runs.max(1))
-        .map(|_| {
-            let start = Instant::now();
-            f();
-            start.elapsed()
-        })
-        .collect();
-    times.sort();
-    times[times.len() / 2]
 }
 
 /// Bytes of the scene's shape buffers on the GPU.
