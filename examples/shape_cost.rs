@@ -33,7 +33,13 @@ fn main() -> Result<(), Failure> {
     let gpu = Gpu::headless()?;
     let spheres = spheres_in_place(&scene);
     let mut labels = vec!["spheres".to_string()];
-    let mut renderers = vec![renderer(&gpu, &spheres, TorusMethod::default(), None, size)?];
+    let mut renderers = vec![renderer(
+        &gpu,
+        &spheres,
+        TorusMethod::default(),
+        None,
+        size,
+    )?];
     for variant in variants {
         let (method, dir) = match variant.split_once('@') {
             Some((method, dir)) => (method, Some(Path::new(dir))),
