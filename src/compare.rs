@@ -24,12 +24,26 @@ impl ImageDiff {
 
 /// Compares `a` with `b`. Panics if their sizes differ (a caller bug).
 pub fn diff_images(a: &RgbaImage, b: &RgbaImage) -> ImageDiff {
+    diff_images_where(a, b, |_| true)
+}
+
+/// Compares `a` with `b` over the pixels (in row order) for which `keep` is
+/// true, e.g. those a mesh covers. Panics if their sizes differ.
+pub fn diff_images_where(
+    a: &RgbaImage,
+    b: &RgbaImage,
+    mut keep: impl FnMut(usize) -> bool,
+) -> ImageDiff {
     assert_eq!(a.dimensions(), b.dimensions(), "images of different sizes");
     let mut sum = 0u64;
     let mut sum_sq = 0u64;
     let mut over = 0usize;
     let mut max_abs = 0u8;
-    for (pa, pb) in a.pixels().zip(b.pixels()) {
+    let mut pixels = 0usize;
+    for (_, (pa, pb)) in (a.pixels().zip(b.pixels()))
+        .enumerate()
+        .filter(|(i, _)| keep(*i))
+    {
         let mut pixel_max = 0u8;
         for c in 0..3 {
             let d = pa[c].abs_diff(pb[c]);
@@ -41,8 +55,9 @@ pub fn diff_images(a: &RgbaImage, b: &RgbaImage) -> ImageDiff {
             over += 1;
         }
         max_abs = max_abs.max(pixel_max);
+        pixels += 1;
     }
-    let pixels = (a.width() as usize * a.height() as usize).max(1);
+    let pixels = pixels.max(1);
     let samples = (pixels * 3) as f64;
     ImageDiff {
         mean_abs: sum as f64 / samples,
@@ -92,6 +107,20 @@ mod tests {
         assert_eq!(d.frac_over_8, 0.5);
         assert!((d.rmse - (144.0f64 / 6.0).sqrt() / 255.0).abs() < 1e-12);
         assert!(diff_images(&a, &a).psnr().is_infinite());
+    }
+
+    #[test]
+    fn masked_diff_counts_only_the_kept_pixels() {
+        let a = RgbaImage::from_pixel(3, 1, image::Rgba([10, 20, 30, 255]));
+        let mut b = a.clone();
+        b.put_pixel(1, 0, image::Rgba([10, 20, 42, 255]));
+        let only_changed = diff_images_where(&a, &b, |i| i == 1);
+        assert_eq!(only_changed.max_abs, 12);
+        assert_eq!(only_changed.frac_over_8, 1.0);
+        assert!((only_changed.mean_abs - 4.0).abs() < 1e-12);
+        let without_it = diff_images_where(&a, &b, |i| i != 1);
+        assert_eq!(without_it.max_abs, 0);
+        assert_eq!(without_it.rmse, 0.0);
     }
 
     #[test]

@@ -88,6 +88,9 @@ pub struct Viewer {
     drag_start_distance: Option<f64>,
     /// A frame has been presented (the `first-frame` event is told once).
     presented: bool,
+    /// The `ready` event was told for the picture on screen; a traced sample
+    /// (moving or refining) makes it new again.
+    settled: bool,
     /// When egui asked to be drawn again (animations, tooltips).
     pub repaint_at: Option<Instant>,
 }
@@ -124,6 +127,7 @@ impl Viewer {
             platform,
             drag_start_distance: None,
             presented: false,
+            settled: false,
             repaint_at: None,
         }
     }
@@ -450,7 +454,14 @@ impl Viewer {
                 wall.as_secs_f64() * 1e3
             ));
         }
-        if new_samples > 0 && samples >= max_samples && !dragging {
+        // Ready once the view rests with all its samples. A drag whose
+        // moving frames were already at full scale leaves nothing to refine
+        // with one sample per pixel: the release itself makes it ready.
+        if new_samples > 0 {
+            self.settled = false;
+        }
+        if !self.settled && samples >= max_samples && !dragging {
+            self.settled = true;
             self.event(&format!("ready samples={samples}"));
         }
         if delay < Duration::from_secs(5) {

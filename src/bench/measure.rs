@@ -27,15 +27,11 @@ pub fn frame_time(
         .map_err(|e| e.to_string())?;
     let wait = |e: crate::gpu::GpuWaitError| e.to_string();
     renderer.render(gpu, spp).map_err(wait)?;
-    let mut times: Vec<Duration> = (0..frames.max(1))
+    let times: Vec<Duration> = (0..frames.max(1))
         .map(|_| renderer.render(gpu, spp))
         .collect::<Result<_, _>>()
         .map_err(wait)?;
-    times.sort();
-    Ok((
-        times[times.len() / 2],
-        renderer.read_image(gpu).map_err(wait)?,
-    ))
+    Ok((median(times), renderer.read_image(gpu).map_err(wait)?))
 }
 
 /// Two pipelines timed on the same scene, frame for frame in turn: see
@@ -76,19 +72,12 @@ pub struct PairedTimes {
 
 impl PairedTimes {
     fn of(pairs: &[[Duration; 2]]) -> PairedTimes {
-        let mut ratios: Vec<f64> = pairs
+        let ratios = pairs
             .iter()
-            .map(|[a, b]| b.as_secs_f64() / a.as_secs_f64().max(1e-9))
-            .collect();
-        ratios.sort_by(f64::total_cmp);
-        let median = |i: usize| {
-            let mut t: Vec<Duration> = pairs.iter().map(|p| p[i]).collect();
-            t.sort();
-            t[t.len() / 2]
-        };
+            .map(|[a, b]| b.as_secs_f64() / a.as_secs_f64().max(1e-9));
         PairedTimes {
-            times: [median(0), median(1)],
-            ratio: ratios[ratios.len() / 2],
+            times: [0, 1].map(|i| median(pairs.iter().map(|p| p[i]))),
+            ratio: median(ratios),
         }
     }
 }
@@ -239,15 +228,20 @@ pub fn bvh_build_time(scene: &Scene, runs: usize) -> Duration {
 
 /// Median of `runs` timings of `f`.
 pub fn median_time(runs: usize, mut f: impl FnMut()) -> Duration {
-    let mut times: Vec<Duration> = (0..runs.max(1))
-        .map(|_| {
-            let start = Instant::now();
-            f();
-            start.elapsed()
-        })
-        .collect();
-    times.sort();
-    times[times.len() / 2]
+    median((0..runs.max(1)).map(|_| {
+        let start = Instant::now();
+        f();
+        start.elapsed()
+    }))
+}
+
+/// The middle value (the upper one of an even count): a timing that a
+/// shared machine's stray slow run does not move. Panics when empty (a
+/// caller bug: every measure takes at least one run).
+pub fn median<T: PartialOrd>(values: impl IntoIterator<Item = T>) -> T {
+    let mut values: Vec<T> = values.into_iter().collect();
+    values.sort_by(|a, b| a.partial_cmp(b).unwrap_or(std::cmp::Ordering::Equal));
+    values.swap_remove(values.len() / 2)
 }
 
 /// `n` spheres on a jittered grid over a fixed square of the floor, with

@@ -17,10 +17,10 @@ use super::measure::{self, median_time};
 use super::storage::{self, StorageRow};
 use super::{BenchArgs, BenchError, cpu_model, fail, ms, timing_of};
 use crate::bvh::build_mesh_bvh;
+use crate::compare;
 use crate::gpu::layout::PackedScene;
 use crate::gpu::{Gpu, ShaderOptions};
 use crate::scene::{CubeSize, Geometry, NamedOption, Scene, ShapeId, TriangleTest, load_file};
-use image::RgbaImage;
 
 /// The meshes, smallest first: name and file relative to the project. The
 /// last two are not in the repository: scripts/fetch-meshes writes them.
@@ -134,27 +134,6 @@ pub struct TestRow {
     pub mesh_over_8: f64,
 }
 
-/// RMSE (channels in [0, 1]) and the fraction of pixels off by more than
-/// 8 of 255 in some channel, over the pixels where `mask` is set.
-fn masked_error(image: &RgbaImage, reference: &RgbaImage, mask: &[bool]) -> (f64, f64) {
-    let (mut sum, mut over, mut n) = (0.0, 0usize, 0usize);
-    for ((a, b), _) in image
-        .pixels()
-        .zip(reference.pixels())
-        .zip(mask)
-        .filter(|(_, m)| **m)
-    {
-        let d: Vec<f64> = (0..3)
-            .map(|c| (f64::from(a[c]) - f64::from(b[c])) / 255.0)
-            .collect();
-        sum += d.iter().map(|x| x * x).sum::<f64>();
-        over += usize::from(d.iter().any(|x| x.abs() > 8.0 / 255.0));
-        n += 1;
-    }
-    let n = n.max(1) as f64;
-    ((sum / (3.0 * n)).sqrt(), over as f64 / n)
-}
-
 /// Sizes and repetitions of one run.
 struct Plan {
     frame_size: (u32, u32),
@@ -248,7 +227,8 @@ fn measure_mesh(
             let shown = out.join(format!("mesh_{name}.png"));
             image.save(&shown).map_err(|e| fail(&shown, e))?;
         }
-        let (mesh_rmse, mesh_over_8) = masked_error(&image, &reference, &on_mesh);
+        let on = compare::diff_images_where(&image, &reference, |i| on_mesh[i]);
+        let (mesh_rmse, mesh_over_8) = (on.rmse, on.frac_over_8);
         tests.push(TestRow {
             test,
             frame_ms: ms(time),

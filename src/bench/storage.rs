@@ -15,6 +15,7 @@ use std::time::Duration;
 use bytemuck::{Pod, Zeroable};
 use glam::DVec3;
 
+use super::measure::median;
 use crate::bvh::build_mesh_bvh;
 use crate::gpu::compute::{Kernel, Prepared, with_kernel};
 use crate::gpu::{Gpu, ShaderSource};
@@ -200,11 +201,6 @@ impl StorageRow {
     }
 }
 
-fn median(mut values: Vec<f64>) -> f64 {
-    values.sort_by(f64::total_cmp);
-    values[values.len() / 2]
-}
-
 /// Times both layouts on `geometry` (see [`Layouts::new`]) after one
 /// warm-up dispatch each, and fails if their hits differ.
 pub fn measure(
@@ -237,14 +233,9 @@ pub fn measure(
         mesh,
         triangles: layouts.triangles(),
         tests: layouts.tests(),
-        leaf_ns: median(pairs.iter().map(|p| ns(p.0)).collect()),
-        indexed_ns: median(pairs.iter().map(|p| ns(p.1)).collect()),
-        ratio: median(
-            pairs
-                .iter()
-                .map(|p| p.1.as_secs_f64() / p.0.as_secs_f64())
-                .collect(),
-        ),
+        leaf_ns: median(pairs.iter().map(|p| ns(p.0))),
+        indexed_ns: median(pairs.iter().map(|p| ns(p.1))),
+        ratio: median(pairs.iter().map(|p| p.1.as_secs_f64() / p.0.as_secs_f64())),
         leaf_bytes: layouts.leaf_bytes_per_triangle(),
         indexed_bytes: layouts.indexed_bytes_per_triangle(),
         runs,
