@@ -843,18 +843,25 @@ fn assert_beside_panel_like_reference(name: &str, page: &RgbaImage, scene: &Scen
     }
 }
 
-/// The panel's "Scenes" menu (at the top left of the panel) shows the
-/// bundled scene chosen there, as the reference draws it.
-#[test]
-fn choosing_a_bundled_scene_in_the_menu_shows_it() {
-    let Some((_display, mut page)) = browser::open_page("?samples=1") else {
-        return;
-    };
+/// The page with the panel (`?samples=1`), its first picture, and the
+/// panel's "Scenes" menu (at the top left of the panel) opened.
+fn page_with_scenes_menu() -> Option<(common::xwindow::Display, Browser, RgbaImage)> {
+    let (display, mut page) = browser::open_page("?samples=1")?;
     page.wait_for("ready");
     let before = page.capture_picture();
     page.click((29.0, 12.0));
     // The menu opens on the next frame.
     std::thread::sleep(Duration::from_secs(1));
+    Some((display, page, before))
+}
+
+/// The panel's "Scenes" menu shows the bundled scene chosen there, as the
+/// reference draws it.
+#[test]
+fn choosing_a_bundled_scene_in_the_menu_shows_it() {
+    let Some((_display, mut page, before)) = page_with_scenes_menu() else {
+        return;
+    };
     // The menu lists the bundled scenes in order, one row each.
     assert_eq!(bundled::names()[1], "cornell");
     page.click((37.0, 62.0));
@@ -875,13 +882,9 @@ fn choosing_a_bundled_scene_in_the_menu_shows_it() {
 /// draws it from the file on disk.
 #[test]
 fn choosing_a_bundled_mesh_scene_in_the_menu_fetches_its_model_and_shows_it() {
-    let Some((_display, mut page)) = browser::open_page("?samples=1") else {
+    let Some((_display, mut page, before)) = page_with_scenes_menu() else {
         return;
     };
-    page.wait_for("ready");
-    let before = page.capture_picture();
-    page.click((29.0, 12.0));
-    std::thread::sleep(Duration::from_secs(1));
     // The list is taller than the 270-pixel page: it scrolls. Scrolled to
     // its end, its last three rows are the mesh scenes, in order.
     page.mouse_move((60.0, 150.0));

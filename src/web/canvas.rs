@@ -201,9 +201,9 @@ fn initial_document(meshes: &PageMeshes) -> Result<(String, Document, Option<Str
                 page::event("scene from-link");
                 return Ok((text, Document::untitled(scene), None));
             }
-            Err(e) => page::show_error(&format!("the link's scene cannot be shown: {e}")),
+            Err(e) => link_error(&e),
         },
-        Some(Err(e)) => page::show_error(&format!("the link's scene cannot be shown: {e}")),
+        Some(Err(e)) => link_error(&e),
         None => {}
     }
     let name = bundled::names()[0];
@@ -546,7 +546,7 @@ impl Page {
                     self.viewer.replace(Document::untitled(scene));
                     page::event("scene from-link");
                 }
-                Err(e) => page::show_error(&format!("the link's scene cannot be shown: {e}")),
+                Err(e) => link_error(&e),
             },
             Opening::Typed(text) => {
                 let typed = WorkEvent::Editor(EditorEvent::Changed(Doc::Scene, text));
@@ -647,6 +647,11 @@ async fn create_graphics(
         surface,
         pipelines,
     })
+}
+
+/// Reports a link whose scene cannot be shown (the picture shown stays).
+fn link_error(e: &dyn std::fmt::Display) {
+    page::show_error(&format!("the link's scene cannot be shown: {e}"));
 }
 
 /// The last part of a mesh file's path (`bunny.obj`), for the status line.
