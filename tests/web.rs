@@ -693,6 +693,34 @@ fn a_dropped_model_is_added_in_view_and_a_malformed_one_named_with_its_line() {
     assert_eq!(page.exceptions(), Vec::<String>::new());
 }
 
+/// A scene file dropped on the page that names a bundled model (here the
+/// 1.6 MB dragon) has it fetched first; it then opens in the scene editor,
+/// whose text is parsed from the fetched bytes, and is drawn as the
+/// reference draws it from the file on disk.
+#[test]
+fn a_dropped_scene_naming_a_bundled_model_is_drawn_once_the_model_is_fetched() {
+    let Some((_display, mut page)) = browser::open_page("?samples=1&ui=0") else {
+        return;
+    };
+    assert_eq!(page.wait_for("scene"), "whitted");
+    page.wait_for("ready");
+    let files = browser::TempDir::new("raysandbox-drop-mesh-scene");
+    let text = bundled::text("cornell_dragon").unwrap();
+    drop_on_page(&mut page, &files, "dragon.toml", text);
+    assert_eq!(page.wait_for("loading"), "dragon_res3.ply");
+    let fetched = page.wait_for("fetched");
+    let parsed = page.wait_for("scene ok");
+    eprintln!("dropped dragon scene: fetched {fetched}, {parsed}");
+    assert_shows(&page, "dropped-mesh-scene", &bundled_scene(text));
+    assert_eq!(
+        page.evaluate("document.getElementById('scene-text').value")
+            .as_str(),
+        Some(text),
+        "the editor holds the dropped text"
+    );
+    assert_eq!(page.exceptions(), Vec::<String>::new());
+}
+
 /// The scene editor follows changes made elsewhere (here a dropped model)
 /// only while it holds no text of the user's own: with a mistake typed and
 /// not yet fixed the text stays as typed; once a good text is applied, the

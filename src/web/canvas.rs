@@ -520,6 +520,8 @@ impl Page {
             w.files.iter().all(|f| self.meshes.files().has(f)) && self.viewer.gfx.is_some()
         });
         if let Some(waiting) = self.waiting.take_if(|_| ready) {
+            // "loading ..." is over ("opened ..." for a bundled scene).
+            self.viewer.editor.message = None;
             self.opened(waiting.opening);
         }
     }
