@@ -2,9 +2,10 @@
 //! spheres in their place (`raysandbox::bench::spheres_in_place`), by the
 //! CPU time this process spends per frame (on lavapipe the GPU is our own
 //! threads, and a loaded machine does not stretch CPU time as it stretches
-//! wall-clock time), for several variants of the shape's shader at once:
-//! the renders take turns frame by frame, each ratio is per turn against the
-//! spheres, and the median and every ratio are printed (docs/performance.md,
+//! wall-clock time), for several variants of the shaders at once, each
+//! against its sphere twin drawn by the same shaders: the renders take turns
+//! frame by frame, each ratio is per turn, and the median and every ratio
+//! are printed (docs/performance.md,
 //! "The torus against its sphere").
 //!
 //!     cargo run --release --example shape_cost -- SCENE FRAMES WIDTH HEIGHT VARIANT...
@@ -32,22 +33,16 @@ fn main() -> Result<(), Failure> {
     let size: (u32, u32) = (width.parse()?, height.parse()?);
     let gpu = Gpu::headless()?;
     let spheres = spheres_in_place(&scene);
-    let mut labels = vec!["spheres".to_string()];
-    let mut renderers = vec![renderer(
-        &gpu,
-        &spheres,
-        TorusMethod::default(),
-        None,
-        size,
-    )?];
+    // Per variant: its sphere twin (the same shaders), then the scene.
+    let mut renderers = Vec::new();
     for variant in variants {
         let (method, dir) = match variant.split_once('@') {
             Some((method, dir)) => (method, Some(Path::new(dir))),
             None => (variant.as_str(), None),
         };
         let method = TorusMethod::from_name(method)?;
+        renderers.push(renderer(&gpu, &spheres, method, dir, size)?);
         renderers.push(renderer(&gpu, &scene, method, dir, size)?);
-        labels.push(variant.clone());
     }
     let mut times = vec![Vec::new(); renderers.len()];
     for r in renderers.iter_mut() {
@@ -60,12 +55,13 @@ fn main() -> Result<(), Failure> {
             t.push((cpu_time()? - before).as_secs_f64() * 1e3);
         }
     }
-    for (label, t) in labels.iter().zip(&times) {
-        let ratios: Vec<f64> = t.iter().zip(&times[0]).map(|(a, s)| a / s).collect();
+    for (variant, pair) in variants.iter().zip(times.chunks(2)) {
+        let ratios: Vec<f64> = pair[1].iter().zip(&pair[0]).map(|(a, s)| a / s).collect();
         let listed: Vec<String> = ratios.iter().map(|r| format!("{r:.2}")).collect();
         println!(
-            "{label:>28}: CPU {:7.1} ms (median), / spheres {:.3} (median of {})",
-            median(t),
+            "{variant:>28}: CPU {:7.1} ms, spheres {:7.1} ms (medians), ratio {:.3} (median of {})",
+            median(&pair[1]),
+            median(&pair[0]),
             median(&ratios),
             listed.join(", ")
         );
