@@ -101,8 +101,10 @@ struct RenderArgs {
     /// slides), moller-trumbore, or watertight (Woop, Benthin and Wald).
     #[arg(long, default_value = "watertight", value_parser = TriangleTest::from_name)]
     triangles: TriangleTest,
-    /// How the GPU solves a torus's quartic: bisection, or newton (the
-    /// slope's zeros in closed form, Newton steps kept inside the bracket).
+    /// How the GPU solves a torus's quartic: bisection, newton (the
+    /// slope's zeros in closed form, Newton steps kept inside the bracket),
+    /// or closed-form (the quartic's own roots in closed form, one Newton
+    /// step).
     #[arg(long, default_value = "newton", value_parser = TorusMethod::from_name)]
     torus: TorusMethod,
     /// Render the image this many times after one warm-up render and print

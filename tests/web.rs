@@ -72,10 +72,27 @@ fn the_page_renders_the_whitted_scene_like_the_reference() {
     assert_like_reference("whitted", &page.capture_picture(), &whitted().1);
 }
 
+/// A bundled scene's text as the native program reads it: mesh files
+/// relative to the folder of the bundled mesh scenes (the other scenes name
+/// none).
+fn bundled_scene(text: &str) -> Scene {
+    Scene::from_toml_str(text, Some(&mesh_scene_origin())).unwrap()
+}
+
+/// A scene file in the folder of the bundled mesh scenes, whose `file`s
+/// are relative to it.
+fn mesh_scene_origin() -> std::path::PathBuf {
+    std::path::Path::new(env!("CARGO_MANIFEST_DIR"))
+        .join(bundled::MESH_SCENE_FOLDER)
+        .join("scene.toml")
+}
+
 /// Every bundled scene, opened from a link in one browser, is the native
 /// renderer's picture at its first frame: the page's specialised pipelines
 /// (only the scene's shape kinds bound, WebGPU's storage-buffer limit) draw
-/// tori, implicit surfaces and Julia sets as the window does.
+/// tori, implicit surfaces and Julia sets as the window does, and the mesh
+/// scenes' models, fetched by the page (docs/web.md, "Scenes with mesh
+/// files"), are the same triangles as on disk.
 #[test]
 fn every_bundled_scene_from_a_link_is_drawn_like_the_reference() {
     let Some(display) = common::xwindow::Display::start() else {
@@ -83,16 +100,18 @@ fn every_bundled_scene_from_a_link_is_drawn_like_the_reference() {
     };
     let url = browser::serve(browser::page_dir());
     let mut page = Browser::start(&display, browser::Options::default());
-    for (n, name) in bundled::names().into_iter().enumerate() {
+    let names = [bundled::names(), bundled::mesh_scene_names()].concat();
+    for (n, name) in names.into_iter().enumerate() {
         let text = bundled::text(name).unwrap();
-        let scene = Scene::from_toml_str(text, None).unwrap();
+        let scene = bundled_scene(text);
         // A new query for each scene: a change of fragment alone would not
         // load the page again.
         let address = format!("{url}?samples=1&ui=0&n={n}#{}", link::scene_hash(text));
         page.navigate(&address);
         assert_eq!(page.wait_for("scene"), "from-link", "{name}");
-        page.wait_for("ready");
-        assert_like_reference(name, &page.capture_picture(), &scene);
+        // A scene opened once its models are fetched may first be drawn
+        // with the last pipelines, while its own are built.
+        assert_shows(&page, name, &scene);
     }
 }
 
@@ -174,6 +193,58 @@ fn whitted_instead_of(display: &common::xwindow::Display, name: &str, fragment: 
     assert_like_reference(name, &page.capture_picture(), &whitted().1);
     assert_eq!(page.exceptions(), Vec::<String>::new());
     error
+}
+
+/// A link to a scene whose model the page does not serve names the file and
+/// says what the page can read; the Whitted scene is shown instead.
+#[test]
+fn a_link_to_a_scene_with_a_model_the_page_lacks_names_it_and_shows_the_whitted_scene() {
+    let Some(display) = common::xwindow::Display::start() else {
+        return;
+    };
+    let text = bundled::text("glass_bunny")
+        .unwrap()
+        .replace("../../meshes/bunny.obj", "my_bunny.obj");
+    let error = whitted_instead_of(&display, "unserved-model", &link::scene_hash(&text));
+    for part in [
+        "my_bunny.obj: the page cannot read this file",
+        "../../meshes/bunny.obj",
+        "dropped on the page",
+        "inline",
+    ] {
+        assert!(error.contains(part), "{part:?} in {error}");
+    }
+}
+
+/// A model the page should serve but cannot fetch (missing from the
+/// server: 404) is reported with its address and the status, and the
+/// picture stays the Whitted scene's.
+#[test]
+fn a_model_that_cannot_be_fetched_is_reported_and_the_picture_kept() {
+    let Some(display) = common::xwindow::Display::start() else {
+        return;
+    };
+    let without_models = browser::TempDir::new("raysandbox-no-models");
+    for name in [
+        "index.html",
+        "editor.css",
+        "raysandbox.js",
+        "raysandbox_bg.wasm",
+    ] {
+        std::fs::copy(browser::page_dir().join(name), without_models.0.join(name)).unwrap();
+    }
+    let url = browser::serve(without_models.0.clone());
+    let text = bundled::text("glass_bunny").unwrap();
+    let address = format!("{url}?samples=1&ui=0#{}", link::scene_hash(text));
+    let mut page = Browser::open(&display, &address);
+    assert_eq!(page.wait_for("loading"), "bunny.obj");
+    let error = error_shown(&mut page);
+    assert!(
+        error.contains("meshes/bunny.obj") && error.contains("404"),
+        "{error}"
+    );
+    assert_shows(&page, "unfetched-model", &whitted().1);
+    assert_eq!(page.exceptions(), Vec::<String>::new());
 }
 
 /// `text` with its `ambient` colour given two components, a mistake that
@@ -622,6 +693,34 @@ fn a_dropped_model_is_added_in_view_and_a_malformed_one_named_with_its_line() {
     assert_eq!(page.exceptions(), Vec::<String>::new());
 }
 
+/// A scene file dropped on the page that names a bundled model (here the
+/// 1.6 MB dragon) has it fetched first; it then opens in the scene editor,
+/// whose text is parsed from the fetched bytes, and is drawn as the
+/// reference draws it from the file on disk.
+#[test]
+fn a_dropped_scene_naming_a_bundled_model_is_drawn_once_the_model_is_fetched() {
+    let Some((_display, mut page)) = browser::open_page("?samples=1&ui=0") else {
+        return;
+    };
+    assert_eq!(page.wait_for("scene"), "whitted");
+    page.wait_for("ready");
+    let files = browser::TempDir::new("raysandbox-drop-mesh-scene");
+    let text = bundled::text("cornell_dragon").unwrap();
+    drop_on_page(&mut page, &files, "dragon.toml", text);
+    assert_eq!(page.wait_for("loading"), "dragon_res3.ply");
+    let fetched = page.wait_for("fetched");
+    let parsed = page.wait_for("scene ok");
+    eprintln!("dropped dragon scene: fetched {fetched}, {parsed}");
+    assert_shows(&page, "dropped-mesh-scene", &bundled_scene(text));
+    assert_eq!(
+        page.evaluate("document.getElementById('scene-text').value")
+            .as_str(),
+        Some(text),
+        "the editor holds the dropped text"
+    );
+    assert_eq!(page.exceptions(), Vec::<String>::new());
+}
+
 /// The scene editor follows changes made elsewhere (here a dropped model)
 /// only while it holds no text of the user's own: with a mistake typed and
 /// not yet fixed the text stays as typed; once a good text is applied, the
@@ -702,7 +801,7 @@ fn scene_in_address(page: &mut Browser) -> Scene {
     let text = link::scene_in_hash(&fragment)
         .expect("the address carries a scene")
         .expect("the address's scene decodes");
-    Scene::from_toml_str(&text, None).expect("the address's scene is valid")
+    bundled_scene(&text)
 }
 
 /// The page's picture once it differs from `before` and has settled (two
@@ -772,18 +871,25 @@ fn assert_beside_panel_like_reference(name: &str, page: &RgbaImage, scene: &Scen
     }
 }
 
-/// The panel's "Scenes" menu (at the top left of the panel) shows the
-/// bundled scene chosen there, as the reference draws it.
-#[test]
-fn choosing_a_bundled_scene_in_the_menu_shows_it() {
-    let Some((_display, mut page)) = browser::open_page("?samples=1") else {
-        return;
-    };
+/// The page with the panel (`?samples=1`), its first picture, and the
+/// panel's "Scenes" menu (at the top left of the panel) opened.
+fn page_with_scenes_menu() -> Option<(common::xwindow::Display, Browser, RgbaImage)> {
+    let (display, mut page) = browser::open_page("?samples=1")?;
     page.wait_for("ready");
     let before = page.capture_picture();
     page.click((29.0, 12.0));
     // The menu opens on the next frame.
     std::thread::sleep(Duration::from_secs(1));
+    Some((display, page, before))
+}
+
+/// The panel's "Scenes" menu shows the bundled scene chosen there, as the
+/// reference draws it.
+#[test]
+fn choosing_a_bundled_scene_in_the_menu_shows_it() {
+    let Some((_display, mut page, before)) = page_with_scenes_menu() else {
+        return;
+    };
     // The menu lists the bundled scenes in order, one row each.
     assert_eq!(bundled::names()[1], "cornell");
     page.click((37.0, 62.0));
@@ -796,6 +902,50 @@ fn choosing_a_bundled_scene_in_the_menu_shows_it() {
     );
     let after = capture_change(&mut page, &before);
     assert_beside_panel_like_reference("menu-cornell", &after, &scene);
+}
+
+/// The "Scenes" menu lists the bundled mesh scenes after the others;
+/// choosing the glass bunny fetches its model (the status line says
+/// "loading bunny.obj" meanwhile) and shows the scene as the reference
+/// draws it from the file on disk.
+#[test]
+fn choosing_a_bundled_mesh_scene_in_the_menu_fetches_its_model_and_shows_it() {
+    let Some((_display, mut page, before)) = page_with_scenes_menu() else {
+        return;
+    };
+    // The list is taller than the 270-pixel page: it scrolls. Scrolled to
+    // its end, its last three rows are the mesh scenes, in order.
+    page.mouse_move((60.0, 150.0));
+    std::thread::sleep(Duration::from_millis(500));
+    page.wheel((60.0, 150.0), (0.0, 500.0));
+    std::thread::sleep(Duration::from_secs(3));
+    assert_eq!(
+        bundled::mesh_scene_names(),
+        ["glass_bunny", "mirror_teapot", "cornell_dragon"]
+    );
+    page.click((37.0, 174.0));
+    assert_eq!(page.wait_for("loading"), "bunny.obj");
+    let bunny = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("assets/meshes/bunny.obj");
+    let size = std::fs::metadata(bunny).unwrap().len();
+    assert_eq!(page.wait_for("fetched"), format!("bunny.obj {size} bytes"));
+    assert_eq!(page.wait_for("scene"), "glass_bunny");
+    let scene = bundled_scene(bundled::text("glass_bunny").unwrap());
+    assert_eq!(
+        scene_in_address(&mut page),
+        scene,
+        "the address has the scene, models included"
+    );
+    capture_change(&mut page, &before);
+    // The bunny is in the middle of the picture, under the panel: H hides
+    // the panel and the status line, and the page's own controls go as
+    // `?ui=0` makes them, so that the whole picture is compared.
+    page.key("h");
+    page.evaluate("document.body.classList.add('bare')");
+    assert_shows(&page, "menu-glass-bunny", &scene);
+    // For people to look at.
+    let shot = std::env::temp_dir().join("web-menu-glass-bunny.png");
+    page.capture_screen().save(&shot).unwrap();
+    eprintln!("the page with the glass bunny: {}", shot.display());
 }
 
 /// Dragging the panel's field-of-view slider changes the scene's `fov` and

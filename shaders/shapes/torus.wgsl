@@ -78,7 +78,8 @@ fn quartic_bracketed(k: Quartic, slope: bool, a_in: f32, b_in: f32) -> f32 {
 /// How the torus's quartic is solved (`TorusMethod` in
 /// src/scene/shapes/torus.rs, docs/implementation.md "Torus"):
 /// 0 = bisection on monotone pieces, 1 = the slope's roots in closed form
-/// and safeguarded Newton steps on the monotone pieces.
+/// and safeguarded Newton steps on the monotone pieces, 2 = the quartic's
+/// roots in closed form (Descartes' factorisation) polished by Newton steps.
 override TORUS_METHOD: u32 = 1u;
 
 /// The first root in (lo, hi], T_FAR when there is none: the zeros of the
@@ -89,6 +90,9 @@ override TORUS_METHOD: u32 = 1u;
 fn quartic_first_root(k: Quartic, lo: f32, hi: f32) -> f32 {
     if TORUS_METHOD == 1u {
         return quartic_first_root_newton(k, lo, hi);
+    }
+    if TORUS_METHOD == 2u {
+        return quartic_first_root_closed(k, lo, hi);
     }
     var splits = array<f32, 4>(lo, hi, hi, hi);
     var n = 1u;
@@ -125,28 +129,93 @@ fn quartic_first_root(k: Quartic, lo: f32, hi: f32) -> f32 {
 
 /// The real roots of the slope 4 u^3 + 2 b u + c, a depressed cubic
 /// u^3 + p u + q (p = b / 2, q = c / 4), in increasing order; a single real
-/// root is repeated three times. Cardano's formula in its cancellation-free
-/// form for one real root, the trigonometric one for three.
+/// root is repeated three times.
 fn slope_roots(k: Quartic) -> vec3<f32> {
-    let p = 0.5 * k.b;
-    let q = 0.25 * k.c;
+    return depressed_cubic_roots(0.5 * k.b, 0.25 * k.c);
+}
+
+/// The real roots of u^3 + p u + q in increasing order; a single real root
+/// is repeated three times. Cardano's formula in its cancellation-free form
+/// for one real root (d >= 0), the trigonometric one for three. Both are
+/// computed and one selected: llvmpipe runs both sides of a branch anyway,
+/// and the branch with its early return cost more (docs/performance.md,
+/// "The torus against its sphere").
+fn depressed_cubic_roots(p: f32, q: f32) -> vec3<f32> {
     let d = 0.25 * q * q + p * p * p / 27.0;
-    if d >= 0.0 {
-        let s = 0.5 * abs(q) + sqrt(d);
-        let a = -sign(q) * pow(s, 1.0 / 3.0);
-        let u = select(0.0, a - p / (3.0 * a), a != 0.0);
-        return vec3(u);
-    }
+    let s1 = 0.5 * abs(q) + sqrt(max(d, 0.0));
+    let a = -sign(q) * pow(s1, 1.0 / 3.0);
+    let one = select(0.0, a - p / (3.0 * a), a != 0.0);
     // d < 0 needs p < 0: three real roots 2 sqrt(-p/3) cos(phi + 2 pi j / 3),
     // phi in [0, pi/3]: j = 1 gives the smallest (its angle is in
     // [2pi/3, pi]), j = 2 the middle one, j = 0 the largest.
     // cos(phi -+ 2pi/3) = -cos(phi) / 2 -+ sin(phi) sqrt(3) / 2, sin(phi) >= 0:
     // one cosine instead of three.
-    let r = sqrt(-p / 3.0);
+    let r = sqrt(max(-p / 3.0, 0.0));
     let phi = acos(clamp(-0.5 * q / (r * r * r), -1.0, 1.0)) / 3.0;
     let c = cos(phi);
     let s = 0.8660254 * sqrt(max(0.0, 1.0 - c * c));
-    return 2.0 * r * vec3(-0.5 * c - s, -0.5 * c + s, c);
+    return select(2.0 * r * vec3(-0.5 * c - s, -0.5 * c + s, c), vec3(one), d >= 0.0);
+}
+
+/// The quartic's real roots in closed form (docs/implementation.md,
+/// "Torus", the closed form): u^4 + b u^2 + c u + e = (u^2 + s u + t)(u^2 - s u + v)
+/// where y = s^2 is the largest root of the resolvent cubic
+/// y^3 + 2b y^2 + (b^2 - 4e) y - c^2 (never negative: the cubic is -c^2 <= 0
+/// at 0), t + v = b + y and v - t = c / s. The two quadratics' roots, in
+/// increasing order within each (`.xy` from the first, `.zw` from the
+/// second); T_FAR where a quadratic has none.
+fn quartic_roots_closed(k: Quartic) -> vec4<f32> {
+    // The resolvent y^3 + A y^2 + B y + C, depressed by y = x - A/3.
+    let a2 = 2.0 * k.b;
+    let b1 = k.b * k.b - 4.0 * k.e;
+    let p = b1 - a2 * a2 / 3.0;
+    let q = a2 * (2.0 * a2 * a2 - 9.0 * b1) / 27.0 - k.c * k.c;
+    let y = max(0.0, depressed_cubic_roots(p, q).z - a2 / 3.0);
+    let s = sqrt(y);
+    // v - t two ways: c / s, or |v - t| from (v - t)^2 = (t + v)^2 - 4 t v
+    // = (b + y)^2 - 4e with the sign of c. y carries an error of about
+    // f32's epsilon times |b| (the shift a2 / 3), so c / s is good when
+    // |b| / y is small, the square root when (b + y)^2 / (v - t)^2 is:
+    // take the one with the smaller relative error.
+    let sum = k.b + y;
+    let w2 = max(0.0, sum * sum - 4.0 * k.e);
+    let w = select(sign(k.c) * sqrt(w2), k.c / s, abs(k.b) * w2 < y * sum * sum);
+    let t = 0.5 * (sum - w);
+    let v = 0.5 * (sum + w);
+    // u^2 + s u + t = 0 and u^2 - s u + v = 0.
+    let d1 = y - 4.0 * t;
+    let d2 = y - 4.0 * v;
+    let h1 = sqrt(max(d1, 0.0));
+    let h2 = sqrt(max(d2, 0.0));
+    return vec4(
+        select(T_FAR, 0.5 * (-s - h1), d1 >= 0.0),
+        select(T_FAR, 0.5 * (-s + h1), d1 >= 0.0),
+        select(T_FAR, 0.5 * (s - h2), d2 >= 0.0),
+        select(T_FAR, 0.5 * (s + h2), d2 >= 0.0),
+    );
+}
+
+/// One Newton step on the quartic from u, to win back the digits the
+/// closed form loses; kept only when it moves u by less than `limit` (near
+/// a double root the slope vanishes and the step means nothing).
+fn quartic_polish(k: Quartic, u: f32, limit: f32) -> f32 {
+    let step = quartic_at(k, false, u) / quartic_at(k, true, u);
+    return select(u, u - step, abs(step) < limit);
+}
+
+/// The first root in (lo, hi] from the closed form, polished by one Newton
+/// step (a second changed neither the error nor the time measurably,
+/// docs/performance.md "The torus against its sphere"); T_FAR when there is
+/// none. Straight-line code: no loop at all. The polish also decides a root
+/// that the closed form puts just after lo while it lies at or before it
+/// (a secondary ray leaving the surface it starts on): without it shadow
+/// rays shadow their own surface.
+fn quartic_first_root_closed(k: Quartic, lo: f32, hi: f32) -> f32 {
+    let roots = quartic_roots_closed(k);
+    let after = select(vec4(T_FAR), roots, roots > vec4(lo));
+    let first = min(min(after.x, after.y), min(after.z, after.w));
+    let u = quartic_polish(k, first, 1e-2 * (hi - lo));
+    return select(T_FAR, u, first < T_FAR && u > lo && u <= hi);
 }
 
 /// A piece (a, b] of the search interval on which the quartic is
@@ -243,15 +312,15 @@ fn quartic_newton(k: Quartic, piece: Piece) -> f32 {
 
 /// The part (lo, hi] of the torus's local ray to search: inside the
 /// bounding sphere of radius R + r (|u| <= h) and inside t_min < t < t_max;
-/// empty (lo >= hi) when the ray misses the sphere.
+/// empty (lo >= hi) when the ray misses the sphere. The callers search even
+/// an empty span and discard the answer, with no early return: straight-line
+/// code is cheaper on llvmpipe (docs/performance.md, "The torus against its
+/// sphere").
 fn torus_span(l: LocalRay, s: Torus, t_min: f32, t_max: f32) -> vec2<f32> {
     let outer = s.major + s.minor;
     let qq = dot(l.q, l.q);
-    if qq >= outer * outer {
-        return vec2(0.0);
-    }
-    let h = sqrt(outer * outer - qq);
-    return vec2(max(-h, local_u(l, t_min)), min(h, local_u(l, t_max)));
+    let h = sqrt(max(outer * outer - qq, 0.0));
+    return select(vec2(0.0), vec2(max(-h, local_u(l, t_min)), min(h, local_u(l, t_max))), qq < outer * outer);
 }
 
 /// Torus: the first root of its quartic inside the bounding sphere of
@@ -260,11 +329,8 @@ fn torus_span(l: LocalRay, s: Torus, t_min: f32, t_max: f32) -> vec2<f32> {
 fn hit_torus(ray: Ray, s: Torus, index: u32, best: Hit) -> Hit {
     let l = local_ray(ray, s.center, s.scale, s.rotation);
     let span = torus_span(l, s, ray.t_min, best.t);
-    if span.x >= span.y {
-        return best;
-    }
     let u = quartic_first_root(torus_quartic(l.q, l.d, s.major, s.minor), span.x, span.y);
-    if u > span.y {
+    if !(span.x < span.y && u <= span.y) {
         return best;
     }
     let p = l.q + u * l.d;
@@ -277,17 +343,17 @@ fn hit_torus(ray: Ray, s: Torus, index: u32, best: Hit) -> Hit {
 /// Whether the torus blocks the ray somewhere in t_min < t < t_max (shadow
 /// rays): whether its quartic has a root there. With Newton's method that
 /// is whether the first piece with a sign change exists, so no root is
-/// refined at all; bisection finds the root as for a hit.
+/// refined at all; bisection and the closed form find the root as for a hit.
 fn occludes_torus(ray: Ray, s: Torus, t_max: f32) -> bool {
     let l = local_ray(ray, s.center, s.scale, s.rotation);
     let span = torus_span(l, s, ray.t_min, t_max);
-    if span.x >= span.y {
-        return false;
-    }
     let k = torus_quartic(l.q, l.d, s.major, s.minor);
-    if TORUS_METHOD == 0u {
-        return quartic_first_root(k, span.x, span.y) <= span.y;
+    var blocked = false;
+    if TORUS_METHOD != 1u {
+        blocked = quartic_first_root(k, span.x, span.y) <= span.y;
+    } else {
+        let piece = first_sign_change(k, span.x, span.y);
+        blocked = holds_root(piece, quartic_at(k, false, piece.b));
     }
-    let piece = first_sign_change(k, span.x, span.y);
-    return holds_root(piece, quartic_at(k, false, piece.b));
+    return span.x < span.y && blocked;
 }

@@ -5,7 +5,7 @@ use std::path::{Path, PathBuf};
 
 use super::mesh_files;
 use crate::files::write_atomically;
-use crate::scene::{Camera, Mesh, Scene, SceneError, bundled};
+use crate::scene::{Camera, Folder, Mesh, MeshFiles, Scene, SceneError, bundled};
 
 /// A scene being edited, and where it came from.
 pub struct Document {
@@ -24,9 +24,18 @@ pub struct Document {
 impl Document {
     /// A bundled example scene, embedded in the binary.
     pub fn bundled(name: &'static str) -> Result<Self, SceneError> {
+        Document::bundled_with_meshes(name, &Folder(None))
+    }
+
+    /// A bundled example scene whose mesh files (if it names any) are read
+    /// from `meshes` (the web page gives the files it fetched).
+    pub fn bundled_with_meshes(
+        name: &'static str,
+        meshes: &dyn MeshFiles,
+    ) -> Result<Self, SceneError> {
         let text = bundled::text(name).unwrap_or_default();
-        let scene =
-            Scene::from_toml_str(text, Some(Path::new(&format!("(built-in) {name}.toml"))))?;
+        let origin = format!("(built-in) {name}.toml");
+        let scene = Scene::from_toml_with_meshes(text, Some(Path::new(&origin)), meshes)?;
         Ok(Document {
             saved: scene.clone(),
             scene,

@@ -104,9 +104,12 @@ pub struct MenuItem {
 }
 
 impl MenuItem {
-    /// The bundled scenes, under "Scenes".
+    /// The bundled scenes, under "Scenes": those that need no file, then
+    /// those with mesh files (the web page fetches them).
     pub fn bundled_scenes() -> Vec<MenuItem> {
-        crate::scene::bundled::names()
+        use crate::scene::bundled;
+        [bundled::names(), bundled::mesh_scene_names()]
+            .concat()
             .into_iter()
             .map(|name| MenuItem {
                 group: "Scenes",
@@ -201,6 +204,10 @@ pub fn draw(
     (commands, input)
 }
 
+/// Room left under a drop-down menu's list, in points: its frame, and the
+/// menu bar above it (a list that fits below the bar drops down from it).
+const MENU_MARGIN: f32 = 40.0;
+
 /// The menu at the top of the panel: one drop-down per group, in the
 /// order of the entries, and "Copy link".
 fn menu_bar(ui: &mut egui::Ui, host: &Host, commands: &mut Vec<Command>) {
@@ -212,11 +219,18 @@ fn menu_bar(ui: &mut egui::Ui, host: &Host, commands: &mut Vec<Command>) {
         groups.dedup();
         for group in groups {
             ui.menu_button(group, |ui| {
-                for item in host.menu.iter().filter(|item| item.group == group) {
-                    if ui.button(item.label).clicked() {
-                        commands.push(Command::Panel(item.action.clone()));
-                    }
-                }
+                // A list taller than the room below scrolls, rather than
+                // covering the menu bar (a small page or window).
+                let room = ui.ctx().content_rect().bottom() - ui.cursor().top() - MENU_MARGIN;
+                egui::ScrollArea::vertical()
+                    .max_height(room)
+                    .show(ui, |ui| {
+                        for item in host.menu.iter().filter(|item| item.group == group) {
+                            if ui.button(item.label).clicked() {
+                                commands.push(Command::Panel(item.action.clone()));
+                            }
+                        }
+                    });
             });
         }
         if host.copy_link

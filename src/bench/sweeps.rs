@@ -96,6 +96,7 @@ pub fn sweeps(quick: bool) -> Vec<Sweep> {
         sweep(
             "torus",
             vec![
+                Knob::Torus(TorusMethod::ClosedForm),
                 Knob::Torus(TorusMethod::Newton),
                 Knob::Torus(TorusMethod::Bisection),
             ],

@@ -33,15 +33,45 @@ const SCENES: [(&str, &str); 10] = [
     ),
 ];
 
-/// Names of the bundled scenes, the default first.
+/// (name, TOML text) of each bundled scene with mesh files, from
+/// `assets/scenes/meshes/` ([`MESH_SCENE_FOLDER`]). Only their text is
+/// embedded: the models stay files (`file = "../../meshes/bunny.obj"`,
+/// relative to that folder), which the web page fetches (docs/web.md,
+/// "Scenes with mesh files").
+const MESH_SCENES: [(&str, &str); 3] = [
+    (
+        "glass_bunny",
+        include_str!("../../assets/scenes/meshes/glass_bunny.toml"),
+    ),
+    (
+        "mirror_teapot",
+        include_str!("../../assets/scenes/meshes/mirror_teapot.toml"),
+    ),
+    (
+        "cornell_dragon",
+        include_str!("../../assets/scenes/meshes/cornell_dragon.toml"),
+    ),
+];
+
+/// The project's folder of the scenes with mesh files: their `file`s are
+/// relative to it.
+pub const MESH_SCENE_FOLDER: &str = "assets/scenes/meshes";
+
+/// Names of the bundled scenes that need no file, the default first.
 pub fn names() -> Vec<&'static str> {
     SCENES.iter().map(|(name, _)| *name).collect()
 }
 
-/// The TOML text of a bundled scene.
+/// Names of the bundled scenes with mesh files.
+pub fn mesh_scene_names() -> Vec<&'static str> {
+    MESH_SCENES.iter().map(|(name, _)| *name).collect()
+}
+
+/// The TOML text of a bundled scene (with or without mesh files).
 pub fn text(name: &str) -> Option<&'static str> {
     SCENES
         .iter()
+        .chain(&MESH_SCENES)
         .find(|(n, _)| *n == name)
         .map(|(_, text)| *text)
 }
@@ -80,6 +110,20 @@ mod tests {
         for name in names() {
             crate::scene::Scene::from_toml_str(text(name).unwrap(), None)
                 .unwrap_or_else(|e| panic!("{name}: {e}"));
+        }
+    }
+
+    #[test]
+    fn every_mesh_scene_file_is_bundled_and_valid_beside_its_models() {
+        let mut bundled: Vec<String> = mesh_scene_names().iter().map(|s| s.to_string()).collect();
+        bundled.sort();
+        assert_eq!(bundled, toml_stems(MESH_SCENE_FOLDER));
+        let folder = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join(MESH_SCENE_FOLDER);
+        for name in mesh_scene_names() {
+            let origin = folder.join(format!("{name}.toml"));
+            let scene = crate::scene::Scene::from_toml_str(text(name).unwrap(), Some(&origin))
+                .unwrap_or_else(|e| panic!("{name}: {e}"));
+            assert!(!scene.meshes.is_empty(), "{name} has meshes");
         }
     }
 }

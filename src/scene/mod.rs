@@ -17,14 +17,14 @@ mod tests;
 mod validate;
 mod write;
 
-use std::path::Path;
+use std::path::{Path, PathBuf};
 
 use glam::DVec3;
 use indexmap::IndexMap;
 use serde::{Deserialize, Serialize};
 
 pub use error::SceneError;
-pub use mesh_file::{Geometry, PerGeometry, load_file};
+pub use mesh_file::{Folder, Geometry, GivenFiles, MeshFiles, PerGeometry, load_file};
 pub use named::{NamedOption, named_option};
 pub use shapes::{
     Cube, CubeSize, Implicit, Julia, Loaded, Mesh, Placement, Plane, Scale, Shape, Sphere, Torus,
@@ -234,8 +234,8 @@ impl Scene {
             }
 
             /// Validates every shape, kind by kind in registry order.
-            fn validate_shapes(&mut self, root: &key_path::KeyPath, base: Option<&Path>) -> validate::Check {
-                let context = shapes::Context { materials: &self.materials, base };
+            fn validate_shapes(&mut self, root: &key_path::KeyPath, meshes: &dyn MeshFiles) -> validate::Check {
+                let context = shapes::Context { materials: &self.materials, meshes };
                 $(for (i, shape) in self.$field.iter_mut().enumerate() {
                     shape.validate(&root.key(stringify!($field)).index(i), &context)?;
                 })*
@@ -387,7 +387,30 @@ impl Scene {
     /// Parses and validates a scene from TOML text. `origin` names the file in
     /// error messages (it is not read).
     pub fn from_toml_str(text: &str, origin: Option<&Path>) -> Result<Scene, SceneError> {
-        validate::parse_and_validate(text, origin)
+        let folder = Folder(origin.and_then(Path::parent));
+        validate::parse_and_validate(text, origin, &folder)
+    }
+
+    /// As [`Scene::from_toml_str`], with the mesh files read from `meshes`
+    /// rather than from the scene file's folder (the web page gives the
+    /// bytes it fetched).
+    pub fn from_toml_with_meshes(
+        text: &str,
+        origin: Option<&Path>,
+        meshes: &dyn MeshFiles,
+    ) -> Result<Scene, SceneError> {
+        validate::parse_and_validate(text, origin, meshes)
+    }
+
+    /// The `file` of each of the scene text's `[[meshes]]`, as written,
+    /// without reading them: what a caller with no file system must fetch
+    /// before [`Scene::from_toml_with_meshes`]. Empty for a text that does
+    /// not parse (parsing it reports why).
+    pub fn mesh_files(text: &str) -> Vec<PathBuf> {
+        let scene = document::Document::parse(text).and_then(|doc| parse::deserialize(&doc));
+        scene
+            .map(|scene| scene.meshes.into_iter().filter_map(|m| m.file).collect())
+            .unwrap_or_default()
     }
 
     /// Reads, parses and validates a scene file.

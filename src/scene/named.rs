@@ -81,7 +81,7 @@ mod tests {
     #[test]
     fn options_are_chosen_by_their_names() {
         names_round_trip::<TriangleTest>("cramer, moller-trumbore, watertight");
-        names_round_trip::<TorusMethod>("bisection, newton");
+        names_round_trip::<TorusMethod>("bisection, newton, closed-form");
         assert_eq!(TriangleTest::default(), TriangleTest::Watertight);
         assert_eq!(TorusMethod::default(), TorusMethod::Newton);
         assert_eq!(TorusMethod::Newton.number(), 1);

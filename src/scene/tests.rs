@@ -1250,3 +1250,92 @@ fn a_malformed_mesh_from_bytes_names_the_file_and_line() {
     let e = super::Mesh::inline_from_bytes("model.stl", b"solid").unwrap_err();
     assert!(e.starts_with("model.stl:"), "{e}");
 }
+
+// ------------------------------------ mesh files given as bytes (the web page)
+
+/// A scene naming a mesh file that exists nowhere on disk, at line 5.
+const NAMED_SQUARE: &str =
+    "[camera]\nfrom = [0, 1, 5]\nto = [0, 0, 0]\n[[meshes]]\nfile = \"models/square.obj\"\n";
+
+#[test]
+fn mesh_files_lists_the_files_as_written_without_reading_them() {
+    assert_eq!(
+        Scene::mesh_files(NAMED_SQUARE),
+        [PathBuf::from("models/square.obj")]
+    );
+    assert!(
+        Scene::mesh_files(FULL).is_empty(),
+        "inline meshes name no file"
+    );
+    assert!(
+        Scene::mesh_files("[camera\n").is_empty(),
+        "a broken text names none"
+    );
+}
+
+#[test]
+fn given_mesh_bytes_replace_the_file_system() {
+    let mut given = super::GivenFiles::new("not given");
+    given.insert(PathBuf::from("models/square.obj"), SQUARE_OBJ.into());
+    let scene = Scene::from_toml_with_meshes(NAMED_SQUARE, None, &given).unwrap();
+    let geometry = &scene.meshes[0].geometry.0;
+    assert_eq!(geometry.positions.len(), 4);
+    assert_eq!(geometry.triangles.len(), 2);
+    assert_eq!(
+        scene.meshes[0].file.as_deref(),
+        Some(Path::new("models/square.obj")),
+        "the file is kept as written, so the saved scene names it"
+    );
+    assert_round_trip_text(&scene, NAMED_SQUARE, &given);
+}
+
+/// Saving `scene` and loading its text back with the same `given` files
+/// gives the same scene.
+fn assert_round_trip_text(scene: &Scene, original: &str, given: &super::GivenFiles) {
+    let text = scene.to_toml_string();
+    assert_eq!(Scene::mesh_files(&text), Scene::mesh_files(original));
+    let again = Scene::from_toml_with_meshes(&text, None, given).unwrap();
+    assert_eq!(&again, scene);
+}
+
+#[test]
+fn a_mesh_file_not_given_is_reported_at_its_line_and_never_read_from_disk() {
+    let given = super::GivenFiles::new("the page cannot read it");
+    let e =
+        Scene::from_toml_with_meshes(NAMED_SQUARE, Some(Path::new("a.toml")), &given).unwrap_err();
+    assert_eq!(e.line, Some(5), "{e}");
+    assert_eq!(e.key.as_deref(), Some("meshes[0].file"), "{e}");
+    assert_eq!(e.message, "models/square.obj: the page cannot read it");
+    // A bundled mesh scene's file exists on disk beside its scene, but
+    // with given files nothing is read from there.
+    let origin = Path::new(env!("CARGO_MANIFEST_DIR"))
+        .join(super::bundled::MESH_SCENE_FOLDER)
+        .join("glass_bunny.toml");
+    let text = super::bundled::text("glass_bunny").unwrap();
+    assert!(Scene::from_toml_str(text, Some(&origin)).is_ok());
+    let e = Scene::from_toml_with_meshes(text, Some(&origin), &given).unwrap_err();
+    assert!(e.message.starts_with("../../meshes/bunny.obj: "), "{e}");
+}
+
+#[test]
+fn given_bytes_load_like_the_file_on_disk_and_their_errors_name_the_file_and_line() {
+    let folder = Path::new(env!("CARGO_MANIFEST_DIR")).join(super::bundled::MESH_SCENE_FOLDER);
+    let text = super::bundled::text("glass_bunny").unwrap();
+    let from_disk = Scene::from_toml_str(text, Some(&folder.join("glass_bunny.toml"))).unwrap();
+    let mut given = super::GivenFiles::new("not given");
+    for file in Scene::mesh_files(text) {
+        let bytes = std::fs::read(folder.join(&file)).unwrap();
+        given.insert(file, bytes);
+    }
+    let from_bytes = Scene::from_toml_with_meshes(text, None, &given).unwrap();
+    assert_eq!(from_bytes, from_disk, "same triangles, same smooth normals");
+
+    let mut broken = super::GivenFiles::new("not given");
+    broken.insert(
+        PathBuf::from("models/square.obj"),
+        b"v 0 0 0\nf 1 2 3\n".to_vec(),
+    );
+    let e = Scene::from_toml_with_meshes(NAMED_SQUARE, None, &broken).unwrap_err();
+    assert_eq!(e.line, Some(5), "{e}");
+    assert!(e.message.starts_with("models/square.obj:2:"), "{e}");
+}

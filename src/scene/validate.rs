@@ -11,6 +11,7 @@ use indexmap::IndexMap;
 
 use super::document::Document;
 use super::key_path::KeyPath;
+use super::mesh_file::MeshFiles;
 use super::parse;
 use super::{Camera, Light, MAX_DEPTH, Material, RenderSettings, Scene, SceneError};
 
@@ -18,17 +19,20 @@ use super::{Camera, Light, MAX_DEPTH, Material, RenderSettings, Scene, SceneErro
 /// as unit length already. `normalize` lands within a few ulps of 1.
 const UNIT_TOLERANCE: f64 = 8.0 * f64::EPSILON;
 
-/// Parses and checks a scene; `origin` names the file in the error.
-pub(super) fn parse_and_validate(text: &str, origin: Option<&Path>) -> Result<Scene, SceneError> {
-    let base = origin.and_then(Path::parent);
-    load(text, base).map_err(|e| e.in_file(origin))
+/// Parses and checks a scene; `origin` names the file in the error,
+/// `meshes` reads the mesh files it names.
+pub(super) fn parse_and_validate(
+    text: &str,
+    origin: Option<&Path>,
+    meshes: &dyn MeshFiles,
+) -> Result<Scene, SceneError> {
+    load(text, meshes).map_err(|e| e.in_file(origin))
 }
 
-/// `base`: the folder that mesh file names are relative to.
-fn load(text: &str, base: Option<&Path>) -> Result<Scene, SceneError> {
+fn load(text: &str, meshes: &dyn MeshFiles) -> Result<Scene, SceneError> {
     let doc = Document::parse(text)?;
     let mut scene = parse::deserialize(&doc)?;
-    validate(&mut scene, base).map_err(|issue| doc.error(&issue.path, issue.message))?;
+    validate(&mut scene, meshes).map_err(|issue| doc.error(&issue.path, issue.message))?;
     Ok(scene)
 }
 
@@ -76,7 +80,7 @@ const FIELD_OF_VIEW: Rule = Rule {
 
 /// Checks every rule, first problem first (sections in the order of the
 /// example file in docs/scene-format.md), and normalises plane normals.
-fn validate(scene: &mut Scene, base: Option<&Path>) -> Check {
+fn validate(scene: &mut Scene, meshes: &dyn MeshFiles) -> Check {
     let root = KeyPath::default();
     render(&scene.render, &root.key("render"))?;
     camera(&scene.camera, &root.key("camera"))?;
@@ -86,7 +90,7 @@ fn validate(scene: &mut Scene, base: Option<&Path>) -> Check {
     for (name, material) in &scene.materials {
         self::material(material, &root.key("materials").key(name))?;
     }
-    scene.validate_shapes(&root, base)
+    scene.validate_shapes(&root, meshes)
 }
 
 fn render(r: &RenderSettings, path: &KeyPath) -> Check {

@@ -9,7 +9,7 @@
 //! the event loop as [`PageEvent`]s once they are there. The editors and
 //! the sandbox are the [`Workbench`]'s.
 
-use std::path::Path;
+use std::path::{Path, PathBuf};
 use std::sync::Arc;
 
 use wasm_bindgen::prelude::*;
@@ -21,7 +21,8 @@ use winit::platform::web::{EventLoopExtWebSys, WindowAttributesExtWebSys};
 use winit::window::{Window, WindowId};
 
 use super::drop::{Dropped, DroppedFile};
-use super::editor::Doc;
+use super::editor::{Doc, EditorEvent};
+use super::meshes::{self, PageMeshes};
 use super::workbench::{Outcome, WorkEvent, Workbench};
 use super::{drop, link, page};
 use crate::app::document::Document;
@@ -56,6 +57,37 @@ pub enum PageEvent {
     Work(WorkEvent),
     /// A file dropped on the canvas, read.
     Dropped(Result<DroppedFile, String>),
+    /// A mesh file of a bundled mesh scene (`file` as the scene writes
+    /// it), fetched over http, or why not.
+    MeshFetched(PathBuf, Result<Vec<u8>, String>),
+}
+
+/// A scene the page opens once the mesh files it names are fetched
+/// (docs/web.md, "Scenes with mesh files"), and where it comes from.
+enum Opening {
+    /// Chosen in the panel's Scenes menu.
+    Bundled(&'static str),
+    /// The address's `#scene=` link.
+    Link(String),
+    /// Typed in the scene editor.
+    Typed(String),
+    /// A scene file dropped on the canvas: its name and text.
+    Dropped(String, String),
+}
+
+impl Opening {
+    fn text(&self) -> &str {
+        match self {
+            Opening::Bundled(name) => bundled::text(name).unwrap_or_default(),
+            Opening::Link(text) | Opening::Typed(text) | Opening::Dropped(_, text) => text,
+        }
+    }
+}
+
+/// An [`Opening`] waiting for `files`.
+struct Waiting {
+    files: Vec<PathBuf>,
+    opening: Opening,
 }
 
 /// The GPU objects made asynchronously for the canvas.
@@ -70,7 +102,8 @@ pub struct Graphics {
 pub fn start() {
     std::panic::set_hook(Box::new(|info| page::show_error(&info.to_string())));
     page::timing("start");
-    let (text, doc) = match initial_document() {
+    let mesh_files = PageMeshes::default();
+    let (text, doc, link_waits) = match initial_document(&mesh_files) {
         Ok(doc) => doc,
         Err(e) => {
             page::show_error(&e);
@@ -113,7 +146,7 @@ pub fn start() {
         .map_or(MAX_SAMPLES, |n| n.max(1));
     // `?ui=0`: the picture alone, as the H key leaves it.
     viewer.editor.show_panel = page::query("ui").as_deref() != Some("0");
-    event_loop.spawn_app(Page {
+    let mut page = Page {
         proxy,
         viewer,
         work,
@@ -121,7 +154,13 @@ pub fn start() {
         window: None,
         menu: [MenuItem::bundled_scenes(), MenuItem::example_shaders()].concat(),
         address_due: None,
-    });
+        meshes: mesh_files,
+        waiting: None,
+    };
+    if let Some(text) = link_waits {
+        page.open(Opening::Link(text));
+    }
+    event_loop.spawn_app(page);
 }
 
 /// How the viewer's core reaches the page: events on the console, pipeline
@@ -150,25 +189,30 @@ fn platform(proxy: EventLoopProxy<PageEvent>) -> Platform {
 
 /// The document the page opens with, and its text: the scene in the
 /// address's `#scene=` link, else the bundled Whitted scene. A broken link
-/// is reported over the canvas and the Whitted scene shown.
-fn initial_document() -> Result<(String, Document), String> {
-    if let Some(text) = page::hash().as_deref().and_then(link::scene_in_hash) {
-        let parsed = text.and_then(|text| {
-            let scene = Scene::from_toml_str(&text, None).map_err(|e| e.to_string())?;
-            Ok((text, scene))
-        });
-        match parsed {
-            Ok((text, scene)) => {
+/// is reported over the canvas and the Whitted scene shown. A link whose
+/// scene names mesh files the page must fetch first comes back third: the
+/// Whitted scene shows until they are there.
+fn initial_document(meshes: &PageMeshes) -> Result<(String, Document, Option<String>), String> {
+    let mut waits = None;
+    match page::hash().as_deref().and_then(link::scene_in_hash) {
+        Some(Ok(text)) if !meshes.missing(&text).is_empty() => waits = Some(text),
+        Some(Ok(text)) => match Scene::from_toml_with_meshes(&text, None, meshes.files()) {
+            Ok(scene) => {
                 page::event("scene from-link");
-                return Ok((text, Document::untitled(scene)));
+                return Ok((text, Document::untitled(scene), None));
             }
-            Err(e) => page::show_error(&format!("the link's scene cannot be shown: {e}")),
-        }
+            Err(e) => link_error(&e),
+        },
+        Some(Err(e)) => link_error(&e),
+        None => {}
     }
     let name = bundled::names()[0];
     let text = bundled::text(name).unwrap_or_default().to_string();
-    page::event(&format!("scene {name}"));
-    Ok((text, Document::bundled(name).map_err(|e| e.to_string())?))
+    if waits.is_none() {
+        page::event(&format!("scene {name}"));
+    }
+    let doc = Document::bundled(name).map_err(|e| e.to_string())?;
+    Ok((text, doc, waits))
 }
 
 struct Page {
@@ -185,6 +229,11 @@ struct Page {
     menu: Vec<MenuItem>,
     /// When the address must take the scene as it is (see [`ADDRESS_DELAY`]).
     address_due: Option<Instant>,
+    /// The bundled mesh scenes' models fetched so far.
+    meshes: PageMeshes,
+    /// The last scene opened, while its mesh files are fetched (the last
+    /// picture stays meanwhile).
+    waiting: Option<Waiting>,
 }
 
 impl ApplicationHandler<PageEvent> for Page {
@@ -227,6 +276,7 @@ impl ApplicationHandler<PageEvent> for Page {
                     self.work
                         .gpu_ready(&gfx.gpu, format, (size.width, size.height));
                 }
+                self.open_when_fetched();
             }
             PageEvent::Ready(Err(e)) => page::show_error(&e),
             PageEvent::PipelinesBuilt(built) => self.viewer.pipelines_built(*built),
@@ -238,11 +288,15 @@ impl ApplicationHandler<PageEvent> for Page {
                 page::event(&message);
                 self.viewer.editor.message = Some(message);
             }
+            PageEvent::Work(WorkEvent::Editor(EditorEvent::Changed(Doc::Scene, text))) => {
+                self.open(Opening::Typed(text));
+            }
             PageEvent::Work(event) => {
-                let outcome = self.work.handle(event);
+                let outcome = self.work.handle(event, self.meshes.files());
                 self.follow(outcome);
             }
             PageEvent::Dropped(file) => self.dropped(file),
+            PageEvent::MeshFetched(file, bytes) => self.mesh_fetched(&file, bytes),
         }
         self.viewer.request_redraw();
     }
@@ -341,15 +395,7 @@ impl Page {
             Ok((Dropped::of(&file)?, file.name))
         });
         match dropped {
-            Ok((Dropped::Scene(text), name)) => {
-                match Scene::from_toml_str(&text, Some(Path::new(&name))) {
-                    Ok(_) => {
-                        let outcome = self.work.open(Doc::Scene, &text);
-                        self.follow(outcome);
-                    }
-                    Err(e) => page::show_error(&e.to_string()),
-                }
-            }
+            Ok((Dropped::Scene(text), name)) => self.open(Opening::Dropped(name, text)),
             Ok((Dropped::Mesh(mesh), name)) => {
                 // In front of the camera, as natively (not selected: the
                 // picture stays the scene's alone).
@@ -371,14 +417,7 @@ impl Page {
     fn execute(&mut self, command: Command) {
         match command {
             Command::Panel(panel::PanelAction::OpenBundled(name)) => {
-                match Document::bundled(name) {
-                    Ok(doc) => {
-                        self.viewer.replace(doc);
-                        page::event(&format!("scene {name}"));
-                        self.address_due = Some(Instant::now());
-                    }
-                    Err(e) => self.viewer.editor.message = Some(e.to_string()),
-                }
+                self.open(Opening::Bundled(name));
             }
             Command::Panel(panel::PanelAction::OpenExampleShader(name)) => {
                 let outcome = self.work.open_example(name);
@@ -405,6 +444,125 @@ impl Page {
                      dropping a file on the page opens it (docs/web.md)"
                         .to_string(),
                 );
+            }
+        }
+    }
+
+    /// Opens a scene (docs/web.md, "Scenes with mesh files"): at once if
+    /// the page has every mesh file it names, else once they are fetched,
+    /// the status line saying "loading NAME" and the last picture staying
+    /// meanwhile. A newer scene replaces one still waiting.
+    fn open(&mut self, opening: Opening) {
+        self.waiting = None;
+        let files = self.meshes.missing(opening.text());
+        if files.is_empty() {
+            self.opened(opening);
+            return;
+        }
+        let names: Vec<String> = files.iter().map(|f| file_name(f)).collect();
+        let message = format!("loading {}", names.join(", "));
+        page::event(&message);
+        self.viewer.editor.message = Some(message);
+        for file in self.meshes.start_fetching(&files) {
+            self.fetch(file);
+        }
+        self.waiting = Some(Waiting { files, opening });
+    }
+
+    /// Fetches a bundled mesh scene's model; the bytes come back through
+    /// the event loop.
+    fn fetch(&self, file: PathBuf) {
+        let Some(address) = meshes::address(&file) else {
+            return;
+        };
+        let proxy = self.proxy.clone();
+        wasm_bindgen_futures::spawn_local(async move {
+            let bytes = page::fetch_bytes(&address).await;
+            let _ = proxy.send_event(PageEvent::MeshFetched(file, bytes));
+        });
+    }
+
+    /// A model arrived (kept for every later scene that names it), or could
+    /// not be fetched: the error names the file, and the scene that waited
+    /// for it is not opened (the last good one stays).
+    fn mesh_fetched(&mut self, file: &Path, bytes: Result<Vec<u8>, String>) {
+        match bytes {
+            Ok(bytes) => {
+                page::event(&format!(
+                    "fetched {} {} bytes",
+                    file_name(file),
+                    bytes.len()
+                ));
+                self.meshes.fetched(file, Some(bytes));
+                self.open_when_fetched();
+            }
+            Err(e) => {
+                self.meshes.fetched(file, None);
+                let address = meshes::address(file).unwrap_or_default();
+                let message = format!("cannot load the mesh file {address}: {e}");
+                if self
+                    .waiting
+                    .as_ref()
+                    .is_some_and(|w| w.files.iter().any(|f| f == file))
+                {
+                    self.waiting = None;
+                }
+                self.viewer.editor.message = Some(message.clone());
+                page::show_error(&message);
+            }
+        }
+    }
+
+    /// Opens the scene that waited, once its files are all there and the
+    /// GPU is (the first pipelines are built for the scene shown first).
+    fn open_when_fetched(&mut self) {
+        let ready = self.waiting.as_ref().is_some_and(|w| {
+            w.files.iter().all(|f| self.meshes.files().has(f)) && self.viewer.gfx.is_some()
+        });
+        if let Some(waiting) = self.waiting.take_if(|_| ready) {
+            // "loading ..." is over ("opened ..." for a bundled scene).
+            self.viewer.editor.message = None;
+            self.opened(waiting.opening);
+        }
+    }
+
+    /// Opens a scene whose mesh files the page has (or that names none it
+    /// serves: the parse reports those at their line).
+    fn opened(&mut self, opening: Opening) {
+        let files = self.meshes.files();
+        match opening {
+            Opening::Bundled(name) => match Document::bundled_with_meshes(name, files) {
+                Ok(doc) => {
+                    self.viewer.replace(doc);
+                    page::event(&format!("scene {name}"));
+                    self.address_due = Some(Instant::now());
+                }
+                Err(e) => {
+                    self.viewer.editor.message = Some(e.to_string());
+                    page::show_error(&e.to_string());
+                }
+            },
+            Opening::Link(text) => match Scene::from_toml_with_meshes(&text, None, files) {
+                Ok(scene) => {
+                    self.work.scene_opened(&text, &scene);
+                    self.viewer.replace(Document::untitled(scene));
+                    page::event("scene from-link");
+                }
+                Err(e) => link_error(&e),
+            },
+            Opening::Typed(text) => {
+                let typed = WorkEvent::Editor(EditorEvent::Changed(Doc::Scene, text));
+                let outcome = self.work.handle(typed, files);
+                self.follow(outcome);
+            }
+            Opening::Dropped(name, text) => {
+                match Scene::from_toml_with_meshes(&text, Some(Path::new(&name)), files) {
+                    Ok(_) => {
+                        let outcome = self.work.open(Doc::Scene, &text);
+                        self.follow(outcome);
+                    }
+                    Err(e) => page::show_error(&e.to_string()),
+                }
             }
         }
     }
@@ -491,6 +649,19 @@ async fn create_graphics(
         surface,
         pipelines,
     })
+}
+
+/// Reports a link whose scene cannot be shown (the picture shown stays).
+fn link_error(e: &dyn std::fmt::Display) {
+    page::show_error(&format!("the link's scene cannot be shown: {e}"));
+}
+
+/// The last part of a mesh file's path (`bunny.obj`), for the status line.
+fn file_name(file: &Path) -> String {
+    file.file_name()
+        .unwrap_or(file.as_os_str())
+        .to_string_lossy()
+        .into_owned()
 }
 
 /// Whether `event` is the user's (the mouse, the keyboard).

@@ -3,7 +3,8 @@
 //! scene and shader editors ([`editor`], [`workbench`]) and the sandbox in
 //! the page ([`sandbox_page`]), and the scene or shader carried in the
 //! page's address ([`link`]), which the native program and the tests can
-//! write too.
+//! write too, and the bundled mesh scenes' models the page fetches
+//! ([`meshes`]).
 
 #[cfg(target_arch = "wasm32")]
 mod canvas;
@@ -12,6 +13,7 @@ mod drop;
 #[cfg(target_arch = "wasm32")]
 mod editor;
 pub mod link;
+pub mod meshes;
 #[cfg(target_arch = "wasm32")]
 mod page;
 #[cfg(target_arch = "wasm32")]

@@ -109,6 +109,26 @@ pub async fn copy_text(text: &str) -> Result<(), String> {
         .map_err(|e| describe(&e))
 }
 
+/// The bytes at `address` (relative to the page's), fetched over http; an
+/// error says why (the status, as `404 Not Found`, or the network's).
+pub async fn fetch_bytes(address: &str) -> Result<Vec<u8>, String> {
+    let window = web_sys::window().ok_or("no browser window")?;
+    let response = wasm_bindgen_futures::JsFuture::from(window.fetch_with_str(address))
+        .await
+        .map_err(|e| describe(&e))?;
+    let response: web_sys::Response = response
+        .dyn_into()
+        .map_err(|_| "the browser's answer is not a response".to_string())?;
+    if !response.ok() {
+        return Err(format!("{} {}", response.status(), response.status_text()));
+    }
+    let buffer = response.array_buffer().map_err(|e| describe(&e))?;
+    let buffer = wasm_bindgen_futures::JsFuture::from(buffer)
+        .await
+        .map_err(|e| describe(&e))?;
+    Ok(js_sys::Uint8Array::new(&buffer).to_vec())
+}
+
 #[wasm_bindgen]
 extern "C" {
     /// `navigator.clipboard.writeText` (web-sys has it only among its

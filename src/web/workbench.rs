@@ -17,7 +17,7 @@ use super::sandbox_page::{Built, ShaderView};
 use super::{link, page};
 use crate::gpu::Gpu;
 use crate::sandbox::bundled as shaders;
-use crate::scene::Scene;
+use crate::scene::{MeshFiles, Scene};
 
 /// The example shader in the shader document when no link brings one.
 const FIRST_SHADER: &str = "blobs.glsl";
@@ -112,9 +112,12 @@ impl Workbench {
     }
 
     /// Handles an event of the editor or of a pipeline build.
-    pub fn handle(&mut self, event: WorkEvent) -> Outcome {
+    /// A scene's mesh files are read from `meshes` (the page fetched them).
+    pub fn handle(&mut self, event: WorkEvent, meshes: &dyn MeshFiles) -> Outcome {
         match event {
-            WorkEvent::Editor(EditorEvent::Changed(Doc::Scene, text)) => self.scene_text(&text),
+            WorkEvent::Editor(EditorEvent::Changed(Doc::Scene, text)) => {
+                self.scene_text(&text, meshes)
+            }
             WorkEvent::Editor(EditorEvent::Changed(Doc::Shader, text)) => {
                 self.pending_shader = Some(text);
                 if self.shader.is_some() {
@@ -172,9 +175,9 @@ impl Workbench {
 
     /// A scene text from the editor: parsed and validated; a good one
     /// replaces the page's scene.
-    fn scene_text(&mut self, text: &str) -> Outcome {
+    fn scene_text(&mut self, text: &str, meshes: &dyn MeshFiles) -> Outcome {
         let start = Instant::now();
-        let result = Scene::from_toml_str(text, None).map_err(|e| Problem {
+        let result = Scene::from_toml_with_meshes(text, None, meshes).map_err(|e| Problem {
             message: e.to_string(),
             line: e.line,
         });
@@ -208,6 +211,19 @@ impl Workbench {
         };
         page::event(&format!("example {name}"));
         self.open(Doc::Shader, text)
+    }
+
+    /// A scene opened other than by the editors (a link whose mesh files
+    /// had to be fetched first): the scene document takes its text, unless
+    /// the user holds text of their own there.
+    pub fn scene_opened(&mut self, text: &str, scene: &Scene) {
+        if self
+            .editor
+            .as_ref()
+            .is_some_and(|editor| editor.offer_text(Doc::Scene, text))
+        {
+            self.scene = scene.clone();
+        }
     }
 
     /// The page's scene changed elsewhere (the panel, the orbit, the menu):

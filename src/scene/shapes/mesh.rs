@@ -10,7 +10,7 @@ use serde::{Deserialize, Serialize};
 
 use super::{Context, CubeSize, Placement, Shape};
 use crate::scene::key_path::KeyPath;
-use crate::scene::mesh_file::{self, Geometry};
+use crate::scene::mesh_file::{self, Folder, Geometry};
 use crate::scene::validate::{Check, Issue, material_name};
 
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
@@ -121,11 +121,7 @@ impl Mesh {
     /// The mesh's file, relative to `base` (the scene file's folder) unless
     /// absolute; `None` for an inline mesh.
     pub fn file_path(&self, base: Option<&Path>) -> Option<PathBuf> {
-        let file = self.file.as_ref()?;
-        Some(match base {
-            Some(dir) => dir.join(file),
-            None => file.clone(),
-        })
+        Some(Folder(base).path(self.file.as_ref()?))
     }
 
     /// Reads the mesh's file again (it changed on disk). On an error the
@@ -150,11 +146,10 @@ impl Mesh {
                 path,
                 "needs a file or inline positions and triangles".to_owned(),
             )),
-            (Some(_), false) => {
-                let full = self.file_path(context.base).unwrap_or_default();
-                mesh_file::load_file(&full, self.smooth)
-                    .map_err(|message| Issue::new(&path.key("file"), message))
-            }
+            (Some(file), false) => context
+                .meshes
+                .load(file, self.smooth)
+                .map_err(|message| Issue::new(&path.key("file"), message)),
             (None, true) => {
                 mesh_file::from_arrays(&self.positions, &self.triangles, &self.normals, self.smooth)
                     .map_err(|message| Issue::new(path, message))

@@ -43,13 +43,12 @@ pub use plane::Plane;
 pub use sphere::Sphere;
 pub use torus::{Torus, TorusMethod};
 
-use std::path::Path;
-
 use glam::{DMat3, DVec3};
 use indexmap::IndexMap;
 
 use super::Material;
 use super::key_path::KeyPath;
+use super::mesh_file::MeshFiles;
 use super::validate::Check;
 
 /// The registry of shape kinds: calls `$m!` once with the whole list, as
@@ -73,11 +72,11 @@ macro_rules! for_each_shape_kind {
 }
 pub use for_each_shape_kind;
 
-/// What validation knows besides the shape: the materials defined, and the
-/// folder that file names are relative to (the scene file's).
+/// What validation knows besides the shape: the materials defined, and
+/// where mesh files are read from (the scene file's folder, natively).
 pub struct Context<'a> {
     pub materials: &'a IndexMap<String, Material>,
-    pub base: Option<&'a Path>,
+    pub meshes: &'a dyn MeshFiles,
 }
 
 /// `Rz(rz) Ry(ry) Rx(rx)` for angles in degrees (docs/rendering-model.md,

@@ -31,6 +31,11 @@ crate::named_option! {
         /// Newton steps kept inside its bracket.
         #[default]
         Newton = "newton",
+        /// The quartic's roots in closed form (Descartes' factorisation by
+        /// the largest root of its resolvent cubic), the first polished by
+        /// one Newton step: straight-line code, no loop, but a grazing ray
+        /// can gain or lose its double root to rounding.
+        ClosedForm = "closed-form",
     }
 }
 
