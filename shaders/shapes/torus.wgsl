@@ -136,25 +136,25 @@ fn slope_roots(k: Quartic) -> vec3<f32> {
 
 /// The real roots of u^3 + p u + q in increasing order; a single real root
 /// is repeated three times. Cardano's formula in its cancellation-free form
-/// for one real root, the trigonometric one for three.
+/// for one real root (d >= 0), the trigonometric one for three. Both are
+/// computed and one selected: llvmpipe runs both sides of a branch anyway,
+/// and the branch with its early return cost more (docs/performance.md,
+/// "The torus against its sphere").
 fn depressed_cubic_roots(p: f32, q: f32) -> vec3<f32> {
     let d = 0.25 * q * q + p * p * p / 27.0;
-    if d >= 0.0 {
-        let s = 0.5 * abs(q) + sqrt(d);
-        let a = -sign(q) * pow(s, 1.0 / 3.0);
-        let u = select(0.0, a - p / (3.0 * a), a != 0.0);
-        return vec3(u);
-    }
+    let s1 = 0.5 * abs(q) + sqrt(max(d, 0.0));
+    let a = -sign(q) * pow(s1, 1.0 / 3.0);
+    let one = select(0.0, a - p / (3.0 * a), a != 0.0);
     // d < 0 needs p < 0: three real roots 2 sqrt(-p/3) cos(phi + 2 pi j / 3),
     // phi in [0, pi/3]: j = 1 gives the smallest (its angle is in
     // [2pi/3, pi]), j = 2 the middle one, j = 0 the largest.
     // cos(phi -+ 2pi/3) = -cos(phi) / 2 -+ sin(phi) sqrt(3) / 2, sin(phi) >= 0:
     // one cosine instead of three.
-    let r = sqrt(-p / 3.0);
+    let r = sqrt(max(-p / 3.0, 0.0));
     let phi = acos(clamp(-0.5 * q / (r * r * r), -1.0, 1.0)) / 3.0;
     let c = cos(phi);
     let s = 0.8660254 * sqrt(max(0.0, 1.0 - c * c));
-    return 2.0 * r * vec3(-0.5 * c - s, -0.5 * c + s, c);
+    return select(2.0 * r * vec3(-0.5 * c - s, -0.5 * c + s, c), vec3(one), d >= 0.0);
 }
 
 /// The quartic's real roots in closed form (docs/implementation.md,
@@ -312,15 +312,15 @@ fn quartic_newton(k: Quartic, piece: Piece) -> f32 {
 
 /// The part (lo, hi] of the torus's local ray to search: inside the
 /// bounding sphere of radius R + r (|u| <= h) and inside t_min < t < t_max;
-/// empty (lo >= hi) when the ray misses the sphere.
+/// empty (lo >= hi) when the ray misses the sphere. The callers search even
+/// an empty span and discard the answer, with no early return: straight-line
+/// code is cheaper on llvmpipe (docs/performance.md, "The torus against its
+/// sphere").
 fn torus_span(l: LocalRay, s: Torus, t_min: f32, t_max: f32) -> vec2<f32> {
     let outer = s.major + s.minor;
     let qq = dot(l.q, l.q);
-    if qq >= outer * outer {
-        return vec2(0.0);
-    }
-    let h = sqrt(outer * outer - qq);
-    return vec2(max(-h, local_u(l, t_min)), min(h, local_u(l, t_max)));
+    let h = sqrt(max(outer * outer - qq, 0.0));
+    return select(vec2(0.0), vec2(max(-h, local_u(l, t_min)), min(h, local_u(l, t_max))), qq < outer * outer);
 }
 
 /// Torus: the first root of its quartic inside the bounding sphere of
@@ -329,11 +329,8 @@ fn torus_span(l: LocalRay, s: Torus, t_min: f32, t_max: f32) -> vec2<f32> {
 fn hit_torus(ray: Ray, s: Torus, index: u32, best: Hit) -> Hit {
     let l = local_ray(ray, s.center, s.scale, s.rotation);
     let span = torus_span(l, s, ray.t_min, best.t);
-    if span.x >= span.y {
-        return best;
-    }
     let u = quartic_first_root(torus_quartic(l.q, l.d, s.major, s.minor), span.x, span.y);
-    if u > span.y {
+    if !(span.x < span.y && u <= span.y) {
         return best;
     }
     let p = l.q + u * l.d;
@@ -350,13 +347,13 @@ fn hit_torus(ray: Ray, s: Torus, index: u32, best: Hit) -> Hit {
 fn occludes_torus(ray: Ray, s: Torus, t_max: f32) -> bool {
     let l = local_ray(ray, s.center, s.scale, s.rotation);
     let span = torus_span(l, s, ray.t_min, t_max);
-    if span.x >= span.y {
-        return false;
-    }
     let k = torus_quartic(l.q, l.d, s.major, s.minor);
+    var blocked = false;
     if TORUS_METHOD != 1u {
-        return quartic_first_root(k, span.x, span.y) <= span.y;
+        blocked = quartic_first_root(k, span.x, span.y) <= span.y;
+    } else {
+        let piece = first_sign_change(k, span.x, span.y);
+        blocked = holds_root(piece, quartic_at(k, false, piece.b));
     }
-    let piece = first_sign_change(k, span.x, span.y);
-    return holds_root(piece, quartic_at(k, false, piece.b));
+    return span.x < span.y && blocked;
 }
