@@ -145,7 +145,7 @@ pub fn start() {
         .and_then(|n| n.parse::<u32>().ok())
         .map_or(MAX_SAMPLES, |n| n.max(1));
     // `?ui=0`: the picture alone, as the H key leaves it.
-    viewer.editor.show_panel = page::query("ui").as_deref() != Some("0");
+    viewer.editor.show_panel = !page::bare();
     let mut page = Page {
         proxy,
         viewer,
@@ -390,7 +390,7 @@ impl Page {
     fn dropped(&mut self, file: Result<DroppedFile, String>) {
         let dropped = file.and_then(|file| {
             page::event(&format!("dropped {}", file.name));
-            Ok((Dropped::of(&file)?, file.name))
+            Ok((Dropped::of(&file.name, file.bytes)?, file.name))
         });
         match dropped {
             Ok((Dropped::Scene(text), name)) => self.open(Opening::Dropped(name, text)),

@@ -29,19 +29,17 @@ pub enum Dropped {
 }
 
 impl Dropped {
-    /// The file as what it is for; an error names the file (and the line,
-    /// for a model that cannot be read).
-    pub fn of(file: &DroppedFile) -> Result<Dropped, String> {
-        let name = &file.name;
-        let text =
-            || String::from_utf8(file.bytes.clone()).map_err(|_| format!("{name}: not UTF-8 text"));
+    /// The file `name` with its `bytes`, as what it is for; an error names
+    /// the file (and the line, for a model that cannot be read).
+    pub fn of(name: &str, bytes: Vec<u8>) -> Result<Dropped, String> {
+        let text = |bytes| String::from_utf8(bytes).map_err(|_| format!("{name}: not UTF-8 text"));
         let extension = name.rsplit_once('.').map(|(_, e)| e.to_ascii_lowercase());
         match extension.as_deref() {
-            Some("toml") => text().map(Dropped::Scene),
+            Some("toml") => text(bytes).map(Dropped::Scene),
             Some("obj" | "ply") => {
-                Mesh::inline_from_bytes(name, &file.bytes).map(|mesh| Dropped::Mesh(Box::new(mesh)))
+                Mesh::inline_from_bytes(name, &bytes).map(|mesh| Dropped::Mesh(Box::new(mesh)))
             }
-            Some("wgsl" | "glsl" | "frag") => text().map(Dropped::Shader),
+            Some("wgsl" | "glsl" | "frag") => text(bytes).map(Dropped::Shader),
             _ => Err(format!(
                 "{name}: the page opens scenes (.toml), models (.obj, .ply) and shaders \
                  (.wgsl, .glsl, .frag)"

@@ -36,8 +36,14 @@ pub fn hash() -> Option<String> {
     Some(hash.trim_start_matches('#').to_string())
 }
 
-/// `?ui=0`: the picture alone, without the page's controls over it (for a
-/// projector, an embedded page, or a screenshot compared pixel by pixel).
+/// Whether the address asks for the picture alone (`?ui=0`): no panel and
+/// no controls over it (for a projector, an embedded page, or a screenshot
+/// compared pixel by pixel).
+pub fn bare() -> bool {
+    query("ui").as_deref() == Some("0")
+}
+
+/// Hides the page's controls over the picture (see [`bare`]).
 pub fn hide_controls() {
     if let Some(body) = document().and_then(|d| d.body()) {
         let _ = body.class_list().add_1("bare");

@@ -76,7 +76,7 @@ impl Workbench {
         if page::query("editor").is_some() {
             super::editor::open_panel();
         }
-        if page::query("ui").as_deref() == Some("0") {
+        if page::bare() {
             page::hide_controls();
         }
         Workbench {
@@ -182,19 +182,21 @@ impl Workbench {
             line: e.line,
         });
         let parse_ms = start.elapsed().as_secs_f64() * 1e3;
-        let outcome = match &result {
+        let (summary, outcome) = match result {
             Ok(scene) => {
                 page::event(&format!("scene ok parse={parse_ms:.0}ms"));
                 self.scene = scene.clone();
-                Outcome::Scene(Box::new(scene.clone()))
+                (
+                    Ok("scene: valid".to_string()),
+                    Outcome::Scene(Box::new(scene)),
+                )
             }
             Err(problem) => {
-                report("scene", problem);
-                Outcome::Nothing
+                report("scene", &problem);
+                (Err(problem), Outcome::Nothing)
             }
         };
         if let Some(editor) = &self.editor {
-            let summary = result.map(|_| "scene: valid".to_string());
             editor.show_result(Doc::Scene, text, summary);
         }
         if matches!(outcome, Outcome::Scene(_)) && !self.shows_shader() {
