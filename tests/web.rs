@@ -109,9 +109,10 @@ fn every_bundled_scene_from_a_link_is_drawn_like_the_reference() {
         let address = format!("{url}?samples=1&ui=0&n={n}#{}", link::scene_hash(text));
         page.navigate(&address);
         assert_eq!(page.wait_for("scene"), "from-link", "{name}");
-        // A scene opened once its models are fetched may first be drawn
-        // with the last pipelines, while its own are built.
-        assert_shows(&page, name, &scene);
+        // The first picture is the scene's own, models included: the page
+        // makes its first pipelines once they are fetched.
+        page.wait_for("ready");
+        assert_like_reference(name, &page.capture_picture(), &scene);
     }
 }
 

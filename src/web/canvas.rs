@@ -156,6 +156,7 @@ pub fn start() {
         address_due: None,
         meshes: mesh_files,
         waiting: None,
+        graphics_started: false,
     };
     if let Some(text) = link_waits {
         page.open(Opening::Link(text));
@@ -234,6 +235,8 @@ struct Page {
     /// The last scene opened, while its mesh files are fetched (the last
     /// picture stays meanwhile).
     waiting: Option<Waiting>,
+    /// Whether the GPU objects are being made (or made).
+    graphics_started: bool,
 }
 
 impl ApplicationHandler<PageEvent> for Page {
@@ -251,13 +254,8 @@ impl ApplicationHandler<PageEvent> for Page {
                 return;
             }
         };
-        self.window = Some(window.clone());
-        let proxy = self.proxy.clone();
-        let (source, options) = self.viewer.first_build();
-        wasm_bindgen_futures::spawn_local(async move {
-            let gfx = create_graphics(window, &source, &options).await;
-            let _ = proxy.send_event(PageEvent::Ready(gfx.map(Box::new)));
-        });
+        self.window = Some(window);
+        self.start_graphics();
     }
 
     fn user_event(&mut self, _: &ActiveEventLoop, event: PageEvent) {
@@ -448,6 +446,34 @@ impl Page {
         }
     }
 
+    /// Makes the adapter, the device and the first pipelines, for the scene
+    /// shown, once the canvas's window is there. A link's scene that waits
+    /// for its models goes first: the first pipelines are then its own, and
+    /// the first picture its own too (not the Whitted scene, nor the link's
+    /// scene drawn without its shape kinds while its pipelines are built).
+    fn start_graphics(&mut self) {
+        let link_waits = matches!(
+            self.waiting,
+            Some(Waiting {
+                opening: Opening::Link(_),
+                ..
+            })
+        );
+        let Some(window) = self.window.clone() else {
+            return;
+        };
+        if self.graphics_started || link_waits {
+            return;
+        }
+        self.graphics_started = true;
+        let proxy = self.proxy.clone();
+        let (source, options) = self.viewer.first_build();
+        wasm_bindgen_futures::spawn_local(async move {
+            let gfx = create_graphics(window, &source, &options).await;
+            let _ = proxy.send_event(PageEvent::Ready(gfx.map(Box::new)));
+        });
+    }
+
     /// Opens a scene (docs/web.md, "Scenes with mesh files"): at once if
     /// the page has every mesh file it names, else once they are fetched,
     /// the status line saying "loading NAME" and the last picture staying
@@ -457,6 +483,8 @@ impl Page {
         let files = self.meshes.missing(opening.text());
         if files.is_empty() {
             self.opened(opening);
+            // It may have replaced a link's scene the GPU waited for.
+            self.start_graphics();
             return;
         }
         let names: Vec<String> = files.iter().map(|f| file_name(f)).collect();
@@ -495,6 +523,7 @@ impl Page {
                 ));
                 self.meshes.fetched(file, Some(bytes));
                 self.open_when_fetched();
+                self.start_graphics();
             }
             Err(e) => {
                 self.meshes.fetched(file, None);
@@ -509,15 +538,19 @@ impl Page {
                 }
                 self.viewer.editor.message = Some(message.clone());
                 page::show_error(&message);
+                self.start_graphics();
             }
         }
     }
 
     /// Opens the scene that waited, once its files are all there and the
-    /// GPU is (the first pipelines are built for the scene shown first).
+    /// GPU is; a link's scene opens before the GPU (see
+    /// [`Page::start_graphics`]).
     fn open_when_fetched(&mut self) {
         let ready = self.waiting.as_ref().is_some_and(|w| {
-            w.files.iter().all(|f| self.meshes.files().has(f)) && self.viewer.gfx.is_some()
+            let fetched = w.files.iter().all(|f| self.meshes.files().has(f));
+            let link = matches!(w.opening, Opening::Link(_));
+            fetched && (self.viewer.gfx.is_some() || link)
         });
         if let Some(waiting) = self.waiting.take_if(|_| ready) {
             // "loading ..." is over ("opened ..." for a bundled scene).

@@ -63,9 +63,9 @@ impl PageMeshes {
     /// fetched yet: what to wait for before the text is parsed. (A file it
     /// does not serve is reported by the parse, at its line.)
     pub fn missing(&self, text: &str) -> Vec<PathBuf> {
+        let mut named = BTreeSet::new();
         let mut files = Scene::mesh_files(text);
-        files.retain(|f| address(f).is_some() && !self.files.has(f));
-        files.dedup();
+        files.retain(|f| address(f).is_some() && !self.files.has(f) && named.insert(f.clone()));
         files
     }
 
@@ -124,6 +124,16 @@ mod tests {
         let bunny = PathBuf::from("../../meshes/bunny.obj");
         let only_bunny = vec![bunny.clone()];
         assert_eq!(meshes.missing(text), only_bunny);
+        let twice = "[camera]\nfrom = [0, 1, 5]\nto = [0, 0, 0]\n\
+                     [[meshes]]\nfile = \"../../meshes/bunny.obj\"\n\
+                     [[meshes]]\nfile = \"../../meshes/teapot.obj\"\n\
+                     [[meshes]]\nfile = \"../../meshes/bunny.obj\"\n";
+        let teapot = PathBuf::from("../../meshes/teapot.obj");
+        assert_eq!(
+            meshes.missing(twice),
+            [bunny.clone(), teapot],
+            "each file once, in order"
+        );
         assert_eq!(meshes.start_fetching(&only_bunny), only_bunny);
         assert!(
             meshes.start_fetching(&only_bunny).is_empty(),
