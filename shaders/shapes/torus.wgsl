@@ -206,16 +206,27 @@ fn quartic_polish(k: Quartic, u: f32, limit: f32) -> f32 {
 /// The first root in (lo, hi] from the closed form, polished by one Newton
 /// step (a second changed neither the error nor the time measurably,
 /// docs/performance.md "The torus against its sphere"); T_FAR when there is
-/// none. Straight-line code: no loop at all. The polish also decides a root
-/// that the closed form puts just after lo while it lies at or before it
-/// (a secondary ray leaving the surface it starts on): without it shadow
-/// rays shadow their own surface.
+/// none. No loop at all. The polish also decides a root that the closed
+/// form puts just after lo while it lies at or before it (a secondary ray
+/// leaving the surface it starts on): without it shadow rays shadow their
+/// own surface. Then the next root is the answer (the far side of the tube
+/// for a refracted ray, of the ring for a shadow ray); that case is rare,
+/// so it is a branch rather than a second polish for every ray.
 fn quartic_first_root_closed(k: Quartic, lo: f32, hi: f32) -> f32 {
     let roots = quartic_roots_closed(k);
     let after = select(vec4(T_FAR), roots, roots > vec4(lo));
-    let first = min(min(after.x, after.y), min(after.z, after.w));
-    let u = quartic_polish(k, first, 1e-2 * (hi - lo));
-    return select(T_FAR, u, first < T_FAR && u > lo && u <= hi);
+    // The two smallest of the four.
+    let near = min(after.xy, after.zw);
+    let far = max(after.xy, after.zw);
+    var root = min(near.x, near.y);
+    let second = min(max(near.x, near.y), min(far.x, far.y));
+    let limit = 1e-2 * (hi - lo);
+    var u = quartic_polish(k, root, limit);
+    if u <= lo {
+        root = second;
+        u = quartic_polish(k, root, limit);
+    }
+    return select(T_FAR, u, root < T_FAR && u > lo && u <= hi);
 }
 
 /// A piece (a, b] of the search interval on which the quartic is
