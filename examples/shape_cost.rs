@@ -17,7 +17,7 @@
 use std::path::Path;
 use std::time::Duration;
 
-use raysandbox::bench::{process_cpu_time, spheres_in_place};
+use raysandbox::bench::{median, process_cpu_time, spheres_in_place};
 use raysandbox::gpu::{Gpu, OffscreenRenderer, ShaderOptions, ShaderSource};
 use raysandbox::scene::{NamedOption, Scene, TorusMethod};
 
@@ -30,6 +30,9 @@ fn main() -> Result<(), Failure> {
     };
     let scene = Scene::load(Path::new(scene))?;
     let frames: usize = frames.parse()?;
+    if frames == 0 {
+        return Err("FRAMES must be at least 1".into());
+    }
     let size: (u32, u32) = (width.parse()?, height.parse()?);
     let gpu = Gpu::headless()?;
     let spheres = spheres_in_place(&scene);
@@ -60,9 +63,9 @@ fn main() -> Result<(), Failure> {
         let listed: Vec<String> = ratios.iter().map(|r| format!("{r:.2}")).collect();
         println!(
             "{variant:>28}: CPU {:7.1} ms, spheres {:7.1} ms (medians), ratio {:.3} (median of {})",
-            median(&pair[1]),
-            median(&pair[0]),
-            median(&ratios),
+            median(pair[1].iter().copied()),
+            median(pair[0].iter().copied()),
+            median(ratios.iter().copied()),
             listed.join(", ")
         );
     }
@@ -91,10 +94,4 @@ fn renderer(
 
 fn cpu_time() -> Result<Duration, Failure> {
     process_cpu_time().ok_or_else(|| "no /proc/self/task/*/schedstat on this system".into())
-}
-
-fn median(values: &[f64]) -> f64 {
-    let mut v = values.to_vec();
-    v.sort_by(f64::total_cmp);
-    v[v.len() / 2]
 }

@@ -22,7 +22,9 @@ pub struct Document {
 }
 
 impl Document {
-    /// A bundled example scene, embedded in the binary.
+    /// A bundled example scene, embedded in the binary, that names no mesh
+    /// file (`bundled::names`); a mesh scene's files are not beside the
+    /// binary: see [`Document::bundled_with_meshes`].
     pub fn bundled(name: &'static str) -> Result<Self, SceneError> {
         Document::bundled_with_meshes(name, &Folder(None))
     }

@@ -208,6 +208,10 @@ pub fn draw(
 /// menu bar above it (a list that fits below the bar drops down from it).
 const MENU_MARGIN: f32 = 40.0;
 
+/// The least height of a menu's list: a few entries, even in a window too
+/// short for them below the menu bar.
+const MENU_MIN_HEIGHT: f32 = 60.0;
+
 /// The menu at the top of the panel: one drop-down per group, in the
 /// order of the entries, and "Copy link".
 fn menu_bar(ui: &mut egui::Ui, host: &Host, commands: &mut Vec<Command>) {
@@ -221,7 +225,8 @@ fn menu_bar(ui: &mut egui::Ui, host: &Host, commands: &mut Vec<Command>) {
             ui.menu_button(group, |ui| {
                 // A list taller than the room below scrolls, rather than
                 // covering the menu bar (a small page or window).
-                let room = ui.ctx().content_rect().bottom() - ui.cursor().top() - MENU_MARGIN;
+                let room = (ui.ctx().content_rect().bottom() - ui.cursor().top() - MENU_MARGIN)
+                    .max(MENU_MIN_HEIGHT);
                 egui::ScrollArea::vertical()
                     .max_height(room)
                     .show(ui, |ui| {

@@ -236,11 +236,15 @@ pub fn median_time(runs: usize, mut f: impl FnMut()) -> Duration {
 }
 
 /// The middle value (the upper one of an even count): a timing that a
-/// shared machine's stray slow run does not move. Panics when empty (a
-/// caller bug: every measure takes at least one run).
+/// shared machine's stray slow run does not move. A NaN (a 0/0 ratio)
+/// sorts after every number, so the order stays total and the sort cannot
+/// panic. Panics when empty (a caller bug: every measure takes at least
+/// one run).
 pub fn median<T: PartialOrd>(values: impl IntoIterator<Item = T>) -> T {
     let mut values: Vec<T> = values.into_iter().collect();
-    values.sort_by(|a, b| a.partial_cmp(b).unwrap_or(std::cmp::Ordering::Equal));
+    // A NaN is the one value not comparable with itself.
+    let nan = |x: &T| x.partial_cmp(x).is_none();
+    values.sort_by(|a, b| a.partial_cmp(b).unwrap_or_else(|| nan(a).cmp(&nan(b))));
     values.swap_remove(values.len() / 2)
 }
 
@@ -298,6 +302,15 @@ pub fn sphere_field(n: usize) -> Scene {
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    #[test]
+    fn median_takes_the_middle_and_sorts_nan_last() {
+        assert_eq!(median([3.0, 1.0, 2.0]), 2.0);
+        assert_eq!(median([f64::NAN, 1.0, 2.0]), 2.0);
+        assert!(median([f64::NAN, f64::NAN, 1.0]).is_nan());
+        let ms = Duration::from_millis;
+        assert_eq!(median([ms(5), ms(1)]), ms(5));
+    }
 
     #[test]
     fn sphere_field_has_n_valid_spheres_on_the_floor() {

@@ -18,7 +18,7 @@ use crate::gpu::{DEFAULT_MAX_SAMPLES, DEFAULT_MIN_WEIGHT, Gpu, ShaderOptions, Ti
 use crate::scene::{Scene, bundled};
 use measure::{ConvergedReference, REFERENCE_FACTOR};
 
-pub use measure::{process_cpu_time, sphere_field};
+pub use measure::{median, process_cpu_time, sphere_field};
 pub use sweeps::spheres_in_place;
 
 #[derive(clap::Args, Debug, Clone)]

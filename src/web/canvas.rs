@@ -192,7 +192,8 @@ fn platform(proxy: EventLoopProxy<PageEvent>) -> Platform {
 /// address's `#scene=` link, else the bundled Whitted scene. A broken link
 /// is reported over the canvas and the Whitted scene shown. A link whose
 /// scene names mesh files the page must fetch first comes back third: the
-/// Whitted scene shows until they are there.
+/// canvas stays empty until they are there, so that the first pipelines and
+/// the first picture are that scene's own.
 fn initial_document(meshes: &PageMeshes) -> Result<(String, Document, Option<String>), String> {
     let mut waits = None;
     match page::hash().as_deref().and_then(link::scene_in_hash) {
@@ -476,10 +477,13 @@ impl Page {
 
     /// Opens a scene (docs/web.md, "Scenes with mesh files"): at once if
     /// the page has every mesh file it names, else once they are fetched,
-    /// the status line saying "loading NAME" and the last picture staying
-    /// meanwhile. A newer scene replaces one still waiting.
+    /// the status line saying "loading NAME" and the last picture (if any)
+    /// staying meanwhile. A newer scene replaces one still waiting, and its
+    /// "loading" with it.
     fn open(&mut self, opening: Opening) {
-        self.waiting = None;
+        if self.waiting.take().is_some() {
+            self.viewer.editor.message = None;
+        }
         let files = self.meshes.missing(opening.text());
         if files.is_empty() {
             self.opened(opening);
@@ -500,10 +504,13 @@ impl Page {
     /// Fetches a bundled mesh scene's model; the bytes come back through
     /// the event loop.
     fn fetch(&self, file: PathBuf) {
+        let proxy = self.proxy.clone();
         let Some(address) = meshes::address(&file) else {
+            // Not reached (only served files are waited for), but a scene
+            // must never wait for a file nobody fetches.
+            let _ = proxy.send_event(PageEvent::MeshFetched(file, Err("not served".into())));
             return;
         };
-        let proxy = self.proxy.clone();
         wasm_bindgen_futures::spawn_local(async move {
             let bytes = page::fetch_bytes(&address).await;
             let _ = proxy.send_event(PageEvent::MeshFetched(file, bytes));
@@ -512,7 +519,9 @@ impl Page {
 
     /// A model arrived (kept for every later scene that names it), or could
     /// not be fetched: the error names the file, and the scene that waited
-    /// for it is not opened (the last good one stays).
+    /// for it is not opened (the last good one stays). A failure no waiting
+    /// scene cares about any more (a newer scene replaced it) is only
+    /// logged, not shown over the scene now on screen.
     fn mesh_fetched(&mut self, file: &Path, bytes: Result<Vec<u8>, String>) {
         match bytes {
             Ok(bytes) => {
@@ -529,13 +538,15 @@ impl Page {
                 self.meshes.fetched(file, None);
                 let address = meshes::address(file).unwrap_or_default();
                 let message = format!("cannot load the mesh file {address}: {e}");
-                if self
+                let waited = self
                     .waiting
                     .as_ref()
-                    .is_some_and(|w| w.files.iter().any(|f| f == file))
-                {
-                    self.waiting = None;
+                    .is_some_and(|w| w.files.iter().any(|f| f == file));
+                if !waited {
+                    page::event(&message);
+                    return;
                 }
+                self.waiting = None;
                 self.viewer.editor.message = Some(message.clone());
                 page::show_error(&message);
                 self.start_graphics();

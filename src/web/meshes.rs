@@ -7,16 +7,21 @@
 
 use std::collections::BTreeSet;
 use std::path::{Path, PathBuf};
+use std::sync::OnceLock;
 
 use crate::scene::{GivenFiles, Scene, bundled};
 
 /// The mesh files the bundled mesh scenes name, as they write them
-/// (`../../meshes/bunny.obj`), each once.
-fn bundled_files() -> BTreeSet<PathBuf> {
-    bundled::mesh_scene_names()
-        .into_iter()
-        .flat_map(|name| Scene::mesh_files(bundled::text(name).unwrap_or_default()))
-        .collect()
+/// (`../../meshes/bunny.obj`), each once; read from the scenes' texts once
+/// (every debounced edit asks).
+fn bundled_files() -> &'static BTreeSet<PathBuf> {
+    static FILES: OnceLock<BTreeSet<PathBuf>> = OnceLock::new();
+    FILES.get_or_init(|| {
+        bundled::mesh_scene_names()
+            .into_iter()
+            .flat_map(|name| Scene::mesh_files(bundled::text(name).unwrap_or_default()))
+            .collect()
+    })
 }
 
 /// Where the page serves `file` (as a scene writes it), relative to the
@@ -101,7 +106,7 @@ mod tests {
         let folder = Path::new(env!("CARGO_MANIFEST_DIR")).join(bundled::MESH_SCENE_FOLDER);
         let files = bundled_files();
         assert_eq!(files.len(), 3, "{files:?}");
-        for file in &files {
+        for file in files {
             let address = address(file).expect("served");
             let on_disk = folder.join(file);
             assert!(on_disk.is_file(), "{}", on_disk.display());
@@ -115,6 +120,26 @@ mod tests {
             "only as the scenes write it"
         );
         assert_eq!(address(Path::new("/home/me/model.ply")), None);
+    }
+
+    /// `scripts/web` picks the files to copy with `sed` on lines written
+    /// exactly `file = "../../meshes/NAME"`: every file the scenes' TOML
+    /// names must be written so, or the page would fetch a file never
+    /// copied.
+    #[test]
+    fn scripts_web_finds_every_model_the_bundled_mesh_scenes_name() {
+        let by_line: BTreeSet<PathBuf> = bundled::mesh_scene_names()
+            .into_iter()
+            .flat_map(|name| bundled::text(name).unwrap_or_default().lines())
+            .filter_map(|line| {
+                let name = line.strip_prefix("file = \"../../meshes/")?;
+                Some(PathBuf::from(format!(
+                    "../../meshes/{}",
+                    name.strip_suffix('"')?
+                )))
+            })
+            .collect();
+        assert_eq!(&by_line, bundled_files());
     }
 
     #[test]
