@@ -157,7 +157,9 @@ pub fn show(
     file_label: &str,
 ) -> Vec<PanelAction> {
     state.selection = edit::checked_selection(scene, state.selection);
-    let scale = edit::scene_scale(scene);
+    // Drag speeds and new shapes' sizes follow the scene's scale, so the
+    // panel feels the same in millimetres and in kilometres.
+    let scale = scene.view_scale();
     let mut actions = Vec::new();
 
     ui.label(RichText::new(file_label).strong());

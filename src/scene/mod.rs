@@ -158,11 +158,7 @@ macro_rules! scene_with_shapes {
             }
         )*
 
-        /// How large a mesh from a file appears beside the target, as a fraction
-/// of the scene's [`Scene::view_scale`]: seen whole.
-pub const NEW_MESH_SIZE: f64 = 0.4;
-
-impl Scene {
+        impl Scene {
             /// Every shape, kind by kind in registry order.
             pub fn shape_ids(&self) -> Vec<ShapeId> {
                 let mut ids = Vec::with_capacity(self.shape_count());
@@ -382,6 +378,10 @@ pub struct Checker {
     pub color: DVec3,
     pub size: f64,
 }
+
+/// How large a mesh from a file appears beside the target, as a fraction
+/// of the scene's [`Scene::view_scale`]: seen whole.
+pub const NEW_MESH_SIZE: f64 = 0.4;
 
 impl Scene {
     /// Parses and validates a scene from TOML text. `origin` names the file in

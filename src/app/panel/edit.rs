@@ -12,13 +12,6 @@ use crate::scene::{Camera, Checker, Light, Material, Mesh, Scene, ShapeId, Shape
 /// exposure, ior...): the rendering model only asks for > 0, and a drag must not stop at 0.
 pub(super) const MIN_POSITIVE: f64 = 1e-6;
 
-/// The typical length of the scene, the distance from the eye to the target:
-/// drag speeds and the sizes of new shapes scale with it, so the panel feels
-/// the same for a scene in millimetres and one in kilometres.
-pub(super) fn scene_scale(scene: &Scene) -> f64 {
-    scene.view_scale()
-}
-
 /// Unit vectors to the right of the view and up (the camera's `up`), the
 /// frame in which new shapes and lights are placed so that they appear beside
 /// and above the target. Falls back to world axes for a degenerate camera.
@@ -127,7 +120,7 @@ pub(super) fn rename_material(scene: &mut Scene, old: &str, new: &str) -> Result
 pub(super) fn add_light(scene: &mut Scene) {
     let (_, up) = camera_frame(&scene.camera);
     scene.lights.push(Light {
-        position: scene.camera.to + up * scene_scale(scene),
+        position: scene.camera.to + up * scene.view_scale(),
         color: DVec3::ONE,
         intensity: 1.0,
     });
@@ -169,7 +162,7 @@ fn placement(scene: &Scene) -> Placement {
         target: scene.camera.to,
         right,
         up,
-        scale: scene_scale(scene),
+        scale: scene.view_scale(),
     }
 }
 
@@ -428,7 +421,7 @@ mod tests {
                 ShapeId::Mesh(0)
             ]
         );
-        let scale = scene_scale(&s);
+        let scale = s.view_scale();
         assert!(s.spheres[3].radius > 0.0);
         assert!((s.spheres[3].center - s.camera.to).length() < scale);
         assert_eq!(s.planes[1].normal, DVec3::Y);
@@ -482,7 +475,7 @@ mod tests {
         let centre = 0.5 * (lo + hi);
         assert!((centre - s.camera.to).length() < 1e-9, "{centre}");
         let longest = (hi - lo).max_element();
-        assert!((longest - crate::scene::NEW_MESH_SIZE * scene_scale(&s)).abs() < 1e-9);
+        assert!((longest - crate::scene::NEW_MESH_SIZE * s.view_scale()).abs() < 1e-9);
         assert!(Scene::from_toml_str(&s.to_toml_string(), None).is_ok());
     }
 

@@ -28,7 +28,7 @@ pub(super) struct Placement {
     /// The view's right and up directions, unit length.
     pub right: DVec3,
     pub up: DVec3,
-    /// The scene scale (`edit::scene_scale`).
+    /// The scene scale (`Scene::view_scale`).
     pub scale: f64,
 }
 
