@@ -6,15 +6,18 @@
 // The f64 twin is src/reference/shapes/torus.rs; the method is described in
 // docs/implementation.md, "Torus".
 
-/// A torus around the local y axis, placed by world = center + scale * rotation * local.
+/// A torus in world units: the ring of radius `major` (the scene's R times
+/// its scale) around `axis` through `center`, the tube of radius `minor`.
+/// The rest of its placement, a turn about its own axis, changes nothing.
 struct Torus {
     center: vec3<f32>,
-    scale: f32,
-    rotation: mat3x3<f32>,
-    major: f32,              // R, the radius of the ring
-    minor: f32,              // r, the radius of the tube
+    major: f32,
+    axis: vec3<f32>,         // unit length
+    minor: f32,
     material: u32,
-    _pad: u32,
+    _pad0: u32,
+    _pad1: u32,
+    _pad2: u32,
 }
 
 /// u^4 + b u^2 + c u + e: the torus's quartic along a ray measured from the
@@ -25,13 +28,18 @@ struct Quartic {
     e: f32,
 }
 
-fn torus_quartic(q: vec3<f32>, d: vec3<f32>, major: f32, minor: f32) -> Quartic {
-    let a = dot(q, q) + major * major - minor * minor;
-    let four_r2 = 4.0 * major * major;
+/// The quartic for the points q + u d (q the foot, relative to the centre,
+/// d the unit direction): (|p|^2 + R^2 - r^2)^2 = 4 R^2 |p_perp|^2, with
+/// p_perp the part of p across the axis (docs/implementation.md, "Torus").
+fn torus_quartic(q: vec3<f32>, d: vec3<f32>, s: Torus) -> Quartic {
+    let q_perp = q - dot(q, s.axis) * s.axis;
+    let d_perp = d - dot(d, s.axis) * s.axis;
+    let a = dot(q, q) + s.major * s.major - s.minor * s.minor;
+    let four_r2 = 4.0 * s.major * s.major;
     return Quartic(
-        2.0 * a - four_r2 * (d.x * d.x + d.z * d.z),
-        -2.0 * four_r2 * (q.x * d.x + q.z * d.z),
-        a * a - four_r2 * (q.x * q.x + q.z * q.z),
+        2.0 * a - four_r2 * dot(d_perp, d_perp),
+        -2.0 * four_r2 * dot(q_perp, d_perp),
+        a * a - four_r2 * dot(q_perp, q_perp),
     );
 }
 
@@ -321,34 +329,44 @@ fn quartic_newton(k: Quartic, piece: Piece) -> f32 {
     return x;
 }
 
-/// The part (lo, hi] of the torus's local ray to search: inside the
-/// bounding sphere of radius R + r (|u| <= h) and inside t_min < t < t_max;
-/// empty (lo >= hi) when the ray misses the sphere. The callers search even
-/// an empty span and discard the answer, with no early return: straight-line
-/// code is cheaper on llvmpipe (docs/performance.md, "The torus against its
-/// sphere").
-fn torus_span(l: LocalRay, s: Torus, t_min: f32, t_max: f32) -> vec2<f32> {
+/// The part (lo, hi] of the ray to search, in u = t - f.s (from the foot
+/// f): inside the bounding sphere of radius R + r (|u| <= h) and inside
+/// t_min < t < t_max; empty (lo >= hi) when the ray misses the sphere. The
+/// callers search even an empty span and discard the answer, with no early
+/// return: straight-line code is cheaper on llvmpipe (docs/performance.md,
+/// "The torus against its sphere").
+fn torus_span(f: Foot, s: Torus, t_min: f32, t_max: f32) -> vec2<f32> {
     let outer = s.major + s.minor;
-    let qq = dot(l.q, l.q);
+    let qq = dot(f.g, f.g);
     let h = sqrt(max(outer * outer - qq, 0.0));
-    return select(vec2(0.0), vec2(max(-h, local_u(l, t_min)), min(h, local_u(l, t_max))), qq < outer * outer);
+    return select(vec2(0.0), vec2(max(-h, t_min - f.s), min(h, t_max - f.s)), qq < outer * outer);
+}
+
+/// The outward normal at p (relative to the centre): the gradient's
+/// direction, p minus its nearest point on the ring, R p_perp / |p_perp|.
+/// A zero or non-finite vector (p on the axis) falls back to -d.
+fn torus_normal(p: vec3<f32>, s: Torus, d: vec3<f32>) -> vec3<f32> {
+    let p_perp = p - dot(p, s.axis) * s.axis;
+    let rho = length(p_perp);
+    let ring = select(vec3(0.0), p_perp * (s.major / rho), rho > 0.0);
+    let n = p - ring;
+    let len = length(n);
+    return select(-d, n / len, len > 1e-30 && len < 1e30);
 }
 
 /// Torus: the first root of its quartic inside the bounding sphere of
-/// radius R + r, from the foot of the perpendicular from its centre. The
-/// normal is the gradient's direction written as p - R (x, 0, z) / |(x, 0, z)|.
+/// radius R + r, from the foot of the perpendicular from its centre.
 fn hit_torus(ray: Ray, s: Torus, index: u32, best: Hit) -> Hit {
-    let l = local_ray(ray, s.center, s.scale, s.rotation);
-    let span = torus_span(l, s, ray.t_min, best.t);
-    let u = quartic_first_root(torus_quartic(l.q, l.d, s.major, s.minor), span.x, span.y);
-    if !(span.x < span.y && u <= span.y) {
+    let f = foot(ray, s.center);
+    let span = torus_span(f, s, ray.t_min, best.t);
+    let u = quartic_first_root(torus_quartic(f.g, ray.dir, s), span.x, span.y);
+    let t = f.s + u;
+    if !(span.x < span.y && u <= span.y && t > ray.t_min && t < best.t) {
         return best;
     }
-    let p = l.q + u * l.d;
-    let rho = length(p.xz);
-    let ring = select(vec3(0.0), vec3(p.x, 0.0, p.z) * (s.major / rho), rho > 0.0);
-    let error_scale = max3(abs(s.center)) + s.scale * (s.major + s.minor);
-    return placed_hit(ray, best, l, u, p - ring, s.center, s.rotation, KIND_TORUS, index, error_scale);
+    let p = f.g + u * ray.dir;
+    let error_scale = max3(abs(s.center)) + s.major + s.minor;
+    return surface_hit(t, s.center + p, torus_normal(p, s, ray.dir), KIND_TORUS, index, error_scale);
 }
 
 /// Whether the torus blocks the ray somewhere in t_min < t < t_max (shadow
@@ -356,9 +374,9 @@ fn hit_torus(ray: Ray, s: Torus, index: u32, best: Hit) -> Hit {
 /// is whether the first piece with a sign change exists, so no root is
 /// refined at all; bisection and the closed form find the root as for a hit.
 fn occludes_torus(ray: Ray, s: Torus, t_max: f32) -> bool {
-    let l = local_ray(ray, s.center, s.scale, s.rotation);
-    let span = torus_span(l, s, ray.t_min, t_max);
-    let k = torus_quartic(l.q, l.d, s.major, s.minor);
+    let f = foot(ray, s.center);
+    let span = torus_span(f, s, ray.t_min, t_max);
+    let k = torus_quartic(f.g, ray.dir, s);
     var blocked = false;
     if TORUS_METHOD != 1u {
         blocked = quartic_first_root(k, span.x, span.y) <= span.y;

@@ -350,12 +350,13 @@ mod tests {
             }),
             rust_layout!(Torus {
                 center,
-                scale,
-                rotation,
                 major,
+                axis,
                 minor,
                 material,
-                _pad
+                _pad0,
+                _pad1,
+                _pad2
             }),
             rust_layout!(Implicit {
                 center,
