@@ -172,8 +172,9 @@ fn occluded(ray: Ray, t_max: f32) -> bool {
 
 /// A ray in a placed shape's local coordinates (the user functions and
 /// Julia sets; docs/implementation.md, "Implicit surfaces"; the torus,
-/// symmetric about its axis, needs no local frame): local points q + u d, measured from the foot of the
-/// perpendicular from the shape's centre, world parameter t = s + scale u.
+/// symmetric about its axis, needs no local frame): local points q + u d,
+/// measured from the foot of the perpendicular from the shape's centre,
+/// world parameter t = s + scale u.
 struct LocalRay {
     q: vec3<f32>,
     d: vec3<f32>,
