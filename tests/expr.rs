@@ -199,8 +199,27 @@ fn gradient_tolerance(gradient: DVec3, value: f64, value32: f64) -> f64 {
     (RELATIVE + 64.0 * relative_loss) * (1.0 + gradient.length())
 }
 
+/// The f64 gradients the GPU's may be: at p, and at the points h away from
+/// it along each axis. Within f32's error of a kink (a tie of `min` or
+/// `max`, `abs` at 0) the f32 evaluation may take the other branch, and its
+/// gradient is then a neighbour's: h = 2e-3 (1 + |p|) reaches ties as far
+/// as the GPU's own errors move them (a random function once put a tie of
+/// `max` 4e-4 from a random point), and is small enough that a neighbour on
+/// the same branch differs from p by less than the tolerance.
+fn gradients_near(f: &Function, p: DVec3) -> Vec<DVec3> {
+    let h = 2e-3 * (1.0 + p.abs().max_element());
+    let steps = [DVec3::ZERO, DVec3::X, DVec3::Y, DVec3::Z];
+    steps
+        .into_iter()
+        .flat_map(|e| [p + h * e, p - h * e])
+        .skip(1)
+        .map(|q| f.value_and_gradient(q).1)
+        .collect()
+}
+
 /// Compares the GPU with the CPU for `functions` at `points` (each point
-/// with every function); a message per mismatch.
+/// with every function); a message per mismatch. The value must match the
+/// f64 value at the point, the gradient one of `gradients_near` it.
 fn mismatches(gpu: &Gpu, functions: &[Function], points: &[DVec3]) -> Vec<String> {
     let inputs: Vec<[f32; 4]> = (0..functions.len())
         .flat_map(|i| {
@@ -229,8 +248,13 @@ fn mismatches(gpu: &Gpu, functions: &[Function], points: &[DVec3]) -> Vec<String
         };
         check("value", got.value, value, value_tolerance);
         check("dual value", got.dual[0], value, value_tolerance);
+        let tol = gradient_tolerance(gradient, value, value32);
+        let got_gradient = DVec3::new(got.dual[1].into(), got.dual[2].into(), got.dual[3].into());
+        let matches = |g: &DVec3| (got_gradient - *g).abs().max_element() <= tol;
+        if gradients_near(f, p).iter().any(matches) {
+            continue;
+        }
         for (axis, name) in ["d/dx", "d/dy", "d/dz"].into_iter().enumerate() {
-            let tol = gradient_tolerance(gradient, value, value32);
             check(name, got.dual[axis + 1], gradient[axis], tol);
         }
     }
@@ -272,7 +296,9 @@ fn random_functions_agree_on_cpu_and_gpu() {
 /// The functions with jumps (floor, fract, mod) and the special cases of the
 /// rules (a tie of min and max, abs at 0, the real power of a negative
 /// number, whole powers of negative numbers), at points away from the jumps
-/// where f32 and f64 cannot fall on different sides.
+/// where f32 and f64 cannot fall on different sides; and a tie of `max`
+/// that f32 and f64 decide differently, where either side's gradient is
+/// right.
 #[test]
 fn jumps_and_special_cases_agree_on_cpu_and_gpu() {
     let Some(gpu) = common::gpu() else { return };
@@ -286,6 +312,9 @@ fn jumps_and_special_cases_agree_on_cpu_and_gpu() {
         "x",
         "3.25",
         "pi * x",
+        // Its two arguments 6e-4 apart at the last point: either branch's
+        // gradient will do there (`gradients_near`).
+        "max(acos(0.9 * cos(z)), (cosh(cos(x)) + atan(x)))",
     ];
     let functions: Vec<Function> = sources
         .iter()
@@ -296,6 +325,7 @@ fn jumps_and_special_cases_agree_on_cpu_and_gpu() {
         DVec3::new(-1.7, 2.2, -0.4),
         DVec3::new(2.6, 0.45, 1.1),
         DVec3::new(-0.2, -0.7, -1.2),
+        DVec3::new(-0.3812597692012787, -0.7252069711685181, -1.040716290473938),
     ];
     let failures = mismatches(&gpu, &functions, &points);
     assert!(failures.is_empty(), "{}", failures.join("\n"));
