@@ -25,13 +25,21 @@ require() {
 # RAYSANDBOX_VULKAN_ICD_DIR names where Vulkan drivers register (Debian's
 # folder by default; the probe's test points it at an empty folder).
 missing_test_packages() {
-    local icd_dir=${RAYSANDBOX_VULKAN_ICD_DIR:-/usr/share/vulkan/icd.d}
-    compgen -G "$icd_dir/lvp_icd.*.json" >/dev/null || echo mesa-vulkan-drivers
+    have_lavapipe || echo mesa-vulkan-drivers
     have_vulkan_loader || echo libvulkan1
     have Xvfb || echo xvfb
     have xdotool || echo xdotool
     have import || echo imagemagick
     have chromium || echo chromium
+}
+
+# True when lavapipe's Vulkan driver is registered.
+have_lavapipe() {
+    local icd
+    for icd in "${RAYSANDBOX_VULKAN_ICD_DIR:-/usr/share/vulkan/icd.d}"/lvp_icd.*.json; do
+        [ -e "$icd" ] && return 0
+    done
+    return 1
 }
 
 # True when the dynamic linker knows libvulkan.so.1. ldconfig lives in

@@ -8,15 +8,36 @@ mod common;
 
 use std::path::PathBuf;
 
-use common::xwindow::{Display, Window, crop};
+use common::xwindow::{Display, Rect, Window, crop};
 use raysandbox::compare::diff_images;
 use raysandbox::sandbox::render_file;
 
 const WIDTH: u32 = 640;
 const HEIGHT: u32 = 360;
-/// A part of the window the panel (top left) and the error overlay (bottom)
-/// leave uncovered.
-const FREE: (u32, u32, u32, u32) = (350, 0, 290, 150);
+
+/// A part of the window that the panel (top left) and its shadow leave
+/// uncovered, from the window's own layout; the error overlay (bottom) must
+/// stay below it (checked where one shows, by [`below_free`]).
+fn free(window: &Window) -> (u32, u32, u32, u32) {
+    let x = window.part("panel").right() + 48;
+    let free = Rect {
+        x,
+        y: 0,
+        w: WIDTH as i32 - x,
+        h: 150,
+    };
+    assert!(free.w >= 150, "the panel leaves too little: {free:?}");
+    free.crop()
+}
+
+/// Asserts that the error overlay leaves the free part uncovered.
+fn below_free(window: &Window) {
+    let error = window.part("shader-error");
+    assert!(
+        error.y >= 150,
+        "the error overlay {error:?} covers the free part"
+    );
+}
 
 const RINGS: &str = "\
 uniform float time;
@@ -39,17 +60,17 @@ fn the_window_renders_the_file_and_follows_its_edits() {
     std::fs::create_dir_all(&dir).unwrap();
     let shader = dir.join("live.frag");
     std::fs::write(&shader, RINGS).unwrap();
-    let headless = |shader: &PathBuf| {
-        let (image, _) = render_file(&gpu, shader, (WIDTH, HEIGHT), 0.0, None).unwrap();
-        crop(&image, FREE)
-    };
-
     let mut window = Window::open(
         &display,
         &["shader", shader.to_str().unwrap(), "--start-paused"],
         (WIDTH, HEIGHT),
     );
-    let first = crop(&window.capture(), FREE);
+    let area = free(&window);
+    let headless = |shader: &PathBuf| {
+        let (image, _) = render_file(&gpu, shader, (WIDTH, HEIGHT), 0.0, None).unwrap();
+        crop(&image, area)
+    };
+    let first = crop(&window.capture(), area);
     let d = diff_images(&first, &headless(&shader));
     assert!(d.max_abs <= 1, "the window shows the shader: {d:?}");
 
@@ -57,7 +78,7 @@ fn the_window_renders_the_file_and_follows_its_edits() {
     let edited = RINGS.replace("vec2(0.7, 0.6)", "vec2(0.9, 0.2)");
     std::fs::write(&shader, &edited).unwrap();
     window.wait_for("shader-reloaded");
-    let second = crop(&window.capture(), FREE);
+    let second = crop(&window.capture(), area);
     assert!(diff_images(&first, &second).max_abs > 50, "the edit shows");
     let d = diff_images(&second, &headless(&shader));
     assert!(d.max_abs <= 1, "the window shows the edit: {d:?}");
@@ -66,8 +87,9 @@ fn the_window_renders_the_file_and_follows_its_edits() {
     let broken = edited.replace("float r = length", "float r = lenght");
     std::fs::write(&shader, &broken).unwrap();
     let location = window.wait_for("shader-error");
+    below_free(&window);
     assert_eq!(location, format!("{}:6:15", shader.display()));
-    let during = crop(&window.capture(), FREE);
+    let during = crop(&window.capture(), area);
     assert_eq!(
         diff_images(&second, &during).max_abs,
         0,
@@ -82,11 +104,12 @@ fn the_window_renders_the_file_and_follows_its_edits() {
     );
     std::fs::write(&shader, &endless).unwrap();
     let location = window.wait_for("shader-error");
+    below_free(&window);
     assert!(
         location.contains("live.frag: a frame would take about"),
         "{location}"
     );
-    let during = crop(&window.capture(), FREE);
+    let during = crop(&window.capture(), area);
     assert_eq!(
         diff_images(&second, &during).max_abs,
         0,
@@ -96,7 +119,7 @@ fn the_window_renders_the_file_and_follows_its_edits() {
     // Fixed again, then a screenshot of the image.
     std::fs::write(&shader, RINGS).unwrap();
     window.wait_for("shader-reloaded");
-    let fixed = crop(&window.capture(), FREE);
+    let fixed = crop(&window.capture(), area);
     assert_eq!(diff_images(&first, &fixed).max_abs, 0);
     window.key("p");
     let path = PathBuf::from(window.wait_for("screenshot"));
@@ -143,8 +166,9 @@ fn the_window_shows_the_channel_image_given_on_the_command_line() {
         ],
         (WIDTH, HEIGHT),
     );
-    let shown = crop(&window.capture(), FREE);
-    let d = diff_images(&shown, &crop(&input, FREE));
+    let area = free(&window);
+    let shown = crop(&window.capture(), area);
+    let d = diff_images(&shown, &crop(&input, area));
     assert!(d.max_abs <= 1, "the window shows the image: {d:?}");
     drop(window);
     std::fs::remove_dir_all(&dir).unwrap();

@@ -8,7 +8,7 @@ use std::path::{Path, PathBuf};
 use std::sync::{Mutex, MutexGuard};
 use std::time::Duration;
 
-use common::xwindow::{Display, Window, crop};
+use common::xwindow::{Display, Rect, Window, crop};
 use raysandbox::compare::diff_images;
 use raysandbox::gpu::{OUTLINE_COLOR, render_image};
 use raysandbox::reference;
@@ -16,9 +16,42 @@ use raysandbox::scene::{Scene, ShapeId};
 
 const WIDTH: u32 = 800;
 const HEIGHT: u32 = 450;
-/// The part of the window that shows the image: right of the side panel
-/// (about 300 px wide) and above the status line.
-const VIEW: (u32, u32, u32, u32) = (360, 0, WIDTH - 360, HEIGHT - 40);
+
+/// The part of the window that shows the image uncovered, from the
+/// window's own layout: right of the side panel (and its resize handle)
+/// and above the status line.
+fn view(viewer: &Window) -> Rect {
+    let panel = viewer.part("panel");
+    let status = viewer.part("status");
+    let x = panel.right() + 16;
+    let view = Rect {
+        x,
+        y: 0,
+        w: WIDTH as i32 - x,
+        h: status.y,
+    };
+    assert!(
+        view.w >= 200 && view.h >= 200,
+        "the panel leaves too little of the image: {view:?}"
+    );
+    view
+}
+
+/// How far an egui window's shadow reaches beyond the window, in pixels
+/// (egui's default shadow: 20 px down, blurred over 15).
+const SHADOW: i32 = 40;
+
+/// Asserts that a point the test clicks on in the image is in its
+/// uncovered part.
+fn in_view(viewer: &Window, (x, y): (u32, u32)) -> (u32, u32) {
+    let view = view(viewer);
+    let (x, y) = (x as i32, y as i32);
+    assert!(
+        (view.x..view.right()).contains(&x) && (view.y..view.bottom()).contains(&y),
+        "({x}, {y}) is not in the uncovered image {view:?}"
+    );
+    (x as u32, y as u32)
+}
 
 /// One viewer at a time: each drives its own X server, but lavapipe's
 /// rendering shares the machine's two cores.
@@ -66,7 +99,8 @@ fn window_shows_the_same_pixels_as_a_headless_render() {
     let gpu = common::gpu().unwrap();
     let scene = Scene::load(&path).unwrap();
     let headless = render_image(&gpu, &scene, WIDTH, HEIGHT, 1).unwrap();
-    let d = diff_images(&crop(&window, VIEW), &crop(&headless, VIEW));
+    let area = view(&viewer).crop();
+    let d = diff_images(&crop(&window, area), &crop(&headless, area));
     println!(
         "window vs headless: mean {:.4}, max {}",
         d.mean_abs, d.max_abs
@@ -82,22 +116,35 @@ fn dragging_in_the_view_orbits_but_dragging_on_the_panel_does_not() {
     };
     let path = scene_path("mirror_cube");
     let mut viewer = open(&display, &[path.to_str().unwrap()]);
-    let before = crop(&viewer.capture(), VIEW);
+    let area = view(&viewer).crop();
+    let before = crop(&viewer.capture(), area);
 
-    // A drag over the panel's empty lower part: egui takes it.
-    viewer.drag("1", (150, 380), (260, 300));
+    // A drag over the panel's empty lower part, below its last row: egui
+    // takes it.
+    let panel = viewer.part("panel");
+    let content = viewer.part("panel-content");
+    let empty = Rect {
+        y: content.bottom(),
+        h: panel.bottom() - content.bottom(),
+        ..panel
+    };
+    assert!(
+        empty.h >= 40,
+        "the panel {panel:?} has no empty part below its rows {content:?}"
+    );
+    viewer.drag("1", empty.at(0.3, 0.8), empty.at(0.7, 0.2));
     let events = viewer.events_within(Duration::from_secs(2));
     assert!(events.is_empty(), "the camera moved: {events:?}");
-    let after_panel = crop(&viewer.capture(), VIEW);
+    let after_panel = crop(&viewer.capture(), area);
     assert_eq!(
         diff_images(&before, &after_panel).max_abs,
         0,
         "a panel drag changed the image"
     );
 
-    viewer.drag("1", (550, 200), (650, 240));
+    viewer.drag("1", in_view(&viewer, (550, 200)), (650, 240));
     viewer.wait_for("ready");
-    let after_view = crop(&viewer.capture(), VIEW);
+    let after_view = crop(&viewer.capture(), area);
     let d = diff_images(&before, &after_view);
     assert!(
         d.frac_over_8 > 0.05,
@@ -118,7 +165,9 @@ fn dragging_a_slider_traces_at_the_moving_scale_then_refines() {
     };
     let path = scene_path("mirror_cube");
     let mut viewer = open(&display, &[path.to_str().unwrap()]);
-    viewer.drag("1", (100, 145), (150, 145));
+    // On the slider's rail, left of its number.
+    let (x, y) = viewer.part("camera-fov").at(0.1, 0.5);
+    viewer.drag("1", (x, y), (x + 50, y));
     let moving = viewer.wait_for("moving-frame");
     let scale: f32 = moving
         .split_whitespace()
@@ -139,9 +188,9 @@ fn clicking_an_object_selects_it_in_the_panel() {
     let path = scene_path("whitted");
     let mut viewer = open(&display, &[path.to_str().unwrap()]);
     // The glass sphere fills the middle of the right half; the sky is above.
-    viewer.click((560, 200));
+    viewer.click(in_view(&viewer, (560, 200)));
     assert_eq!(viewer.wait_for("selected"), "Some(Sphere(0))");
-    viewer.click((560, 20));
+    viewer.click(in_view(&viewer, (560, 20)));
     assert_eq!(viewer.wait_for("selected"), "None");
 }
 
@@ -181,7 +230,7 @@ fn the_picked_object_is_outlined_around_its_silhouette() {
     let path = scene_path("whitted");
     let mut viewer = open(&display, &[path.to_str().unwrap()]);
     let before = viewer.capture();
-    viewer.click((560, 200));
+    viewer.click(in_view(&viewer, (560, 200)));
     assert_eq!(viewer.wait_for("selected"), "Some(Sphere(0))");
     let after = viewer.capture();
 
@@ -195,7 +244,8 @@ fn the_picked_object_is_outlined_around_its_silhouette() {
     // The band is 2 px wide, then a dark ring; the GPU's silhouette may
     // differ from the reference's by a pixel.
     let distance = squared_distances(&sphere, (WIDTH, HEIGHT), 16);
-    let (x0, y0, w, h) = VIEW;
+    let area = view(&viewer).crop();
+    let (x0, y0, w, h) = area;
     let (mut changed, mut changed_away, mut next_to, mut next_to_outlined) = (0, 0, 0, 0);
     for y in y0..y0 + h {
         for x in x0..x0 + w {
@@ -229,10 +279,10 @@ fn the_picked_object_is_outlined_around_its_silhouette() {
         "{next_to_outlined} of {next_to} pixels next to the sphere are outlined"
     );
 
-    viewer.click((560, 20));
+    viewer.click(in_view(&viewer, (560, 20)));
     assert_eq!(viewer.wait_for("selected"), "None");
     assert_eq!(
-        diff_images(&crop(&before, VIEW), &crop(&viewer.capture(), VIEW)).max_abs,
+        diff_images(&crop(&before, area), &crop(&viewer.capture(), area)).max_abs,
         0,
         "the outline is gone with the selection"
     );
@@ -253,6 +303,7 @@ fn a_broken_shader_keeps_the_last_good_image_and_the_fix_renders_again() {
         &[path.to_str().unwrap(), "--shaders", dir.to_str().unwrap()],
     );
     let good = viewer.capture();
+    let area = view(&viewer);
 
     let shade = dir.join("shade.wgsl");
     let original = std::fs::read_to_string(&shade).unwrap();
@@ -279,13 +330,23 @@ fn a_broken_shader_keeps_the_last_good_image_and_the_fix_renders_again() {
     );
     let during = viewer.capture();
     // The overlay covers the top of the view; below it the image is unchanged.
-    let below_overlay = (VIEW.0, 250, VIEW.2, VIEW.3 - 250);
+    let overlay = viewer.part("shader-error");
+    let below_overlay = Rect {
+        y: overlay.bottom() + SHADOW,
+        h: area.bottom() - overlay.bottom() - SHADOW,
+        ..area
+    }
+    .crop();
     assert_eq!(
         diff_images(&crop(&good, below_overlay), &crop(&during, below_overlay)).max_abs,
         0,
         "the last good image must stay"
     );
-    let top = (VIEW.0, 0, VIEW.2, 120);
+    let top = Rect {
+        h: overlay.bottom(),
+        ..area
+    }
+    .crop();
     assert!(
         diff_images(&crop(&good, top), &crop(&during, top)).frac_over_8 > 0.05,
         "the error overlay should be visible"
@@ -295,8 +356,9 @@ fn a_broken_shader_keeps_the_last_good_image_and_the_fix_renders_again() {
     viewer.wait_for("shaders-reloaded");
     viewer.wait_for("ready");
     let fixed = viewer.capture();
+    let area = area.crop();
     assert_eq!(
-        diff_images(&crop(&good, VIEW), &crop(&fixed, VIEW)).max_abs,
+        diff_images(&crop(&good, area), &crop(&fixed, area)).max_abs,
         0
     );
 }
@@ -321,7 +383,7 @@ fn a_scene_saved_from_the_viewer_loads_back_equal() {
         "an unedited save changes nothing"
     );
 
-    viewer.drag("1", (550, 200), (640, 260));
+    viewer.drag("1", in_view(&viewer, (550, 200)), (640, 260));
     viewer.wait_for("ready");
     viewer.key("ctrl+s");
     viewer.wait_for("saved");
@@ -393,9 +455,6 @@ const TETRAHEDRON: &str =
     "v -1 0 1\nv 1 0 1\nv 0 0 -1\nv 0 1.5 0\nf 1 3 2\nf 1 2 4\nf 2 3 4\nf 3 1 4\n";
 const QUAD: &str = "v -2 0.01 -1\nv 2 0.01 -1\nv 2 1.2 -1\nv -2 1.2 -1\nf 1 2 3 4\n";
 
-/// The side panel, left of the view.
-const PANEL: (u32, u32, u32, u32) = (0, 0, 340, HEIGHT - 40);
-
 #[test]
 fn a_mesh_file_edited_on_disk_reloads_and_a_bad_edit_keeps_the_last_good_mesh() {
     let _serial = serial();
@@ -409,13 +468,14 @@ fn a_mesh_file_edited_on_disk_reloads_and_a_bad_edit_keeps_the_last_good_mesh() 
     std::fs::write(&path, MESH_SCENE).unwrap();
     let mut viewer = open(&display, &[path.to_str().unwrap()]);
     let tetrahedron = viewer.capture();
+    let (area, panel) = (view(&viewer).crop(), viewer.part("panel").crop());
 
     // Another good mesh: it is drawn.
     std::fs::write(&obj, QUAD).unwrap();
     assert!(viewer.wait_for("mesh-reloaded").ends_with("shape.obj"));
     viewer.wait_for("ready");
     let quad = viewer.capture();
-    let d = diff_images(&crop(&tetrahedron, VIEW), &crop(&quad, VIEW));
+    let d = diff_images(&crop(&tetrahedron, area), &crop(&quad, area));
     assert!(d.frac_over_8 > 0.02, "the new mesh is not drawn: {d:?}");
 
     // A bad file (line 5 names a vertex that does not exist): the error
@@ -435,14 +495,14 @@ fn a_mesh_file_edited_on_disk_reloads_and_a_bad_edit_keeps_the_last_good_mesh() 
     );
     let during = viewer.capture();
     assert_eq!(
-        diff_images(&crop(&quad, VIEW), &crop(&during, VIEW)).max_abs,
+        diff_images(&crop(&quad, area), &crop(&during, area)).max_abs,
         0,
         "the last good mesh must stay"
     );
-    let panel = diff_images(&crop(&quad, PANEL), &crop(&during, PANEL));
+    let shown = diff_images(&crop(&quad, panel), &crop(&during, panel));
     assert!(
-        panel.frac_over_8 > 0.002,
-        "no error in the panel: {panel:?}"
+        shown.frac_over_8 > 0.002,
+        "no error in the panel: {shown:?}"
     );
 
     // Fixed again: drawn again, the error is gone from the panel.
@@ -451,7 +511,7 @@ fn a_mesh_file_edited_on_disk_reloads_and_a_bad_edit_keeps_the_last_good_mesh() 
     viewer.wait_for("ready");
     let fixed = viewer.capture();
     assert_eq!(
-        diff_images(&crop(&tetrahedron, VIEW), &crop(&fixed, VIEW)).max_abs,
+        diff_images(&crop(&tetrahedron, area), &crop(&fixed, area)).max_abs,
         0
     );
     std::fs::remove_dir_all(&dir).unwrap();
@@ -500,10 +560,7 @@ fn bad_implicit_input_keeps_the_last_good_scene_and_shows_the_error() {
     std::fs::write(&path, IMPLICIT_SCENE).unwrap();
     let mut viewer = open(&display, &[path.to_str().unwrap()]);
     let good = viewer.capture();
-    // The error window sits at the bottom of the window; above it the view
-    // must not change.
-    let above_error = (VIEW.0, 0, VIEW.2, 200);
-    let error_area = (VIEW.0, 250, VIEW.2, VIEW.3 - 250);
+    let area = view(&viewer);
     let cases = [
         (
             r#"f = "x^2 + y^2 + z^2 - 1""#,
@@ -546,6 +603,20 @@ fn bad_implicit_input_keeps_the_last_good_scene_and_shows_the_error() {
         std::thread::sleep(Duration::from_millis(500));
         assert!(viewer.is_running(), "{bad_text} stopped the viewer");
         let during = viewer.capture();
+        // The error window sits at the bottom of the window; above it the
+        // view must not change.
+        let error = viewer.part("scene-error");
+        let above_error = Rect {
+            h: error.y - SHADOW,
+            ..area
+        }
+        .crop();
+        let error_area = Rect {
+            y: error.y,
+            h: area.bottom() - error.y,
+            ..area
+        }
+        .crop();
         assert_eq!(
             diff_images(&crop(&good, above_error), &crop(&during, above_error)).max_abs,
             0,
@@ -561,7 +632,11 @@ fn bad_implicit_input_keeps_the_last_good_scene_and_shows_the_error() {
     viewer.wait_for("scene-error-cleared");
     std::thread::sleep(Duration::from_millis(500));
     assert_eq!(
-        diff_images(&crop(&good, VIEW), &crop(&viewer.capture(), VIEW)).max_abs,
+        diff_images(
+            &crop(&good, area.crop()),
+            &crop(&viewer.capture(), area.crop())
+        )
+        .max_abs,
         0,
         "the error window is gone once the file is fixed"
     );

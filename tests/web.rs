@@ -8,7 +8,7 @@ mod common;
 
 use std::time::{Duration, Instant};
 
-use common::browser::{self, Browser, Button, SIZE};
+use common::browser::{self, Browser, Button, SIZE, page_point};
 use image::RgbaImage;
 use raysandbox::compare::{diff_images, distinct_colors, nan_pixels};
 use raysandbox::reference;
@@ -878,7 +878,8 @@ fn page_with_scenes_menu() -> Option<(common::xwindow::Display, Browser, RgbaIma
     let (display, mut page) = browser::open_page("?samples=1")?;
     page.wait_for("ready");
     let before = page.capture_picture();
-    page.click((29.0, 12.0));
+    let menu = page.part("menu:Scenes");
+    page.click(page_point(menu));
     // The menu opens on the next frame.
     std::thread::sleep(Duration::from_secs(1));
     Some((display, page, before))
@@ -891,9 +892,8 @@ fn choosing_a_bundled_scene_in_the_menu_shows_it() {
     let Some((_display, mut page, before)) = page_with_scenes_menu() else {
         return;
     };
-    // The menu lists the bundled scenes in order, one row each.
-    assert_eq!(bundled::names()[1], "cornell");
-    page.click((37.0, 62.0));
+    let cornell = page.part("item:Scenes/cornell");
+    page.click(page_point(cornell));
     assert_eq!(page.wait_for("scene"), "cornell");
     let scene = Scene::from_toml_str(bundled::text("cornell").unwrap(), None).unwrap();
     assert_eq!(
@@ -915,16 +915,18 @@ fn choosing_a_bundled_mesh_scene_in_the_menu_fetches_its_model_and_shows_it() {
         return;
     };
     // The list is taller than the 270-pixel page: it scrolls. Scrolled to
-    // its end, its last three rows are the mesh scenes, in order.
-    page.mouse_move((60.0, 150.0));
+    // its end, its last rows are the mesh scenes.
+    let list = page_point(page.part("item:Scenes/cornell"));
+    page.mouse_move(list);
     std::thread::sleep(Duration::from_millis(500));
-    page.wheel((60.0, 150.0), (0.0, 500.0));
+    page.wheel(list, (0.0, 500.0));
     std::thread::sleep(Duration::from_secs(3));
-    assert_eq!(
-        bundled::mesh_scene_names(),
-        ["glass_bunny", "mirror_teapot", "cornell_dragon"]
+    let bunny = page.part("item:Scenes/glass_bunny");
+    assert!(
+        bunny.bottom() <= SIZE.1 as i32,
+        "the list did not scroll to the glass bunny: {bunny:?}"
     );
-    page.click((37.0, 174.0));
+    page.click(page_point(bunny));
     assert_eq!(page.wait_for("loading"), "bunny.obj");
     let bunny = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("assets/meshes/bunny.obj");
     let size = std::fs::metadata(bunny).unwrap().len();
@@ -959,8 +961,12 @@ fn dragging_a_slider_in_the_panel_changes_the_picture() {
     };
     page.wait_for("ready");
     let before = page.capture_picture();
-    // The Camera section is open: its fourth row is the `fov` slider.
-    page.drag(Button::Left, (110.0, 154.0), (150.0, 154.0));
+    // The Camera section is open: on the `fov` slider's rail, left of its
+    // number.
+    let fov = page.part("camera-fov");
+    let (x, y) = fov.at(0.1, 0.5);
+    let (x, y) = (f64::from(x), f64::from(y));
+    page.drag(Button::Left, (x, y), (x + 40.0, y));
     let scene = scene_in_address(&mut page);
     let (_, whitted) = whitted();
     assert!(

@@ -151,10 +151,29 @@ impl Document {
         &self.saved.camera
     }
 
-    /// "whitted.toml" or "built-in whitted", with " *" when unsaved.
+    /// The scene's file as given (a path), or "(built-in whitted scene)",
+    /// with " *" when unsaved: the window's title and the panel title's
+    /// hover text.
     pub fn label(&self) -> String {
-        let name = match (&self.path, self.builtin_name) {
-            (Some(p), _) => p.display().to_string(),
+        self.marked(self.path.as_ref().map(|p| p.display().to_string()))
+    }
+
+    /// As [`Document::label`], with the file's name alone: the panel's
+    /// title, which a deep folder's path would otherwise wrap onto several
+    /// lines, pushing the whole panel down.
+    pub fn short_label(&self) -> String {
+        self.marked(self.path.as_ref().map(|p| {
+            p.file_name().map_or_else(
+                || p.display().to_string(),
+                |n| n.to_string_lossy().into_owned(),
+            )
+        }))
+    }
+
+    /// `file`, or the built-in scene's name, with " *" when unsaved.
+    fn marked(&self, file: Option<String>) -> String {
+        let name = match (file, self.builtin_name) {
+            (Some(file), _) => file,
             (None, Some(n)) => format!("(built-in {n} scene)"),
             (None, None) => "(untitled)".to_string(),
         };
@@ -270,6 +289,22 @@ mod tests {
         let leftovers: Vec<_> = std::fs::read_dir(&dir).unwrap().collect();
         assert_eq!(leftovers.len(), 1);
         std::fs::remove_dir_all(&dir).unwrap();
+    }
+
+    #[test]
+    fn the_short_label_is_the_file_name_however_deep_the_folder() {
+        let deep = temp_dir("label").join("a-folder-with-a-long-name/and-another-one-below-it");
+        std::fs::create_dir_all(&deep).unwrap();
+        let path = deep.join("mine.toml");
+        let mut doc = Document::bundled("whitted").unwrap();
+        assert_eq!(doc.short_label(), "(built-in whitted scene)");
+        doc.save_as(&path).unwrap();
+        assert_eq!(doc.short_label(), "mine.toml");
+        assert_eq!(doc.label(), path.display().to_string());
+        doc.scene.camera.fov += 1.0;
+        assert_eq!(doc.short_label(), "mine.toml *");
+        assert_eq!(doc.label(), format!("{} *", path.display()));
+        std::fs::remove_dir_all(temp_dir("label")).unwrap();
     }
 
     #[test]

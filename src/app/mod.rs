@@ -11,6 +11,7 @@
 
 mod controls;
 pub(crate) mod document;
+pub(crate) mod layout;
 mod mesh_files;
 mod orbit;
 mod overlay;

@@ -2,6 +2,8 @@
 //! window: the shader error (copyable, with file, line, column and the
 //! offending line) and warnings about the shader's output.
 
+use super::layout;
+
 /// The colour of error text.
 pub const ERROR_COLOR: egui::Color32 = egui::Color32::from_rgb(255, 120, 100);
 /// The colour of warning text.
@@ -13,7 +15,7 @@ pub fn error_window(ctx: &egui::Context, title: &str, text: &str, anchor: egui::
         egui::Align::Max => [0.0, -10.0],
         _ => [0.0, 10.0],
     };
-    egui::Window::new(title)
+    let window = egui::Window::new(title)
         .id(egui::Id::unique("shader error overlay"))
         .anchor(anchor, offset)
         .collapsible(false)
@@ -31,7 +33,9 @@ pub fn error_window(ctx: &egui::Context, title: &str, text: &str, anchor: egui::
             if ui.button("Copy").clicked() {
                 ui.ctx().copy_text(text.to_string());
             }
+            ui.is_sizing_pass()
         });
+    layout::note_window(ctx, "shader-error", window);
 }
 
 /// A one-line warning in a small frame, anchored at `anchor`.

@@ -17,6 +17,7 @@ mod widgets;
 
 use std::path::PathBuf;
 
+use super::layout;
 use crate::gpu::{DEFAULT_MAX_SAMPLES, DEFAULT_MIN_WEIGHT, MIN_SCALE};
 use crate::scene::{Camera, Light, Material, Mesh, RenderSettings, Scene, ShapeId, ShapeKind};
 use egui::{
@@ -146,8 +147,9 @@ pub fn add_mesh(scene: &mut Scene, state: &mut PanelState, mesh: Mesh) {
 ///
 /// `files` names the bundled example scenes offered beside Save and Open
 /// (`None`: no "File" section, where there are no files: the web page);
-/// `file_label` is the current file (or "(built-in whitted scene)") and
-/// whether it has unsaved changes.
+/// `file_label` is the current file's name (or "(built-in whitted scene)")
+/// and whether it has unsaved changes, `file_path` its whole path, shown
+/// on hover.
 pub fn show(
     ui: &mut Ui,
     scene: &mut Scene,
@@ -155,6 +157,7 @@ pub fn show(
     state: &mut PanelState,
     files: Option<&[&'static str]>,
     file_label: &str,
+    file_path: &str,
 ) -> Vec<PanelAction> {
     state.selection = edit::checked_selection(scene, state.selection);
     // Drag speeds and new shapes' sizes follow the scene's scale, so the
@@ -162,7 +165,10 @@ pub fn show(
     let scale = scene.view_scale();
     let mut actions = Vec::new();
 
-    ui.label(RichText::new(file_label).strong());
+    let title = ui
+        .label(RichText::new(file_label).strong())
+        .on_hover_text(file_path);
+    layout::note(ui.ctx(), "title", title.rect);
     if let Some(bundled) = files {
         section(ui, "File", false, |ui| {
             file_section(ui, state, bundled, &mut actions);
@@ -299,11 +305,12 @@ fn camera_section(ui: &mut Ui, camera: &mut Camera, scale: f64, actions: &mut Ve
         ui.end_row();
 
         field(ui, "fov", "Vertical field of view");
-        ui.add(
+        let fov = ui.add(
             Slider::new(&mut camera.fov, 1.0..=179.0)
                 .clamping(SliderClamping::Edits)
                 .suffix("°"),
         );
+        layout::note(ui.ctx(), "camera-fov", fov.rect);
         ui.end_row();
 
         field(
@@ -927,6 +934,7 @@ mod tests {
                     &mut state,
                     Some(&["whitted"]),
                     "x.toml",
+                    "/some/folder/x.toml",
                 );
                 assert!(actions.is_empty());
             });
@@ -937,7 +945,15 @@ mod tests {
         // The app swapped in a scene with fewer shapes: no index past the end.
         state.selection = Some(ShapeId::Cube(3));
         frames(|ui| {
-            show(ui, &mut scene, &mut view, &mut state, Some(&[]), "x.toml");
+            show(
+                ui,
+                &mut scene,
+                &mut view,
+                &mut state,
+                Some(&[]),
+                "x.toml",
+                "/some/folder/x.toml",
+            );
         });
         assert_eq!(state.selection, None);
     }
@@ -1028,6 +1044,7 @@ mod tests {
                         &mut state,
                         Some(&bundled),
                         "x.toml",
+                        "/some/folder/x.toml",
                     );
                     content = ui.min_rect();
                 })
@@ -1069,6 +1086,7 @@ mod tests {
                 &mut ViewSettings::default(),
                 &mut state,
                 None,
+                "",
                 "",
             );
         });

@@ -19,6 +19,7 @@ use winit::window::{Window, WindowId};
 
 use super::ViewerError;
 use super::controls::{self, ClockAction};
+use super::layout::{self, Layout, LayoutReport};
 use super::overlay;
 use super::shell::{self, EguiLayer, EventLog};
 use super::watch;
@@ -146,6 +147,7 @@ fn open_window(
         building: false,
         repaint_at: None,
         channels: ChannelPanel { paths, images },
+        layout: LayoutReport::default(),
     };
     event_loop
         .run_app(&mut app)
@@ -238,6 +240,8 @@ struct SandboxApp {
     building: bool,
     repaint_at: Option<Instant>,
     channels: ChannelPanel,
+    /// Tells where the panel and the overlays are when that changes.
+    layout: LayoutReport,
 }
 
 impl ApplicationHandler<SandboxEvent> for SandboxApp {
@@ -501,10 +505,11 @@ impl SandboxApp {
             || self.options.file.display().to_string(),
             |n| n.to_string_lossy().into_owned(),
         );
+        let mut drawn = Layout::default();
         let output = gfx.egui.run(&gfx.window, |ui| {
             shortcuts(ui, panel, &mut actions);
             if panel.show {
-                egui::Window::new(format!("raysandbox: {file}"))
+                let shown = egui::Window::new(format!("raysandbox: {file}"))
                     .id(egui::Id::unique("sandbox panel"))
                     .default_pos([10.0, 10.0])
                     .default_width(280.0)
@@ -581,7 +586,9 @@ impl SandboxApp {
                             ui.label(message);
                         }
                         ui.weak("F1: help   H: hide this panel");
+                        ui.is_sizing_pass()
                     });
+                layout::note_window(ui.ctx(), "panel", shown);
             }
             egui::CentralPanel::no_frame().show(ui, |ui| {
                 actions.mouse_changed = view_input(ui, mouse, window_size, canvas_size);
@@ -600,7 +607,11 @@ impl SandboxApp {
             if panel.help {
                 help_window(ui.ctx(), &mut panel.help);
             }
+            drawn = layout::take(ui.ctx());
         });
+        if let Some(line) = self.layout.changed(&drawn) {
+            self.events.event(line);
+        }
         (actions, output)
     }
 

@@ -8,7 +8,7 @@ use egui::{Key, KeyboardShortcut, Modifiers, PointerButton, Sense};
 
 use super::document::Document;
 use super::panel::{self, PanelAction, PanelState, ViewSettings};
-use super::{controls, overlay};
+use super::{controls, layout, overlay};
 use crate::sandbox::ParamSet;
 use crate::scene::Scene;
 
@@ -174,11 +174,15 @@ pub fn draw(
 ) -> (Vec<Command>, ViewInput) {
     let mut commands = shortcuts(ui, editor);
     if editor.show_panel {
-        let label = doc.label();
-        egui::Panel::left("scene panel")
+        let (title, path) = (doc.short_label(), doc.label());
+        let panel = egui::Panel::left("scene panel")
             .resizable(true)
             .default_size(330.0)
             .show(ui, |ui| {
+                // The panel keeps its width (330 points, or as the user
+                // dragged it), not that of its widest row, which changes
+                // with the selection.
+                ui.set_min_width(ui.available_width());
                 menu_bar(ui, host, &mut commands);
                 egui::ScrollArea::vertical().show(ui, |ui| {
                     let actions = panel::show(
@@ -187,18 +191,24 @@ pub fn draw(
                         &mut editor.view,
                         &mut editor.panel,
                         host.files,
-                        &label,
+                        &title,
+                        &path,
                     );
                     commands.extend(actions.into_iter().map(Command::Panel));
                     if !shader_params.is_empty() {
                         shader_params_section(ui, shader_params, &mut commands);
                     }
+                    layout::note(ui.ctx(), "panel-content", ui.min_rect());
                 });
             });
+        layout::note(ui.ctx(), "panel", panel.response.rect);
         // Hiding the panel (H) leaves the picture alone, for a projector.
-        egui::Panel::bottom("status").show(ui, |ui| status_line(ui, status, editor));
+        let status = egui::Panel::bottom("status").show(ui, |ui| status_line(ui, status, editor));
+        layout::note(ui.ctx(), "status", status.response.rect);
     }
-    let mut input = egui::CentralPanel::no_frame().show(ui, view_input).inner;
+    let view = egui::CentralPanel::no_frame().show(ui, view_input);
+    layout::note(ui.ctx(), "view", view.response.rect);
+    let mut input = view.inner;
     input.widget_dragging = !input.dragging && ui.ctx().dragged_id().is_some();
     overlays(ui.ctx(), editor, &mut commands);
     (commands, input)
@@ -222,7 +232,7 @@ fn menu_bar(ui: &mut egui::Ui, host: &Host, commands: &mut Vec<Command>) {
         let mut groups: Vec<&str> = host.menu.iter().map(|item| item.group).collect();
         groups.dedup();
         for group in groups {
-            ui.menu_button(group, |ui| {
+            let menu = ui.menu_button(group, |ui| {
                 // A list taller than the room below scrolls, rather than
                 // covering the menu bar (a small page or window).
                 let room = (ui.ctx().content_rect().bottom() - ui.cursor().top() - MENU_MARGIN)
@@ -231,12 +241,16 @@ fn menu_bar(ui: &mut egui::Ui, host: &Host, commands: &mut Vec<Command>) {
                     .max_height(room)
                     .show(ui, |ui| {
                         for item in host.menu.iter().filter(|item| item.group == group) {
-                            if ui.button(item.label).clicked() {
+                            let entry = ui.button(item.label);
+                            let name = format!("item:{group}/{}", item.label);
+                            layout::note(ui.ctx(), &name, entry.rect);
+                            if entry.clicked() {
                                 commands.push(Command::Panel(item.action.clone()));
                             }
                         }
                     });
             });
+            layout::note(ui.ctx(), &format!("menu:{group}"), menu.response.rect);
         }
         if host.copy_link
             && ui
@@ -386,7 +400,7 @@ fn overlays(ctx: &egui::Context, editor: &mut Editor, commands: &mut Vec<Command
     }
     if let Some(error) = &editor.scene_error {
         let mut open = true;
-        egui::Window::new("Scene file error: the current scene is kept")
+        let window = egui::Window::new("Scene file error: the current scene is kept")
             .open(&mut open)
             .anchor(egui::Align2::CENTER_BOTTOM, [0.0, -40.0])
             .show(ctx, |ui| {
@@ -395,7 +409,9 @@ fn overlays(ctx: &egui::Context, editor: &mut Editor, commands: &mut Vec<Command
                         .monospace()
                         .color(egui::Color32::LIGHT_RED),
                 );
+                ui.is_sizing_pass()
             });
+        layout::note_window(ctx, "scene-error", window);
         if !open {
             editor.scene_error = None;
         }

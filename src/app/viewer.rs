@@ -11,6 +11,7 @@ use web_time::{Duration, Instant};
 use winit::window::Window;
 
 use super::document::Document;
+use super::layout::{self, Layout, LayoutReport};
 use super::pipelines::{self, PipelineCache};
 use super::shell::EguiLayer;
 use super::ui::{self, Command, Editor, Host, Status, ViewInput};
@@ -93,6 +94,8 @@ pub struct Viewer {
     settled: bool,
     /// When egui asked to be drawn again (animations, tooltips).
     pub repaint_at: Option<Instant>,
+    /// Tells where the panel and its parts are when that changes.
+    layout: LayoutReport,
 }
 
 /// The state a frame starts from, to tell what the frame's UI changed.
@@ -129,6 +132,7 @@ impl Viewer {
             presented: false,
             settled: false,
             repaint_at: None,
+            layout: LayoutReport::default(),
         }
     }
 
@@ -302,6 +306,7 @@ impl Viewer {
             compiling: gfx.pipelines.building(),
         };
         let mut result = (Vec::new(), ViewInput::default());
+        let mut drawn = Layout::default();
         let output = gfx.egui.run(&gfx.window, |ui| {
             result = ui::draw(
                 ui,
@@ -311,7 +316,11 @@ impl Viewer {
                 &status,
                 host,
             );
+            drawn = layout::take(ui.ctx());
         });
+        if let Some(line) = self.layout.changed(&drawn) {
+            (self.platform.event)(line);
+        }
         let (commands, input) = result;
         (
             start,

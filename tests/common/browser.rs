@@ -33,7 +33,7 @@
 //! WebGPU canvas too, pixel for pixel the same as the X screen, and the HTML
 //! over it. (Headless Chromium presents no WebGPU canvas at all.)
 
-use std::collections::VecDeque;
+use std::collections::{HashMap, VecDeque};
 use std::fs::File;
 use std::io::{BufRead, BufReader, ErrorKind, Read, Write};
 use std::net::{TcpListener, TcpStream};
@@ -49,7 +49,7 @@ use raysandbox::compare::distinct_colors;
 use serde_json::{Value, json};
 use tungstenite::{Message, WebSocket};
 
-use super::xwindow::{Display, crop};
+use super::xwindow::{Display, Rect, crop, parse_layout};
 
 /// Size of the browser window, and so of the page's canvas, in pixels.
 pub const SIZE: (u32, u32) = (480, 270);
@@ -194,6 +194,9 @@ pub struct Browser {
     /// The page's `raysandbox:` console lines not yet waited for, without
     /// the prefix.
     lines: VecDeque<String>,
+    /// The parts of the page's last `layout` line, by name (in the page's
+    /// pixels).
+    layout: HashMap<String, Rect>,
     /// Uncaught exceptions of the page, in order.
     exceptions: Vec<String>,
     /// How many of `exceptions` the test has seen ([`Browser::exceptions`]).
@@ -231,6 +234,9 @@ impl Browser {
                 "--v=0",
                 "--remote-debugging-port=0",
                 "--window-position=0,0",
+                // A CSS pixel is a screen pixel: the page's layout lines
+                // (in device pixels) are where the tests click.
+                "--force-device-scale-factor=1",
                 &format!("--window-size={},{}", SIZE.0, SIZE.1),
                 &format!("--user-data-dir={}", profile.0.display()),
                 // `--app=about:blank` opens a normal window with a toolbar.
@@ -261,6 +267,7 @@ impl Browser {
             socket,
             next_id: 1,
             lines: VecDeque::new(),
+            layout: HashMap::new(),
             exceptions: Vec::new(),
             exceptions_seen: 0,
             buttons: 0,
@@ -316,6 +323,30 @@ impl Browser {
             panic!("{js}\nthrew: {}", exception_text(details));
         }
         result["result"]["value"].clone()
+    }
+
+    /// Where the page's panel drew its part `name` (`menu:Scenes`,
+    /// `item:Scenes/cornell`, `camera-fov`, ... in src/app/layout.rs) in its
+    /// last frame, in page pixels. Waits for it, up to a few seconds.
+    pub fn part(&mut self, name: &str) -> Rect {
+        // The lines already sent first: the last layout may be among them.
+        let pending = Instant::now() + Duration::from_millis(100);
+        while let Some(message) = self.receive(pending) {
+            self.keep_event(&message);
+        }
+        let deadline = Instant::now() + Duration::from_secs(10);
+        loop {
+            if let Some(&rect) = self.layout.get(name) {
+                return rect;
+            }
+            match self.receive(deadline) {
+                Some(message) => self.keep_event(&message),
+                None => panic!(
+                    "the page told no part {name:?}; it told {:?}",
+                    self.layout.keys().collect::<Vec<_>>()
+                ),
+            }
+        }
     }
 
     /// Waits for the page's event starting with `prefix`; returns the rest.
@@ -581,7 +612,9 @@ impl Browser {
         match message["method"].as_str() {
             Some("Runtime.consoleAPICalled") => {
                 let text = params["args"][0]["value"].as_str().unwrap_or_default();
-                if let Some(line) = text.strip_prefix("raysandbox: ") {
+                if let Some(described) = text.strip_prefix("raysandbox: layout ") {
+                    self.layout = parse_layout(described);
+                } else if let Some(line) = text.strip_prefix("raysandbox: ") {
                     self.lines.push_back(line.to_string());
                 }
             }
@@ -592,6 +625,15 @@ impl Browser {
             _ => {}
         }
     }
+}
+
+/// The centre of a part the page told ([`Browser::part`]), as page
+/// coordinates to click at.
+pub fn page_point(part: Rect) -> (f64, f64) {
+    (
+        f64::from(part.x) + f64::from(part.w) / 2.0,
+        f64::from(part.y) + f64::from(part.h) / 2.0,
+    )
 }
 
 impl Drop for Browser {

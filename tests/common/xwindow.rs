@@ -5,12 +5,17 @@
 //! The binary's hidden `--print-events` flag prints a line per event
 //! ("ready", "saved PATH", "shader-error FILE:LINE:COL", ...) once the frame
 //! it concerns is on screen, so tests wait for events instead of sleeping.
+//! Its `layout` events say where the panel and its parts are
+//! (`src/app/layout.rs`): tests find what to click there, not at fixed
+//! pixels, which move with the fonts and the length of a file's path.
 
+use std::collections::HashMap;
 use std::io::{BufRead, BufReader};
 use std::path::Path;
 use std::process::{Child, Command, Stdio};
 use std::sync::atomic::{AtomicU32, Ordering};
 use std::sync::mpsc::{Receiver, RecvTimeoutError, channel};
+use std::sync::{Arc, Mutex};
 use std::time::{Duration, Instant};
 
 use image::RgbaImage;
@@ -120,6 +125,8 @@ pub struct Window<'d> {
     display: &'d Display,
     child: Child,
     events: Receiver<String>,
+    /// The parts of the last `layout` event, by name.
+    layout: Arc<Mutex<HashMap<String, Rect>>>,
     /// The X window id.
     pub id: String,
     size: (u32, u32),
@@ -144,9 +151,13 @@ impl<'d> Window<'d> {
             .expect("start raysandbox");
         let stdout = child.stdout.take().unwrap();
         let (tx, events) = channel();
+        let layout = Arc::new(Mutex::new(HashMap::new()));
+        let parts = Arc::clone(&layout);
         std::thread::spawn(move || {
             for line in BufReader::new(stdout).lines().map_while(Result::ok) {
-                if tx.send(line).is_err() {
+                if let Some(described) = line.strip_prefix("event: layout ") {
+                    *parts.lock().unwrap() = parse_layout(described);
+                } else if tx.send(line).is_err() {
                     break;
                 }
             }
@@ -155,6 +166,7 @@ impl<'d> Window<'d> {
             display,
             child,
             events,
+            layout,
             id: String::new(),
             size,
         };
@@ -192,6 +204,25 @@ impl<'d> Window<'d> {
     pub fn events_within(&self, wait: Duration) -> Vec<String> {
         std::thread::sleep(wait);
         self.events.try_iter().collect()
+    }
+
+    /// Where the window drew its part `name` in the last frame told
+    /// (`panel`, `status`, `view`, `title`, `camera-fov`, ... in
+    /// src/app/layout.rs). Waits for it to appear, up to a few seconds.
+    pub fn part(&self, name: &str) -> Rect {
+        let deadline = Instant::now() + Duration::from_secs(10);
+        loop {
+            let parts = self.layout.lock().unwrap().clone();
+            if let Some(&rect) = parts.get(name) {
+                return rect;
+            }
+            assert!(
+                Instant::now() < deadline,
+                "the window told no part {name:?}; it told {:?}",
+                parts.keys().collect::<Vec<_>>()
+            );
+            std::thread::sleep(Duration::from_millis(50));
+        }
     }
 
     pub fn xdotool(&self, args: &[&str]) -> String {
@@ -275,6 +306,57 @@ impl Drop for Window<'_> {
         let _ = self.child.kill();
         let _ = self.child.wait();
     }
+}
+
+/// A part of the window in pixels, as a `layout` event tells it.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Rect {
+    pub x: i32,
+    pub y: i32,
+    pub w: i32,
+    pub h: i32,
+}
+
+impl Rect {
+    pub fn right(self) -> i32 {
+        self.x + self.w
+    }
+
+    pub fn bottom(self) -> i32 {
+        self.y + self.h
+    }
+
+    /// The point at fractions `(fx, fy)` of the width and height.
+    pub fn at(self, fx: f64, fy: f64) -> (u32, u32) {
+        let x = f64::from(self.x) + fx * f64::from(self.w);
+        let y = f64::from(self.y) + fy * f64::from(self.h);
+        (x.round().max(0.0) as u32, y.round().max(0.0) as u32)
+    }
+
+    /// As `(x, y, width, height)` for [`crop`]; panics when empty or off
+    /// the window's top left.
+    pub fn crop(self) -> (u32, u32, u32, u32) {
+        assert!(
+            self.x >= 0 && self.y >= 0 && self.w > 0 && self.h > 0,
+            "not a part of the window: {self:?}"
+        );
+        (self.x as u32, self.y as u32, self.w as u32, self.h as u32)
+    }
+}
+
+/// `panel=0,0,330,410 status=0,410,800,40`: the parts by name.
+pub fn parse_layout(described: &str) -> HashMap<String, Rect> {
+    described
+        .split_whitespace()
+        .filter_map(|part| {
+            let (name, place) = part.split_once('=')?;
+            let n: Vec<i32> = place.split(',').filter_map(|v| v.parse().ok()).collect();
+            let &[x, y, w, h] = n.as_slice() else {
+                return None;
+            };
+            Some((name.to_string(), Rect { x, y, w, h }))
+        })
+        .collect()
 }
 
 /// The part `(x, y, width, height)` of an image.
