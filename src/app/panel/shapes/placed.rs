@@ -5,9 +5,8 @@
 use egui::Ui;
 use glam::DVec3;
 
-use crate::app::panel::edit::MIN_POSITIVE;
 use crate::app::panel::field;
-use crate::app::panel::widgets::{COORDINATES, VALUE_LIMIT, number, vec3_row};
+use crate::app::panel::widgets::{COORDINATES, MIN_POSITIVE, VALUE_LIMIT, number, vec3_row};
 use crate::scene::{CubeSize, Placement, Scale};
 
 /// The row of a placement's `scale`: its hover text and its widget.
