@@ -1,5 +1,5 @@
 //! The placement rows of the placed shapes (translate, scale, rotation;
-//! docs/scene-format.md, "Implicit surfaces" and "Triangle meshes"), and the
+//! docs/scene-format.md, "Implicit surfaces" and "`[[meshes]]`"), and the
 //! rotation row that cubes show too.
 
 use egui::Ui;
