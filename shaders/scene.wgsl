@@ -45,10 +45,10 @@ struct Material {
     ior: f32,
 }
 
-/// A node of the bounding volume hierarchy over spheres and boxes (built on
-/// the CPU, src/bvh.rs): an inner node (count = 0) has its children at
-/// `first` and `first + 1`; a leaf holds `count` entries of `bvh_shapes`
-/// from `first`. The box is rounded outwards, so it holds its shapes.
+/// A node of the bounding volume hierarchy over the bounded shapes (every
+/// kind but planes; built on the CPU, src/bvh.rs): an inner node (count = 0)
+/// has its children at `first` and `first + 1`; a leaf holds `count` entries
+/// of `bvh_shapes` from `first`. The box is rounded outwards, so it holds its shapes.
 struct BvhNode {
     bounds_min: vec3<f32>,
     first: u32,

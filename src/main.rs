@@ -92,13 +92,14 @@ struct RenderArgs {
     /// every feature (the same source either way).
     #[arg(long, value_enum, default_value_t = PipelineKind::Specialized)]
     pipeline: PipelineKind,
-    /// on: spheres and boxes go through the bounding volume hierarchy where
-    /// it pays (a specialised pipeline uses it from 128 of them, the generic
-    /// one always); off: a loop over every shape.
+    /// on: the bounded shapes (every kind but planes) go through the
+    /// bounding volume hierarchy where it pays (a specialised pipeline uses
+    /// it from 128 of them, the generic one always); off: a loop over every
+    /// shape.
     #[arg(long, value_enum, default_value_t = Switch::On)]
     bvh: Switch,
-    /// The ray-triangle test of meshes: cramer (Cramer's rule, as on the
-    /// slides), moller-trumbore, or watertight (Woop, Benthin and Wald).
+    /// The ray-triangle test of meshes: cramer (Cramer's rule),
+    /// moller-trumbore, or watertight (Woop, Benthin and Wald).
     #[arg(long, default_value = "watertight", value_parser = TriangleTest::from_name)]
     triangles: TriangleTest,
     /// How the GPU solves a torus's quartic: bisection, newton (the

@@ -299,9 +299,9 @@ fn kind_const(k: &KindInfo) -> String {
 
 /// One loop per kind over all its shapes; with `any`, the first hit ends it.
 /// The loop tests its end after the body (`break if` in `continuing`), not
-/// before: on llvmpipe the opaque torus scene took 1.2x as long, and its
-/// sphere twin 1.1x, with loops that test first (docs/performance.md, "The
-/// torus against its sphere").
+/// before: on llvmpipe loops that test first made every scene measured
+/// slower (docs/performance.md, "The torus against its sphere", the table
+/// "kind loops tested last").
 fn kind_loops(kinds: &[&KindInfo]) -> String {
     kinds
         .iter()
