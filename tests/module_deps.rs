@@ -13,7 +13,7 @@ use std::collections::{BTreeMap, BTreeSet};
 use std::path::Path;
 
 /// Lower layers first: plain data and helpers, then the two renderers, then
-/// what measures them, then the window.
+/// what measures them, then the window, then the subcommands of the binary.
 const LAYERS: &[&str] = &[
     "files",
     "cli",
@@ -28,6 +28,7 @@ const LAYERS: &[&str] = &[
     "sandbox",
     "app",
     "web",
+    "commands",
 ];
 
 /// One source file: its module path (`["gpu", "context"]`) and text.
