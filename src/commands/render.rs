@@ -98,13 +98,7 @@ pub fn run(args: &Args) -> Result<(), Failure> {
         let prepared = reference::PreparedScene::with_options(&scene, &options);
         reference::render_prepared_rgba8(&prepared, args.width, args.height, args.spp)
     } else {
-        let source = match &args.shaders {
-            Some(dir) => ShaderSource::from_dir(dir).map_err(|e| Failure::Input(e.to_string()))?,
-            None => ShaderSource::embedded(),
-        };
-        // A broken shader is the user's input: report it before asking for a GPU.
-        source
-            .validate()
+        let source = ShaderSource::checked(args.shaders.as_deref())
             .map_err(|e| Failure::Input(e.to_string()))?;
         let gpu = Gpu::headless().map_err(|e| Failure::Runtime(e.to_string()))?;
         println!("adapter: {}", gpu.describe());

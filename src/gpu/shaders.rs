@@ -399,6 +399,18 @@ impl ShaderSource {
         )
     }
 
+    /// The files of `dir` (`--shaders`) or else the embedded copy,
+    /// validated: a broken shader is the user's input, reported before a
+    /// GPU is asked for (`raysandbox render`, `raysandbox stress`).
+    pub fn checked(dir: Option<&Path>) -> Result<Self, ShaderError> {
+        let source = match dir {
+            Some(dir) => Self::from_dir(dir)?,
+            None => Self::embedded(),
+        };
+        source.validate()?;
+        Ok(source)
+    }
+
     /// Reads the shader files from `dir` (for hot reload and `--shaders`):
     /// [`SHADER_FILES`], then `shapes/<kind>.wgsl` for every shape kind.
     pub fn from_dir(dir: &Path) -> Result<Self, ShaderError> {
