@@ -26,7 +26,7 @@ struct Globals {
     sample_count: u32,       // samples per pixel added by this pass
     max_depth: u32,
     light_count: u32,
-    bvh_node_count: u32,     // 0: no bounded shapes (spheres, boxes)
+    bvh_node_count: u32,     // 0: no bounded shapes (every kind but planes)
     _pad0: u32,
     output_size: vec2<u32>,  // size of the display target (may exceed `resolution`)
     _pad1: vec2<u32>,
