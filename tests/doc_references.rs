@@ -5,8 +5,12 @@
 //! Read in src/, shaders/, tests/, scripts/, docs/, web/ and README.md; a
 //! reference may wrap onto the next comment line.
 
+mod common;
+
 use std::collections::{BTreeMap, BTreeSet};
-use std::path::{Path, PathBuf};
+use std::path::Path;
+
+use common::files_below;
 
 /// The folders and files read for references.
 const ROOTS: &[&str] = &[
@@ -19,28 +23,11 @@ const ROOTS: &[&str] = &[
     "README.md",
 ];
 
-/// Every file below `path` (or `path` itself), sorted.
-fn files(path: &Path) -> Vec<PathBuf> {
-    if path.is_file() {
-        return vec![path.to_path_buf()];
-    }
-    let mut out = Vec::new();
-    let mut entries: Vec<_> = std::fs::read_dir(path)
-        .unwrap_or_else(|e| panic!("{}: {e}", path.display()))
-        .map(|e| e.unwrap().path())
-        .collect();
-    entries.sort();
-    for entry in entries {
-        out.extend(files(&entry));
-    }
-    out
-}
-
 /// The headings of each file of docs/ (`# Title`, `## Title`, ...), by
 /// file name.
 fn headings() -> BTreeMap<String, BTreeSet<String>> {
     let mut all = BTreeMap::new();
-    for path in files(Path::new("docs")) {
+    for path in files_below(Path::new("docs")) {
         if path.extension().is_none_or(|e| e != "md") {
             continue;
         }
@@ -113,7 +100,7 @@ fn every_cited_section_of_docs_exists() {
     let mut missing = Vec::new();
     let mut checked = 0;
     for root in ROOTS {
-        for path in files(Path::new(root)) {
+        for path in files_below(Path::new(root)) {
             // This file's own comments show the form with made-up names.
             if path == Path::new(file!()) {
                 continue;

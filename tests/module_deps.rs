@@ -9,6 +9,8 @@
 //! Full-line comments and the inline `mod tests` of a file are not read:
 //! tests may look at anything.
 
+mod common;
+
 use std::collections::{BTreeMap, BTreeSet};
 use std::path::Path;
 
@@ -39,41 +41,29 @@ struct Source {
 }
 
 fn sources() -> Vec<Source> {
-    fn walk(dir: &Path, out: &mut Vec<Source>) {
-        let mut entries: Vec<_> = std::fs::read_dir(dir)
-            .unwrap_or_else(|e| panic!("cannot read {}: {e}", dir.display()))
-            .map(|e| e.unwrap().path())
-            .collect();
-        entries.sort();
-        for path in entries {
-            if path.is_dir() {
-                walk(&path, out);
-                continue;
-            }
-            if path.extension().is_none_or(|e| e != "rs") {
-                continue;
-            }
-            let relative = path.strip_prefix("src").unwrap().with_extension("");
-            let mut module: Vec<String> = relative
-                .components()
-                .map(|c| c.as_os_str().to_string_lossy().into_owned())
-                .collect();
-            if module.last().is_some_and(|m| m == "mod") {
-                module.pop();
-            }
-            if module == ["lib"] || module == ["main"] {
-                continue;
-            }
-            let text = std::fs::read_to_string(&path).unwrap();
-            out.push(Source {
-                module,
-                file: path.display().to_string(),
-                text,
-            });
-        }
-    }
     let mut out = Vec::new();
-    walk(Path::new("src"), &mut out);
+    for path in common::files_below(Path::new("src")) {
+        if path.extension().is_none_or(|e| e != "rs") {
+            continue;
+        }
+        let relative = path.strip_prefix("src").unwrap().with_extension("");
+        let mut module: Vec<String> = relative
+            .components()
+            .map(|c| c.as_os_str().to_string_lossy().into_owned())
+            .collect();
+        if module.last().is_some_and(|m| m == "mod") {
+            module.pop();
+        }
+        if module == ["lib"] || module == ["main"] {
+            continue;
+        }
+        let text = std::fs::read_to_string(&path).unwrap();
+        out.push(Source {
+            module,
+            file: path.display().to_string(),
+            text,
+        });
+    }
     out
 }
 
