@@ -6,7 +6,7 @@ struct Ray {
     t_min: f32,              // hits count for t_min < t: 0, or < 0 for camera rays
 }
 
-/// The camera's orthonormal basis, as on the slides.
+/// The camera's orthonormal basis (docs/rendering-model.md, "Camera").
 struct Basis {
     u: vec3<f32>,
     v: vec3<f32>,

@@ -97,9 +97,10 @@ fn hit_box(lo: vec3<f32>, hi: vec3<f32>, ray: Ray, inv_d: vec3<f32>, t_max: f32)
     return near <= far;
 }
 
-/// The nearest hit of a bounded shape (sphere, box) through the BVH, nearer than best.t. With
-/// `any`, stops at the first hit (shadow rays need no more). The root's box
-/// holds every bounded shape, so a ray that misses it leaves at once.
+/// The nearest hit of a bounded shape (every kind but planes) through the
+/// BVH, nearer than best.t. With `any`, stops at the first hit (shadow rays
+/// need no more). The root's box holds every bounded shape, so a ray that
+/// misses it leaves at once.
 fn hit_bounded_bvh(ray: Ray, best_in: Hit, any: bool) -> Hit {
     var best = best_in;
     if globals.bvh_node_count == 0u {

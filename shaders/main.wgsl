@@ -19,7 +19,7 @@ fn fs_trace(@builtin(position) frag: vec4<f32>) -> @location(0) vec4<f32> {
     let pixel = vec2<f32>(floor(frag.xy));
     var sum = vec3(0.0);
     // The end is tested after each sample, not before: on llvmpipe the
-    // loop that tests first took 1.3x as long per frame
+    // loop that tests first made every frame measured slower
     // (docs/performance.md, "The torus against its sphere").
     var k = 0u;
     if globals.sample_count > 0u {

@@ -26,7 +26,7 @@ struct Globals {
     sample_count: u32,       // samples per pixel added by this pass
     max_depth: u32,
     light_count: u32,
-    bvh_node_count: u32,     // 0: no bounded shapes (spheres, boxes)
+    bvh_node_count: u32,     // 0: no bounded shapes (every kind but planes)
     _pad0: u32,
     output_size: vec2<u32>,  // size of the display target (may exceed `resolution`)
     _pad1: vec2<u32>,
@@ -45,10 +45,10 @@ struct Material {
     ior: f32,
 }
 
-/// A node of the bounding volume hierarchy over spheres and boxes (built on
-/// the CPU, src/bvh.rs): an inner node (count = 0) has its children at
-/// `first` and `first + 1`; a leaf holds `count` entries of `bvh_shapes`
-/// from `first`. The box is rounded outwards, so it holds its shapes.
+/// A node of the bounding volume hierarchy over the bounded shapes (every
+/// kind but planes; built on the CPU, src/bvh.rs): an inner node (count = 0)
+/// has its children at `first` and `first + 1`; a leaf holds `count` entries
+/// of `bvh_shapes` from `first`. The box is rounded outwards, so it holds its shapes.
 struct BvhNode {
     bounds_min: vec3<f32>,
     first: u32,

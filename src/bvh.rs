@@ -1,6 +1,6 @@
-//! A bounding volume hierarchy over the bounded shapes of a scene (spheres
-//! and boxes, every kind with bounds; planes are infinite and stay outside), so that a ray meets a
-//! few dozen boxes instead of every shape. Built on the CPU whenever the
+//! A bounding volume hierarchy over the bounded shapes of a scene (every
+//! kind but planes, which are infinite and stay outside), so that a ray
+//! meets a few dozen boxes instead of every shape. Built on the CPU whenever the
 //! scene changes, traversed by the reference here and by the shader in
 //! `shaders/intersect.wgsl` (the same tree, packed by `gpu::layout`).
 //!

@@ -11,6 +11,8 @@ pub mod app;
 pub mod bench;
 pub mod bvh;
 pub mod cli;
+#[cfg(not(target_arch = "wasm32"))]
+pub mod commands;
 pub mod compare;
 pub mod expr;
 pub mod files;

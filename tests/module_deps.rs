@@ -1,18 +1,21 @@
 //! Dependencies between modules run one way. Reads every `crate::` and
-//! `super::` path in `src/` (use trees expanded, re-exports of a `mod.rs`
-//! followed to the file that defines the item) and checks that
+//! `super::` path in `src/` (use trees expanded, re-exports followed to the
+//! file that defines the item) and checks that
 //! - the top-level modules follow the layer order below (a module uses only
 //!   modules listed before it) and form no cycle;
-//! - inside each top-level module, the submodules form no cycle.
+//! - inside every module, at every depth (`gpu`, `app::panel`...), the
+//!   submodules form no cycle.
 //!
 //! Full-line comments and the inline `mod tests` of a file are not read:
 //! tests may look at anything.
+
+mod common;
 
 use std::collections::{BTreeMap, BTreeSet};
 use std::path::Path;
 
 /// Lower layers first: plain data and helpers, then the two renderers, then
-/// what measures them, then the window.
+/// what measures them, then the window, then the subcommands of the binary.
 const LAYERS: &[&str] = &[
     "files",
     "cli",
@@ -27,6 +30,7 @@ const LAYERS: &[&str] = &[
     "sandbox",
     "app",
     "web",
+    "commands",
 ];
 
 /// One source file: its module path (`["gpu", "context"]`) and text.
@@ -37,41 +41,29 @@ struct Source {
 }
 
 fn sources() -> Vec<Source> {
-    fn walk(dir: &Path, out: &mut Vec<Source>) {
-        let mut entries: Vec<_> = std::fs::read_dir(dir)
-            .unwrap_or_else(|e| panic!("cannot read {}: {e}", dir.display()))
-            .map(|e| e.unwrap().path())
-            .collect();
-        entries.sort();
-        for path in entries {
-            if path.is_dir() {
-                walk(&path, out);
-                continue;
-            }
-            if path.extension().is_none_or(|e| e != "rs") {
-                continue;
-            }
-            let relative = path.strip_prefix("src").unwrap().with_extension("");
-            let mut module: Vec<String> = relative
-                .components()
-                .map(|c| c.as_os_str().to_string_lossy().into_owned())
-                .collect();
-            if module.last().is_some_and(|m| m == "mod") {
-                module.pop();
-            }
-            if module == ["lib"] || module == ["main"] {
-                continue;
-            }
-            let text = std::fs::read_to_string(&path).unwrap();
-            out.push(Source {
-                module,
-                file: path.display().to_string(),
-                text,
-            });
-        }
-    }
     let mut out = Vec::new();
-    walk(Path::new("src"), &mut out);
+    for path in common::files_below(Path::new("src")) {
+        if path.extension().is_none_or(|e| e != "rs") {
+            continue;
+        }
+        let relative = path.strip_prefix("src").unwrap().with_extension("");
+        let mut module: Vec<String> = relative
+            .components()
+            .map(|c| c.as_os_str().to_string_lossy().into_owned())
+            .collect();
+        if module.last().is_some_and(|m| m == "mod") {
+            module.pop();
+        }
+        if module == ["lib"] || module == ["main"] {
+            continue;
+        }
+        let text = std::fs::read_to_string(&path).unwrap();
+        out.push(Source {
+            module,
+            file: path.display().to_string(),
+            text,
+        });
+    }
     out
 }
 
@@ -188,14 +180,13 @@ fn absolute(module: &[String], path: &[String]) -> Option<Vec<String>> {
     Some(base)
 }
 
-/// For each module with a `mod.rs`, the items it re-exports from its
-/// submodules: `(module, item)` -> the submodule.
+/// For each module, the items it re-exports from its own submodules
+/// (`pub use sub::Item;` in a `mod.rs` or in `panel.rs` beside `panel/`):
+/// `(module, item)` -> the submodule.
 fn reexports(sources: &[Source]) -> BTreeMap<(Vec<String>, String), String> {
+    let modules: BTreeSet<&[String]> = sources.iter().map(|s| s.module.as_slice()).collect();
     let mut map = BTreeMap::new();
     for source in sources {
-        if !source.file.ends_with("mod.rs") {
-            continue;
-        }
         for (_, line) in code_lines(&source.text) {
             let Some(tree) = line.trim_start().strip_prefix("pub use ") else {
                 continue;
@@ -204,8 +195,7 @@ fn reexports(sources: &[Source]) -> BTreeMap<(Vec<String>, String), String> {
             for path in parse_tree(tree.as_bytes(), &mut at) {
                 if let (Some(first), Some(item)) = (path.first(), path.last())
                     && path.len() >= 2
-                    && first != "crate"
-                    && first != "super"
+                    && modules.contains([source.module.as_slice(), &path[..1]].concat().as_slice())
                 {
                     map.insert((source.module.clone(), item.clone()), first.clone());
                 }
@@ -218,53 +208,63 @@ fn reexports(sources: &[Source]) -> BTreeMap<(Vec<String>, String), String> {
 /// An edge and where it comes from, for the messages.
 type Edges = BTreeMap<(String, String), String>;
 
-/// Module-level edges: between top-level modules, and between the
-/// submodules of each top-level module (keyed by that module's name).
-fn edges(sources: &[Source]) -> (Edges, BTreeMap<String, Edges>) {
+/// The name under which [`edges`] keeps the edges between top-level modules.
+const TOP: &str = "crate";
+
+/// Module-level edges between siblings, at every depth, keyed by their
+/// parent's path (`"crate"` for the top-level modules, `"gpu"`,
+/// `"app::panel"`...). A path from `a::b::c` to `a::d::e` is an edge
+/// `b -> d` under `"a"`: the two files' paths are cut where they first differ.
+fn edges(sources: &[Source]) -> BTreeMap<String, Edges> {
     let modules: BTreeSet<Vec<String>> = sources.iter().map(|s| s.module.clone()).collect();
     let reexported = reexports(sources);
-    let mut top = Edges::new();
-    let mut inner: BTreeMap<String, Edges> = BTreeMap::new();
+    let mut by_parent: BTreeMap<String, Edges> = BTreeMap::new();
     for source in sources {
-        for (line, mut path) in paths_of(source) {
-            // Follow a re-export to the submodule that defines the item.
-            while path.len() >= 2 {
-                let parent = path[..path.len() - 1].to_vec();
-                let item = path.last().unwrap().clone();
-                match reexported.get(&(parent.clone(), item.clone())) {
-                    Some(sub) if !modules.contains(&path) => {
-                        let mut resolved = parent;
-                        resolved.push(sub.clone());
-                        resolved.push(item);
-                        if resolved == path {
-                            break;
-                        }
-                        path = resolved;
-                    }
-                    _ => break,
-                }
-            }
-            let at = format!("{}:{line}", source.file);
+        for (line, path) in paths_of(source) {
+            let path = follow_reexports(path, &reexported, &modules);
             let from = &source.module;
-            if path.is_empty() || !modules.contains(&path[..1]) {
+            let common = from.iter().zip(&path).take_while(|(a, b)| a == b).count();
+            if common >= from.len() || common >= path.len() || !modules.contains(&path[..=common]) {
+                // Within the file's own module, one of its children, or not a module.
                 continue;
             }
-            if path[0] != from[0] {
-                top.entry((from[0].clone(), path[0].clone())).or_insert(at);
-            } else if from.len() >= 2
-                && path.len() >= 2
-                && path[1] != from[1]
-                && modules.contains(&path[..2])
-            {
-                inner
-                    .entry(from[0].clone())
-                    .or_default()
-                    .entry((from[1].clone(), path[1].clone()))
-                    .or_insert(at);
-            }
+            let parent = if common == 0 {
+                TOP.to_string()
+            } else {
+                from[..common].join("::")
+            };
+            by_parent
+                .entry(parent)
+                .or_default()
+                .entry((from[common].clone(), path[common].clone()))
+                .or_insert_with(|| format!("{}:{line}", source.file));
         }
     }
-    (top, inner)
+    by_parent
+}
+
+/// Follows a re-export to the submodule that defines the item, as often as
+/// the item is re-exported.
+fn follow_reexports(
+    mut path: Vec<String>,
+    reexported: &BTreeMap<(Vec<String>, String), String>,
+    modules: &BTreeSet<Vec<String>>,
+) -> Vec<String> {
+    while path.len() >= 2 && !modules.contains(&path) {
+        let parent = path[..path.len() - 1].to_vec();
+        let item = path.last().unwrap().clone();
+        let Some(sub) = reexported.get(&(parent.clone(), item.clone())) else {
+            break;
+        };
+        let mut resolved = parent;
+        resolved.push(sub.clone());
+        resolved.push(item);
+        if resolved == path {
+            break;
+        }
+        path = resolved;
+    }
+    path
 }
 
 /// A cycle in `edges`, as the list of its nodes, if there is one.
@@ -320,7 +320,7 @@ fn describe(cycle: &[String], edges: &Edges) -> String {
 fn top_level_modules_follow_the_layers() {
     let sources = sources();
     assert!(sources.len() > 20, "run from the repository root");
-    let (top, _) = edges(&sources);
+    let top = edges(&sources).remove(TOP).unwrap_or_default();
     let mut problems = Vec::new();
     let layer = |m: &str| LAYERS.iter().position(|l| *l == m);
     for ((from, to), at) in &top {
@@ -341,20 +341,61 @@ fn top_level_modules_follow_the_layers() {
     assert!(top.contains_key(&("app".into(), "gpu".into())));
 }
 
-#[test]
-fn submodules_form_no_cycle() {
-    let (_, inner) = edges(&sources());
+/// The problems [`submodules_form_no_cycle`] reports for these sources.
+fn submodule_cycles(sources: &[Source]) -> Vec<String> {
     let mut problems = Vec::new();
-    for (module, edges) in &inner {
+    for (module, edges) in &edges(sources) {
+        if module == TOP {
+            continue;
+        }
         if let Some(cycle) = find_cycle(edges) {
             problems.push(format!("in {module}: {}", describe(&cycle, edges)));
         }
     }
+    problems
+}
+
+#[test]
+fn submodules_form_no_cycle() {
+    let sources = sources();
+    let problems = submodule_cycles(&sources);
     assert!(problems.is_empty(), "{}", problems.join("\n"));
-    // The check sees real edges, through re-exports too.
-    let gpu = &inner["gpu"];
-    assert!(gpu.contains_key(&("timer".into(), "context".into())));
+    // The check sees real edges, through re-exports too, and below the
+    // second level.
+    let inner = edges(&sources);
+    assert!(inner["gpu"].contains_key(&("timer".into(), "context".into())));
     assert!(inner["scene"].contains_key(&("validate".into(), "parse".into())));
+    assert!(inner["app::panel"].contains_key(&("shapes".into(), "widgets".into())));
+}
+
+/// A source file for the checker's own tests.
+fn fake(module: &str, text: &str) -> Source {
+    Source {
+        module: module.split("::").map(String::from).collect(),
+        file: format!("src/{}.rs", module.replace("::", "/")),
+        text: text.to_string(),
+    }
+}
+
+#[test]
+fn the_checker_finds_a_cycle_three_levels_deep() {
+    // `a::b::c` and `a::b::d` use each other, one through a re-export of
+    // `a::b` and one by `super::`; `a::e` uses `a::b::c` one level up.
+    let mut sources = vec![
+        fake("a", ""),
+        fake("a::b", "pub use d::Thing;\n"),
+        fake("a::b::c", "use crate::a::b::Thing;\n"),
+        fake("a::b::d", "use super::c::{self, Helper};\n"),
+        fake("a::e", "use super::b::c::Helper;\n"),
+    ];
+    let by_parent = edges(&sources);
+    assert!(by_parent["a::b"].contains_key(&("c".into(), "d".into())));
+    assert!(by_parent["a"].contains_key(&("e".into(), "b".into())));
+    let problems = submodule_cycles(&sources);
+    assert_eq!(problems.len(), 1, "{problems:?}");
+    assert!(problems[0].starts_with("in a::b: "), "{problems:?}");
+    sources[3].text = String::new();
+    assert_eq!(submodule_cycles(&sources), Vec::<String>::new());
 }
 
 #[test]

@@ -725,7 +725,8 @@ fn a_dropped_scene_naming_a_bundled_model_is_drawn_once_the_model_is_fetched() {
 /// The scene editor follows changes made elsewhere (here a dropped model)
 /// only while it holds no text of the user's own: with a mistake typed and
 /// not yet fixed the text stays as typed; once a good text is applied, the
-/// next change is written into it (docs/web.md, "Edits from the panel").
+/// next change is written into it (docs/web.md, "Editing in the page",
+/// its paragraph "Edits from the panel").
 #[test]
 fn the_scene_editor_follows_other_changes_but_never_overwrites_the_users_text() {
     let Some((_display, mut page)) = browser::open_page("?samples=1&ui=0&editor") else {

@@ -48,7 +48,7 @@ fn triangle_hit(t: f32, b: vec3<f32>, ray: Ray, t_max: f32) -> TriangleHit {
     return TriangleHit(ok, t, b);
 }
 
-/// Cramer's rule with signed volumes, as on the lecture slides: the system
+/// Cramer's rule with signed volumes: the system
 /// [-d e1 e2] (t, b1, b2) = s, s = o - p0, each unknown the ratio of two
 /// determinants a.(b x c) (Shirley and Marschner, "Fundamentals of Computer
 /// Graphics", 4.4.2). D = 0: the ray is parallel to the plane.

@@ -101,7 +101,7 @@ fn hit_sphere(ray: Ray, s: Sphere, index: u32, best: Hit) -> Hit {
 /// a = d.d, b = 2 f.d, c = f.f - r^2, disc = b^2 - 4 a c and
 /// t = (-b -+ sqrt(disc)) / 2a. b^2 and 4ac are nearly equal for a small,
 /// far sphere, and their difference loses every digit. The hit point is
-/// o + t d, and the normal (p - c) / r, as on the slides.
+/// o + t d, and the normal (p - c) / r (docs/rendering-model.md, "Shapes").
 fn hit_sphere_naive(ray: Ray, s: Sphere, index: u32, best: Hit) -> Hit {
     let f = ray.origin - s.center;
     let a = dot(ray.dir, ray.dir);

@@ -256,9 +256,9 @@ struct Piece {
 /// runs a fragment shader on a group of pixels at once and runs every
 /// branch that any of them takes, and every loop until all of them are
 /// done, so one refinement loop on the right piece costs far less than a
-/// loop per piece; and this form took 0.1 of the sphere twin's time off
-/// the opaque torus scene against a loop over the zeros
-/// (docs/performance.md, "The torus against its sphere").
+/// loop per piece; and this form made the opaque torus scene faster than
+/// a loop over the zeros did (docs/performance.md, "The torus against its
+/// sphere").
 fn first_sign_change(k: Quartic, lo: f32, hi: f32) -> Piece {
     let x = clamp(slope_roots(k), vec3(lo), vec3(hi));
     let x2 = x * x;

@@ -24,8 +24,7 @@ use egui::{
     Button, CollapsingHeader, ComboBox, Grid, Key, RichText, Slider, SliderClamping, TextEdit, Ui,
 };
 
-use edit::MIN_POSITIVE;
-use widgets::{COORDINATES, VALUE_LIMIT, color_row, number, slider, vec3_row};
+use widgets::{COORDINATES, MIN_POSITIVE, VALUE_LIMIT, color_row, number, slider, vec3_row};
 
 /// Viewer settings edited in the panel that are not part of the scene file.
 #[derive(Debug, Clone, PartialEq)]

@@ -1,7 +1,8 @@
 //! Runs a WGSL compute kernel over arrays of inputs and reads its results
 //! back: the harness of the WGSL-against-CPU tests (`tests/expr.rs`,
 //! `tests/wgsl_intersections.rs`) and of the GPU leak count of
-//! `raysandbox stress` (docs/accuracy.md, "Watertightness").
+//! `raysandbox stress` (docs/accuracy.md, "Triangle meshes: rays through
+//! shared edges and vertices").
 
 use std::time::{Duration, Instant};
 

@@ -26,10 +26,13 @@ pub struct Features {
     pub bvh: bool,
 }
 
-/// Below this many spheres and boxes a specialised pipeline loops over them
-/// instead of using the BVH, whose traversal stack has a fixed cost on
-/// lavapipe (`raysandbox bench`, scaling table in docs/performance.md: the
-/// loop is cheaper up to 16 shapes, the BVH from 64).
+/// From this many bounded shapes (every kind but planes) on, a specialised
+/// pipeline traverses the BVH; below it, it loops over them, since the
+/// traversal stack has a fixed cost on lavapipe. The value was chosen from
+/// an earlier run of `raysandbox bench`; the run in docs/performance.md,
+/// "Scaling with the number of spheres", puts the crossing lower, between
+/// 16 and 64 spheres, so scenes of 64 to 127 shapes would be drawn faster
+/// with the BVH.
 pub const BVH_MIN_SHAPES: usize = 128;
 
 impl Features {
@@ -71,8 +74,8 @@ impl Features {
     /// when no material reflects or transmits, since then no ray has a
     /// child and the camera ray is the only entry. On lavapipe a stack
     /// larger than it needs costs time even when it is never filled
-    /// (docs/performance.md, "Implicit surfaces": an opaque torus scene
-    /// 1.3x faster with one entry than with nine).
+    /// (docs/performance.md, "The torus against its sphere": the opaque
+    /// torus scene is faster with one entry than with nine).
     pub fn stack_size(&self, max_depth: u32) -> u32 {
         if self.mirrors || self.transparency {
             max_depth + 1

@@ -299,9 +299,9 @@ fn kind_const(k: &KindInfo) -> String {
 
 /// One loop per kind over all its shapes; with `any`, the first hit ends it.
 /// The loop tests its end after the body (`break if` in `continuing`), not
-/// before: on llvmpipe the opaque torus scene took 1.2x as long, and its
-/// sphere twin 1.1x, with loops that test first (docs/performance.md, "The
-/// torus against its sphere").
+/// before: on llvmpipe loops that test first made every scene measured
+/// slower (docs/performance.md, "The torus against its sphere", the table
+/// "kind loops tested last").
 fn kind_loops(kinds: &[&KindInfo]) -> String {
     kinds
         .iter()
@@ -397,6 +397,18 @@ impl ShaderSource {
             std::iter::once(generated_part(stack_size, bound_kinds))
                 .chain(files.map(|(name, text)| (name.to_string(), text.to_string()))),
         )
+    }
+
+    /// The files of `dir` (`--shaders`) or else the embedded copy,
+    /// validated: a broken shader is the user's input, reported before a
+    /// GPU is asked for (`raysandbox render`, `raysandbox stress`).
+    pub fn checked(dir: Option<&Path>) -> Result<Self, ShaderError> {
+        let source = match dir {
+            Some(dir) => Self::from_dir(dir)?,
+            None => Self::embedded(),
+        };
+        source.validate()?;
+        Ok(source)
     }
 
     /// Reads the shader files from `dir` (for hot reload and `--shaders`):

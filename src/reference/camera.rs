@@ -40,8 +40,9 @@ impl Camera {
     }
 }
 
-/// The camera's orthonormal basis `(u, v, w)`, as on the slides:
-/// `w = normalize(from - to)`, `u = normalize(cross(up, w))`, `v = cross(w, u)`.
+/// The camera's orthonormal basis `(u, v, w)` (docs/rendering-model.md,
+/// "Camera"): `w = normalize(from - to)`, `u = normalize(cross(up, w))`,
+/// `v = cross(w, u)`.
 ///
 /// When `up` is (nearly) parallel to the view, `cross(up, w)` is (nearly)
 /// zero and `u` would be NaN or noise. The rendering model's rule then replaces `up` by

@@ -3,7 +3,7 @@
 //!
 //! It follows the rendering model (`docs/rendering-model.md`) and the
 //! implementation choices the shader makes too (`docs/implementation.md`),
-//! in f64 and written for reading next to the lecture slides rather than for
+//! in f64 and written to be read beside those two documents rather than for
 //! speed. One file per concern:
 //!
 //! - `camera.rs`: the basis and the camera rays, thin lens included;
@@ -69,7 +69,7 @@ pub struct PreparedScene {
     shapes: shapes::Shapes,
     /// The shapes without bounds (planes), tested in a loop.
     unbounded: Vec<ShapeId>,
-    /// The bounded shapes (spheres, boxes) in a bounding volume hierarchy.
+    /// The bounded shapes (every kind but planes) in a bounding volume hierarchy.
     bvh: Bvh,
     background: DVec3,
     ambient: DVec3,

@@ -128,7 +128,7 @@ pub fn compile(name: &str, text: &str) -> Result<Compiled, ShaderError> {
 /// file is caused by the file (a name that clashes, an entry function
 /// missing or misspelt, a sandbox macro used wrongly): it is reported at
 /// the line of the file that caused it, saying where it surfaced, so that
-/// every error names the user's file and line (docs/sandbox.md, "Errors").
+/// every error names the user's file and line (docs/sandbox.md, "Line numbers").
 fn blame_the_users_file(e: &mut ShaderError, name: &str, scan: &Scan) {
     let (part, hint) = if e.file == EPILOGUE_NAME {
         (

@@ -1,5 +1,6 @@
 //! Small source rewrites for WebGL GLSL that naga's GLSL front end does not
-//! take (docs/sandbox.md, "Front-end gaps"). Each is local to one line:
+//! take (docs/sandbox.md, "The GLSL rewrite", its paragraph "Front-end
+//! gaps"). Each is local to one line:
 //!
 //! - `const` in a parameter list (`float f(const in float x)`): blanked;
 //! - a matrix built from one argument (`mat2(vec4)`, which naga rejects):

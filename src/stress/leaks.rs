@@ -1,5 +1,5 @@
 //! Watertightness of the three ray-triangle tests (docs/accuracy.md,
-//! "Watertightness"): rays aimed exactly at shared edges and vertices of a
+//! "Triangle meshes: rays through shared edges and vertices"): rays aimed exactly at shared edges and vertices of a
 //! closed mesh must meet one of the triangles there, whatever the rounding.
 //! A ray that meets none of them slipped through a crack between
 //! neighbours: a leak. Counted per test by the f64 reference

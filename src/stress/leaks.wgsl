@@ -1,9 +1,9 @@
 // The watertightness count of `raysandbox stress` (src/stress/leaks.rs,
-// docs/accuracy.md, "Watertightness"): for each ray, whether the shader's
-// own `hit_triangle` (shaders/shapes/mesh.wgsl, the test chosen by the
-// TRIANGLE_TEST constant) meets any triangle around the point the ray is
-// aimed at: the triangles sharing vertex `a` or vertex `b` (an aimed vertex
-// has b = a).
+// docs/accuracy.md, "Triangle meshes: rays through shared edges and
+// vertices"): for each ray, whether the shader's own `hit_triangle`
+// (shaders/shapes/mesh.wgsl, the test chosen by the TRIANGLE_TEST constant)
+// meets any triangle around the point the ray is aimed at: the triangles
+// sharing vertex `a` or vertex `b` (an aimed vertex has b = a).
 
 struct LeakRay {
     origin: vec3<f32>,

@@ -414,12 +414,7 @@ impl Harness {
 
 /// The command: measure, print, and write the report if asked.
 pub fn run(args: &StressArgs) -> Result<(), StressError> {
-    let source = match &args.shaders {
-        Some(dir) => ShaderSource::from_dir(dir).map_err(|e| StressError::Input(e.to_string()))?,
-        None => ShaderSource::embedded(),
-    };
-    source
-        .validate()
+    let source = ShaderSource::checked(args.shaders.as_deref())
         .map_err(|e| StressError::Input(e.to_string()))?;
     let entries = entries(args.filter.as_deref(), !args.no_bundled).map_err(StressError::Input)?;
     if entries.is_empty() {

@@ -190,7 +190,8 @@ impl Editor {
     /// Replaces a document's text with one made elsewhere (the scene panel,
     /// the orbit, an example shader) unless the user holds text of their
     /// own there: typed and not yet compiled, or not compiling. Returns
-    /// whether the text was replaced (docs/web.md, "Edits from the panel").
+    /// whether the text was replaced (docs/web.md, "Editing in the page",
+    /// its paragraph "Edits from the panel").
     pub fn offer_text(&self, doc: Doc, text: &str) -> bool {
         if self.holds_own_text(doc) {
             return false;

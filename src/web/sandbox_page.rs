@@ -1,4 +1,4 @@
-//! The sandbox in the page (docs/web.md, "The shader editor"): the shader
+//! The sandbox in the page (docs/web.md, "Editing in the page"): the shader
 //! document drawn full-screen into the canvas with the sandbox's uniforms,
 //! animated frame after frame, as the native sandbox window does
 //! (docs/sandbox.md). A new text is compiled by naga at once (quick), its

@@ -230,7 +230,8 @@ impl Workbench {
 
     /// The page's scene changed elsewhere (the panel, the orbit, the menu):
     /// the scene document follows unless the user holds text of their own
-    /// there (docs/web.md, "Edits from the panel").
+    /// there (docs/web.md, "Editing in the page", its paragraph "Edits from
+    /// the panel").
     pub fn follow_scene(&mut self, scene: &Scene) {
         if *scene == self.scene {
             return;

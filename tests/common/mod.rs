@@ -82,6 +82,22 @@ pub fn shader_files(dir: &Path) -> Vec<PathBuf> {
     files_in(dir, |extension| extension != "md")
 }
 
+/// Every file at `path` or below it, at any depth, sorted by path.
+pub fn files_below(path: &Path) -> Vec<PathBuf> {
+    if path.is_file() {
+        return vec![path.to_path_buf()];
+    }
+    let mut entries: Vec<PathBuf> = std::fs::read_dir(path)
+        .unwrap_or_else(|e| panic!("{}: {e}", path.display()))
+        .map(|entry| entry.expect("directory entry").path())
+        .collect();
+    entries.sort();
+    entries
+        .iter()
+        .flat_map(|entry| files_below(entry))
+        .collect()
+}
+
 /// The files of `dir` (not below it) whose extension `keep` accepts, sorted.
 fn files_in(dir: &Path, keep: impl Fn(&std::ffi::OsStr) -> bool) -> Vec<PathBuf> {
     let mut files: Vec<PathBuf> = std::fs::read_dir(dir)

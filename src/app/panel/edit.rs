@@ -8,10 +8,6 @@ use glam::DVec3;
 use super::shapes::{self, Placement};
 use crate::scene::{Camera, Checker, Light, Material, Mesh, Scene, ShapeId, ShapeKind};
 
-/// Smallest value the panel writes into a field that must be > 0 (radius,
-/// exposure, ior...): the rendering model only asks for > 0, and a drag must not stop at 0.
-pub(super) const MIN_POSITIVE: f64 = 1e-6;
-
 /// Unit vectors to the right of the view and up (the camera's `up`), the
 /// frame in which new shapes and lights are placed so that they appear beside
 /// and above the target. Falls back to world axes for a degenerate camera.

@@ -17,6 +17,10 @@ pub(super) const COORDINATE_LIMIT: f64 = 1e9;
 /// Largest value typed into weights, colours, intensities and sizes.
 pub(super) const VALUE_LIMIT: f64 = 1e6;
 
+/// Smallest value the panel writes into a field that must be > 0 (radius,
+/// exposure, ior...): the rendering model only asks for > 0, and a drag must not stop at 0.
+pub(super) const MIN_POSITIVE: f64 = 1e-6;
+
 /// Range of a position component.
 pub(super) const COORDINATES: RangeInclusive<f64> = -COORDINATE_LIMIT..=COORDINATE_LIMIT;
 

@@ -133,8 +133,9 @@ fn det(a: DVec3, b: DVec3, c: DVec3) -> f64 {
     a.dot(b.cross(c))
 }
 
-/// Cramer's rule, as on the lecture slides: the hit `o + t d = p0 + b1 e1 +
-/// b2 e2` (`e1 = p1 - p0`, `e2 = p2 - p0`) is the linear system
+/// Cramer's rule (Shirley and Marschner, "Fundamentals of Computer
+/// Graphics", 4.4.2): the hit `o + t d = p0 + b1 e1 + b2 e2` (`e1 = p1 -
+/// p0`, `e2 = p2 - p0`) is the linear system
 /// `[-d e1 e2] (t, b1, b2) = s` with `s = o - p0`, solved by Cramer's rule:
 /// each unknown is a ratio of determinants, the signed volumes of the
 /// parallelepipeds spanned by the columns with `s` put in its place.

@@ -20,8 +20,8 @@ pub struct Placed {
 }
 
 /// A ray in a shape's local coordinates, measured from the foot of the
-/// perpendicular from the shape's centre (docs/implementation.md, "Foot of
-/// the perpendicular"): local points `q + u d`, world parameter `t = s + scale u`.
+/// perpendicular from the shape's centre (docs/implementation.md,
+/// "Intersections", its item "Foot of the perpendicular"): local points `q + u d`, world parameter `t = s + scale u`.
 /// The numbers stay at the size of the shape however far away the ray starts.
 #[derive(Debug, Clone, Copy)]
 pub struct LocalRay {

@@ -133,7 +133,7 @@ pub fn hit_sphere(sphere: &Sphere, ray: &Ray, t_max: f64) -> Option<Hit> {
 /// false`, the shader's `hit_sphere_naive`): `a t^2 + b t + c = 0` with
 /// `a = d.d`, `b = 2 f.d`, `c = f.f - r^2`, `disc = b^2 - 4ac` and
 /// `t = (-b -+ sqrt(disc)) / 2a`; the hit point `o + t d` and the normal
-/// `(p - c) / r`, as on the slides.
+/// `(p - c) / r` (docs/rendering-model.md, "Shapes").
 pub fn hit_sphere_naive(sphere: &Sphere, ray: &Ray, t_max: f64) -> Option<Hit> {
     let d = ray.dir;
     let f = ray.origin - sphere.center;

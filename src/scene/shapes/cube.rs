@@ -6,7 +6,7 @@ use serde::{Deserialize, Serialize};
 use serde::de::IgnoredAny;
 
 use super::placement::Scale;
-use super::{Context, Placement, Shape, rotation_degrees};
+use super::{Context, CubeSize, Placement, Shape, rotation_degrees};
 use crate::scene::key_path::KeyPath;
 use crate::scene::validate::{Check, FINITE, material_name, vector};
 
@@ -22,24 +22,6 @@ pub struct Cube {
     pub rotation: DVec3,
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub material: Option<String>,
-}
-
-/// `size = 1` (a cube) or `size = [x, y, z]` (a box).
-#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
-#[serde(untagged)]
-pub enum CubeSize {
-    Uniform(f64),
-    PerAxis(DVec3),
-}
-
-impl CubeSize {
-    /// Edge lengths along the local x, y, z axes.
-    pub fn edges(self) -> DVec3 {
-        match self {
-            CubeSize::Uniform(s) => DVec3::splat(s),
-            CubeSize::PerAxis(v) => v,
-        }
-    }
 }
 
 impl Cube {

@@ -45,7 +45,8 @@ crate::named_option! {
     /// "Triangle meshes"): the same hits in exact arithmetic, different
     /// rounding, speed and behaviour on shared edges.
     pub enum TriangleTest {
-        /// Cramer's rule with signed volumes (determinants), as on the slides.
+        /// Cramer's rule with signed volumes (determinants; Shirley and
+        /// Marschner, "Fundamentals of Computer Graphics", 4.4.2).
         Cramer = "cramer",
         /// Möller and Trumbore 1997.
         MollerTrumbore = "moller-trumbore",

@@ -34,11 +34,11 @@ mod plane;
 mod sphere;
 mod torus;
 
-pub use cube::{Cube, CubeSize};
+pub use cube::Cube;
 pub use implicit::Implicit;
 pub use julia::Julia;
 pub use mesh::{Loaded, Mesh, TriangleTest};
-pub use placement::{Placement, Scale};
+pub use placement::{CubeSize, Placement, Scale};
 pub use plane::Plane;
 pub use sphere::Sphere;
 pub use torus::{Torus, TorusMethod};

@@ -11,7 +11,6 @@ use std::fmt::Debug;
 use glam::{DMat3, DVec3};
 use serde::{Deserialize, Serialize};
 
-use super::CubeSize;
 use crate::scene::key_path::KeyPath;
 use crate::scene::validate::{Check, FINITE, POSITIVE, number, vector};
 
@@ -23,6 +22,25 @@ pub struct Placement<S = f64> {
     pub scale: S,
     /// Degrees about the world x, y, z axes, applied in that order.
     pub rotation: DVec3,
+}
+
+/// `size = 1` (a cube) or `size = [x, y, z]` (a box); a mesh's `scale`
+/// takes the same two forms.
+#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
+#[serde(untagged)]
+pub enum CubeSize {
+    Uniform(f64),
+    PerAxis(DVec3),
+}
+
+impl CubeSize {
+    /// Edge lengths along the local x, y, z axes.
+    pub fn edges(self) -> DVec3 {
+        match self {
+            CubeSize::Uniform(s) => DVec3::splat(s),
+            CubeSize::PerAxis(v) => v,
+        }
+    }
 }
 
 /// A placement's `scale`: one factor (`f64`, the implicit surfaces, whose

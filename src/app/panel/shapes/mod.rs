@@ -16,8 +16,7 @@ mod torus;
 use egui::Ui;
 use glam::DVec3;
 
-use super::edit::MIN_POSITIVE;
-use super::widgets::{VALUE_LIMIT, number, vec3_row};
+use super::widgets::{MIN_POSITIVE, VALUE_LIMIT, number, vec3_row};
 use crate::scene::{self, CubeSize, Scene, Shape, ShapeId, ShapeKind};
 
 /// Where new shapes go and how big they are: from the view, so that a new

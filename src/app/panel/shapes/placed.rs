@@ -1,13 +1,12 @@
 //! The placement rows of the placed shapes (translate, scale, rotation;
-//! docs/scene-format.md, "Implicit surfaces" and "Triangle meshes"), and the
+//! docs/scene-format.md, "Implicit surfaces" and "`[[meshes]]`"), and the
 //! rotation row that cubes show too.
 
 use egui::Ui;
 use glam::DVec3;
 
-use crate::app::panel::edit::MIN_POSITIVE;
 use crate::app::panel::field;
-use crate::app::panel::widgets::{COORDINATES, VALUE_LIMIT, number, vec3_row};
+use crate::app::panel::widgets::{COORDINATES, MIN_POSITIVE, VALUE_LIMIT, number, vec3_row};
 use crate::scene::{CubeSize, Placement, Scale};
 
 /// The row of a placement's `scale`: its hover text and its widget.

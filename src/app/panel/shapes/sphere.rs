@@ -3,9 +3,8 @@
 use egui::Ui;
 
 use super::{EditShape, Placement};
-use crate::app::panel::edit::MIN_POSITIVE;
 use crate::app::panel::field;
-use crate::app::panel::widgets::{COORDINATES, VALUE_LIMIT, number, vec3_row};
+use crate::app::panel::widgets::{COORDINATES, MIN_POSITIVE, VALUE_LIMIT, number, vec3_row};
 use crate::scene::Sphere;
 
 impl EditShape for Sphere {

@@ -2,9 +2,8 @@
 
 use super::placed::placement_rows;
 use super::{EditShape, Placement};
-use crate::app::panel::edit::MIN_POSITIVE;
 use crate::app::panel::field;
-use crate::app::panel::widgets::{VALUE_LIMIT, number};
+use crate::app::panel::widgets::{MIN_POSITIVE, VALUE_LIMIT, number};
 use crate::scene::{self, Torus};
 use egui::Ui;
 

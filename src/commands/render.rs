@@ -1,0 +1,152 @@
+//! `raysandbox render`: a scene to a PNG file, on the GPU or with the f64
+//! CPU reference.
+
+use std::path::PathBuf;
+use std::time::{Duration, Instant};
+
+use super::{Failure, load_scene};
+use crate::gpu::{Gpu, GpuWaitError, OffscreenRenderer, RenderError, ShaderOptions, ShaderSource};
+use crate::reference;
+use crate::scene::{NamedOption, TorusMethod, TriangleTest};
+
+#[derive(clap::Args)]
+pub struct Args {
+    /// The scene file (TOML).
+    scene: PathBuf,
+    /// Output PNG file.
+    #[arg(short, long)]
+    output: PathBuf,
+    #[arg(long, default_value_t = 1280, value_parser = clap::value_parser!(u32).range(1..=16384))]
+    width: u32,
+    #[arg(long, default_value_t = 720, value_parser = clap::value_parser!(u32).range(1..=16384))]
+    height: u32,
+    /// Samples per pixel (the R4 sequence, see docs/implementation.md); the
+    /// default is chosen from `raysandbox bench` (docs/performance.md).
+    #[arg(long, default_value_t = crate::gpu::DEFAULT_RENDER_SAMPLES, value_parser = clap::value_parser!(u32).range(1..=65536))]
+    spp: u32,
+    /// Render with the f64 CPU reference instead of the GPU.
+    #[arg(long)]
+    reference: bool,
+    /// Read the WGSL from this folder instead of the embedded copy.
+    #[arg(long)]
+    shaders: Option<PathBuf>,
+    /// The GPU pipeline: compiled for the scene's features only, or with
+    /// every feature (the same source either way).
+    #[arg(long, value_enum, default_value_t = PipelineKind::Specialized)]
+    pipeline: PipelineKind,
+    /// on: the bounded shapes (every kind but planes) go through the
+    /// bounding volume hierarchy where it pays (a specialised pipeline uses
+    /// it from 128 of them, the generic one always); off: a loop over every
+    /// shape.
+    #[arg(long, value_enum, default_value_t = Switch::On)]
+    bvh: Switch,
+    /// The ray-triangle test of meshes: cramer (Cramer's rule),
+    /// moller-trumbore, or watertight (Woop, Benthin and Wald).
+    #[arg(long, default_value = "watertight", value_parser = TriangleTest::from_name)]
+    triangles: TriangleTest,
+    /// How the GPU solves a torus's quartic: bisection, newton (the
+    /// slope's zeros in closed form, Newton steps kept inside the bracket),
+    /// or closed-form (the quartic's own roots in closed form, one Newton
+    /// step).
+    #[arg(long, default_value = "newton", value_parser = TorusMethod::from_name)]
+    torus: TorusMethod,
+    /// Render the image this many times after one warm-up render and print
+    /// the median, fastest and slowest GPU time.
+    #[arg(long, default_value_t = 1, value_parser = clap::value_parser!(u32).range(1..=10000))]
+    frames: u32,
+}
+
+#[derive(Clone, Copy, PartialEq, Eq, clap::ValueEnum)]
+enum PipelineKind {
+    Specialized,
+    Generic,
+}
+
+#[derive(Clone, Copy, PartialEq, Eq, clap::ValueEnum)]
+enum Switch {
+    On,
+    Off,
+}
+
+/// A renderer that could not be made: a bad shader or image size is the
+/// user's input (exit status 2), anything else the machine's.
+fn render_failure(e: RenderError) -> Failure {
+    if e.is_input() {
+        Failure::Input(e.to_string())
+    } else {
+        Failure::Runtime(e.to_string())
+    }
+}
+
+/// The GPU did not deliver the image.
+fn gpu_failure(e: GpuWaitError) -> Failure {
+    Failure::Runtime(e.to_string())
+}
+
+pub fn run(args: &Args) -> Result<(), Failure> {
+    let scene = load_scene(&args.scene)?;
+    let start = Instant::now();
+    let image = if args.reference {
+        println!(
+            "renderer: f64 CPU reference, {} threads",
+            rayon::current_num_threads()
+        );
+        let options = reference::ReferenceOptions {
+            triangles: args.triangles,
+            ..Default::default()
+        };
+        let prepared = reference::PreparedScene::with_options(&scene, &options);
+        reference::render_prepared_rgba8(&prepared, args.width, args.height, args.spp)
+    } else {
+        let source = ShaderSource::checked(args.shaders.as_deref())
+            .map_err(|e| Failure::Input(e.to_string()))?;
+        let gpu = Gpu::headless().map_err(|e| Failure::Runtime(e.to_string()))?;
+        println!("adapter: {}", gpu.describe());
+        let mut options = match args.pipeline {
+            PipelineKind::Specialized => ShaderOptions::for_scene(&scene),
+            PipelineKind::Generic => ShaderOptions::generic(&scene),
+        };
+        if args.bvh == Switch::Off {
+            options.features.bvh = false;
+        }
+        options.triangles = args.triangles;
+        options.torus = args.torus;
+        let mut renderer =
+            OffscreenRenderer::new(&gpu, &source, &options, &scene, args.width, args.height)
+                .map_err(render_failure)?;
+        let ms = |d: Duration| d.as_secs_f64() * 1e3;
+        let first = renderer.render(&gpu, args.spp).map_err(gpu_failure)?;
+        println!(
+            "GPU time ({}): {:.1} ms",
+            renderer.timing().describe(),
+            ms(first)
+        );
+        if args.frames > 1 {
+            let mut times: Vec<Duration> = (0..args.frames)
+                .map(|_| renderer.render(&gpu, args.spp))
+                .collect::<Result<_, _>>()
+                .map_err(gpu_failure)?;
+            times.sort();
+            println!(
+                "{} frames after warm-up: median {:.2} ms, fastest {:.2} ms, slowest {:.2} ms",
+                times.len(),
+                ms(times[times.len() / 2]),
+                ms(times[0]),
+                ms(times[times.len() - 1]),
+            );
+        }
+        renderer.read_image(&gpu).map_err(gpu_failure)?
+    };
+    println!(
+        "rendered {}x{} at {} spp in {:.1} ms",
+        args.width,
+        args.height,
+        args.spp,
+        start.elapsed().as_secs_f64() * 1e3
+    );
+    image
+        .save(&args.output)
+        .map_err(|e| Failure::Runtime(format!("{}: {e}", args.output.display())))?;
+    println!("wrote {}", args.output.display());
+    Ok(())
+}
