@@ -145,6 +145,20 @@ impl Emitter {
         }
     }
 
+    /// The dual number of `c^b` for a constant `c`: the general rule's
+    /// `log(a.x)` would be a constant expression, which naga evaluates when
+    /// it compiles and refuses for `c <= 0` (0 also when `c` is too small
+    /// for an f32; found by the fuzzer, docs/reliability.md). The same
+    /// values: 0 where `c <= 0`, and `c`'s own gradient is 0.
+    fn constant_power(&mut self, c: f64, b: &str) -> String {
+        if (c as f32) < f32::MIN_POSITIVE {
+            return "vec4<f32>(0.0f)".to_string();
+        }
+        let c = literal(c);
+        let v = self.let_(format!("pow({c}, {b}.x)"));
+        self.let_(format!("vec4<f32>({v}, {v} * log({c}) * {b}.yzw)"))
+    }
+
     /// The value of `node` (an f32 expression or name).
     fn value(&mut self, node: &Node) -> String {
         match &node.op {
@@ -189,6 +203,13 @@ impl Emitter {
                 let fx = self.let_(apply(*f, &x));
                 let d = derivative(*f, &x, &fx);
                 self.let_(format!("vec4<f32>({fx}, ({d}) * {a}.yzw)"))
+            }
+            Op::Binary(Binary::Pow, base, b) if matches!(base.op, Op::Number(_)) => {
+                let Op::Number(c) = base.op else {
+                    unreachable!("matched above")
+                };
+                let b = self.dual(b);
+                self.constant_power(c, &b)
             }
             Op::Binary(f, a, b) => {
                 let (a, b) = (self.dual(a), self.dual(b));
