@@ -126,6 +126,14 @@ impl Emitter {
         name
     }
 
+    /// `var vN = expr;`: a value naga does not evaluate when it compiles.
+    fn var(&mut self, expr: String) -> String {
+        let name = format!("v{}", self.count);
+        self.count += 1;
+        self.lines.push(format!("var {name} = {expr};"));
+        name
+    }
+
     /// `a^n`, `n >= 1`, by squaring and multiplying.
     fn powi(&mut self, a: &str, mut n: u32) -> String {
         let mut result: Option<String> = None;
@@ -143,20 +151,6 @@ impl Emitter {
             }
             base = self.let_(format!("{base} * {base}"));
         }
-    }
-
-    /// The dual number of `c^b` for a constant `c`: the general rule's
-    /// `log(a.x)` would be a constant expression, which naga evaluates when
-    /// it compiles and refuses for `c <= 0` (0 also when `c` is too small
-    /// for an f32; found by the fuzzer, docs/reliability.md). The same
-    /// values: 0 where `c <= 0`, and `c`'s own gradient is 0.
-    fn constant_power(&mut self, c: f64, b: &str) -> String {
-        if (c as f32) < f32::MIN_POSITIVE {
-            return "vec4<f32>(0.0f)".to_string();
-        }
-        let c = literal(c);
-        let v = self.let_(format!("pow({c}, {b}.x)"));
-        self.let_(format!("vec4<f32>({v}, {v} * log({c}) * {b}.yzw)"))
     }
 
     /// The value of `node` (an f32 expression or name).
@@ -191,7 +185,11 @@ impl Emitter {
     /// The dual number of `node` (a `vec4<f32>` expression or name).
     fn dual(&mut self, node: &Node) -> String {
         match &node.op {
-            Op::Number(c) => format!("vec4<f32>({}, 0.0f, 0.0f, 0.0f)", literal(*c)),
+            // A variable, not a constant expression: naga evaluates those
+            // when it compiles and refuses a result out of f32's range, such
+            // as log(0) or (-1e38)^2 in the rules below, even where a select
+            // drops it (found by the fuzzer, docs/reliability.md).
+            Op::Number(c) => self.var(format!("vec4<f32>({}, 0.0f, 0.0f, 0.0f)", literal(*c))),
             Op::Var(axis) => format!("d{}", ["x", "y", "z"][*axis]),
             Op::Unary(Unary::Neg, a) => {
                 let a = self.dual(a);
@@ -203,13 +201,6 @@ impl Emitter {
                 let fx = self.let_(apply(*f, &x));
                 let d = derivative(*f, &x, &fx);
                 self.let_(format!("vec4<f32>({fx}, ({d}) * {a}.yzw)"))
-            }
-            Op::Binary(Binary::Pow, base, b) if matches!(base.op, Op::Number(_)) => {
-                let Op::Number(c) = base.op else {
-                    unreachable!("matched above")
-                };
-                let b = self.dual(b);
-                self.constant_power(c, &b)
             }
             Op::Binary(f, a, b) => {
                 let (a, b) = (self.dual(a), self.dual(b));

@@ -1208,7 +1208,14 @@ fn main_image(frag_coord: vec2<f32>) -> vec4<f32> {
         for (nested, line) in [
             (format!("{}1.0{}", "(".repeat(deep), ")".repeat(deep)), 2),
             (format!("{}1.0", "- ".repeat(deep)), 2),
-            (format!("1.0;\n#if {}1{}\n#endif", "(".repeat(deep), ")".repeat(deep)), 3),
+            (
+                format!(
+                    "1.0;\n#if {}1{}\n#endif",
+                    "(".repeat(deep),
+                    ")".repeat(deep)
+                ),
+                3,
+            ),
         ] {
             let text = format!(
                 "void mainImage(out vec4 c, in vec2 p) {{\n    float x = {nested};\n    \
