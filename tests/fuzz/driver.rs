@@ -253,11 +253,9 @@ fn parent(target: &'static Target, options: &Options) -> Result<(), String> {
         replay_in_child(target, file)?;
     }
     if !regressions.is_empty() {
-        println!(
-            "{}: {} regression inputs: ok",
-            target.name,
-            regressions.len()
-        );
+        let count = regressions.len();
+        let inputs = if count == 1 { "input" } else { "inputs" };
+        println!("{}: {count} regression {inputs}: ok", target.name);
     }
     let mut command = Command::new(std::env::current_exe().unwrap());
     command.args(["--child", "--target", target.name]);

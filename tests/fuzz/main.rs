@@ -14,6 +14,8 @@
 //! - `--out DIR`: where failing inputs go (default `target/tmp/fuzz`);
 //! - `--replay FILE --target NAME`: runs one saved input.
 
+#[path = "../common/mod.rs"]
+mod common;
 mod driver;
 mod inputs;
 mod targets;

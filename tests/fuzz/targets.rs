@@ -16,6 +16,7 @@ use raysandbox::sandbox::params::{self, ParamSet, ParamSpec, ParamType, Scalar};
 use raysandbox::scene::{GivenFiles, Scene};
 use raysandbox::web::link;
 
+use super::common;
 use super::inputs::{mutate, mutate_bytes, number, random_text, vector};
 
 /// How a target makes an input: from random choices and the seeds.
@@ -276,17 +277,18 @@ fn key(
     Ok(())
 }
 
+/// A size: one number, or one per axis.
+fn size(u: &mut Unstructured) -> Result<String> {
+    if u.arbitrary()? { number(u) } else { vector(u) }
+}
+
 /// One shape of any kind, with its keys as [`scene_from_scratch`] writes them.
 fn shape_from_scratch(u: &mut Unstructured, s: &mut String) -> Result<()> {
     let placement = |u: &mut Unstructured| -> Result<String> {
         Ok(format!(
             "translate = {}\nscale = {}\nrotation = {}\n",
             vector(u)?,
-            if u.arbitrary()? {
-                number(u)?
-            } else {
-                vector(u)?
-            },
+            size(u)?,
             vector(u)?
         ))
     };
@@ -304,11 +306,7 @@ fn shape_from_scratch(u: &mut Unstructured, s: &mut String) -> Result<()> {
         2 => s.push_str(&format!(
             "[[cubes]]\ncenter = {}\nsize = {}\nrotation = {}\n",
             vector(u)?,
-            if u.arbitrary()? {
-                number(u)?
-            } else {
-                vector(u)?
-            },
+            size(u)?,
             vector(u)?
         )),
         3 => s.push_str(&format!(
@@ -805,45 +803,27 @@ fn shader_seeds() -> Vec<Vec<u8>> {
     seeds
 }
 
-/// What real shader mistakes are made of, as tests/sandbox_fuzz.rs
-/// inserts them, and what the sandbox's rewrites look for.
-const SHADER_TOKENS: [&str; 32] = [
-    "(",
-    ")",
-    "{",
-    "}",
-    ";",
-    ",",
-    "inout ",
-    "out ",
-    "#if 0\n",
-    "#endif\n",
-    "#define X\n",
+/// What the sandbox's rewrites and annotations look for, besides the
+/// mistakes of [`common::SHADER_MISTAKES`].
+const SHADER_TOKENS: [&str; 9] = [
     "#else\n",
     "#ifdef GL_ES\n",
-    "while(true)",
-    "/*",
-    "*/",
     "//",
-    "sampler2D ",
-    "texture2D(",
-    "1e39",
-    "mat2(",
-    "dot(",
-    "uniform ",
     "uniform float p; // @slider(0, 1)\n",
-    "precision ",
-    "void main()",
-    "mainImage(",
     "gl_FragColor",
     "backbuffer",
     "fn ",
-    "[",
     "@",
+    "- ",
 ];
 
 fn make_shader(u: &mut Unstructured, seeds: &[Vec<u8>]) -> Result<Vec<u8>> {
-    Ok(mutate_seed(u, seeds, &SHADER_TOKENS)?.into_bytes())
+    let tokens: &[&str] = if u.ratio(2, 3)? {
+        &common::SHADER_MISTAKES
+    } else {
+        &SHADER_TOKENS
+    };
+    Ok(mutate_seed(u, seeds, tokens)?.into_bytes())
 }
 
 /// The name a fuzzed shader gets: no extension, so the text decides its
