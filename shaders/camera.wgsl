@@ -26,6 +26,17 @@ fn normalize_or(v: vec3<f32>, fallback: vec3<f32>) -> vec3<f32> {
     return normalize(v / m);
 }
 
+/// |v| without overflow or underflow, by the same division by the largest
+/// component as [`normalize_or`]: a camera or a light 1e30 away has a
+/// distance (docs/reliability.md, "Extreme scenes on the GPU").
+fn scaled_length(v: vec3<f32>) -> f32 {
+    let m = max3(abs(v));
+    if !(m > 0.0) {
+        return 0.0;
+    }
+    return m * length(v / m);
+}
+
 /// w points backwards (away from what we look at), u to the right, v up.
 /// When `up` is (nearly) parallel to w (|cross(up, w)| < 1e-6 |up|,
 /// docs/rendering-model.md, "Camera"), cross(up, w) vanishes: replace up by the world axis along which
@@ -96,7 +107,7 @@ fn camera_ray(pixel: vec2<f32>, lens: vec2<f32>) -> Ray {
     let x = h * (size.x / size.y) * (pixel.x / size.x - 0.5);
     let y = h * (0.5 - pixel.y / size.y);
     let to_film = x * b.u + y * b.v - b.w;
-    let target_distance = length(globals.eye - globals.look_at);
+    let target_distance = scaled_length(globals.eye - globals.look_at);
     var focus = target_distance;
     var lens_offset = vec3(0.0);
     if HAS_LENS && globals.aperture > 0.0 {

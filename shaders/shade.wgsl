@@ -120,7 +120,7 @@ fn shade_local(hit: Hit, ns: vec3<f32>, d: vec3<f32>, m: Material, albedo: vec3<
         // A light at p (or nearer than length() can resolve) has no
         // direction and lights nothing: never divide by a zero length.
         let from_p = light.position - hit.point;
-        let len = length(from_p);
+        let len = scaled_length(from_p);
         if len <= 0.0 {
             continue;
         }
@@ -130,7 +130,7 @@ fn shade_local(hit: Hit, ns: vec3<f32>, d: vec3<f32>, m: Material, albedo: vec3<
             continue;
         }
         let to_light = light.position - shadow_origin;
-        let dist = length(to_light);
+        let dist = scaled_length(to_light);
         if dist <= 0.0 || occluded(Ray(shadow_origin, to_light / dist, 0.0), dist) {
             continue;
         }

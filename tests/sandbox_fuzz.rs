@@ -19,35 +19,6 @@ const MUTANTS: u32 = 24;
 /// may be loaded; a compile takes milliseconds).
 const HANG: Duration = Duration::from_secs(30);
 
-/// What gets inserted: brackets, keywords and constructs that real shaders
-/// and the program's rewrites care about.
-const INSERTS: [&str; 24] = [
-    "(",
-    ")",
-    "{",
-    "}",
-    ";",
-    ",",
-    "inout ",
-    "out ",
-    "#if 0\n",
-    "#endif\n",
-    "#define X\n",
-    "while(true)",
-    "/*",
-    "*/",
-    "sampler2D ",
-    "texture2D(",
-    "1e39",
-    "mat2(",
-    "dot(",
-    "uniform ",
-    "precision ",
-    "void main()",
-    "mainImage(",
-    "[",
-];
-
 /// A small deterministic random generator (xorshift64*): the same mutants
 /// on every run.
 struct Random(u64);
@@ -70,7 +41,7 @@ fn mutate(text: &str, random: &mut Random) -> String {
             let end = (at + 1 + random.below(20)).min(chars.len());
             chars.drain(at..end);
         } else {
-            let insert = INSERTS[random.below(INSERTS.len())];
+            let insert = common::SHADER_MISTAKES[random.below(common::SHADER_MISTAKES.len())];
             chars.splice(at..at, insert.chars());
         }
     }

@@ -50,12 +50,18 @@ fn hit_sphere(ray: Ray, s: Sphere, index: u32, best: Hit) -> Hit {
         return hit_sphere_naive(ray, s, index, best);
     }
     let d = ray.dir;
-    let r = s.radius;
-    let f = ray.origin - s.center;
+    let world_f = ray.origin - s.center;
+    // The squares below overflow an f32 for lengths past 2^63 (a radius of
+    // 1e30) and vanish below 2^-63: such a sphere is intersected in units of
+    // a power of two near its numbers, which scales exactly, and t is
+    // scaled back (docs/reliability.md, "Extreme scenes on the GPU").
+    let k = unit_scale(max(s.radius, max3(abs(world_f))));
+    let r = s.radius * k;
+    let f = world_f * k;
     let b = dot(f, d);
-    let g = foot(ray, s.center).g;
+    let g = foot(ray, s.center).g * k;
     let u = major_axis(f);
-    let from_pole = ray.origin - (s.center + r * u);
+    let from_pole = (ray.origin - (s.center + s.radius * u)) * k;
     let c = dot(from_pole, from_pole) + 2.0 * r * dot(from_pole, u);
     // The two forms of the discriminant and their rounding errors:
     // r^2 - |g|^2 ~ eps r^2, b^2 - c ~ eps (b^2 + |c|). The first wins for
@@ -74,8 +80,8 @@ fn hit_sphere(ray: Ray, s: Sphere, index: u32, best: Hit) -> Hit {
     if q == 0.0 {
         return best;
     }
-    let t0 = min(c / q, q);
-    let t1 = max(c / q, q);
+    let t0 = min(c / q, q) / k;
+    let t1 = max(c / q, q) / k;
     var t = t0;
     var along = -h;            // the near root is -b - sqrt(disc)
     if t <= ray.t_min {
@@ -87,14 +93,25 @@ fn hit_sphere(ray: Ray, s: Sphere, index: u32, best: Hit) -> Hit {
     }
     let n = normalize(g + along * d);
     let ray_scale = max3(abs(ray.origin)) + abs(t);
-    let centre_scale = max3(abs(s.center)) + r;
-    var p = s.center + r * n;
+    // In world units again.
+    let centre_scale = max3(abs(s.center)) + s.radius;
+    var p = s.center + s.radius * n;
     if ray_scale < centre_scale {
         p = ray.origin + t * d;
     }
-    let pole_scale = max3(abs(s.center + r * major_axis(n)));
+    let pole_scale = max3(abs(s.center + s.radius * major_axis(n)));
     let scale = max(pole_scale, min(ray_scale, centre_scale));
     return surface_hit(t, p, n, KIND_SPHERE, index, scale);
+}
+
+/// 1, or for a length x outside [2^-40, 2^40] the power of two 2^-e that
+/// brings it to [1, 2) (e its binary exponent, read from the bits: exact).
+fn unit_scale(x: f32) -> f32 {
+    let e = (bitcast<u32>(x) >> 23u) & 0xffu;
+    if e >= 87u && e <= 167u {
+        return 1.0;
+    }
+    return bitcast<f32>((254u - clamp(e, 1u, 253u)) << 23u);
 }
 
 /// The lecture's sphere (ROBUST = false): a t^2 + b t + c = 0 with

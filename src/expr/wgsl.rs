@@ -126,6 +126,14 @@ impl Emitter {
         name
     }
 
+    /// `var vN = expr;`: a value naga does not evaluate when it compiles.
+    fn var(&mut self, expr: String) -> String {
+        let name = format!("v{}", self.count);
+        self.count += 1;
+        self.lines.push(format!("var {name} = {expr};"));
+        name
+    }
+
     /// `a^n`, `n >= 1`, by squaring and multiplying.
     fn powi(&mut self, a: &str, mut n: u32) -> String {
         let mut result: Option<String> = None;
@@ -177,7 +185,11 @@ impl Emitter {
     /// The dual number of `node` (a `vec4<f32>` expression or name).
     fn dual(&mut self, node: &Node) -> String {
         match &node.op {
-            Op::Number(c) => format!("vec4<f32>({}, 0.0f, 0.0f, 0.0f)", literal(*c)),
+            // A variable, not a constant expression: naga evaluates those
+            // when it compiles and refuses a result out of f32's range, such
+            // as log(0) or (-1e38)^2 in the rules below, even where a select
+            // drops it (found by the fuzzer, docs/reliability.md).
+            Op::Number(c) => self.var(format!("vec4<f32>({}, 0.0f, 0.0f, 0.0f)", literal(*c))),
             Op::Var(axis) => format!("d{}", ["x", "y", "z"][*axis]),
             Op::Unary(Unary::Neg, a) => {
                 let a = self.dual(a);

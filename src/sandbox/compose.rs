@@ -959,6 +959,14 @@ fn glsl_sandbox_surface(resolution: &str, position: bool, size: bool) -> String 
 }
 
 fn compile_glsl(name: &str, scan: &Scan) -> Result<Compiled, ShaderError> {
+    if let Some(offset) = scan.too_deep() {
+        let message = format!(
+            "nested more than {} levels deep (brackets and signs): more than the GLSL \
+             compiler can parse",
+            scan::MAX_NESTING
+        );
+        return Err(error_at(name, scan, offset, message));
+    }
     let tokens = &scan.tokens;
     // A file with `mainImage` is Shadertoy's, also with a `main()` of its own
     // that calls it (as exports for other sites have), unless it declares
@@ -1190,6 +1198,37 @@ fn main_image(frag_coord: vec2<f32>) -> vec4<f32> {
     return vec4<f32>(params.tint * uv.x * params.speed, f32(params.mode) + params.gain);
 }
 ";
+
+    /// naga's GLSL front end recurses once per level and overflowed the
+    /// stack at 1,600 (found by the fuzzer, docs/reliability.md): a file
+    /// nested deeper than the limit is an error at the first token past it.
+    #[test]
+    fn glsl_nested_too_deep_is_an_error_at_its_line() {
+        let deep = scan::MAX_NESTING + 1;
+        for (nested, line) in [
+            (format!("{}1.0{}", "(".repeat(deep), ")".repeat(deep)), 2),
+            (format!("{}1.0", "- ".repeat(deep)), 2),
+            (
+                format!(
+                    "1.0;\n#if {}1{}\n#endif",
+                    "(".repeat(deep),
+                    ")".repeat(deep)
+                ),
+                3,
+            ),
+        ] {
+            let text = format!(
+                "void mainImage(out vec4 c, in vec2 p) {{\n    float x = {nested};\n    \
+                 c = vec4(x);\n}}\n"
+            );
+            let e = compile("deep.glsl", &text).unwrap_err();
+            assert_eq!((e.file.as_str(), e.line), ("deep.glsl", line), "{e}");
+            assert!(e.message.contains("nested more than 200"), "{e}");
+        }
+        let fine = format!("{}1.0{}", "(".repeat(100), ")".repeat(100));
+        let text = format!("void mainImage(out vec4 c, in vec2 p) {{ c = vec4({fine}); }}\n");
+        compile("fine.glsl", &text).unwrap_or_else(|e| panic!("{e}"));
+    }
 
     #[test]
     fn wgsl_params_are_read_with_naga_offsets_and_comment_controls() {

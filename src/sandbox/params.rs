@@ -8,7 +8,7 @@
 use std::fmt::Write as _;
 use std::path::{Path, PathBuf};
 
-use super::scan::Comment;
+use super::scan::{Comment, Scan};
 
 /// The scalar type of a parameter's components.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
@@ -116,6 +116,14 @@ pub struct Annotation {
 
 /// An annotation error: byte offset in the scanned text and message.
 pub type AnnotationError = (usize, String);
+
+/// The annotation of a declaration on `line` (1-based) of `text`: the
+/// `@tags` of the comments attached to it, read as the compiler reads them.
+/// The tests and the fuzzer (docs/reliability.md) feed the parser through
+/// it, with no shader to compile.
+pub fn annotation_of_line(text: &str, line: u32) -> Result<Annotation, AnnotationError> {
+    parse_annotation(&Scan::new(text).comments_for_line(line))
+}
 
 /// Reads the `@tags` of the comments attached to a declaration.
 pub fn parse_annotation(comments: &[Comment]) -> Result<Annotation, AnnotationError> {
@@ -561,8 +569,10 @@ fn toml_value(spec: &ParamSpec, value: &[f64; 4]) -> Option<toml::Value> {
 }
 
 fn from_toml(spec: &ParamSpec, value: &toml::Value) -> Option<[f64; 4]> {
+    // A NaN or infinity (TOML has `nan` and `inf`) would reach the shader:
+    // it does not fit any parameter.
     let number = |v: &toml::Value| match v {
-        toml::Value::Float(f) => Some(*f),
+        toml::Value::Float(f) if f.is_finite() => Some(*f),
         toml::Value::Integer(i) => Some(*i as f64),
         toml::Value::Boolean(b) => Some(f64::from(u8::from(*b))),
         _ => None,
@@ -597,13 +607,10 @@ pub fn sidecar_path(shader: &Path) -> PathBuf {
 
 #[cfg(test)]
 mod tests {
-    use super::super::scan::Scan;
     use super::*;
 
     fn annotation(comment: &str) -> Result<Annotation, AnnotationError> {
-        let text = format!("x; // {comment}\n");
-        let scan = Scan::new(&text);
-        parse_annotation(&scan.comments_for_line(1))
+        annotation_of_line(&format!("x; // {comment}\n"), 1)
     }
 
     const F32: ParamType = ParamType {
@@ -774,6 +781,22 @@ mod tests {
         assert_eq!(warnings.len(), 1, "{warnings:?}");
         assert!(loaded.apply_toml("speed = [1, 2]").unwrap().len() == 1);
         assert!(loaded.apply_toml("speed = ").is_err());
+    }
+
+    /// TOML spells NaN and infinity; neither reaches the shader (found by
+    /// the fuzzer, docs/reliability.md).
+    #[test]
+    fn non_finite_sidecar_values_are_refused() {
+        let mut loaded = set();
+        let warnings = loaded
+            .apply_toml(
+                "speed = nan
+tint = [0.1, inf, 0.3]
+",
+            )
+            .unwrap();
+        assert_eq!(warnings.len(), 2, "{warnings:?}");
+        assert_eq!(loaded.values, set().values);
     }
 
     #[test]

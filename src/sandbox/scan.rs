@@ -33,6 +33,34 @@ impl Token<'_> {
     }
 }
 
+/// The deepest nesting a shader may have: brackets of any kind, plus a run
+/// of prefix operators (`-`, `+`, `!`, `~`). naga's GLSL front end parses
+/// each level by a recursive call and ran out of a 2 MiB stack at 1,600
+/// levels (docs/reliability.md, "Fuzzing"); real shaders nest a few dozen.
+pub const MAX_NESTING: usize = 200;
+
+/// How deep the tokens read so far nest: open brackets, and the prefix
+/// operators in a row just read.
+#[derive(Default)]
+struct Nesting {
+    brackets: usize,
+    operators: usize,
+}
+
+impl Nesting {
+    /// Reads the next token; true when it nests deeper than [`MAX_NESTING`].
+    fn step(&mut self, token: &str) -> bool {
+        match token {
+            "(" | "[" | "{" => self.brackets += 1,
+            ")" | "]" | "}" => self.brackets = self.brackets.saturating_sub(1),
+            _ => {}
+        }
+        let prefix = matches!(token, "-" | "+" | "!" | "~");
+        self.operators = if prefix { self.operators + 1 } else { 0 };
+        self.brackets + self.operators > MAX_NESTING
+    }
+}
+
 /// A `//` or `/* */` comment.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 pub struct Comment<'a> {
@@ -283,6 +311,30 @@ impl<'a> Scan<'a> {
         }
         above.reverse();
         above
+    }
+
+    /// The offset of the first token nested deeper than [`MAX_NESTING`].
+    /// A directive's own expression (`#if ((...))`) counts on its own: the
+    /// preprocessor parses it recursively too.
+    pub fn too_deep(&self) -> Option<usize> {
+        let mut nesting = Nesting::default();
+        for token in &self.tokens {
+            let deep = if token.kind == Kind::Directive {
+                let mut own = Nesting::default();
+                let mut buffer = [0; 4];
+                token
+                    .text
+                    .chars()
+                    .filter(|c| !c.is_whitespace())
+                    .any(|c| own.step(c.encode_utf8(&mut buffer)))
+            } else {
+                nesting.step(token.text)
+            };
+            if deep {
+                return Some(token.start);
+            }
+        }
+        None
     }
 
     fn has_token_on_line(&self, line: u32) -> bool {

@@ -24,7 +24,7 @@ use indexmap::IndexMap;
 use serde::{Deserialize, Serialize};
 
 pub use error::SceneError;
-pub use mesh_file::{Folder, Geometry, GivenFiles, MeshFiles, PerGeometry, load_file};
+pub use mesh_file::{Folder, Geometry, GivenFiles, MeshFiles, PerGeometry, load_bytes, load_file};
 pub use named::{NamedOption, named_option};
 pub use shapes::{
     Cube, CubeSize, Implicit, Julia, Loaded, Mesh, Placement, Plane, Scale, Shape, Sphere, Torus,

@@ -5,12 +5,19 @@
 
 use base64::Engine;
 use base64::engine::general_purpose::URL_SAFE_NO_PAD;
+use miniz_oxide::inflate::TINFLStatus;
 
 /// What precedes the encoded scene in the address's fragment.
 const SCENE_KEY: &str = "scene=";
 
 /// What precedes the encoded sandbox shader in the address's fragment.
 const SHADER_KEY: &str = "shader=";
+
+/// The most text a link may carry once inflated: far more than any scene
+/// or shader (the bundled ones are a few kilobytes), far less than a
+/// deflate bomb, whose few kilobytes of link inflate 1000-fold
+/// (docs/reliability.md, "Fuzzing").
+pub const MAX_TEXT: usize = 4 << 20;
 
 /// Deflate level: the best compression; scenes and shaders are a few kilobytes.
 const LEVEL: u8 = 10;
@@ -52,8 +59,14 @@ fn decode(encoded: &str) -> Result<String, String> {
     let deflated = URL_SAFE_NO_PAD
         .decode(encoded.trim())
         .map_err(|e| format!("the link is damaged (not base64: {e})"))?;
-    let bytes = miniz_oxide::inflate::decompress_to_vec(&deflated)
-        .map_err(|e| format!("the link is damaged or cut short ({e:?})"))?;
+    let bytes = miniz_oxide::inflate::decompress_to_vec_with_limit(&deflated, MAX_TEXT).map_err(
+        |e| match e.status {
+            TINFLStatus::HasMoreOutput => {
+                format!("the link's text is longer than {} MiB", MAX_TEXT >> 20)
+            }
+            status => format!("the link is damaged or cut short ({status:?})"),
+        },
+    )?;
     String::from_utf8(bytes).map_err(|_| "the link's text is not UTF-8".to_string())
 }
 
@@ -111,5 +124,15 @@ mod tests {
         );
         assert!(shader_in_hash("shader=").unwrap().is_err());
         assert_eq!(shader_in_hash(""), None);
+    }
+
+    #[test]
+    fn a_link_that_inflates_past_the_limit_is_refused() {
+        let bomb = scene_hash(&"a".repeat(MAX_TEXT + 1));
+        assert!(bomb.len() < 10_000, "{} bytes", bomb.len());
+        let error = scene_in_hash(&bomb).unwrap().unwrap_err();
+        assert!(error.contains("longer than 4 MiB"), "{error}");
+        let largest = "a".repeat(MAX_TEXT);
+        assert_eq!(scene_in_hash(&scene_hash(&largest)), Some(Ok(largest)));
     }
 }

@@ -138,3 +138,33 @@ pub fn write_file(dir: &Path, name: &str, text: &str) -> PathBuf {
     std::fs::write(&path, text).unwrap();
     path
 }
+
+/// What the shader fuzzers (tests/sandbox_fuzz.rs, tests/fuzz) insert:
+/// brackets, keywords and constructs that real shaders and the program's
+/// rewrites care about.
+pub const SHADER_MISTAKES: [&str; 24] = [
+    "(",
+    ")",
+    "{",
+    "}",
+    ";",
+    ",",
+    "inout ",
+    "out ",
+    "#if 0\n",
+    "#endif\n",
+    "#define X\n",
+    "while(true)",
+    "/*",
+    "*/",
+    "sampler2D ",
+    "texture2D(",
+    "1e39",
+    "mat2(",
+    "dot(",
+    "uniform ",
+    "precision ",
+    "void main()",
+    "mainImage(",
+    "[",
+];
