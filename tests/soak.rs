@@ -304,23 +304,17 @@ fn soak_viewer(display: &Display, counts: Counts) {
     samples.check();
 }
 
-const RINGS: &str = "\
-uniform float time;
-uniform vec2 resolution;
-
-void main() {
-    vec2 p = gl_FragCoord.xy / resolution;
-    float r = length(p - vec2(0.7, 0.6));
-    gl_FragColor = vec4(p.x, p.y, 0.5 + 0.5 * sin(60.0 * r - time), 1.0);
-}
-";
+/// A GLSL Sandbox shader whose picture moves with the clock.
+const WAVES: &str = "uniform float time;\nuniform vec2 resolution;\n\
+void main() { vec2 p = gl_FragCoord.xy / resolution; \
+gl_FragColor = vec4(0.5 + 0.5 * sin(10.0 * p.x + time), p.y, 0.3, 1.0); }\n";
 
 fn soak_sandbox(display: &Display, counts: Counts) {
     let dir = common::temp_dir("soak", "sandbox");
-    let file = common::write_file(&dir, "rings.frag", RINGS);
+    let file = common::write_file(&dir, "waves.frag", WAVES);
     let mut window = Window::open(display, &["shader", file.to_str().unwrap()], SIZE);
     let edit = |window: &mut Window, n: usize| {
-        save(&file, &format!("{RINGS}// soak edit {n}\n"));
+        save(&file, &format!("{WAVES}// soak edit {n}\n"));
         window.wait_for("shader-reloaded");
     };
     edit(&mut window, 0);
