@@ -24,6 +24,8 @@ pub mod viewer;
 // What only the window program has (docs/web.md, "Differences from the
 // native program"): windows of its own, files watched, dialogs, threads.
 #[cfg(not(target_arch = "wasm32"))]
+mod memory;
+#[cfg(not(target_arch = "wasm32"))]
 mod sandbox_window;
 #[cfg(not(target_arch = "wasm32"))]
 mod watch;

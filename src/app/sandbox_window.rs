@@ -20,10 +20,10 @@ use winit::window::{Window, WindowId};
 use super::ViewerError;
 use super::controls::{self, ClockAction};
 use super::layout::{self, Layout, LayoutReport};
-use super::overlay;
 use super::shell::{self, EguiLayer, EventLog};
 use super::watch;
 use super::window::open_gpu_window;
+use super::{memory, overlay};
 use crate::gpu::{EXPORT_FORMAT, Gpu, GpuTimer, Timing, Viewport};
 use crate::sandbox::channels::{self, CHANNELS};
 use crate::sandbox::clock::{Clock, Tick};
@@ -283,6 +283,8 @@ impl ApplicationHandler<SandboxEvent> for SandboxApp {
                 }
             }
         }
+        // The shader a reload replaced is dropped by now.
+        memory::release_freed();
         self.request_redraw();
     }
 

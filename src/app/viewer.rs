@@ -234,11 +234,18 @@ impl Viewer {
     /// A build started by the worker has finished.
     pub fn pipelines_built(&mut self, built: pipelines::Built) {
         let Some(gfx) = &mut self.gfx else { return };
+        let options = built.options.clone();
         if let Err(e) = gfx.pipelines.finished(built) {
             log::error!("{e}");
             self.editor.shader_error = Some(e);
             self.reload_pending = false;
             self.event("shader-error");
+            // The scene may have moved on to another feature set meanwhile
+            // (one build runs at a time): build that one, never the failed
+            // one again.
+            if ShaderOptions::for_scene(&self.doc.scene) != options {
+                self.ensure_pipelines();
+            }
             return;
         }
         self.ensure_pipelines();

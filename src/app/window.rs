@@ -17,7 +17,7 @@ use super::panel::{self, PanelAction};
 use super::shell::{self, EventLog};
 use super::ui::{Command, Host};
 use super::viewer::{Platform, Viewer};
-use super::{mesh_files, pipelines, watch};
+use super::{memory, mesh_files, pipelines, watch};
 use crate::gpu::{Gpu, Pipelines, ShaderSource, Viewport};
 use crate::sandbox::SourceParams;
 use crate::scene::{Mesh, Scene, bundled};
@@ -213,6 +213,8 @@ impl ApplicationHandler<UserEvent> for App {
             UserEvent::MeshFilePicked(path) => self.add_mesh_file(&path),
             UserEvent::MeshRead(path, mesh) => self.mesh_read(&path, *mesh),
         }
+        // What a reload replaced is dropped by now.
+        memory::release_freed();
         self.request_redraw();
     }
 
@@ -522,12 +524,12 @@ impl App {
             }
             PanelAction::Open(path) => {
                 if self.viewer.open(Document::open(&path)) {
-                    self.restart_watch();
+                    self.opened();
                 }
             }
             PanelAction::OpenBundled(name) => {
                 if self.viewer.open(Document::bundled(name)) {
-                    self.restart_watch();
+                    self.opened();
                 }
             }
             // Not in the window's panel: `raysandbox shader FILE` runs shaders.
@@ -537,6 +539,13 @@ impl App {
             PanelAction::PickMeshFile => self.pick_mesh_file(),
             PanelAction::AddMeshFile(path) => self.add_mesh_file(&path),
         }
+    }
+
+    /// Another scene replaced the document: its files are watched, and the
+    /// memory of the one it replaced goes back to the system.
+    fn opened(&mut self) {
+        self.restart_watch();
+        memory::release_freed();
     }
 
     /// Saves to the document's file, or to `path`. Reports the outcome in the

@@ -174,8 +174,8 @@ impl Pipelines {
     }
 }
 
-/// Binding 0: the globals uniform; 1..=5: materials, lights, BVH nodes, BVH
-/// shape list and shape counts; from [`FIRST_SHAPE_BINDING`] on, one array
+/// Binding 0: the globals (a storage buffer, see `scene.wgsl`); 1..=5:
+/// materials, lights, BVH nodes, BVH shape list and shape counts; from [`FIRST_SHAPE_BINDING`] on, one array
 /// per shape kind in the registry order of `gpu::shapes` (all read-only
 /// storage buffers, the order of `scene.wgsl` and of the generated WGSL),
 /// of which only those of `bound_kinds` are bound (see
@@ -187,11 +187,7 @@ pub(super) fn scene_layout_entries(bound_kinds: u32) -> Vec<wgpu::BindGroupLayou
             binding: i,
             visibility: wgpu::ShaderStages::FRAGMENT,
             ty: wgpu::BindingType::Buffer {
-                ty: if i == 0 {
-                    wgpu::BufferBindingType::Uniform
-                } else {
-                    wgpu::BufferBindingType::Storage { read_only: true }
-                },
+                ty: wgpu::BufferBindingType::Storage { read_only: true },
                 has_dynamic_offset: false,
                 min_binding_size: None,
             },
@@ -251,7 +247,7 @@ impl SceneBuffers {
         let globals = device.create_buffer_init(&wgpu::util::BufferInitDescriptor {
             label: Some("globals"),
             contents: bytemuck::bytes_of(&packed.globals),
-            usage: wgpu::BufferUsages::UNIFORM | wgpu::BufferUsages::COPY_DST,
+            usage: wgpu::BufferUsages::STORAGE | wgpu::BufferUsages::COPY_DST,
         });
         let storage = |label, contents: &[u8]| {
             device.create_buffer_init(&wgpu::util::BufferInitDescriptor {

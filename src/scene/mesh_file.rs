@@ -32,8 +32,15 @@ pub struct Geometry {
 /// made once and shared by every copy of the scene that holds the same
 /// geometry: moving a mesh copies the scene but not its triangles, so
 /// nothing derived from them is made again. Entries are held by a weak
-/// reference: a geometry no scene uses any more is dropped from here.
+/// reference: a geometry no scene uses any more is dropped from here at the
+/// next look-up, and at most [`PER_GEOMETRY_LIMIT`] are kept, the oldest
+/// made again if needed (docs/reliability.md, "Memory under live editing").
 pub struct PerGeometry<T>(Mutex<Vec<(Weak<Geometry>, T)>>);
+
+/// How many geometries a [`PerGeometry`] keeps values for: more meshes than
+/// any scene of the lecture has, so that in use nothing is made twice, while
+/// a long session of mesh reloads cannot make the cache grow.
+pub const PER_GEOMETRY_LIMIT: usize = 16;
 
 impl<T: Clone> Default for PerGeometry<T> {
     fn default() -> Self {
@@ -68,6 +75,9 @@ impl<T: Clone> PerGeometry<T> {
             return first;
         }
         entries.push((Arc::downgrade(geometry), value.clone()));
+        if entries.len() > PER_GEOMETRY_LIMIT {
+            entries.remove(0);
+        }
         value
     }
 }
@@ -502,4 +512,40 @@ fn ply_list(p: &ply_rs_bw::ply::Property) -> Option<Vec<i64>> {
         P::ListUInt(v) => v.iter().map(|&x| x.into()).collect(),
         _ => return None,
     })
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn per_geometry_keeps_at_most_its_limit_and_forgets_dropped_geometries() {
+        let cache = PerGeometry::<usize>::new();
+        let made = std::cell::Cell::new(0);
+        let get = |g: &Arc<Geometry>, i: usize| {
+            cache.get_or_make(g, || {
+                made.set(made.get() + 1);
+                i
+            })
+        };
+        let geometries: Vec<Arc<Geometry>> = (0..PER_GEOMETRY_LIMIT + 4)
+            .map(|_| Arc::new(Geometry::default()))
+            .collect();
+        for (i, g) in geometries.iter().enumerate() {
+            assert_eq!(get(g, i), i);
+        }
+        assert_eq!(made.get(), geometries.len());
+        let len = || cache.0.lock().unwrap().len();
+        assert_eq!(len(), PER_GEOMETRY_LIMIT);
+        // The newest is still there; the oldest was made again.
+        assert_eq!(get(geometries.last().unwrap(), 0), geometries.len() - 1);
+        assert_eq!(made.get(), geometries.len());
+        assert_eq!(get(&geometries[0], 0), 0);
+        assert_eq!(made.get(), geometries.len() + 1);
+        // Geometries no scene holds are dropped at the next look-up.
+        let kept = Arc::clone(&geometries[0]);
+        drop(geometries);
+        get(&kept, 0);
+        assert_eq!(len(), 1);
+    }
 }

@@ -293,6 +293,11 @@ impl<'d> Window<'d> {
         image
     }
 
+    /// The process id, e.g. to read its resident memory.
+    pub fn pid(&self) -> u32 {
+        self.child.id()
+    }
+
     pub fn is_running(&mut self) -> bool {
         self.child
             .try_wait()

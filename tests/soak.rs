@@ -1,0 +1,339 @@
+//! Memory under live editing (docs/reliability.md): the real viewer and
+//! sandbox window under Xvfb (tests/common/xwindow.rs) go through scene-file
+//! saves, shader saves, panel edits, scene switches among bundled scenes
+//! (meshes and the Julia set among them) and mesh-file reloads, and the
+//! sandbox through shader saves, while their resident memory is sampled.
+//! After a warm-up round of every action, memory may grow by at most
+//! [`MAX_GROWTH_MB`] over the rest of the soak.
+//!
+//! The test runs a short soak; `scripts/soak` runs the full one (the
+//! counts of [`Counts::FULL`]) through the same code by setting
+//! `RAYSANDBOX_SOAK=full` (or `N`: N times the short soak).
+
+mod common;
+
+use std::path::{Path, PathBuf};
+
+use common::xwindow::{Display, Window};
+
+/// The bound on growth after the warm-up, over the whole soak, in MB.
+const MAX_GROWTH_MB: f64 = 50.0;
+
+const SIZE: (u32, u32) = (640, 360);
+
+/// How many of each action, after the warm-up round.
+#[derive(Debug, Clone, Copy)]
+struct Counts {
+    scene_saves: usize,
+    shader_saves: usize,
+    panel_edits: usize,
+    scene_switches: usize,
+    mesh_reloads: usize,
+    sandbox_saves: usize,
+}
+
+impl Counts {
+    /// A minute or two on 2 cores with lavapipe.
+    const SHORT: Counts = Counts {
+        scene_saves: 40,
+        shader_saves: 4,
+        panel_edits: 10,
+        scene_switches: 5,
+        mesh_reloads: 10,
+        sandbox_saves: 20,
+    };
+    /// An hour of editing, as docs/reliability.md asks.
+    const FULL: Counts = Counts {
+        scene_saves: 1000,
+        shader_saves: 1000,
+        panel_edits: 500,
+        scene_switches: 200,
+        mesh_reloads: 100,
+        sandbox_saves: 1000,
+    };
+
+    /// `RAYSANDBOX_SOAK`: `full`, or a whole number `N` for N times the
+    /// short soak; unset, the short soak.
+    fn chosen() -> Counts {
+        let times = |n: usize| Counts {
+            scene_saves: Self::SHORT.scene_saves * n,
+            shader_saves: Self::SHORT.shader_saves * n,
+            panel_edits: Self::SHORT.panel_edits * n,
+            scene_switches: Self::SHORT.scene_switches * n,
+            mesh_reloads: Self::SHORT.mesh_reloads * n,
+            sandbox_saves: Self::SHORT.sandbox_saves * n,
+        };
+        match std::env::var("RAYSANDBOX_SOAK").as_deref() {
+            Ok("full") => Counts::FULL,
+            Ok(n) => times(n.parse().expect("RAYSANDBOX_SOAK: full or a whole number")),
+            Err(_) => Counts::SHORT,
+        }
+    }
+}
+
+/// Resident memory of process `pid` in MB (`VmRSS`).
+fn resident_mb(pid: u32) -> f64 {
+    let status = std::fs::read_to_string(format!("/proc/{pid}/status")).unwrap();
+    let kb: f64 = status
+        .lines()
+        .find_map(|l| l.strip_prefix("VmRSS:"))
+        .and_then(|v| v.split_whitespace().next()?.parse().ok())
+        .expect("VmRSS in /proc/PID/status");
+    kb / 1024.0
+}
+
+/// Resident memory after the warm-up and after each action.
+struct Samples {
+    what: &'static str,
+    pid: u32,
+    after_warm_up: f64,
+    peak: f64,
+    last: f64,
+    actions: usize,
+}
+
+impl Samples {
+    fn start(what: &'static str, pid: u32) -> Samples {
+        let now = resident_mb(pid);
+        Samples {
+            what,
+            pid,
+            after_warm_up: now,
+            peak: now,
+            last: now,
+            actions: 0,
+        }
+    }
+
+    fn sample(&mut self) {
+        self.last = resident_mb(self.pid);
+        self.peak = self.peak.max(self.last);
+        self.actions += 1;
+        if self.actions.is_multiple_of(50) {
+            println!(
+                "{}: {} actions, {:.1} MB",
+                self.what, self.actions, self.last
+            );
+        }
+    }
+
+    /// Prints the growth and checks it against the bound.
+    fn check(&self) {
+        let growth = self.last - self.after_warm_up;
+        let peak = self.peak - self.after_warm_up;
+        println!(
+            "{}: {} actions; resident after warm-up {:.1} MB, at the end {:.1} MB \
+             (growth {growth:+.1} MB), peak {:.1} MB ({peak:+.1} MB)",
+            self.what, self.actions, self.after_warm_up, self.last, self.peak
+        );
+        assert!(
+            growth < MAX_GROWTH_MB && peak < MAX_GROWTH_MB,
+            "{}: memory grew by {growth:.1} MB (peak {peak:.1} MB) after the warm-up, \
+             more than {MAX_GROWTH_MB} MB",
+            self.what
+        );
+    }
+}
+
+/// Writes a file as editors do: a new file renamed over the old one.
+fn save(path: &Path, text: &str) {
+    let tmp = path.with_extension("soak-tmp");
+    std::fs::write(&tmp, text).unwrap();
+    std::fs::rename(&tmp, path).unwrap();
+}
+
+/// A small mesh whose apex height changes with `n`: each save is new geometry.
+fn pyramid(n: usize) -> String {
+    let h = 1.0 + 0.01 * (n % 50) as f64;
+    format!(
+        "v -1 0 -1\nv 1 0 -1\nv 1 0 1\nv -1 0 1\nv 0 {h} 0\n\
+         f 1 2 3\nf 1 3 4\nf 1 5 2\nf 2 5 3\nf 3 5 4\nf 4 5 1\n"
+    )
+}
+
+/// The files the viewer edits: a copy of the shader folder, the scene file
+/// (whitted with the pyramid mesh) and the bundled scenes it switches to.
+struct Workspace {
+    shaders: PathBuf,
+    scene: PathBuf,
+    mesh: PathBuf,
+    base_scene: String,
+    shade: String,
+    /// Scenes to switch to: the Julia set, meshes, implicit surfaces, boxes.
+    switches: Vec<String>,
+}
+
+impl Workspace {
+    fn new() -> Workspace {
+        let dir = common::temp_dir("soak", "viewer");
+        let root = Path::new(env!("CARGO_MANIFEST_DIR"));
+        let shaders = dir.join("shaders");
+        common::copy_dir(&root.join("shaders"), &shaders);
+        let mesh = common::write_file(&dir, "pyramid.obj", &pyramid(0));
+        let whitted = std::fs::read_to_string(common::scenes_dir().join("whitted.toml")).unwrap();
+        let base_scene = format!(
+            "{whitted}\n[[meshes]]\nfile = \"pyramid.obj\"\nscale = 0.3\n\
+             translate = [2.0, 0.0, 0.0]\nmaterial = \"mirror\"\n"
+        );
+        let scene = common::write_file(&dir, "scene.toml", &base_scene);
+        let meshes = root.join("assets/meshes");
+        let bundled = |name: &str| -> String {
+            let path = [format!("{name}.toml"), format!("meshes/{name}.toml")]
+                .into_iter()
+                .map(|f| common::scenes_dir().join(f))
+                .find(|p| p.is_file())
+                .unwrap();
+            let text = std::fs::read_to_string(path).unwrap();
+            text.replace("../../meshes/", &format!("{}/", meshes.display()))
+        };
+        let switches = [
+            "julia",
+            "glass_bunny",
+            "implicits",
+            "mirror_teapot",
+            "rotated_cubes",
+        ]
+        .map(bundled)
+        .into_iter()
+        .chain([base_scene.clone()])
+        .collect();
+        let shade = std::fs::read_to_string(shaders.join("shade.wgsl")).unwrap();
+        Workspace {
+            shaders,
+            scene,
+            mesh,
+            base_scene,
+            shade,
+            switches,
+        }
+    }
+}
+
+/// One action on the viewer, waited for until its frame is ready.
+fn scene_save(viewer: &mut Window, ws: &Workspace, n: usize) {
+    let radius = 0.8 + 0.001 * (n % 50 + 1) as f64;
+    let text = ws
+        .base_scene
+        .replacen("radius = 0.8", &format!("radius = {radius:.3}"), 1);
+    save(&ws.scene, &text);
+    viewer.wait_for("scene-reloaded");
+    viewer.wait_for("ready");
+}
+
+fn shader_save(viewer: &mut Window, ws: &Workspace, n: usize) {
+    save(
+        &ws.shaders.join("shade.wgsl"),
+        &format!("{}// soak edit {n}\n", ws.shade),
+    );
+    viewer.wait_for("shaders-reloaded");
+    viewer.wait_for("ready");
+}
+
+fn mesh_reload(viewer: &mut Window, ws: &Workspace, n: usize) {
+    save(&ws.mesh, &pyramid(n + 1));
+    viewer.wait_for("mesh-reloaded");
+    viewer.wait_for("ready");
+}
+
+/// Drags the camera's fov slider (the Camera section is open at the start),
+/// then saves with Ctrl+S so that the file can be reloaded afterwards.
+fn panel_edit(viewer: &mut Window, n: usize) {
+    let (from, to) = if n.is_multiple_of(2) {
+        (100, 130)
+    } else {
+        (130, 100)
+    };
+    viewer.drag("1", (from, 145), (to, 145));
+    viewer.wait_for("ready");
+    viewer.key("ctrl+s");
+    viewer.wait_for("saved");
+}
+
+/// Opens another scene by replacing the watched file's contents (the last
+/// switch goes back to the starting scene, with its mesh).
+fn scene_switch(viewer: &mut Window, ws: &Workspace, n: usize) {
+    save(&ws.scene, &ws.switches[n % ws.switches.len()]);
+    viewer.wait_for("scene-reloaded");
+    viewer.wait_for("ready");
+}
+
+fn soak_viewer(display: &Display, counts: Counts) {
+    let ws = Workspace::new();
+    let mut viewer = Window::open(
+        display,
+        &[
+            "view",
+            ws.scene.to_str().unwrap(),
+            "--shaders",
+            ws.shaders.to_str().unwrap(),
+            "--max-samples",
+            "1",
+        ],
+        SIZE,
+    );
+    // Warm-up: every action once (every scene of the switches too).
+    scene_save(&mut viewer, &ws, 0);
+    shader_save(&mut viewer, &ws, 0);
+    mesh_reload(&mut viewer, &ws, 0);
+    panel_edit(&mut viewer, 0);
+    for n in 0..ws.switches.len() {
+        scene_switch(&mut viewer, &ws, n);
+    }
+    let mut samples = Samples::start("viewer", viewer.pid());
+    for n in 1..=counts.scene_saves {
+        scene_save(&mut viewer, &ws, n);
+        samples.sample();
+    }
+    for n in 1..=counts.shader_saves {
+        shader_save(&mut viewer, &ws, n);
+        samples.sample();
+    }
+    for n in 1..=counts.mesh_reloads {
+        mesh_reload(&mut viewer, &ws, n);
+        samples.sample();
+    }
+    for n in 1..=counts.panel_edits {
+        panel_edit(&mut viewer, n);
+        samples.sample();
+    }
+    for n in 0..counts.scene_switches {
+        scene_switch(&mut viewer, &ws, n);
+        samples.sample();
+    }
+    assert!(viewer.is_running());
+    samples.check();
+}
+
+/// A GLSL Sandbox shader whose picture moves with the clock.
+const WAVES: &str = "uniform float time;\nuniform vec2 resolution;\n\
+void main() { vec2 p = gl_FragCoord.xy / resolution; \
+gl_FragColor = vec4(0.5 + 0.5 * sin(10.0 * p.x + time), p.y, 0.3, 1.0); }\n";
+
+fn soak_sandbox(display: &Display, counts: Counts) {
+    let dir = common::temp_dir("soak", "sandbox");
+    let file = common::write_file(&dir, "waves.frag", WAVES);
+    let mut window = Window::open(display, &["shader", file.to_str().unwrap()], SIZE);
+    let edit = |window: &mut Window, n: usize| {
+        save(&file, &format!("{WAVES}// soak edit {n}\n"));
+        window.wait_for("shader-reloaded");
+    };
+    edit(&mut window, 0);
+    let mut samples = Samples::start("sandbox", window.pid());
+    for n in 1..=counts.sandbox_saves {
+        edit(&mut window, n);
+        samples.sample();
+    }
+    assert!(window.is_running());
+    samples.check();
+}
+
+#[test]
+fn memory_stays_flat_under_live_editing() {
+    let Some(display) = Display::start() else {
+        return;
+    };
+    let counts = Counts::chosen();
+    println!("soak: {counts:?}, bound {MAX_GROWTH_MB} MB after the warm-up");
+    soak_viewer(&display, counts);
+    soak_sandbox(&display, counts);
+}
