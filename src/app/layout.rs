@@ -65,17 +65,18 @@ pub fn take(ctx: &egui::Context) -> Layout {
 /// Tells the layout when it differs from the last one told.
 #[derive(Default)]
 pub struct LayoutReport {
-    last: String,
+    last: Layout,
 }
 
 impl LayoutReport {
-    /// The event line for `layout`, when it changed since the last.
-    pub fn changed(&mut self, layout: &Layout) -> Option<&str> {
-        let line = layout.describe();
-        if line == self.last {
+    /// The event line for `layout`, when it changed since the last (the
+    /// line is written only then, not every frame).
+    pub fn changed(&mut self, layout: Layout) -> Option<String> {
+        if layout == self.last {
             return None;
         }
-        self.last = line;
-        Some(&self.last)
+        let line = layout.describe();
+        self.last = layout;
+        Some(line)
     }
 }

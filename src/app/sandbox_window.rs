@@ -611,8 +611,8 @@ impl SandboxApp {
             }
             drawn = layout::take(ui.ctx());
         });
-        if let Some(line) = self.layout.changed(&drawn) {
-            self.events.event(line);
+        if let Some(line) = self.layout.changed(drawn) {
+            self.events.event(&line);
         }
         (actions, output)
     }

@@ -325,8 +325,8 @@ impl Viewer {
             );
             drawn = layout::take(ui.ctx());
         });
-        if let Some(line) = self.layout.changed(&drawn) {
-            (self.platform.event)(line);
+        if let Some(line) = self.layout.changed(drawn) {
+            (self.platform.event)(&line);
         }
         let (commands, input) = result;
         (
