@@ -23,6 +23,9 @@ pub struct Editor {
     pub shader_error: Option<String>,
     /// The last error reading the scene file after an external edit.
     pub scene_error: Option<String>,
+    /// Why the GPU refused the scene (a buffer beyond its limits): the last
+    /// scene that fitted is drawn.
+    pub gpu_error: Option<String>,
     /// An external edit of the file, waiting for the user's decision because
     /// the panel holds unsaved edits.
     pub pending_reload: Option<(Scene, String)>,
@@ -41,6 +44,7 @@ impl Default for Editor {
             show_help: false,
             shader_error: None,
             scene_error: None,
+            gpu_error: None,
             pending_reload: None,
             confirm_quit: false,
             message: None,
@@ -389,6 +393,29 @@ fn view_input(ui: &mut egui::Ui) -> ViewInput {
     input
 }
 
+/// An error in a window above the status line, until the user closes it or
+/// the cause is gone (`error` set to `None`); reported in the layout as
+/// `name`.
+fn closable_error(ctx: &egui::Context, title: &str, name: &str, error: &mut Option<String>) {
+    let Some(text) = error else { return };
+    let mut open = true;
+    let window = egui::Window::new(title)
+        .open(&mut open)
+        .anchor(egui::Align2::CENTER_BOTTOM, [0.0, -40.0])
+        .show(ctx, |ui| {
+            ui.label(
+                egui::RichText::new(text.as_str())
+                    .monospace()
+                    .color(egui::Color32::LIGHT_RED),
+            );
+            ui.is_sizing_pass()
+        });
+    layout::note_window(ctx, name, window);
+    if !open {
+        *error = None;
+    }
+}
+
 fn overlays(ctx: &egui::Context, editor: &mut Editor, commands: &mut Vec<Command>) {
     if let Some(error) = &editor.shader_error {
         overlay::error_window(
@@ -398,24 +425,18 @@ fn overlays(ctx: &egui::Context, editor: &mut Editor, commands: &mut Vec<Command
             egui::Align2::CENTER_TOP,
         );
     }
-    if let Some(error) = &editor.scene_error {
-        let mut open = true;
-        let window = egui::Window::new("Scene file error: the current scene is kept")
-            .open(&mut open)
-            .anchor(egui::Align2::CENTER_BOTTOM, [0.0, -40.0])
-            .show(ctx, |ui| {
-                ui.label(
-                    egui::RichText::new(error)
-                        .monospace()
-                        .color(egui::Color32::LIGHT_RED),
-                );
-                ui.is_sizing_pass()
-            });
-        layout::note_window(ctx, "scene-error", window);
-        if !open {
-            editor.scene_error = None;
-        }
-    }
+    closable_error(
+        ctx,
+        "Scene file error: the current scene is kept",
+        "scene-error",
+        &mut editor.scene_error,
+    );
+    closable_error(
+        ctx,
+        "The GPU cannot draw this scene: the last one that fitted is shown",
+        "gpu-error",
+        &mut editor.gpu_error,
+    );
     if editor.pending_reload.is_some() {
         egui::Modal::new(egui::Id::unique("reload dialog")).show(ctx, |ui| {
             ui.heading("The scene file changed on disk");

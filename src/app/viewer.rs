@@ -160,13 +160,8 @@ impl Viewer {
         let (source, options) = self.first_build();
         let cache = PipelineCache::new(source, options, first.clone());
         let size = window.inner_size();
-        let viewport = Viewport::new(
-            &gpu,
-            surface,
-            (size.width, size.height),
-            first,
-            &self.shown_scene(),
-        );
+        let shown = self.shown_scene();
+        let viewport = Viewport::new(&gpu, surface, (size.width, size.height), first, &shown);
         let egui = EguiLayer::new(&window, &gpu, viewport.surface_format());
         self.gfx = Some(Graphics {
             window,
@@ -175,6 +170,21 @@ impl Viewer {
             pipelines: cache,
             egui,
         });
+        self.upload_scene(&shown);
+    }
+
+    /// Gives the viewport a scene with new shapes; one the GPU's buffers
+    /// cannot hold is reported and the last one that fitted stays.
+    fn upload_scene(&mut self, shown: &Scene) {
+        let Some(gfx) = &mut self.gfx else { return };
+        match gfx.viewport.set_scene(&gfx.gpu, shown) {
+            Ok(()) => self.editor.gpu_error = None,
+            Err(e) => {
+                log::error!("{e}");
+                self.editor.gpu_error = Some(e.to_string());
+                self.event(&format!("gpu-error {}", e.limit));
+            }
+        }
     }
 
     pub fn request_redraw(&self) {
@@ -257,11 +267,13 @@ impl Viewer {
     /// A new feature set gets its own pipelines.
     pub fn scene_changed(&mut self, before: Option<&Scene>) {
         let shown = self.shown_scene();
-        if let Some(gfx) = &mut self.gfx {
-            match before {
-                Some(old) if same_shapes(old, &self.doc.scene) => gfx.viewport.set_view(&shown),
-                _ => gfx.viewport.set_scene(&gfx.gpu, &shown),
+        match before {
+            Some(old) if same_shapes(old, &self.doc.scene) => {
+                if let Some(gfx) = &mut self.gfx {
+                    gfx.viewport.set_view(&shown);
+                }
             }
+            _ => self.upload_scene(&shown),
         }
         self.ensure_pipelines();
     }

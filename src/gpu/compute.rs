@@ -6,8 +6,7 @@
 
 use std::time::{Duration, Instant};
 
-use wgpu::util::DeviceExt;
-
+use super::buffer;
 use super::{Gpu, ShaderSource};
 
 /// One kernel: `entry` of `source` with its override `constants`; the
@@ -79,11 +78,7 @@ impl Kernel<'_> {
         let buffers: Vec<wgpu::Buffer> = inputs
             .iter()
             .map(|bytes| {
-                device.create_buffer_init(&wgpu::util::BufferInitDescriptor {
-                    label: Some("kernel input"),
-                    contents: bytes,
-                    usage: wgpu::BufferUsages::STORAGE,
-                })
+                buffer::with_contents(device, "kernel input", bytes, wgpu::BufferUsages::STORAGE)
             })
             .collect();
         let size = result_bytes as u64;

@@ -1,6 +1,7 @@
 //! The wgpu device: adapter choice, its limits, waiting for it, and the
 //! errors a user can act on.
 
+use std::sync::{Arc, Mutex, PoisonError};
 use std::time::Duration;
 
 use super::tracer::ACCUM_FORMAT;
@@ -11,6 +12,9 @@ pub struct Gpu {
     pub adapter: wgpu::Adapter,
     pub device: wgpu::Device,
     pub queue: wgpu::Queue,
+    /// Why the device was lost, once it is (set by wgpu's device-lost
+    /// callback: a driver reset, `Device::destroy`, ...).
+    lost: Arc<Mutex<Option<String>>>,
 }
 
 /// The optional features the device is asked for when the adapter has
@@ -73,12 +77,21 @@ pub const STORAGE_BUFFERS_NEEDED: u32 = 16;
 
 /// The default limits, with as many storage buffers per stage as the
 /// scene's shape kinds need (when the adapter has them; otherwise device
-/// creation names the limit).
+/// creation names the limit), and buffers as large as the adapter allows,
+/// so that a large mesh fits wherever the GPU can hold it (the defaults stop
+/// at 128 MiB per storage binding).
 fn required_limits(adapter: &wgpu::Adapter) -> wgpu::Limits {
-    let offered = adapter.limits().max_storage_buffers_per_shader_stage;
+    let offered = adapter.limits();
+    let defaults = wgpu::Limits::default();
     wgpu::Limits {
-        max_storage_buffers_per_shader_stage: STORAGE_BUFFERS_NEEDED.min(offered).max(8),
-        ..wgpu::Limits::default()
+        max_storage_buffers_per_shader_stage: STORAGE_BUFFERS_NEEDED
+            .min(offered.max_storage_buffers_per_shader_stage)
+            .max(8),
+        max_storage_buffer_binding_size: offered
+            .max_storage_buffer_binding_size
+            .max(defaults.max_storage_buffer_binding_size),
+        max_buffer_size: offered.max_buffer_size.max(defaults.max_buffer_size),
+        ..defaults
     }
 }
 
@@ -137,12 +150,24 @@ impl Gpu {
                 info.name, info.backend
             )));
         }
+        Self::request_with_limits(instance, adapter, |_| ()).await
+    }
+
+    /// A device from `adapter` with the limits this program asks for,
+    /// changed by `adjust`: tests use it to play a GPU with smaller limits.
+    pub async fn request_with_limits(
+        instance: wgpu::Instance,
+        adapter: wgpu::Adapter,
+        adjust: impl FnOnce(&mut wgpu::Limits),
+    ) -> Result<Gpu, GpuError> {
+        let mut limits = required_limits(&adapter);
+        adjust(&mut limits);
         let (device, queue) = adapter
             .request_device(&wgpu::DeviceDescriptor {
                 label: Some("raysandbox"),
                 // Timestamp queries time frames where the adapter has them.
                 required_features: adapter.features() & TIMER_FEATURES,
-                required_limits: required_limits(&adapter),
+                required_limits: limits,
                 ..Default::default()
             })
             .await
@@ -150,12 +175,34 @@ impl Gpu {
                 adapter: adapter.get_info().name,
                 reason: e.to_string(),
             })?;
+        let lost = Arc::new(Mutex::new(None));
+        let lost_in_callback = lost.clone();
+        device.set_device_lost_callback(move |reason, message| {
+            log::error!("the GPU device was lost ({reason:?}): {message}");
+            *lost_in_callback
+                .lock()
+                .unwrap_or_else(PoisonError::into_inner) = Some(lost_message(reason, &message));
+        });
+        // wgpu's default handler panics. What reaches it is either a bug of
+        // this program or the fallout of a lost device, which the viewer
+        // recovers from: logged, so that the window stays up.
+        device.on_uncaptured_error(Arc::new(|error| log::error!("GPU error: {error}")));
         Ok(Gpu {
             instance,
             adapter,
             device,
             queue,
+            lost,
         })
+    }
+
+    /// Why the device was lost, if it was: everything made from it is
+    /// useless, and a new [`Gpu`] must replace it.
+    pub fn lost(&self) -> Option<String> {
+        self.lost
+            .lock()
+            .unwrap_or_else(PoisonError::into_inner)
+            .clone()
     }
 
     /// Whether an image of `width` x `height` pixels can be rendered on this
@@ -185,6 +232,15 @@ impl Gpu {
             })
     }
 
+    /// Whether the arrays of `packed` fit in this device's storage buffers
+    /// (see [`BufferLimitError`]).
+    pub fn check_buffers(
+        &self,
+        packed: &super::layout::PackedScene,
+    ) -> Result<(), BufferLimitError> {
+        check_buffers(&self.device.limits(), packed)
+    }
+
     /// One line naming the adapter, its backend, kind and driver.
     pub fn describe(&self) -> String {
         let info = self.adapter.get_info();
@@ -192,5 +248,66 @@ impl Gpu {
             "{} ({:?}, {:?}, driver {} {})",
             info.name, info.backend, info.device_type, info.driver, info.driver_info
         )
+    }
+}
+
+/// What a lost device's reason and message say, for a user.
+fn lost_message(reason: wgpu::DeviceLostReason, message: &str) -> String {
+    let why = match reason {
+        wgpu::DeviceLostReason::Destroyed => "it was destroyed",
+        wgpu::DeviceLostReason::Unknown => "the driver reset it or failed",
+    };
+    if message.is_empty() {
+        why.to_string()
+    } else {
+        format!("{why}: {message}")
+    }
+}
+
+/// A scene whose data does not fit in the device's storage buffers: one of
+/// its arrays (a mesh's triangles, the BVH, ...) is larger than one binding
+/// may be.
+#[derive(Debug, Clone, PartialEq, Eq, thiserror::Error)]
+#[error(
+    "the scene needs {} MiB for its {what} in one GPU buffer, but this GPU allows at most {} MiB \
+     per buffer ({limit} = {allowed} bytes): use fewer or smaller shapes (e.g. a mesh with fewer \
+     triangles)",
+    .bytes.div_ceil(1 << 20), .allowed / (1 << 20)
+)]
+pub struct BufferLimitError {
+    /// What the array holds ("mesh triangles", "BVH nodes").
+    pub what: String,
+    pub bytes: u64,
+    /// The name of the wgpu limit exceeded.
+    pub limit: &'static str,
+    pub allowed: u64,
+}
+
+/// Checks every array of `packed` against `limits`: the smaller of the
+/// largest storage binding and the largest buffer.
+pub fn check_buffers(
+    limits: &wgpu::Limits,
+    packed: &super::layout::PackedScene,
+) -> Result<(), BufferLimitError> {
+    let (limit, allowed) = if limits.max_buffer_size < limits.max_storage_buffer_binding_size {
+        ("max_buffer_size", limits.max_buffer_size)
+    } else {
+        (
+            "max_storage_buffer_binding_size",
+            limits.max_storage_buffer_binding_size,
+        )
+    };
+    match packed
+        .arrays()
+        .into_iter()
+        .find(|(_, bytes)| *bytes > allowed)
+    {
+        Some((what, bytes)) => Err(BufferLimitError {
+            what,
+            bytes,
+            limit,
+            allowed,
+        }),
+        None => Ok(()),
     }
 }

@@ -5,10 +5,11 @@
 //! the reference's `first_hits`, to tell a shape that is wrongly hit from a
 //! colour that is merely a little off.
 
-use super::context::{Gpu, GpuWaitError};
+use super::context::Gpu;
 use super::features::ShaderOptions;
 use super::fullscreen;
 use super::layout::PackedScene;
+use super::offscreen::RenderError;
 use super::offscreen::read_texels;
 use super::outline::{ID_FORMAT, id_pipeline};
 use super::shaders::{ALL_KINDS_BOUND, ShaderSource};
@@ -93,7 +94,7 @@ impl IdRenderer {
         scene: &Scene,
         width: u32,
         height: u32,
-    ) -> Result<Vec<FirstHit>, GpuWaitError> {
+    ) -> Result<Vec<FirstHit>, RenderError> {
         let device = &gpu.device;
         let packed = if self.robust {
             PackedScene::new(scene, width, height)
@@ -101,7 +102,7 @@ impl IdRenderer {
             PackedScene::in_world(scene, width, height)
         };
         let scene =
-            SceneBuffers::with_layout(device, (&self.layout, ALL_KINDS_BOUND), packed, None);
+            SceneBuffers::with_layout(device, (&self.layout, ALL_KINDS_BOUND), packed, None)?;
         let bind_group = &scene.bind_group;
         let target = render_target(
             device,

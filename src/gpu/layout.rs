@@ -158,6 +158,32 @@ impl PackedScene {
         }
     }
 
+    /// Every array that becomes a storage buffer, named for a user (what
+    /// [`super::context::check_buffers`] reports), with its size in bytes.
+    pub fn arrays(&self) -> Vec<(String, u64)> {
+        use std::mem::size_of_val;
+        let fixed = [
+            ("materials", size_of_val(self.materials.as_slice())),
+            ("lights", size_of_val(self.lights.as_slice())),
+            ("BVH nodes", size_of_val(self.bvh_nodes.as_slice())),
+            ("BVH shape list", size_of_val(self.bvh_prims.as_slice())),
+        ]
+        .map(|(what, bytes)| (what.to_string(), bytes));
+        // A kind's own array, then its second one (e.g. a mesh's triangles).
+        let shape_names = super::shapes::kinds().into_iter().flat_map(|k| {
+            let data = k.data.map(|data| format!("{} ({data})", k.kind.key()));
+            std::iter::once(k.kind.key().to_string()).chain(data)
+        });
+        let shapes = shape_names
+            .zip(&self.shapes)
+            .map(|(what, words)| (what, size_of_val(words.as_slice())));
+        fixed
+            .into_iter()
+            .chain(shapes)
+            .map(|(what, bytes)| (what, bytes as u64))
+            .collect()
+    }
+
     /// The packed shapes of kind `T`, padded to at least one element (the
     /// count is in [`PackedScene::shape_counts`]).
     pub fn shapes_of<T: PackShape>(&self) -> &[T] {

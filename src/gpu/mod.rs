@@ -1,6 +1,7 @@
 //! The GPU side: device, shader source, buffer packing, the tracer's passes
 //! and offscreen rendering with readback. Knows scenes, not windows or UI.
 
+mod buffer;
 pub mod compute;
 mod context;
 mod features;
@@ -17,7 +18,9 @@ mod timer;
 mod tracer;
 mod viewport;
 
-pub use context::{Gpu, GpuError, GpuWaitError, SizeError, TIMER_FEATURES, WAIT_LIMIT};
+pub use context::{
+    BufferLimitError, Gpu, GpuError, GpuWaitError, SizeError, TIMER_FEATURES, WAIT_LIMIT,
+};
 pub use features::{Features, ShaderOptions};
 pub use id_pass::{FirstHit, IdRenderer};
 pub use interaction::MIN_SCALE;

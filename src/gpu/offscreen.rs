@@ -2,7 +2,7 @@
 
 use web_time::{Duration, Instant};
 
-use super::context::{Gpu, GpuWaitError, SizeError};
+use super::context::{BufferLimitError, Gpu, GpuWaitError, SizeError};
 use super::features::ShaderOptions;
 use super::layout::PackedScene;
 use super::shaders::ShaderSource;
@@ -30,6 +30,9 @@ pub enum RenderError {
     /// The image size (the user's input).
     #[error(transparent)]
     Size(#[from] SizeError),
+    /// The scene does not fit in the GPU's buffers (the user's input).
+    #[error(transparent)]
+    Buffers(#[from] BufferLimitError),
     /// The GPU did not deliver the image (the machine, or a shader too slow).
     #[error(transparent)]
     Gpu(#[from] GpuWaitError),
@@ -63,7 +66,7 @@ impl OffscreenRenderer {
         gpu.check_size((width, height))?;
         let device = &gpu.device;
         let pipelines = Pipelines::new(device, source, &[OUTPUT_FORMAT], options)?;
-        let scene = SceneBuffers::new(device, &pipelines, PackedScene::new(scene, width, height));
+        let scene = SceneBuffers::new(device, &pipelines, PackedScene::new(scene, width, height))?;
         let accum = Accumulator::new(device, &pipelines, width, height);
         let target = render_target(
             device,

@@ -4,8 +4,7 @@
 //! the selected shape's silhouette over the displayed image. Any shape kind
 //! the shader can hit is outlined the same way, by its (kind, index).
 
-use wgpu::util::DeviceExt;
-
+use super::buffer;
 use super::features::{ShaderOptions, borrowed};
 use super::fullscreen;
 use super::layout::Selection;
@@ -148,11 +147,12 @@ impl Outline {
             },
             ..bytemuck::Zeroable::zeroed()
         };
-        let uniform = device.create_buffer_init(&wgpu::util::BufferInitDescriptor {
-            label: Some("selection"),
-            contents: bytemuck::bytes_of(&selection),
-            usage: wgpu::BufferUsages::UNIFORM | wgpu::BufferUsages::COPY_DST,
-        });
+        let uniform = buffer::with_contents(
+            device,
+            "selection",
+            bytemuck::bytes_of(&selection),
+            wgpu::BufferUsages::UNIFORM | wgpu::BufferUsages::COPY_DST,
+        );
         Outline {
             selection,
             uniform,

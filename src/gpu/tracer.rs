@@ -8,8 +8,8 @@
 
 use std::sync::Arc;
 
-use wgpu::util::DeviceExt;
-
+use super::buffer;
+use super::context::{BufferLimitError, check_buffers};
 use super::features::{ShaderOptions, borrowed};
 use super::fullscreen;
 use super::layout::PackedScene;
@@ -220,7 +220,11 @@ pub struct SceneBuffers {
 }
 
 impl SceneBuffers {
-    pub fn new(device: &wgpu::Device, pipelines: &Pipelines, packed: PackedScene) -> Self {
+    pub fn new(
+        device: &wgpu::Device,
+        pipelines: &Pipelines,
+        packed: PackedScene,
+    ) -> Result<Self, BufferLimitError> {
         Self::with_layout(device, pipelines.scene_layout(), packed, None)
     }
 
@@ -232,29 +236,29 @@ impl SceneBuffers {
         pipelines: &Pipelines,
         packed: PackedScene,
         previous: &SceneBuffers,
-    ) -> Self {
+    ) -> Result<Self, BufferLimitError> {
         Self::with_layout(device, pipelines.scene_layout(), packed, Some(previous))
     }
 
     /// The buffers and their bind group for any pipeline whose group 0 is
-    /// [`scene_layout_entries`] (the tracer's, the id pass's).
+    /// [`scene_layout_entries`] (the tracer's, the id pass's). A scene with
+    /// an array larger than the device allows is refused before any buffer
+    /// is made (wgpu would otherwise fail validation).
     pub(super) fn with_layout(
         device: &wgpu::Device,
         (layout, bound_kinds): (&wgpu::BindGroupLayout, u32),
         packed: PackedScene,
         previous: Option<&SceneBuffers>,
-    ) -> Self {
-        let globals = device.create_buffer_init(&wgpu::util::BufferInitDescriptor {
-            label: Some("globals"),
-            contents: bytemuck::bytes_of(&packed.globals),
-            usage: wgpu::BufferUsages::STORAGE | wgpu::BufferUsages::COPY_DST,
-        });
+    ) -> Result<Self, BufferLimitError> {
+        check_buffers(&device.limits(), &packed)?;
+        let globals = buffer::with_contents(
+            device,
+            "globals",
+            bytemuck::bytes_of(&packed.globals),
+            wgpu::BufferUsages::STORAGE | wgpu::BufferUsages::COPY_DST,
+        );
         let storage = |label, contents: &[u8]| {
-            device.create_buffer_init(&wgpu::util::BufferInitDescriptor {
-                label: Some(label),
-                contents,
-                usage: wgpu::BufferUsages::STORAGE,
-            })
+            buffer::with_contents(device, label, contents, wgpu::BufferUsages::STORAGE)
         };
         let fixed = [
             storage("materials", bytemuck::cast_slice(&packed.materials)),
@@ -291,12 +295,12 @@ impl SceneBuffers {
             layout,
             entries: &entries,
         });
-        SceneBuffers {
+        Ok(SceneBuffers {
             packed,
             globals,
             shape_buffers,
             bind_group,
-        }
+        })
     }
 
     /// The packed scene currently on the GPU.

@@ -6,7 +6,7 @@ use std::sync::{Arc, Mutex, PoisonError};
 
 use web_time::{Duration, Instant};
 
-use super::context::{Gpu, GpuWaitError};
+use super::context::{BufferLimitError, Gpu, GpuWaitError};
 use super::id_pass::FirstHit;
 use super::interaction::MIN_SCALE;
 use super::layout::PackedScene;
@@ -49,7 +49,9 @@ pub struct Viewport {
 }
 
 impl Viewport {
-    /// Configures `surface` for a window of `size` physical pixels.
+    /// Configures `surface` for a window of `size` physical pixels, with
+    /// the camera, lights and materials of `scene` but none of its shapes:
+    /// [`Viewport::set_scene`] brings them, or says why they do not fit.
     pub fn new(
         gpu: &Gpu,
         surface: wgpu::Surface<'static>,
@@ -61,7 +63,9 @@ impl Viewport {
         if size.0 > 0 && size.1 > 0 {
             surface.configure(&gpu.device, &config);
         }
-        let scene = SceneBuffers::new(&gpu.device, &pipelines, PackedScene::new(scene, 1, 1));
+        let empty = PackedScene::new(&scene.without_shapes(), 1, 1);
+        let scene = SceneBuffers::new(&gpu.device, &pipelines, empty)
+            .expect("a scene without shapes fits any GPU's buffers");
         let accum = Accumulator::new(&gpu.device, &pipelines, size.0.max(1), size.1.max(1));
         Viewport {
             surface,
@@ -119,11 +123,13 @@ impl Viewport {
         self.accum.reset();
     }
 
-    /// Uploads a changed scene and restarts refinement.
-    pub fn set_scene(&mut self, gpu: &Gpu, scene: &Scene) {
+    /// Uploads a changed scene and restarts refinement. A scene too large
+    /// for the device's buffers is refused and the last one stays.
+    pub fn set_scene(&mut self, gpu: &Gpu, scene: &Scene) -> Result<(), BufferLimitError> {
         let packed = PackedScene::new(scene, 1, 1);
-        self.scene = SceneBuffers::reusing(&gpu.device, &self.pipelines, packed, &self.scene);
+        self.scene = SceneBuffers::reusing(&gpu.device, &self.pipelines, packed, &self.scene)?;
         self.accum.reset();
+        Ok(())
     }
 
     /// Takes a scene whose shapes, materials and lights are unchanged (only
@@ -137,7 +143,9 @@ impl Viewport {
     /// The scene buffers and accumulator are rebuilt against their layouts.
     pub fn set_pipelines(&mut self, gpu: &Gpu, pipelines: Pipelines) {
         self.pipelines = pipelines;
-        self.scene = SceneBuffers::new(&gpu.device, &self.pipelines, self.scene.packed().clone());
+        let packed = self.scene.packed().clone();
+        self.scene = SceneBuffers::reusing(&gpu.device, &self.pipelines, packed, &self.scene)
+            .expect("the scene on the GPU fitted this device's buffers already");
         let (w, h) = self.accum.size();
         self.accum = Accumulator::new(&gpu.device, &self.pipelines, w, h);
         self.outline.forget_layouts();

@@ -477,6 +477,16 @@ impl Scene {
         s
     }
 
+    /// The camera, settings, lights and materials, with no shapes: what a
+    /// renderer starts from before it knows the shapes fit.
+    pub fn without_shapes(&self) -> Scene {
+        let mut empty = self.clone();
+        for id in self.shape_ids().into_iter().rev() {
+            empty.remove_shape(id);
+        }
+        empty
+    }
+
     /// A one-line summary for `raysandbox check`.
     pub fn summary(&self) -> String {
         let triangles: usize = self

@@ -18,7 +18,7 @@ use std::time::Instant;
 use image::{RgbImage, RgbaImage};
 
 use crate::gpu::{
-    Accumulator, FirstHit, FrameTarget, Gpu, GpuWaitError, IdRenderer, PipelineError, Pipelines,
+    Accumulator, FirstHit, FrameTarget, Gpu, IdRenderer, PipelineError, Pipelines, RenderError,
     SceneBuffers, ShaderOptions, ShaderSource, encode_frame, layout::PackedScene, read_texture,
     render_target,
 };
@@ -118,12 +118,11 @@ impl GpuVariant {
         scene: &Scene,
         width: u32,
         height: u32,
-    ) -> Result<GpuRender, GpuWaitError> {
+    ) -> Result<GpuRender, RenderError> {
         // A scene with its own functions needs pipelines with them compiled in.
         let functions = crate::gpu::shapes::implicit::functions(scene);
         if !functions.is_empty() {
-            let own = Self::with_functions(gpu, &self.source, self.robust, functions)
-                .map_err(|e| GpuWaitError::Lost(format!("the scene's functions: {e}")))?;
+            let own = Self::with_functions(gpu, &self.source, self.robust, functions)?;
             return own.render_with_these_pipelines(gpu, scene, width, height);
         }
         self.render_with_these_pipelines(gpu, scene, width, height)
@@ -135,14 +134,14 @@ impl GpuVariant {
         scene: &Scene,
         width: u32,
         height: u32,
-    ) -> Result<GpuRender, GpuWaitError> {
+    ) -> Result<GpuRender, RenderError> {
         let device = &gpu.device;
         let packed = if self.robust {
             PackedScene::new(scene, width, height)
         } else {
             PackedScene::in_world(scene, width, height)
         };
-        let buffers = SceneBuffers::new(device, &self.pipelines, packed);
+        let buffers = SceneBuffers::new(device, &self.pipelines, packed)?;
         let mut accum = Accumulator::new(device, &self.pipelines, width, height);
         let texture = render_target(
             device,
@@ -221,7 +220,7 @@ impl Harness {
         scene: &Scene,
         width: u32,
         height: u32,
-    ) -> Result<Measured, GpuWaitError> {
+    ) -> Result<Measured, RenderError> {
         let scene = scenes::round_to_f32(scene);
         let reference = reference_render(&scene, width, height);
         self.compare(gpu, &scene, reference, width, height)
@@ -236,7 +235,7 @@ impl Harness {
         entry: &Entry,
         width: u32,
         height: u32,
-    ) -> Result<Measured, GpuWaitError> {
+    ) -> Result<Measured, RenderError> {
         match &entry.exact {
             None => self.measure(gpu, &entry.scene, width, height),
             Some(exact) => {
@@ -253,7 +252,7 @@ impl Harness {
         reference: ReferenceRender,
         width: u32,
         height: u32,
-    ) -> Result<Measured, GpuWaitError> {
+    ) -> Result<Measured, RenderError> {
         let robust = self.robust.render(gpu, scene, width, height)?;
         let naive = self.naive.render(gpu, scene, width, height)?;
         let (robust_cmp, robust_flip) =
@@ -389,7 +388,7 @@ impl Harness {
         power: i32,
         width: u32,
         height: u32,
-    ) -> Result<Invariance, GpuWaitError> {
+    ) -> Result<Invariance, RenderError> {
         let base = scenes::round_to_f32(scene);
         let big = scenes::round_to_f32(&scenes::scaled(scene, scenes::power_of_ten(power)));
         let reference = reference_render(&big, width, height);
