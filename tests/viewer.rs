@@ -642,3 +642,39 @@ fn bad_implicit_input_keeps_the_last_good_scene_and_shows_the_error() {
     );
     std::fs::remove_dir_all(&dir).unwrap();
 }
+
+/// A lost GPU device (SIGUSR1 destroys it, as a driver reset would lose it)
+/// is replaced by a new one in the same window: the picture comes back, the
+/// edit made before the loss (an orbit) included.
+#[test]
+fn a_lost_device_is_recovered_keeping_the_scene_and_its_edits() {
+    let _serial = serial();
+    let Some(display) = Display::start() else {
+        return;
+    };
+    let path = scene_path("mirror_cube");
+    let mut viewer = open(&display, &[path.to_str().unwrap()]);
+    let area = view(&viewer).crop();
+    let before = crop(&viewer.capture(), area);
+    viewer.drag("1", in_view(&viewer, (550, 200)), (650, 240));
+    viewer.wait_for("ready");
+    let orbited = crop(&viewer.capture(), area);
+    let moved = diff_images(&before, &orbited);
+    assert!(moved.frac_over_8 > 0.05, "the drag did not orbit: {moved:?}");
+
+    let pid = i32::try_from(viewer.pid()).unwrap();
+    // SAFETY: kill(2) with a valid signal number only sends the signal.
+    assert_eq!(unsafe { libc::kill(pid, libc::SIGUSR1) }, 0);
+    let lost = viewer.wait_for("device-lost");
+    assert!(lost.contains("destroyed"), "{lost}");
+    viewer.wait_for("device-recovered");
+    viewer.wait_for("ready");
+    let recovered = crop(&viewer.capture(), area);
+    let d = diff_images(&orbited, &recovered);
+    println!("before the loss vs after: mean {:.4}, max {}", d.mean_abs, d.max_abs);
+    assert!(
+        d.mean_abs <= 0.5 && d.frac_over_8 <= 0.001,
+        "the new device does not show the orbited view: {d:?}"
+    );
+    assert!(viewer.is_running());
+}

@@ -98,6 +98,19 @@ impl<P: Clone> PipelineCache<P> {
         Ok(())
     }
 
+    /// Counts the source changes: a build spawned with an older generation
+    /// is dropped when it finishes.
+    pub fn generation(&self) -> u64 {
+        self.generation
+    }
+
+    /// Makes every build spawned by a cache of generation `older` or
+    /// before stale: a cache that replaces one on a lost device drops the
+    /// builds still running on the old device.
+    pub fn follow(&mut self, older: u64) {
+        self.generation = self.generation.max(older + 1);
+    }
+
     /// Whether a build from the current source is still running.
     pub fn building(&self) -> bool {
         self.in_flight.is_some()

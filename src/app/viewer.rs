@@ -187,6 +187,17 @@ impl Viewer {
         }
     }
 
+    /// After [`Viewer::attach`] on a new device: builds of the pipeline
+    /// cache of `generation` (the lost device's) are dropped when they
+    /// finish; the first build already holds the current shaders.
+    pub fn follow_generation(&mut self, generation: u64) {
+        if let Some(gfx) = &mut self.gfx {
+            gfx.pipelines.follow(generation);
+        }
+        self.reload_pending = false;
+        self.ensure_pipelines();
+    }
+
     pub fn request_redraw(&self) {
         if let Some(gfx) = &self.gfx {
             gfx.window.request_redraw();

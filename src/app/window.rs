@@ -70,6 +70,9 @@ pub enum UserEvent {
     MeshFilePicked(PathBuf),
     /// A mesh file read (and its BVH built) on another thread.
     MeshRead(PathBuf, Box<Result<Mesh, String>>),
+    /// SIGUSR1: drop the GPU device, as a driver reset would, to test the
+    /// recovery.
+    LoseDevice,
 }
 
 /// Opens the viewer and runs until the window closes.
@@ -113,6 +116,8 @@ pub fn run(options: ViewerOptions) -> Result<(), ViewerError> {
         }),
         next_sample_after_gpu: false,
     };
+    #[cfg(unix)]
+    lose_device_on_sigusr1(proxy.clone());
     let mut viewer = Viewer::new(doc, shaders, shader_params, platform);
     if let Some(n) = options.max_samples {
         viewer.editor.view.max_samples = n.max(1);
@@ -136,6 +141,26 @@ pub fn run(options: ViewerOptions) -> Result<(), ViewerError> {
     }
 }
 
+/// A thread that turns SIGUSR1 into [`UserEvent::LoseDevice`]
+/// (docs/reliability.md, "The GPU's limits and a lost device").
+#[cfg(unix)]
+fn lose_device_on_sigusr1(proxy: EventLoopProxy<UserEvent>) {
+    let mut signals = match signal_hook::iterator::Signals::new([signal_hook::consts::SIGUSR1]) {
+        Ok(signals) => signals,
+        Err(e) => {
+            log::warn!("SIGUSR1 not handled: {e}");
+            return;
+        }
+    };
+    std::thread::spawn(move || {
+        for _ in signals.forever() {
+            if proxy.send_event(UserEvent::LoseDevice).is_err() {
+                break;
+            }
+        }
+    });
+}
+
 /// Opens a window of `size` physical pixels (or `default` logical ones) and
 /// a GPU device that can present to it.
 pub fn open_gpu_window(
@@ -154,6 +179,16 @@ pub fn open_gpu_window(
             .create_window(attributes)
             .map_err(|e| ViewerError::NoDisplay(e.to_string()))?,
     );
+    let (gpu, surface) = gpu_for_window(&window, size)?;
+    Ok((window, gpu, surface))
+}
+
+/// A GPU device and a surface that presents to `window` (of `size`
+/// physical pixels, if the user chose one).
+fn gpu_for_window(
+    window: &Arc<Window>,
+    size: Option<(u32, u32)>,
+) -> Result<(Gpu, wgpu::Surface<'static>), ViewerError> {
     let instance =
         wgpu::Instance::new(wgpu::InstanceDescriptor::new_without_display_handle_from_env());
     let surface = instance
@@ -174,7 +209,7 @@ pub fn open_gpu_window(
         gpu.check_size(size)
             .map_err(|e| ViewerError::Size(e.to_string()))?;
     }
-    Ok((window, gpu, surface))
+    Ok((gpu, surface))
 }
 
 struct App {
@@ -212,6 +247,12 @@ impl ApplicationHandler<UserEvent> for App {
             UserEvent::PipelinesBuilt(built) => self.viewer.pipelines_built(*built),
             UserEvent::MeshFilePicked(path) => self.add_mesh_file(&path),
             UserEvent::MeshRead(path, mesh) => self.mesh_read(&path, *mesh),
+            UserEvent::LoseDevice => {
+                if let Some(gfx) = &self.viewer.gfx {
+                    log::warn!("SIGUSR1: destroying the GPU device");
+                    gfx.gpu.device.destroy();
+                }
+            }
         }
         // What a reload replaced is dropped by now.
         memory::release_freed();
@@ -257,12 +298,55 @@ impl App {
     fn create_graphics(&mut self, event_loop: &ActiveEventLoop) -> Result<(), ViewerError> {
         let (window, gpu, surface) =
             open_gpu_window(event_loop, "raysandbox", self.options.size, (1280.0, 760.0))?;
+        self.attach(window, gpu, surface)
+    }
+
+    /// Builds the first pipelines on `gpu` and starts drawing into `window`.
+    fn attach(
+        &mut self,
+        window: Arc<Window>,
+        gpu: Gpu,
+        surface: wgpu::Surface<'static>,
+    ) -> Result<(), ViewerError> {
         let formats = Viewport::output_formats(&gpu, &surface);
         let (source, options) = self.viewer.first_build();
         let pipelines = Pipelines::with_outline(&gpu.device, &source, &formats, &options)
             .map_err(|e| ViewerError::Shader(e.to_string()))?;
         self.viewer.attach(window, gpu, surface, pipelines);
         Ok(())
+    }
+
+    /// The GPU device was lost (a driver reset, SIGUSR1): everything made
+    /// from it is dropped and made again on a new device, in the same
+    /// window. The document (the scene and its unsaved edits), the panel's
+    /// state and the shaders are the viewer's and stay as they were.
+    fn recover_lost_device(&mut self, event_loop: &ActiveEventLoop, reason: &str) {
+        let Some(lost) = self.viewer.gfx.take() else {
+            return;
+        };
+        let window = lost.window.clone();
+        let generation = lost.pipelines.generation();
+        drop(lost);
+        self.event(&format!("device-lost {reason}"));
+        let made = gpu_for_window(&window, None)
+            .and_then(|(gpu, surface)| self.attach(window, gpu, surface));
+        match made {
+            Ok(()) => {
+                self.viewer.follow_generation(generation);
+                self.viewer.editor.message = Some(format!(
+                    "the GPU device was lost ({reason}); a new one was made, the scene and \
+                     its edits are kept"
+                ));
+                self.event("device-recovered");
+                self.request_redraw();
+            }
+            Err(e) => {
+                self.fatal = Some(ViewerError::NoGpu(format!(
+                    "the GPU device was lost ({reason}) and no new one could be made: {e}"
+                )));
+                event_loop.exit();
+            }
+        }
     }
 
     fn request_redraw(&self) {
@@ -460,6 +544,10 @@ impl App {
     }
 
     fn redraw(&mut self, event_loop: &ActiveEventLoop) {
+        if let Some(reason) = self.viewer.gfx.as_ref().and_then(|gfx| gfx.gpu.lost()) {
+            self.recover_lost_device(event_loop, &reason);
+            return;
+        }
         let names = bundled::names();
         let host = Host {
             files: Some(&names),
@@ -473,6 +561,15 @@ impl App {
         self.update_title();
         self.viewer.end_frame(start, ui);
         self.follow_mesh_files();
+        // A device lost during the frame is replaced at the next one.
+        if self
+            .viewer
+            .gfx
+            .as_ref()
+            .is_some_and(|gfx| gfx.gpu.lost().is_some())
+        {
+            self.request_redraw();
+        }
     }
 
     fn execute(&mut self, command: Command, event_loop: &ActiveEventLoop) {

@@ -197,8 +197,12 @@ impl Gpu {
     }
 
     /// Why the device was lost, if it was: everything made from it is
-    /// useless, and a new [`Gpu`] must replace it.
+    /// useless, and a new [`Gpu`] must replace it. Polls the device without
+    /// waiting first: wgpu reports a loss from its polling.
     pub fn lost(&self) -> Option<String> {
+        // An error here is the loss itself, or a timeout that cannot
+        // happen without waiting.
+        let _ = self.device.poll(wgpu::PollType::Poll);
         self.lost
             .lock()
             .unwrap_or_else(PoisonError::into_inner)
