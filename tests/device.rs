@@ -51,6 +51,7 @@ fn a_mesh_beyond_the_storage_buffer_limit_is_refused_naming_the_limit() {
             assert_eq!(e.limit, "max_storage_buffer_binding_size");
             assert_eq!((e.bytes, e.allowed), (*bytes, limit));
             let message = e.to_string();
+            println!("{message}");
             assert!(
                 message.contains("max_storage_buffer_binding_size") && message.contains("meshes"),
                 "{message}"

@@ -660,7 +660,10 @@ fn a_lost_device_is_recovered_keeping_the_scene_and_its_edits() {
     viewer.wait_for("ready");
     let orbited = crop(&viewer.capture(), area);
     let moved = diff_images(&before, &orbited);
-    assert!(moved.frac_over_8 > 0.05, "the drag did not orbit: {moved:?}");
+    assert!(
+        moved.frac_over_8 > 0.05,
+        "the drag did not orbit: {moved:?}"
+    );
 
     let pid = i32::try_from(viewer.pid()).unwrap();
     // SAFETY: kill(2) with a valid signal number only sends the signal.
@@ -671,7 +674,10 @@ fn a_lost_device_is_recovered_keeping_the_scene_and_its_edits() {
     viewer.wait_for("ready");
     let recovered = crop(&viewer.capture(), area);
     let d = diff_images(&orbited, &recovered);
-    println!("before the loss vs after: mean {:.4}, max {}", d.mean_abs, d.max_abs);
+    println!(
+        "before the loss vs after: mean {:.4}, max {}",
+        d.mean_abs, d.max_abs
+    );
     assert!(
         d.mean_abs <= 0.5 && d.frac_over_8 <= 0.001,
         "the new device does not show the orbited view: {d:?}"

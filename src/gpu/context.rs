@@ -273,10 +273,10 @@ fn lost_message(reason: wgpu::DeviceLostReason, message: &str) -> String {
 /// may be.
 #[derive(Debug, Clone, PartialEq, Eq, thiserror::Error)]
 #[error(
-    "the scene needs {} MiB for its {what} in one GPU buffer, but this GPU allows at most {} MiB \
-     per buffer ({limit} = {allowed} bytes): use fewer or smaller shapes (e.g. a mesh with fewer \
+    "the scene needs {} for its {what} in one GPU buffer, but this GPU allows at most {} per \
+     buffer ({limit} = {allowed} bytes): use fewer or smaller shapes (e.g. a mesh with fewer \
      triangles)",
-    .bytes.div_ceil(1 << 20), .allowed / (1 << 20)
+    readable_size(*.bytes), readable_size(*.allowed)
 )]
 pub struct BufferLimitError {
     /// What the array holds ("mesh triangles", "BVH nodes").
@@ -314,4 +314,16 @@ pub fn check_buffers(
         }),
         None => Ok(()),
     }
+}
+
+/// `bytes` in KiB, MiB or GiB, with one decimal.
+fn readable_size(bytes: u64) -> String {
+    let units = ["KiB", "MiB", "GiB"];
+    let mut size = bytes as f64 / 1024.0;
+    let mut unit = 0;
+    while size >= 1024.0 && unit + 1 < units.len() {
+        size /= 1024.0;
+        unit += 1;
+    }
+    format!("{size:.1} {}", units[unit])
 }
