@@ -684,3 +684,48 @@ fn a_lost_device_is_recovered_keeping_the_scene_and_its_edits() {
     );
     assert!(viewer.is_running());
 }
+
+/// While the view rests, each sample is traced in short GPU jobs of a few
+/// rows (docs/performance.md, "Short GPU jobs"): four samples take at least
+/// four jobs, the longest is logged against the budget, and the image the
+/// jobs add up to is the headless render's at the same sample count.
+#[test]
+fn refinement_in_short_jobs_adds_up_to_the_headless_image() {
+    let _serial = serial();
+    let Some(display) = Display::start() else {
+        return;
+    };
+    let path = scene_path("whitted");
+    let viewer = Window::open(
+        &display,
+        &["view", path.to_str().unwrap(), "--max-samples", "4"],
+        (WIDTH, HEIGHT),
+    );
+    let ready = &viewer.ready;
+    let field = |name: &str| -> f64 {
+        ready
+            .split_whitespace()
+            .find_map(|f| f.strip_prefix(name)?.strip_prefix('='))
+            .and_then(|v| v.parse().ok())
+            .unwrap_or_else(|| panic!("no {name} in {ready:?}"))
+    };
+    let (samples, jobs, longest) = (field("samples"), field("jobs"), field("longest_job_ms"));
+    println!(
+        "{samples} samples in {jobs} jobs, the longest {longest} ms (budget {} ms)",
+        raysandbox::gpu::JOB_BUDGET.as_millis()
+    );
+    assert_eq!(samples, 4.0);
+    assert!(jobs >= samples, "{ready}");
+
+    let window = viewer.capture();
+    let gpu = common::gpu().unwrap();
+    let scene = Scene::load(&path).unwrap();
+    let headless = render_image(&gpu, &scene, WIDTH, HEIGHT, 4).unwrap();
+    let area = view(&viewer).crop();
+    let d = diff_images(&crop(&window, area), &crop(&headless, area));
+    println!(
+        "window vs headless at 4 spp: mean {:.4}, max {}",
+        d.mean_abs, d.max_abs
+    );
+    assert!(d.mean_abs <= 0.5 && d.frac_over_8 <= 0.001, "{d:?}");
+}

@@ -16,7 +16,7 @@ use super::pipelines::{self, PipelineCache};
 use super::shell::EguiLayer;
 use super::ui::{self, Command, Editor, Host, Status, ViewInput};
 use super::{orbit, panel};
-use crate::gpu::{FrameStatus, Gpu, Pipelines, ShaderOptions, ShaderSource, Viewport};
+use crate::gpu::{FrameStatus, Gpu, Pipelines, Refine, ShaderOptions, ShaderSource, Viewport};
 use crate::reference;
 use crate::sandbox::SourceParams;
 use crate::scene::{Scene, SceneError};
@@ -449,12 +449,19 @@ impl Viewer {
             self.editor.view.max_samples
         };
         let new_samples = u32::from(gfx.viewport.samples() < max_samples);
+        // A moving view is traced whole at its moving scale; a resting one
+        // refines in short jobs (docs/performance.md, "Short GPU jobs").
+        let refine = match (new_samples, dragging) {
+            (0, _) => Refine::Show,
+            (_, true) => Refine::WholeSample,
+            (_, false) => Refine::NextRows,
+        };
 
         let painting = gfx.egui.prepare(&gfx.gpu, &gfx.window, output);
         let egui = &mut gfx.egui;
         let gpu = &gfx.gpu;
         gfx.window.pre_present_notify();
-        let status = gfx.viewport.frame(gpu, new_samples, |encoder, view| {
+        let status = gfx.viewport.frame(gpu, refine, |encoder, view| {
             egui.paint(gpu, encoder, view, &painting)
         });
         let delay = gfx.egui.finish(painting);
@@ -479,6 +486,11 @@ impl Viewer {
             .then(|| gfx.viewport.last_frame_time())
             .flatten()
             .map(|time| (time, gfx.viewport.scale()));
+        if new_samples > 0 {
+            self.settled = false;
+        }
+        let ready = !self.settled && samples >= max_samples && !dragging;
+        let jobs = ready.then(|| gfx.viewport.take_longest_job());
         if status == FrameStatus::Presented && samples > 0 && !self.presented {
             self.presented = true;
             let (w, h) = resolution;
@@ -496,12 +508,12 @@ impl Viewer {
         // Ready once the view rests with all its samples. A drag whose
         // moving frames were already at full scale leaves nothing to refine
         // with one sample per pixel: the release itself makes it ready.
-        if new_samples > 0 {
-            self.settled = false;
-        }
-        if !self.settled && samples >= max_samples && !dragging {
+        if let Some((jobs, longest)) = jobs {
             self.settled = true;
-            self.event(&format!("ready samples={samples}"));
+            self.event(&format!(
+                "ready samples={samples} jobs={jobs} longest_job_ms={:.1}",
+                longest.as_secs_f64() * 1e3
+            ));
         }
         if delay < Duration::from_secs(5) {
             self.repaint_at = Some(Instant::now() + delay);

@@ -64,7 +64,28 @@ pub fn pass(
         bind_groups,
         target,
         wgpu::LoadOp::Clear(wgpu::Color::BLACK),
+        None,
     );
+}
+
+/// Like [`pass`], limited to the rows `rows` of a target `width` pixels
+/// wide: the other rows keep what the target holds, unless `clear` (then
+/// they are black).
+pub fn pass_rows(
+    encoder: &mut wgpu::CommandEncoder,
+    pipeline: &wgpu::RenderPipeline,
+    bind_groups: &[&wgpu::BindGroup],
+    target: &wgpu::TextureView,
+    (rows, width): (std::ops::Range<u32>, u32),
+    clear: bool,
+) {
+    let load = if clear {
+        wgpu::LoadOp::Clear(wgpu::Color::BLACK)
+    } else {
+        wgpu::LoadOp::Load
+    };
+    let scissor = [0, rows.start, width, rows.len() as u32];
+    encode(encoder, pipeline, bind_groups, target, load, Some(scissor));
 }
 
 /// Like [`pass`], but drawing over what `target` holds: the pixels the
@@ -76,7 +97,14 @@ pub fn pass_over(
     bind_groups: &[&wgpu::BindGroup],
     target: &wgpu::TextureView,
 ) {
-    encode(encoder, pipeline, bind_groups, target, wgpu::LoadOp::Load);
+    encode(
+        encoder,
+        pipeline,
+        bind_groups,
+        target,
+        wgpu::LoadOp::Load,
+        None,
+    );
 }
 
 fn encode(
@@ -85,6 +113,7 @@ fn encode(
     bind_groups: &[&wgpu::BindGroup],
     target: &wgpu::TextureView,
     load: wgpu::LoadOp<wgpu::Color>,
+    scissor: Option<[u32; 4]>,
 ) {
     let mut pass = encoder.begin_render_pass(&wgpu::RenderPassDescriptor {
         label: None,
@@ -103,6 +132,9 @@ fn encode(
         multiview_mask: None,
     });
     pass.set_pipeline(pipeline);
+    if let Some([x, y, w, h]) = scissor {
+        pass.set_scissor_rect(x, y, w, h);
+    }
     for (group, bind_group) in bind_groups.iter().enumerate() {
         pass.set_bind_group(group as u32, *bind_group, &[]);
     }

@@ -8,6 +8,7 @@ mod features;
 pub mod fullscreen;
 mod id_pass;
 pub mod interaction;
+mod jobs;
 pub mod layout;
 mod offscreen;
 mod outline;
@@ -24,6 +25,7 @@ pub use context::{
 pub use features::{Features, ShaderOptions};
 pub use id_pass::{FirstHit, IdRenderer};
 pub use interaction::MIN_SCALE;
+pub use jobs::JOB_BUDGET;
 pub use offscreen::{OffscreenRenderer, RenderError, read_texels, read_texture, render_image};
 pub use outline::OUTLINE_COLOR;
 pub use shaders::{ShaderError, ShaderSource};
@@ -33,4 +35,4 @@ pub use tracer::{
     Accumulator, DEFAULT_MAX_SAMPLES, DEFAULT_MIN_WEIGHT, DEFAULT_RENDER_SAMPLES, FrameTarget,
     PipelineError, Pipelines, SceneBuffers, encode_frame,
 };
-pub use viewport::{EXPORT_FORMAT, FrameStatus, Viewport};
+pub use viewport::{EXPORT_FORMAT, FrameStatus, Refine, Viewport};

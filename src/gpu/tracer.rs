@@ -337,6 +337,9 @@ pub struct Accumulator {
     /// Index of the texture that holds the current sum.
     front: usize,
     samples: u32,
+    /// Rows of the next sample already traced into the other texture
+    /// ([`encode_rows`]); 0 when no sample is in progress.
+    rows_done: u32,
     size: (u32, u32),
 }
 
@@ -367,6 +370,7 @@ impl Accumulator {
             bind_groups,
             front: 0,
             samples: 0,
+            rows_done: 0,
             size: (width, height),
         }
     }
@@ -381,9 +385,16 @@ impl Accumulator {
         self.size
     }
 
-    /// Forgets the accumulated samples (the scene or view changed).
+    /// Rows of the next sample traced so far by [`encode_rows`].
+    pub fn rows_done(&self) -> u32 {
+        self.rows_done
+    }
+
+    /// Forgets the accumulated samples, and the sample in progress (the
+    /// scene or view changed).
     pub fn reset(&mut self) {
         self.samples = 0;
+        self.rows_done = 0;
     }
 }
 
@@ -424,11 +435,81 @@ pub fn encode_frame(
         );
         accum.front = back;
         accum.samples += new_samples;
+        accum.rows_done = 0;
     }
     fullscreen::pass(
         encoder,
         pipelines.display(target.format),
         &[&scene.bind_group, &accum.bind_groups[accum.front]],
+        target.view,
+    );
+}
+
+/// Encodes the trace of the rows `rows` of the next sample (one sample per
+/// pixel), continuing where the last call stopped: a sample cut into
+/// short GPU jobs (docs/performance.md, "Short GPU jobs"). The sample counts
+/// once its last row is traced. The globals are written through `queue`
+/// for this pass alone: submit before [`encode_display`].
+pub fn encode_rows(
+    queue: &wgpu::Queue,
+    encoder: &mut wgpu::CommandEncoder,
+    (pipelines, scene): (&Pipelines, &SceneBuffers),
+    accum: &mut Accumulator,
+    rows: std::ops::Range<u32>,
+) {
+    let (width, height) = accum.size;
+    let rows = rows.start.min(height)..rows.end.min(height);
+    let mut globals = scene.packed.globals;
+    globals.resolution = [width, height];
+    globals.output_size = [width, height];
+    globals.sample_start = accum.samples;
+    globals.sample_count = 1;
+    queue.write_buffer(&scene.globals, 0, bytemuck::bytes_of(&globals));
+    let back = 1 - accum.front;
+    // The first sample's rows not traced yet show black, not an old image.
+    let clear = accum.samples == 0 && accum.rows_done == 0;
+    fullscreen::pass_rows(
+        encoder,
+        &pipelines.trace,
+        &[&scene.bind_group, &accum.bind_groups[accum.front]],
+        &accum.views[back],
+        (rows.clone(), width),
+        clear,
+    );
+    accum.rows_done = rows.end;
+    if rows.end == height {
+        accum.front = back;
+        accum.samples += 1;
+        accum.rows_done = 0;
+    }
+}
+
+/// Encodes the display of the accumulated samples into `target`; during the
+/// first sample, of the rows traced so far. The globals are written through
+/// `queue`: submit before encoding anything else.
+pub fn encode_display(
+    queue: &wgpu::Queue,
+    encoder: &mut wgpu::CommandEncoder,
+    (pipelines, scene): (&Pipelines, &SceneBuffers),
+    accum: &Accumulator,
+    target: &FrameTarget,
+) {
+    let first_in_progress = accum.samples == 0 && accum.rows_done > 0;
+    let (shown, samples) = if first_in_progress {
+        (1 - accum.front, 1)
+    } else {
+        (accum.front, accum.samples)
+    };
+    let mut globals = scene.packed.globals;
+    globals.resolution = [accum.size.0, accum.size.1];
+    globals.output_size = [target.size.0, target.size.1];
+    globals.sample_start = samples;
+    globals.sample_count = 0;
+    queue.write_buffer(&scene.globals, 0, bytemuck::bytes_of(&globals));
+    fullscreen::pass(
+        encoder,
+        pipelines.display(target.format),
+        &[&scene.bind_group, &accum.bind_groups[shown]],
         target.view,
     );
 }

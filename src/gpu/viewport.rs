@@ -2,6 +2,7 @@
 //! resolution scale and the selection outline. Knows nothing of egui: whoever draws on top of the
 //! image gets the frame's encoder and view through a callback.
 
+use std::ops::Range;
 use std::sync::{Arc, Mutex, PoisonError};
 
 use web_time::{Duration, Instant};
@@ -9,15 +10,31 @@ use web_time::{Duration, Instant};
 use super::context::{BufferLimitError, Gpu, GpuWaitError};
 use super::id_pass::FirstHit;
 use super::interaction::MIN_SCALE;
+use super::jobs::{JOB_BUDGET, JobPlanner};
 use super::layout::PackedScene;
 use super::outline::Outline;
 use super::texture::render_target;
 use super::timer::{GpuTimer, Timing};
-use super::tracer::{Accumulator, FrameTarget, Pipelines, SceneBuffers, encode_frame};
+use super::tracer::{
+    Accumulator, FrameTarget, Pipelines, SceneBuffers, encode_display, encode_frame, encode_rows,
+};
 use crate::scene::{Scene, ShapeId};
 
 /// Format of screenshots: 8-bit RGBA with the exact sRGB formula of the rendering model.
 pub const EXPORT_FORMAT: wgpu::TextureFormat = wgpu::TextureFormat::Rgba8Unorm;
+
+/// What a frame adds to the image.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum Refine {
+    /// Nothing: the image is shown again.
+    Show,
+    /// One sample of every pixel in one job: a moving view, whose
+    /// resolution scale keeps the frame short.
+    WholeSample,
+    /// The next rows of the next sample, as many as fit in a short job
+    /// ([`super::jobs`]).
+    NextRows,
+}
 
 /// What happened to a frame.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
@@ -38,11 +55,18 @@ pub struct Viewport {
     accum: Accumulator,
     /// Fraction of the window resolution that is traced (MIN_SCALE..=1).
     scale: f32,
-    /// GPU time of the last frame that traced samples (see [`Self::timing`]).
+    /// GPU time of the last job (see [`Self::timing`]), until it is taken.
     /// Shared with the queue's work-done callback, which writes it without
     /// timestamps: natively during the blocking wait after submission, in
     /// the browser (which cannot block) when the GPU reports the work done.
-    last_frame_time: Arc<Mutex<Option<Duration>>>,
+    job_time: Arc<Mutex<Option<Duration>>>,
+    /// Cuts refinement into short jobs ([`super::jobs`]).
+    jobs: JobPlanner,
+    /// When the last job started, if the last frame ran one.
+    last_job_start: Option<Instant>,
+    /// Whether the last sample was traced whole (a moving view), and its time.
+    whole_frame: bool,
+    whole_frame_time: Option<Duration>,
     timer: Option<GpuTimer>,
     /// The selected shape's outline, drawn over the image.
     outline: Outline,
@@ -74,7 +98,11 @@ impl Viewport {
             scene,
             accum,
             scale: 1.0,
-            last_frame_time: Arc::default(),
+            job_time: Arc::default(),
+            jobs: JobPlanner::new(JOB_BUDGET),
+            last_job_start: None,
+            whole_frame: false,
+            whole_frame_time: None,
             timer: GpuTimer::new(gpu),
             outline: Outline::new(&gpu.device),
         }
@@ -120,7 +148,7 @@ impl Viewport {
         if self.accum.size() != (w, h) {
             self.accum = Accumulator::new(&gpu.device, &self.pipelines, w, h);
         }
-        self.accum.reset();
+        self.restart_refinement();
     }
 
     /// Uploads a changed scene and restarts refinement. A scene too large
@@ -128,7 +156,7 @@ impl Viewport {
     pub fn set_scene(&mut self, gpu: &Gpu, scene: &Scene) -> Result<(), BufferLimitError> {
         let packed = PackedScene::new(scene, 1, 1);
         self.scene = SceneBuffers::reusing(&gpu.device, &self.pipelines, packed, &self.scene)?;
-        self.accum.reset();
+        self.restart_refinement();
         Ok(())
     }
 
@@ -136,7 +164,7 @@ impl Viewport {
     /// camera or render settings differ): no buffers are rebuilt.
     pub fn set_view(&mut self, scene: &Scene) {
         self.scene.set_view(scene);
-        self.accum.reset();
+        self.restart_refinement();
     }
 
     /// Swaps in new pipelines (after a shader reload) and restarts refinement.
@@ -160,7 +188,7 @@ impl Viewport {
 
     /// Forgets the accumulated samples (e.g. the camera moved).
     pub fn restart(&mut self) {
-        self.accum.reset();
+        self.restart_refinement();
     }
 
     /// Samples per pixel accumulated so far.
@@ -186,70 +214,78 @@ impl Viewport {
         }
     }
 
-    /// GPU time of the last frame that traced samples.
+    /// GPU time of the last sample traced: a whole frame while the view
+    /// moves, else the sum of the last sample's jobs.
     pub fn last_frame_time(&self) -> Option<Duration> {
-        *self
-            .last_frame_time
-            .lock()
-            .unwrap_or_else(PoisonError::into_inner)
+        if self.whole_frame {
+            self.whole_frame_time
+        } else {
+            self.jobs.last_sample_time()
+        }
     }
 
-    /// Draws a frame: `new_samples` more samples per pixel (0 = only show the
-    /// image again), then `overlay` draws on top into the same view; the
-    /// command buffers it returns are submitted before the frame's own.
+    /// Draws a frame: `refine` says what it adds to the image, then
+    /// `overlay` draws on top into the same view; the command buffers it
+    /// returns are submitted before the frame's own.
     pub fn frame(
         &mut self,
         gpu: &Gpu,
-        new_samples: u32,
+        refine: Refine,
         overlay: impl FnOnce(&mut wgpu::CommandEncoder, &wgpu::TextureView) -> Vec<wgpu::CommandBuffer>,
     ) -> FrameStatus {
         if self.config.width == 0 || self.config.height == 0 {
             return FrameStatus::Skipped;
         }
-        let frame = match self.surface.get_current_texture() {
-            wgpu::CurrentSurfaceTexture::Success(frame) => frame,
-            wgpu::CurrentSurfaceTexture::Suboptimal(frame) => {
-                // Usable this once; reconfigure for the next frame.
-                self.surface.configure(&gpu.device, &self.config);
-                frame
-            }
-            wgpu::CurrentSurfaceTexture::Outdated | wgpu::CurrentSurfaceTexture::Lost => {
-                self.surface.configure(&gpu.device, &self.config);
-                return FrameStatus::Skipped;
-            }
-            other => {
-                log::debug!("surface not ready: {other:?}");
-                return FrameStatus::Skipped;
-            }
+        // The browser reports the last job's time only once it is done.
+        self.record_job_time();
+        let Some(frame) = self.current_texture(gpu) else {
+            return FrameStatus::Skipped;
         };
         let view = frame
             .texture
             .create_view(&wgpu::TextureViewDescriptor::default());
-        let mut encoder = gpu.device.create_command_encoder(&Default::default());
         if self.accum.samples() == 0 {
             // Refinement starts over: what the image shows changed.
             self.outline.invalidate();
         }
-        let timer = self.timer.as_ref().filter(|_| new_samples > 0);
-        if let Some(timer) = timer {
-            timer.begin(&mut encoder);
+        match refine {
+            Refine::Show => self.last_job_start = None,
+            Refine::WholeSample => {
+                self.last_job_start = None;
+                // Any sample in progress is traced over, whole.
+                self.jobs.restart();
+                let mut encoder = gpu.device.create_command_encoder(&Default::default());
+                let rows = 0..self.accum.size().1;
+                self.trace_job(gpu, &mut encoder, rows);
+                self.submit_timed(gpu, encoder);
+                self.whole_frame = true;
+            }
+            Refine::NextRows => {
+                let now = Instant::now();
+                if let Some(last) = self.last_job_start.replace(now) {
+                    self.jobs.cycle(now - last);
+                }
+                let rows = self.jobs.next(self.accum.rows_done(), self.accum.size());
+                let mut encoder = gpu.device.create_command_encoder(&Default::default());
+                self.trace_job(gpu, &mut encoder, rows);
+                self.submit_timed(gpu, encoder);
+                self.whole_frame = false;
+            }
         }
-        encode_frame(
+        self.record_job_time();
+        let mut encoder = gpu.device.create_command_encoder(&Default::default());
+        let target = FrameTarget {
+            view: &view,
+            format: self.config.format,
+            size: (self.config.width, self.config.height),
+        };
+        encode_display(
             &gpu.queue,
             &mut encoder,
-            &self.pipelines,
-            &self.scene,
-            &mut self.accum,
-            new_samples,
-            &FrameTarget {
-                view: &view,
-                format: self.config.format,
-                size: (self.config.width, self.config.height),
-            },
+            (&self.pipelines, &self.scene),
+            &self.accum,
+            &target,
         );
-        if let Some(timer) = timer {
-            timer.end(&mut encoder);
-        }
         if let Some(outline) = self.pipelines.outline() {
             self.outline.encode(
                 &gpu.device,
@@ -262,27 +298,94 @@ impl Viewport {
         }
         let mut buffers = overlay(&mut encoder, &view);
         buffers.push(encoder.finish());
-        let start = Instant::now();
         gpu.queue.submit(buffers);
-        if new_samples > 0 && timer.is_none() {
-            let slot = Arc::clone(&self.last_frame_time);
+        gpu.queue.present(frame);
+        FrameStatus::Presented
+    }
+
+    /// The surface's next texture, reconfiguring the surface when it asks.
+    fn current_texture(&mut self, gpu: &Gpu) -> Option<wgpu::SurfaceTexture> {
+        match self.surface.get_current_texture() {
+            wgpu::CurrentSurfaceTexture::Success(frame) => Some(frame),
+            wgpu::CurrentSurfaceTexture::Suboptimal(frame) => {
+                // Usable this once; reconfigure for the next frame.
+                self.surface.configure(&gpu.device, &self.config);
+                Some(frame)
+            }
+            wgpu::CurrentSurfaceTexture::Outdated | wgpu::CurrentSurfaceTexture::Lost => {
+                self.surface.configure(&gpu.device, &self.config);
+                None
+            }
+            other => {
+                log::debug!("surface not ready: {other:?}");
+                None
+            }
+        }
+    }
+
+    /// Encodes the trace of `rows` of the next sample, between the
+    /// timer's queries where the adapter has timestamps.
+    fn trace_job(&mut self, gpu: &Gpu, encoder: &mut wgpu::CommandEncoder, rows: Range<u32>) {
+        if let Some(timer) = &self.timer {
+            timer.begin(encoder);
+        }
+        encode_rows(
+            &gpu.queue,
+            encoder,
+            (&self.pipelines, &self.scene),
+            &mut self.accum,
+            rows,
+        );
+        if let Some(timer) = &self.timer {
+            timer.end(encoder);
+        }
+    }
+
+    /// Submits a job and measures it: natively by waiting for it (which
+    /// also keeps input latency low: frames are only drawn on demand, so
+    /// nothing else waits for us), in the browser, which cannot wait, when
+    /// the GPU reports the work done ([`Self::record_job_time`] then finds
+    /// it at a later frame).
+    fn submit_timed(&mut self, gpu: &Gpu, encoder: wgpu::CommandEncoder) {
+        let start = Instant::now();
+        gpu.queue.submit([encoder.finish()]);
+        if self.timer.is_none() {
+            let slot = Arc::clone(&self.job_time);
             gpu.queue.on_submitted_work_done(move || {
                 *slot.lock().unwrap_or_else(PoisonError::into_inner) = Some(start.elapsed());
             });
         }
-        // Waiting here keeps the frame time honest and input latency low;
-        // frames are only drawn on demand, so nothing else is waiting for us.
-        // (The browser cannot wait: there this returns at once.)
         let _ = gpu.device.poll(wgpu::PollType::wait_indefinitely());
-        if let Some(timer) = timer {
-            let time = timer.read(gpu);
-            *self
-                .last_frame_time
-                .lock()
-                .unwrap_or_else(PoisonError::into_inner) = time;
+        if let Some(timer) = &self.timer {
+            *self.job_time.lock().unwrap_or_else(PoisonError::into_inner) = timer.read(gpu);
         }
-        gpu.queue.present(frame);
-        FrameStatus::Presented
+    }
+
+    /// Takes the time of the last job, once it is known: the frame time of
+    /// a whole sample, or a measurement for the job planner.
+    fn record_job_time(&mut self) {
+        let time = self
+            .job_time
+            .lock()
+            .unwrap_or_else(PoisonError::into_inner)
+            .take();
+        match time {
+            Some(time) if self.whole_frame => self.whole_frame_time = Some(time),
+            Some(time) => self.jobs.measured(time),
+            None => {}
+        }
+    }
+
+    /// Forgets the samples and the sample in progress.
+    fn restart_refinement(&mut self) {
+        self.accum.reset();
+        self.jobs.restart();
+    }
+
+    /// The number of jobs measured and the longest of them since the last
+    /// call: what the viewer reports once the image is refined.
+    pub fn take_longest_job(&mut self) -> (u32, Duration) {
+        self.jobs.take_longest()
     }
 
     /// The current image at the traced resolution, without anything drawn

@@ -31,7 +31,7 @@ use crate::app::pipelines::Built;
 use crate::app::shell;
 use crate::app::ui::{Command, Host, MenuItem};
 use crate::app::viewer::{Platform, Viewer};
-use crate::gpu::{Gpu, GpuError, Pipelines, ShaderSource, Viewport};
+use crate::gpu::{Gpu, GpuError, Pipelines, Refine, ShaderSource, Viewport};
 use crate::sandbox::SourceParams;
 use crate::scene::{Scene, bundled};
 
@@ -361,7 +361,7 @@ impl Page {
         };
         let format = gfx.viewport.surface_format();
         let work = &mut self.work;
-        gfx.viewport.frame(&gfx.gpu, 0, |encoder, view| {
+        gfx.viewport.frame(&gfx.gpu, Refine::Show, |encoder, view| {
             work.draw(&gfx.gpu, encoder, view, format);
             Vec::new()
         });

@@ -129,6 +129,8 @@ pub struct Window<'d> {
     layout: Arc<Mutex<HashMap<String, Rect>>>,
     /// The X window id.
     pub id: String,
+    /// The first `ready` event, without its name (`samples=1 jobs=...`).
+    pub ready: String,
     size: (u32, u32),
 }
 
@@ -168,9 +170,10 @@ impl<'d> Window<'d> {
             events,
             layout,
             id: String::new(),
+            ready: String::new(),
             size,
         };
-        window.wait_for("ready");
+        window.ready = window.wait_for("ready");
         window.id = window
             .xdotool(&["search", "--sync", "--name", "raysandbox"])
             .lines()
