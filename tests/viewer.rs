@@ -100,12 +100,11 @@ fn window_shows_the_same_pixels_as_a_headless_render() {
     let scene = Scene::load(&path).unwrap();
     let headless = render_image(&gpu, &scene, WIDTH, HEIGHT, 1).unwrap();
     let area = view(&viewer).crop();
-    let d = diff_images(&crop(&window, area), &crop(&headless, area));
-    println!(
-        "window vs headless: mean {:.4}, max {}",
-        d.mean_abs, d.max_abs
+    assert_same_picture(
+        &crop(&window, area),
+        &crop(&headless, area),
+        "window vs headless",
     );
-    assert!(d.mean_abs <= 0.5 && d.frac_over_8 <= 0.001, "{d:?}");
 }
 
 #[test]
@@ -142,15 +141,42 @@ fn dragging_in_the_view_orbits_but_dragging_on_the_panel_does_not() {
         "a panel drag changed the image"
     );
 
-    viewer.drag("1", in_view(&viewer, (550, 200)), (650, 240));
+    orbit(&mut viewer, area, &before);
+    assert!(viewer.is_running());
+}
+
+/// Drags in the view (an orbit), waits until the image is refined and
+/// returns it, cropped to `area`; it must differ from `before`.
+fn orbit(
+    viewer: &mut Window,
+    area: (u32, u32, u32, u32),
+    before: &image::RgbaImage,
+) -> image::RgbaImage {
+    viewer.drag("1", in_view(viewer, (550, 200)), (650, 240));
     viewer.wait_for("ready");
-    let after_view = crop(&viewer.capture(), area);
-    let d = diff_images(&before, &after_view);
+    let after = crop(&viewer.capture(), area);
+    let d = diff_images(before, &after);
     assert!(
         d.frac_over_8 > 0.05,
         "a view drag should change the image: {d:?}"
     );
-    assert!(viewer.is_running());
+    after
+}
+
+/// The number after `NAME=` in an event line (`ready samples=4 jobs=9`).
+fn event_field(line: &str, name: &str) -> f64 {
+    line.split_whitespace()
+        .find_map(|field| field.strip_prefix(name)?.strip_prefix('='))
+        .and_then(|value| value.parse().ok())
+        .unwrap_or_else(|| panic!("no {name} in {line:?}"))
+}
+
+/// Asserts that two pictures of the window are the same but for the
+/// rounding of a few pixels; prints how far apart they are.
+fn assert_same_picture(a: &image::RgbaImage, b: &image::RgbaImage, what: &str) {
+    let d = diff_images(a, b);
+    println!("{what}: mean {:.4}, max {}", d.mean_abs, d.max_abs);
+    assert!(d.mean_abs <= 0.5 && d.frac_over_8 <= 0.001, "{what}: {d:?}");
 }
 
 /// Dragging a slider of the panel (the camera's fov, in the Camera section
@@ -169,11 +195,7 @@ fn dragging_a_slider_traces_at_the_moving_scale_then_refines() {
     let (x, y) = viewer.part("camera-fov").at(0.1, 0.5);
     viewer.drag("1", (x, y), (x + 50, y));
     let moving = viewer.wait_for("moving-frame");
-    let scale: f32 = moving
-        .split_whitespace()
-        .find_map(|field| field.strip_prefix("scale="))
-        .and_then(|s| s.parse().ok())
-        .unwrap_or_else(|| panic!("no scale in {moving:?}"));
+    let scale = event_field(&moving, "scale");
     assert!((0.125..1.0).contains(&scale), "{moving}");
     viewer.wait_for("ready");
     assert!(viewer.is_running());
@@ -656,14 +678,7 @@ fn a_lost_device_is_recovered_keeping_the_scene_and_its_edits() {
     let mut viewer = open(&display, &[path.to_str().unwrap()]);
     let area = view(&viewer).crop();
     let before = crop(&viewer.capture(), area);
-    viewer.drag("1", in_view(&viewer, (550, 200)), (650, 240));
-    viewer.wait_for("ready");
-    let orbited = crop(&viewer.capture(), area);
-    let moved = diff_images(&before, &orbited);
-    assert!(
-        moved.frac_over_8 > 0.05,
-        "the drag did not orbit: {moved:?}"
-    );
+    let orbited = orbit(&mut viewer, area, &before);
 
     let pid = i32::try_from(viewer.pid()).unwrap();
     // SAFETY: kill(2) with a valid signal number only sends the signal.
@@ -673,14 +688,10 @@ fn a_lost_device_is_recovered_keeping_the_scene_and_its_edits() {
     viewer.wait_for("device-recovered");
     viewer.wait_for("ready");
     let recovered = crop(&viewer.capture(), area);
-    let d = diff_images(&orbited, &recovered);
-    println!(
-        "before the loss vs after: mean {:.4}, max {}",
-        d.mean_abs, d.max_abs
-    );
-    assert!(
-        d.mean_abs <= 0.5 && d.frac_over_8 <= 0.001,
-        "the new device does not show the orbited view: {d:?}"
+    assert_same_picture(
+        &orbited,
+        &recovered,
+        "the orbited view before the loss and after",
     );
     assert!(viewer.is_running());
 }
@@ -702,13 +713,7 @@ fn refinement_in_short_jobs_adds_up_to_the_headless_image() {
         (WIDTH, HEIGHT),
     );
     let ready = &viewer.ready;
-    let field = |name: &str| -> f64 {
-        ready
-            .split_whitespace()
-            .find_map(|f| f.strip_prefix(name)?.strip_prefix('='))
-            .and_then(|v| v.parse().ok())
-            .unwrap_or_else(|| panic!("no {name} in {ready:?}"))
-    };
+    let field = |name: &str| event_field(ready, name);
     let (samples, jobs, longest) = (field("samples"), field("jobs"), field("longest_job_ms"));
     println!(
         "{samples} samples in {jobs} jobs, the longest {longest} ms (budget {} ms)",
@@ -722,10 +727,9 @@ fn refinement_in_short_jobs_adds_up_to_the_headless_image() {
     let scene = Scene::load(&path).unwrap();
     let headless = render_image(&gpu, &scene, WIDTH, HEIGHT, 4).unwrap();
     let area = view(&viewer).crop();
-    let d = diff_images(&crop(&window, area), &crop(&headless, area));
-    println!(
-        "window vs headless at 4 spp: mean {:.4}, max {}",
-        d.mean_abs, d.max_abs
+    assert_same_picture(
+        &crop(&window, area),
+        &crop(&headless, area),
+        "window vs headless at 4 spp",
     );
-    assert!(d.mean_abs <= 0.5 && d.frac_over_8 <= 0.001, "{d:?}");
 }
