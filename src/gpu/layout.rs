@@ -6,10 +6,9 @@
 use bytemuck::{Pod, Zeroable};
 use glam::DVec3;
 
-pub use super::shapes::{Cube, Implicit, Julia, Mesh, Plane, Sphere, Torus};
 use super::shapes::{Frame, PackShape, Words, buffer_position, f32x3, pack_all, round_out};
 use crate::bvh::{Aabb, Bvh};
-use crate::scene::{self, Scene, ShapeKind, ShapeList};
+use crate::scene::{self, Scene, ShapeKind};
 
 #[repr(C)]
 #[derive(Debug, Clone, Copy, PartialEq, Pod, Zeroable)]
@@ -158,10 +157,10 @@ impl PackedScene {
         }
     }
 
-    /// The packed shapes of kind `T`, padded to at least one element (the
-    /// count is in [`PackedScene::shape_counts`]).
-    pub fn shapes_of<T: PackShape>(&self) -> &[T] {
-        let position = buffer_position(<T::Source as ShapeList>::KIND);
+    /// The packed shapes of the scene kind `T`, padded to at least one
+    /// element (the count is in [`PackedScene::shape_counts`]).
+    pub fn shapes_of<T: PackShape>(&self) -> &[T::Packed] {
+        let position = buffer_position(T::KIND);
         bytemuck::cast_slice(self.shapes[position].as_slice())
     }
 }
@@ -327,75 +326,6 @@ mod tests {
                 output_size,
                 _pad1
             }),
-            rust_layout!(Sphere {
-                center,
-                radius,
-                material,
-                _pad0,
-                _pad1,
-                _pad2
-            }),
-            rust_layout!(Plane {
-                point,
-                material,
-                normal,
-                _pad
-            }),
-            rust_layout!(Cube {
-                center,
-                material,
-                half_size,
-                _pad,
-                rotation
-            }),
-            rust_layout!(Torus {
-                center,
-                major,
-                axis,
-                minor,
-                material,
-                _pad0,
-                _pad1,
-                _pad2
-            }),
-            rust_layout!(Implicit {
-                center,
-                scale,
-                rotation,
-                bounds_min,
-                function,
-                bounds_max,
-                steps,
-                material,
-                _pad0,
-                _pad1,
-                _pad2
-            }),
-            rust_layout!(Julia {
-                center,
-                scale,
-                rotation,
-                c,
-                slice,
-                iterations,
-                epsilon,
-                material,
-                footprint,
-                _pad0,
-                _pad1,
-                _pad2
-            }),
-            rust_layout!(Mesh {
-                to_local,
-                origin,
-                material,
-                normal_to_world,
-                to_world,
-                node_start,
-                tri_start,
-                normal_start,
-                error_scale
-            }),
             rust_layout!(Material {
                 color,
                 diffuse,
@@ -437,18 +367,21 @@ mod tests {
                 .collect();
             assert_eq!(fields, wgsl_fields, "fields and offsets of {name}");
         }
-        // Every registered shape kind must be in the list above.
-        let listed: Vec<&str> = expected.iter().map(|(name, _, _)| *name).collect();
-        macro_rules! assert_listed {
-            ($t:ident, $wgsl:literal) => {
-                assert!(
-                    listed.contains(&$wgsl),
-                    "shape kind {} is registered in gpu/shapes but its layout is not checked here",
-                    $wgsl
-                );
-            };
+        // Every shape kind's struct, from the fields its file lists.
+        for kind in crate::gpu::shapes::kinds() {
+            let (wgsl_size, wgsl_fields) = wgsl_layout(&module, kind.wgsl_struct);
+            assert_eq!(kind.size, wgsl_size, "size of {}", kind.wgsl_struct);
+            let fields: Vec<(String, usize)> = kind
+                .fields
+                .iter()
+                .map(|&(f, o)| (f.to_string(), o))
+                .collect();
+            assert_eq!(
+                fields, wgsl_fields,
+                "fields and offsets of {}",
+                kind.wgsl_struct
+            );
         }
-        crate::gpu::shapes::for_each_packed_shape!(assert_listed);
     }
 
     #[test]
@@ -456,7 +389,7 @@ mod tests {
         let scene = Scene::from_toml_str("[camera]\nfrom = [0, 0, 5]\nto = [0, 0, 0]\n", None)
             .expect("valid scene");
         let packed = PackedScene::new(&scene, 4, 3);
-        assert_eq!(packed.shapes_of::<Sphere>().len(), 1);
+        assert_eq!(packed.shapes_of::<scene::Sphere>().len(), 1);
         assert_eq!(packed.lights.len(), 1);
         assert!(packed.shape_counts.iter().all(|&n| n == 0));
         assert_eq!(packed.globals.light_count, 0);
@@ -486,8 +419,8 @@ mod tests {
         let packed = PackedScene::new(&scene, 4, 3);
         assert_eq!(packed.materials[1].color, [0.0, 0.0, 1.0]);
         assert_eq!(packed.materials[2].color, [1.0, 0.0, 0.0]);
-        assert_eq!(packed.shapes_of::<Sphere>()[0].material, 2);
-        assert_eq!(packed.shapes_of::<Sphere>()[1].material, 0);
+        assert_eq!(packed.shapes_of::<scene::Sphere>()[0].material, 2);
+        assert_eq!(packed.shapes_of::<scene::Sphere>()[1].material, 0);
         assert_eq!(packed.materials[0].color, [0.8, 0.8, 0.8]);
     }
 
@@ -547,17 +480,20 @@ mod tests {
         };
         assert!(close(near.globals.eye, far.globals.eye));
         assert!(close(
-            near.shapes_of::<Sphere>()[0].center,
-            far.shapes_of::<Sphere>()[0].center
-        ));
-        assert!(close(near.shapes_of::<Plane>()[0].point, [0.0, -0.6, 0.0]));
-        assert!(close(
-            near.shapes_of::<Plane>()[0].point,
-            far.shapes_of::<Plane>()[0].point
+            near.shapes_of::<scene::Sphere>()[0].center,
+            far.shapes_of::<scene::Sphere>()[0].center
         ));
         assert!(close(
-            near.shapes_of::<Cube>()[0].center,
-            far.shapes_of::<Cube>()[0].center
+            near.shapes_of::<scene::Plane>()[0].point,
+            [0.0, -0.6, 0.0]
+        ));
+        assert!(close(
+            near.shapes_of::<scene::Plane>()[0].point,
+            far.shapes_of::<scene::Plane>()[0].point
+        ));
+        assert!(close(
+            near.shapes_of::<scene::Cube>()[0].center,
+            far.shapes_of::<scene::Cube>()[0].center
         ));
         assert!(close(near.lights[0].position, far.lights[0].position));
         assert!(close(
@@ -574,7 +510,7 @@ mod tests {
         let world = PackedScene::in_world(&scene.translated(offset), 4, 3);
         assert_eq!(world.frame, Frame::WORLD);
         assert_eq!(
-            world.shapes_of::<Sphere>()[0].center,
+            world.shapes_of::<scene::Sphere>()[0].center,
             [-999999.1, 1000000.7, -999999.0]
         );
         assert_eq!(world.materials[1].checker_phase, [0.0; 3]);
@@ -592,7 +528,7 @@ mod tests {
             rotation = [0, 0, 90]
         "#;
         let scene = Scene::from_toml_str(text, None).expect("valid scene");
-        let cube = PackedScene::new(&scene, 4, 3).shapes_of::<Cube>()[0];
+        let cube = PackedScene::new(&scene, 4, 3).shapes_of::<scene::Cube>()[0];
         assert_eq!(cube.half_size, [1.0, 2.0, 3.0]);
         // Rz(90) maps +x to +y: the first column is the image of +x.
         let x = cube.rotation[0];

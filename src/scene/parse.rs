@@ -8,7 +8,7 @@ use toml::de::{DeValue, ValueDeserializer};
 use super::MAX_DEPTH;
 use super::document::{Document, Node};
 use super::key_path::{KeyPath, Step};
-use super::{Scene, SceneError, Shape, for_each_shape_kind};
+use super::{Scene, SceneError, for_each_shape_kind};
 
 /// The scene the document describes, not yet checked against the ranges of
 /// the rendering model (that is [`super::validate`]'s job).
@@ -48,24 +48,28 @@ fn check_vector_lengths(doc: &Document<'_>) -> Result<(), SceneError> {
 /// unknown key that is the key, not its value). An empty span is how toml
 /// points at the root table, which has no place in the text.
 fn serde_error(doc: &Document<'_>, e: &toml::de::Error) -> SceneError {
-    match flattened_error(doc, &error_path(doc, e)) {
-        Some(at_key) => located_error(doc, &at_key),
-        None => located_error(doc, e),
+    let root = KeyPath::default();
+    let table = error_path(doc, e, &root);
+    match flattened_error(doc, &table) {
+        Some(at_key) => located_error(doc, &at_key, &table),
+        None => located_error(doc, e, &root),
     }
 }
 
-/// The path of the value or key that serde's error points at.
-fn error_path(doc: &Document<'_>, e: &toml::de::Error) -> KeyPath {
+/// The path of the value or key that serde's error points at, `otherwise`
+/// for an error that points nowhere.
+fn error_path(doc: &Document<'_>, e: &toml::de::Error, otherwise: &KeyPath) -> KeyPath {
     let span = e.span().filter(|span| !span.is_empty());
-    span.map(|span| doc.path_at(&span)).unwrap_or_default()
+    span.map_or_else(|| otherwise.clone(), |span| doc.path_at(&span))
 }
 
-/// [`serde_error`] once flattened keys are accounted for.
-fn located_error(doc: &Document<'_>, e: &toml::de::Error) -> SceneError {
+/// [`serde_error`] once flattened keys are accounted for; an error that
+/// points nowhere is about `otherwise`.
+fn located_error(doc: &Document<'_>, e: &toml::de::Error, otherwise: &KeyPath) -> SceneError {
     let span = e.span().filter(|span| !span.is_empty());
-    let path = error_path(doc, e);
-    if let Some(key) = unknown_flattened_key(&path, e.message()) {
-        return doc.error(&path.key(key), format!("unknown key `{key}`"));
+    let path = error_path(doc, e, otherwise);
+    if let Some((key, expected)) = unknown_flattened_key(&path, e.message()) {
+        return doc.error(&path.key(key), format!("unknown key `{key}`{expected}"));
     }
     let (path, message) = explain(doc, path, e.message());
     let error = doc.error(&path, message);
@@ -75,22 +79,22 @@ fn located_error(doc: &Document<'_>, e: &toml::de::Error) -> SceneError {
     }
 }
 
-/// serde reads a placement flattened into its shape (docs/implementation.md,
-/// "Adding a shape kind"), from keys that no longer know their place in the
-/// text, and blames an error in one on the shape's table at `table`. Read
-/// alone from the table, the shape's [`Shape::Flattened`] keys give the
-/// error at the key.
+/// serde reads a shape's kind, placement and material flattened into its
+/// table (`Instance`, docs/implementation.md, "Adding a shape kind"), from
+/// keys that no longer know their place in the text, and blames an error in
+/// one on the shape's table at `table`. Read alone from the table, each
+/// gives the error at the key.
 fn flattened_error(doc: &Document<'_>, table: &KeyPath) -> Option<toml::de::Error> {
     let [Step::Key(array), Step::Index(_)] = table.steps() else {
         return None;
     };
     let node = doc.get(table).filter(|node| node.get_ref().is_table())?;
-    let node = ValueDeserializer::from(node.clone());
+    let table = || ValueDeserializer::from(node.clone());
     macro_rules! read_flattened {
         ($($kind:ident: $field:ident),* $(,)?) => {
             match array.as_str() {
                 $(stringify!($field) => {
-                    <super::$kind as Shape>::Flattened::deserialize(node).err()
+                    super::Instance::<super::$kind>::error_at_key(table)
                 })*
                 _ => None,
             }
@@ -99,11 +103,12 @@ fn flattened_error(doc: &Document<'_>, table: &KeyPath) -> Option<toml::de::Erro
     for_each_shape_kind!(read_flattened)
 }
 
-/// The key of serde's "unknown field `key`" when serde blames the table
-/// `path` (a shape with flattened keys) rather than the key.
-fn unknown_flattened_key<'m>(path: &KeyPath, message: &'m str) -> Option<&'m str> {
+/// The key of serde's "unknown field `key`" (and the rest of the message,
+/// the keys expected) when the error blames the table `path` (a shape with
+/// flattened keys) rather than the key.
+fn unknown_flattened_key<'m>(path: &KeyPath, message: &'m str) -> Option<(&'m str, &'m str)> {
     let (key, rest) = message.strip_prefix("unknown field `")?.split_once('`')?;
-    (rest.is_empty() && !path.ends_with_key(key)).then_some(key)
+    (!path.ends_with_key(key)).then_some((key, rest))
 }
 
 /// The key and message to show for serde's `message` about `path`.

@@ -2,27 +2,27 @@
 //! and the scene's distinct functions, which the shader gets as generated
 //! WGSL (`src/gpu/shaders.rs`).
 
-use bytemuck::{Pod, Zeroable};
+use bytemuck::Zeroable;
 
-use super::{Frame, PackShape, f32x3, placed};
-use crate::scene::{self, Scene};
+use super::{Frame, PackShape, f32x3, packed_struct, placement};
+use crate::scene::{self, Instance, Scene};
 
-#[repr(C)]
-#[derive(Debug, Clone, Copy, PartialEq, Pod, Zeroable)]
-pub struct Implicit {
-    pub center: [f32; 3],
-    pub scale: f32,
-    /// `mat3x3<f32>`: three columns, each padded to 16 bytes.
-    pub rotation: [[f32; 4]; 3],
-    pub bounds_min: [f32; 3],
-    /// Index into [`functions`] of the scene.
-    pub function: u32,
-    pub bounds_max: [f32; 3],
-    pub steps: u32,
-    pub material: u32,
-    pub _pad0: u32,
-    pub _pad1: u32,
-    pub _pad2: u32,
+packed_struct! {
+    pub struct Implicit {
+        pub center: [f32; 3],
+        pub scale: f32,
+        /// `mat3x3<f32>`: three columns, each padded to 16 bytes.
+        pub rotation: [[f32; 4]; 3],
+        pub bounds_min: [f32; 3],
+        /// Index into [`functions`] of the scene.
+        pub function: u32,
+        pub bounds_max: [f32; 3],
+        pub steps: u32,
+        pub material: u32,
+        pub _pad0: u32,
+        pub _pad1: u32,
+        pub _pad2: u32,
+    }
 }
 
 /// The scene's distinct functions (as written), in order of first use: the
@@ -38,12 +38,17 @@ pub fn functions(scene: &Scene) -> Vec<String> {
     distinct
 }
 
-impl PackShape for Implicit {
-    type Source = scene::Implicit;
+impl PackShape for scene::Implicit {
+    type Packed = Implicit;
     const WGSL: &'static str = include_str!("../../../shaders/shapes/implicit.wgsl");
 
-    fn pack(scene: &Scene, frame: &Frame, i: &scene::Implicit) -> Self {
-        let (center, scale, rotation) = placed::pack(frame, &i.placement);
+    fn pack(
+        scene: &Scene,
+        frame: &Frame,
+        i: &Instance<scene::Implicit>,
+        material: u32,
+    ) -> Implicit {
+        let (center, scale, rotation) = placement::pack(frame, &i.placement);
         let function = functions(scene)
             .iter()
             .position(|f| *f == i.f)
@@ -56,7 +61,7 @@ impl PackShape for Implicit {
             function,
             bounds_max: f32x3(i.bounds[1]),
             steps: i.steps,
-            material: scene.material_slot(i.material.as_deref()),
+            material,
             ..Zeroable::zeroed()
         }
     }
