@@ -8,7 +8,7 @@ use toml::de::{DeValue, ValueDeserializer};
 use super::MAX_DEPTH;
 use super::document::{Document, Node};
 use super::key_path::{KeyPath, Step};
-use super::{Scene, SceneError, for_each_shape_kind};
+use super::{Scene, SceneError, ShapeKind, for_each_shape_kind};
 
 /// The scene the document describes, not yet checked against the ranges of
 /// the rendering model (that is [`super::validate`]'s job).
@@ -21,17 +21,17 @@ pub(super) fn deserialize(doc: &Document<'_>) -> Result<Scene, SceneError> {
 
 /// glam reads the first three numbers of an array and ignores the rest, so
 /// `to = [0, 1, 0, 5]` would load without a word. Every array of numbers in
-/// a scene is a vector, and a vector has three; but for a Julia set's `c`, a
-/// quaternion of four (serde checks that length), and arrays of vectors (an
-/// implicit surface's `bounds`, whose vectors are checked one by one).
+/// a scene is a vector, and a vector has three; but for the keys a shape
+/// kind names in [`super::Shape::NOT_VECTORS`] (serde checks their length),
+/// and arrays of vectors (an implicit surface's `bounds`, whose vectors are
+/// checked one by one).
 fn check_vector_lengths(doc: &Document<'_>) -> Result<(), SceneError> {
     let wrong_length = |path: &KeyPath, node: &Node<'_>| match node.get_ref() {
         DeValue::Array(items) => {
             let of_tables_or_arrays = items
                 .iter()
                 .all(|v| v.get_ref().is_table() || v.get_ref().is_array());
-            let quaternion = path.to_string().starts_with("julias[") && path.ends_with_key("c");
-            items.len() != 3 && !of_tables_or_arrays && !quaternion
+            items.len() != 3 && !of_tables_or_arrays && !not_a_vector(path)
         }
         _ => false,
     };
@@ -44,16 +44,42 @@ fn check_vector_lengths(doc: &Document<'_>) -> Result<(), SceneError> {
     }
 }
 
+/// Whether `path` is a shape's key that its kind says is no vector
+/// ([`super::Shape::NOT_VECTORS`]).
+fn not_a_vector(path: &KeyPath) -> bool {
+    let [Step::Key(array), Step::Index(_), Step::Key(key)] = path.steps() else {
+        return false;
+    };
+    ShapeKind::from_key(array).is_some_and(|kind| kind.not_vectors().contains(&key.as_str()))
+}
+
 /// serde's error, with the key it is about, placed where serde points (for an
 /// unknown key that is the key, not its value). An empty span is how toml
 /// points at the root table, which has no place in the text.
 fn serde_error(doc: &Document<'_>, e: &toml::de::Error) -> SceneError {
     let root = KeyPath::default();
     let table = error_path(doc, e, &root);
-    match flattened_error(doc, &table) {
-        Some(at_key) => located_error(doc, &at_key, &table),
-        None => located_error(doc, e, &root),
+    if let Some(at_key) = flattened_error(doc, &table) {
+        return located_error(doc, &at_key, &table);
     }
+    // serde reads a flattened vector of 4 numbers as an error that a table
+    // read alone does not see (glam ignores the fourth): the check of the
+    // vectors' lengths names it.
+    if is_shape_table(doc, &table)
+        && let Err(wrong_length) = check_vector_lengths(doc)
+    {
+        return wrong_length;
+    }
+    located_error(doc, e, &root)
+}
+
+/// Whether `path` is the table of a shape (`spheres[2]`).
+fn is_shape_table(doc: &Document<'_>, path: &KeyPath) -> bool {
+    let [Step::Key(array), Step::Index(_)] = path.steps() else {
+        return false;
+    };
+    let table = doc.get(path).is_some_and(|node| node.get_ref().is_table());
+    table && ShapeKind::from_key(array).is_some()
 }
 
 /// The path of the value or key that serde's error points at, `otherwise`

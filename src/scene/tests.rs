@@ -318,6 +318,29 @@ fn vectors_must_have_three_numbers() {
     );
 }
 
+/// A Julia set's `c` is a quaternion of four numbers (its kind says so,
+/// `Shape::NOT_VECTORS`); its other arrays, and a `c` of 3, are not.
+#[test]
+fn only_the_keys_a_kind_names_may_hold_other_than_three_numbers() {
+    let julia = "[[julias]]\nc = [0.1, 0.2, 0.3, 0.4]\n";
+    assert_eq!(loads(julia).julias[0].c, [0.1, 0.2, 0.3, 0.4]);
+    rejects(
+        &format!("{julia}translate = [0, 0, 0, 0]\n"),
+        "julias[0].translate",
+        "must be an array of 3 numbers, got [0, 0, 0, 0]",
+    );
+    rejects(
+        "[[spheres]]\ncenter = [0, 0, 0, 1]\nradius = 1\n",
+        "spheres[0].center",
+        "must be an array of 3 numbers, got [0, 0, 0, 1]",
+    );
+    rejects_with(
+        "[[julias]]\nc = [0.1, 0.2, 0.3]\n",
+        "julias[0].c",
+        "invalid length 3",
+    );
+}
+
 #[test]
 fn integers_beyond_64_bits_are_rejected() {
     rejects_with(

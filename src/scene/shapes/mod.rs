@@ -1,5 +1,6 @@
-//! The shape kinds of a scene, one file each: the serde struct of one shape
-//! (its TOML table, docs/scene-format.md), its validation and its moves.
+//! The shape kinds of a scene, one file each: the serde struct of a kind's
+//! own keys (read into its TOML table beside the placement and material of
+//! an [`Instance`], docs/scene-format.md), their validation and bounds.
 //! A kind is registered by one line in [`for_each_shape_kind!`], which the
 //! other layers (BVH, reference, GPU, panel) expand to visit every kind, so a
 //! kind that one of them does not handle is a compile error there (see
