@@ -1,6 +1,7 @@
 //! A user's implicit surface as `shaders/shapes/implicit.wgsl` reads it,
-//! and the scene's distinct functions, which the shader gets as generated
-//! WGSL (`src/gpu/shaders.rs`).
+//! and the scene's distinct functions (`scene::implicit::functions`) as
+//! generated WGSL ([`functions_part`], joined to the source by
+//! `src/gpu/shaders.rs`).
 
 use bytemuck::Zeroable;
 
@@ -14,7 +15,7 @@ packed_struct! {
         /// `mat3x3<f32>`: three columns, each padded to 16 bytes.
         pub rotation: [[f32; 4]; 3],
         pub bounds_min: [f32; 3],
-        /// Index into [`functions`] of the scene.
+        /// Index into the scene's [`scene::implicit::functions`].
         pub function: u32,
         pub bounds_max: [f32; 3],
         pub steps: u32,
@@ -25,17 +26,42 @@ packed_struct! {
     }
 }
 
-/// The scene's distinct functions (as written), in order of first use: the
-/// shader has one WGSL function per entry, and a scene whose functions are
-/// the same set reuses its pipeline.
-pub fn functions(scene: &Scene) -> Vec<String> {
-    let mut distinct: Vec<String> = Vec::new();
-    for implicit in &scene.implicits {
-        if !distinct.contains(&implicit.f) {
-            distinct.push(implicit.f.clone());
-        }
+/// Name of the part that holds the implicit surfaces' functions.
+pub(in crate::gpu) const FUNCTIONS: &str = "(generated) implicit functions";
+
+/// The scene's functions of x, y, z as WGSL (`src/expr`): `implicit_<i>`
+/// and its dual twin per function, and the two functions
+/// `shaders/shapes/implicit.wgsl` calls, which pick one by index. A function
+/// that does not parse (a scene that failed validation never gets here)
+/// becomes the constant 1: no surface.
+pub(in crate::gpu) fn functions_part(functions: &[String]) -> (String, String) {
+    let mut text = String::from(
+        "// The scene's implicit functions, written by raysandbox (src/gpu/shapes/implicit.rs).\n",
+    );
+    let mut values = String::new();
+    let mut gradients = String::new();
+    for (i, source) in functions.iter().enumerate() {
+        let f = crate::expr::Function::parse(source)
+            .unwrap_or_else(|_| crate::expr::Function::parse("1").expect("a constant parses"));
+        text += &f.to_wgsl(&format!("implicit_{i}"));
+        values += &format!("        case {i}u: {{ return implicit_{i}(p); }}\n");
+        gradients += &format!("        case {i}u: {{ return implicit_{i}_dual(p).yzw; }}\n");
     }
-    distinct
+    text += &format!(
+        "\n/// f(p) of the scene's function number `function`.\n\
+         fn implicit_value(function: u32, p: vec3<f32>) -> f32 {{\n\
+         \x20   switch function {{\n{values}\
+         \x20       default: {{ return 1.0; }}\n\
+         \x20   }}\n\
+         }}\n\n\
+         /// grad f(p), exact (dual numbers).\n\
+         fn implicit_gradient(function: u32, p: vec3<f32>) -> vec3<f32> {{\n\
+         \x20   switch function {{\n{gradients}\
+         \x20       default: {{ return vec3(0.0); }}\n\
+         \x20   }}\n\
+         }}\n"
+    );
+    (FUNCTIONS.to_string(), text)
 }
 
 impl PackShape for scene::Implicit {
@@ -49,7 +75,7 @@ impl PackShape for scene::Implicit {
         material: u32,
     ) -> Implicit {
         let (center, scale, rotation) = placement::pack(frame, &i.placement);
-        let function = functions(scene)
+        let function = scene::implicit::functions(scene)
             .iter()
             .position(|f| *f == i.f)
             .expect("every implicit's function is in the set") as u32;

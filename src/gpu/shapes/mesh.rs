@@ -9,6 +9,7 @@ use std::sync::Arc;
 use super::placement::columns;
 use super::{Frame, PackShape, Words, material_slot, packed_struct, round_out};
 use crate::bvh::mesh_bvh;
+use crate::gpu::ShaderOptions;
 use crate::scene::{self, Geometry, Instance, PerGeometry, Scene};
 
 packed_struct! {
@@ -30,6 +31,10 @@ impl PackShape for scene::Mesh {
     type Packed = Mesh;
     const WGSL: &'static str = include_str!("../../../shaders/shapes/mesh.wgsl");
     const DATA: Option<&'static str> = Some("mesh_data");
+
+    fn constants(options: &ShaderOptions) -> Vec<(&'static str, u32)> {
+        vec![("TRIANGLE_TEST", options.triangles.number())]
+    }
 
     /// The placement; the data offsets are set by [`PackShape::pack_kind`].
     fn pack(_: &Scene, frame: &Frame, m: &Instance<scene::Mesh>, material: u32) -> Mesh {

@@ -12,6 +12,7 @@ use std::sync::Arc;
 use bytemuck::{Pod, Zeroable};
 use glam::DVec3;
 
+use super::ShaderOptions;
 use crate::scene::{Camera, Instance, Scene, ShapeKind, ShapeList, for_each_shape_kind};
 
 mod cube;
@@ -108,6 +109,13 @@ pub trait PackShape: ShapeList {
     /// (docs/implementation.md, "Torus").
     const OCCLUDES: bool = false;
 
+    /// The kind's own pipeline constants (`override` in its WGSL) and their
+    /// values for `options`: how it chooses between methods by name (a
+    /// torus's `TORUS_METHOD`, a mesh's `TRIANGLE_TEST`).
+    fn constants(_options: &ShaderOptions) -> Vec<(&'static str, u32)> {
+        Vec::new()
+    }
+
     /// Packs every shape of the kind and the second buffer's contents
     /// (empty without [`PackShape::DATA`]); by default each shape alone.
     fn pack_kind(scene: &Scene, frame: &Frame) -> (Vec<Self::Packed>, Words) {
@@ -151,7 +159,7 @@ pub(crate) fn f32x3(v: DVec3) -> [f32; 3] {
 }
 
 /// A packed kind as the shader composer and the buffers see it.
-#[derive(Debug, Clone, Copy, PartialEq)]
+#[derive(Debug, Clone, Copy)]
 pub struct KindInfo {
     pub kind: ShapeKind,
     /// The WGSL struct name, e.g. `Sphere`.
@@ -162,6 +170,8 @@ pub struct KindInfo {
     pub data: Option<&'static str>,
     /// Whether shadow rays call its `occludes_<kind>` ([`PackShape::OCCLUDES`]).
     pub occludes: bool,
+    /// Its pipeline constants for given options ([`PackShape::constants`]).
+    pub constants: fn(&ShaderOptions) -> Vec<(&'static str, u32)>,
     /// The packed struct's fields and offsets ([`Layout`]).
     pub fields: &'static [(&'static str, usize)],
     /// The packed struct's size in bytes.
@@ -196,6 +206,7 @@ pub fn kinds() -> Vec<KindInfo> {
                 wgsl: <crate::scene::$kind as PackShape>::WGSL,
                 data: <crate::scene::$kind as PackShape>::DATA,
                 occludes: <crate::scene::$kind as PackShape>::OCCLUDES,
+                constants: <crate::scene::$kind as PackShape>::constants,
                 fields: <<crate::scene::$kind as PackShape>::Packed as Layout>::FIELDS,
                 size: size_of::<<crate::scene::$kind as PackShape>::Packed>(),
             }),*]
@@ -254,4 +265,37 @@ pub fn buffer_count() -> usize {
         .iter()
         .map(|k| 1 + usize::from(k.data.is_some()))
         .sum()
+}
+
+/// The pipeline constants are the kinds' business as much as the
+/// features': written here, beside the kinds they visit, so that the
+/// features need not know the kinds' modules.
+impl ShaderOptions {
+    /// The `(name, value)` pairs for `PipelineCompilationOptions::constants`:
+    /// the fixed flags, then `HAS_<KINDS>` for every shape kind, then each
+    /// kind's own ([`PackShape::constants`]).
+    pub(in crate::gpu) fn constants(&self) -> Vec<(String, f64)> {
+        let f = &self.features;
+        let fixed = [
+            ("ROBUST", self.robust),
+            ("HAS_LIGHTS", f.lights),
+            ("HAS_MIRRORS", f.mirrors),
+            ("HAS_TRANSPARENCY", f.transparency),
+            ("HAS_CHECKER", f.checker),
+            ("HAS_LENS", f.lens),
+            ("USE_BVH", f.bvh),
+        ]
+        .map(|(name, on)| (name.to_string(), on));
+        let present = ShapeKind::ALL.iter().map(|&k| (has_flag(k), f.has(k)));
+        let methods = kinds()
+            .into_iter()
+            .flat_map(|k| (k.constants)(self))
+            .map(|(name, value)| (name.to_string(), f64::from(value)));
+        fixed
+            .into_iter()
+            .chain(present)
+            .map(|(name, on)| (name, f64::from(u8::from(on))))
+            .chain(methods)
+            .collect()
+    }
 }

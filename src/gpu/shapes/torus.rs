@@ -4,6 +4,7 @@ use bytemuck::Zeroable;
 use glam::DVec3;
 
 use super::{Frame, PackShape, packed_struct};
+use crate::gpu::ShaderOptions;
 use crate::scene::{self, Instance, Scene};
 
 packed_struct! {
@@ -30,6 +31,10 @@ impl PackShape for scene::Torus {
     type Packed = Torus;
     const WGSL: &'static str = include_str!("../../../shaders/shapes/torus.wgsl");
     const OCCLUDES: bool = true;
+
+    fn constants(options: &ShaderOptions) -> Vec<(&'static str, u32)> {
+        vec![("TORUS_METHOD", options.torus.number())]
+    }
 
     fn pack(_: &Scene, frame: &Frame, t: &Instance<scene::Torus>, material: u32) -> Torus {
         let placement = &t.placement;

@@ -6,6 +6,7 @@ use serde::{Deserialize, Serialize};
 
 use super::{Context, Placement, Shape};
 use crate::expr::Function;
+use crate::scene::Scene;
 use crate::scene::key_path::KeyPath;
 use crate::scene::validate::{Check, FINITE, Issue, vector};
 
@@ -57,4 +58,17 @@ impl Shape for Implicit {
     fn bounds(&self, placement: &Placement) -> [DVec3; 2] {
         placement.bounds(self.bounds)
     }
+}
+
+/// The scene's distinct functions (as written), in order of first use: the
+/// shader has one WGSL function per entry, and a scene whose functions are
+/// the same set reuses its pipeline.
+pub fn functions(scene: &Scene) -> Vec<String> {
+    let mut distinct: Vec<String> = Vec::new();
+    for implicit in &scene.implicits {
+        if !distinct.contains(&implicit.f) {
+            distinct.push(implicit.f.clone());
+        }
+    }
+    distinct
 }
