@@ -13,25 +13,29 @@ use crate::scene::{self, Scene, ShapeKind};
 #[repr(C)]
 #[derive(Debug, Clone, Copy, PartialEq, Pod, Zeroable)]
 pub struct Globals {
-    pub eye: [f32; 3],
+    /// The camera's `from` and `to` (`from` is a reserved word in WGSL).
+    pub camera_from: [f32; 3],
     pub film_height: f32,
-    pub look_at: [f32; 3],
+    pub camera_to: [f32; 3],
     pub aperture: f32,
-    pub up: [f32; 3],
+    /// The camera's basis ([`scene::Film`]), computed in f64 on the CPU.
+    pub u: [f32; 3],
     pub focus_distance: f32,
-    pub background: [f32; 3],
+    pub v: [f32; 3],
+    /// `|from - to|`, in f64 on the CPU.
+    pub target_distance: f32,
+    pub w: [f32; 3],
     pub min_weight: f32,
-    pub ambient: [f32; 3],
+    pub background: [f32; 3],
     pub exposure: f32,
+    pub ambient: [f32; 3],
+    pub max_depth: u32,
     pub resolution: [u32; 2],
     pub sample_start: u32,
     pub sample_count: u32,
-    pub max_depth: u32,
     pub light_count: u32,
     pub bvh_node_count: u32,
-    pub _pad0: u32,
     pub output_size: [u32; 2],
-    pub _pad1: [u32; 2],
 }
 
 /// The viewer's selection outline (`shaders/outline.wgsl`): the shape whose
@@ -207,12 +211,16 @@ impl PackedScene {
 
 impl Globals {
     fn set_view(&mut self, camera: &scene::Camera, render: &scene::RenderSettings, frame: &Frame) {
-        self.eye = frame.point(camera.from);
-        self.film_height = (2.0 * (camera.fov.to_radians() / 2.0).tan()) as f32;
-        self.look_at = frame.point(camera.to);
+        let film = camera.film();
+        self.camera_from = frame.point(camera.from);
+        self.film_height = film.height as f32;
+        self.camera_to = frame.point(camera.to);
         self.aperture = camera.aperture as f32;
-        self.up = f32x3(camera.up);
+        self.u = f32x3(film.u);
         self.focus_distance = camera.focus_distance() as f32;
+        self.v = f32x3(film.v);
+        self.target_distance = (camera.from - camera.to).length() as f32;
+        self.w = f32x3(film.w);
         self.background = f32x3(render.background);
         self.min_weight = render.min_weight as f32;
         self.ambient = f32x3(render.ambient);
@@ -306,25 +314,26 @@ mod tests {
         let module = source.validate().expect("embedded shader is valid").0;
         let expected = [
             rust_layout!(Globals {
-                eye,
+                camera_from,
                 film_height,
-                look_at,
+                camera_to,
                 aperture,
-                up,
+                u,
                 focus_distance,
-                background,
+                v,
+                target_distance,
+                w,
                 min_weight,
-                ambient,
+                background,
                 exposure,
+                ambient,
+                max_depth,
                 resolution,
                 sample_start,
                 sample_count,
-                max_depth,
                 light_count,
                 bvh_node_count,
-                _pad0,
-                output_size,
-                _pad1
+                output_size
             }),
             rust_layout!(Material {
                 color,
@@ -474,11 +483,11 @@ mod tests {
         let near = PackedScene::new(&scene, 4, 3);
         let far = PackedScene::new(&scene.translated(offset), 4, 3);
         assert_eq!(near.frame.origin, scene.camera.to);
-        assert_eq!(near.globals.look_at, [0.0; 3]);
+        assert_eq!(near.globals.camera_to, [0.0; 3]);
         let close = |a: [f32; 3], b: [f32; 3]| {
             (0..3).all(|i| (a[i] - b[i]).abs() <= f32::EPSILON * a[i].abs().max(1.0))
         };
-        assert!(close(near.globals.eye, far.globals.eye));
+        assert!(close(near.globals.camera_from, far.globals.camera_from));
         assert!(close(
             near.shapes_of::<scene::Sphere>()[0].center,
             far.shapes_of::<scene::Sphere>()[0].center

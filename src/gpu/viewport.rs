@@ -61,7 +61,8 @@ impl Viewport {
         if size.0 > 0 && size.1 > 0 {
             surface.configure(&gpu.device, &config);
         }
-        let scene = SceneBuffers::new(&gpu.device, &pipelines, PackedScene::new(scene, 1, 1));
+        let packed = PackedScene::new(scene, size.0.max(1), size.1.max(1));
+        let scene = SceneBuffers::new(&gpu.device, &pipelines, packed);
         let accum = Accumulator::new(&gpu.device, &pipelines, size.0.max(1), size.1.max(1));
         Viewport {
             surface,
@@ -121,7 +122,8 @@ impl Viewport {
 
     /// Uploads a changed scene and restarts refinement.
     pub fn set_scene(&mut self, gpu: &Gpu, scene: &Scene) {
-        let packed = PackedScene::new(scene, 1, 1);
+        let (width, height) = self.traced_size();
+        let packed = PackedScene::new(scene, width, height);
         self.scene = SceneBuffers::reusing(&gpu.device, &self.pipelines, packed, &self.scene);
         self.accum.reset();
     }

@@ -5,6 +5,7 @@
 //! so renderers may rely on positive radii, known material names and so on.
 
 pub mod bundled;
+mod camera;
 mod document;
 mod error;
 mod key_path;
@@ -23,6 +24,7 @@ use glam::DVec3;
 use indexmap::IndexMap;
 use serde::{Deserialize, Serialize};
 
+pub use camera::{Film, camera_basis, normalize_or};
 pub use error::SceneError;
 pub use mesh_file::{Folder, Geometry, GivenFiles, MeshFiles, PerGeometry, load_bytes, load_file};
 pub use named::{NamedOption, named_option};

@@ -8,21 +8,6 @@ use glam::DVec3;
 use super::shapes::{self, InView};
 use crate::scene::{Camera, Checker, Light, Material, Mesh, Scene, ShapeId, ShapeKind};
 
-/// Unit vectors to the right of the view and up (the camera's `up`), the
-/// frame in which new shapes and lights are placed so that they appear beside
-/// and above the target. Falls back to world axes for a degenerate camera.
-fn camera_frame(camera: &Camera) -> (DVec3, DVec3) {
-    let back = (camera.from - camera.to)
-        .try_normalize()
-        .unwrap_or(DVec3::Z);
-    let up = camera.up.try_normalize().unwrap_or(DVec3::Y);
-    let right = up
-        .cross(back)
-        .try_normalize()
-        .unwrap_or_else(|| back.any_orthonormal_vector());
-    (right, up)
-}
-
 /// A power of ten near a fifth of the scene scale: a round size for new
 /// checker cells (1 for the bundled scenes).
 fn round_size(scale: f64) -> f64 {
@@ -112,9 +97,10 @@ pub(super) fn rename_material(scene: &mut Scene, old: &str, new: &str) -> Result
     Ok(())
 }
 
-/// Appends a white light of intensity 1 above the target, one scene scale up.
+/// Appends a white light of intensity 1 above the target, one scene scale
+/// up (the camera's `up`).
 pub(super) fn add_light(scene: &mut Scene) {
-    let (_, up) = camera_frame(&scene.camera);
+    let up = camera_up(&scene.camera);
     scene.lights.push(Light {
         position: scene.camera.to + up * scene.view_scale(),
         color: DVec3::ONE,
@@ -151,9 +137,15 @@ pub(super) fn checked_selection(scene: &Scene, selection: Option<ShapeId>) -> Op
     selection.filter(|&id| scene.shape_material(id).is_some())
 }
 
-/// Where new shapes go in this scene's view.
+/// The camera's `up`, unit length (a floor faces it), or +y for a zero one.
+fn camera_up(camera: &Camera) -> DVec3 {
+    camera.up.try_normalize().unwrap_or(DVec3::Y)
+}
+
+/// Where new shapes go in this scene's view: beside the target along the
+/// film's right (`Camera::film`), above it along the camera's `up`.
 fn in_view(scene: &Scene) -> InView {
-    let (right, up) = camera_frame(&scene.camera);
+    let (right, up) = (scene.camera.film().u, camera_up(&scene.camera));
     InView {
         target: scene.camera.to,
         right,
