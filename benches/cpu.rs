@@ -17,7 +17,7 @@ use raysandbox::reference::intersect::{
 };
 use raysandbox::reference::ray::Ray;
 use raysandbox::reference::{PreparedScene, render_linear};
-use raysandbox::scene::{Loaded, Mesh, Scene, bundled};
+use raysandbox::scene::{Instance, Loaded, Mesh, Placement, Scene, bundled};
 
 /// Rays from a ring of origins at the unit shapes at the origin: about half
 /// hit, so both branches of every routine are measured.
@@ -34,10 +34,10 @@ fn rays() -> Vec<Ray> {
 
 fn intersections(c: &mut Criterion) {
     let rays = rays();
-    let sphere = Sphere::new(DVec3::ZERO, 1.0, 0);
-    let plane = Plane::new(DVec3::ZERO, DVec3::new(0.2, 1.0, 0.1), 0);
+    let sphere = Sphere::new(DVec3::ZERO, 1.0);
+    let plane = Plane::new(DVec3::ZERO, DVec3::new(0.2, 1.0, 0.1));
     let rotation = DMat3::from_rotation_y(0.5) * DMat3::from_rotation_x(0.3);
-    let cube = Cube::new(DVec3::ZERO, DVec3::new(1.0, 2.0, 1.5), rotation, 0);
+    let cube = Cube::new(DVec3::ZERO, DVec3::new(1.0, 2.0, 1.5), rotation);
     let mut group = c.benchmark_group("intersect");
     group.throughput(Throughput::Elements(rays.len() as u64));
     let mut run = |name: &str, hit: &dyn Fn(&Ray) -> bool| {
@@ -102,7 +102,7 @@ fn mesh_repack(c: &mut Criterion) {
     let dir = std::path::Path::new(env!("CARGO_MANIFEST_DIR"));
     let mesh = Mesh::from_file("assets/meshes/dragon_res3.ply".into(), Some(dir)).unwrap();
     let mut scene = Scene::from_toml_str(bundled::text("whitted").unwrap(), None).unwrap();
-    scene.meshes.push(mesh);
+    scene.meshes.push(Instance::new(mesh, Placement::default()));
     PackedScene::new(&scene, 1, 1);
     group.bench_function("moved", |b| {
         b.iter(|| {

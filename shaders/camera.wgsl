@@ -6,13 +6,6 @@ struct Ray {
     t_min: f32,              // hits count for t_min < t: 0, or < 0 for camera rays
 }
 
-/// The camera's orthonormal basis (docs/rendering-model.md, "Camera").
-struct Basis {
-    u: vec3<f32>,
-    v: vec3<f32>,
-    w: vec3<f32>,
-}
-
 /// v / |v| without overflow or underflow: v is first divided by its largest
 /// component, so that the squares inside length() are between 1 and 3 even for
 /// |v| ~ 1e-30 or 1e30 (where the plain normalize() would make 0 / 0 or
@@ -35,32 +28,6 @@ fn scaled_length(v: vec3<f32>) -> f32 {
         return 0.0;
     }
     return m * length(v / m);
-}
-
-/// w points backwards (away from what we look at), u to the right, v up.
-/// When `up` is (nearly) parallel to w (|cross(up, w)| < 1e-6 |up|,
-/// docs/rendering-model.md, "Camera"), cross(up, w) vanishes: replace up by the world axis along which
-/// w is smallest (x, y, z first on a tie). Looking straight up or down, as at
-/// the poles of an orbit, w = -+y and the axis is x. `up` is normalised first,
-/// so the test reads |cross(up, w)| < 1e-6 and holds for any length of up;
-/// eye = look_at (which validation forbids, but two points closer than an f32
-/// ulp round to the same value) gives w = +z. No input makes a NaN.
-fn camera_basis(eye: vec3<f32>, look_at: vec3<f32>, up_in: vec3<f32>) -> Basis {
-    let w = normalize_or(eye - look_at, vec3(0.0, 0.0, 1.0));
-    var up = normalize_or(up_in, vec3(0.0));
-    if length(cross(up, w)) < 1e-6 {
-        let a = abs(w);
-        if a.x <= a.y && a.x <= a.z {
-            up = vec3(1.0, 0.0, 0.0);
-        } else if a.y <= a.z {
-            up = vec3(0.0, 1.0, 0.0);
-        } else {
-            up = vec3(0.0, 0.0, 1.0);
-        }
-    }
-    let u = normalize(cross(up, w));
-    let v = cross(w, u);
-    return Basis(u, v, w);
 }
 
 /// Sample k of the R4 sequence (Roberts 2018): fract(0.5 + k alpha) with
@@ -88,8 +55,10 @@ fn concentric_disk(s: vec2<f32>) -> vec2<f32> {
 }
 
 /// The ray through film position `pixel` (in pixels, y down from the top) with
-/// lens sample `lens` in the unit disk. The direction is built from the basis,
-/// x u + y v - w, never as the difference of two far-away world points.
+/// lens sample `lens` in the unit disk. The direction is built from the basis
+/// (`globals.u`, `v`, `w`, computed once in f64 on the CPU: `Camera::film`
+/// in src/scene/camera.rs), x u + y v - w, never as the difference of two
+/// far-away world points.
 ///
 /// The robust ray starts where its position is known best: where it crosses
 /// the plane in focus (the target's plane for a pinhole), written relative to
@@ -101,21 +70,20 @@ fn concentric_disk(s: vec2<f32>) -> vec2<f32> {
 /// eye: a small sphere framed from 1e6 units stays where it is
 /// (docs/accuracy.md). The textbook ray (ROBUST = false) starts at the eye.
 fn camera_ray(pixel: vec2<f32>, lens: vec2<f32>) -> Ray {
-    let b = camera_basis(globals.eye, globals.look_at, globals.up);
     let size = vec2<f32>(globals.resolution);
     let h = globals.film_height;
     let x = h * (size.x / size.y) * (pixel.x / size.x - 0.5);
     let y = h * (0.5 - pixel.y / size.y);
-    let to_film = x * b.u + y * b.v - b.w;
-    let target_distance = scaled_length(globals.eye - globals.look_at);
+    let to_film = x * globals.u + y * globals.v - globals.w;
+    let target_distance = globals.target_distance;
     var focus = target_distance;
     var lens_offset = vec3(0.0);
     if HAS_LENS && globals.aperture > 0.0 {
         // Thin lens: aim from the lens point at P = e + focus_distance * to_film.
         focus = globals.focus_distance;
-        lens_offset = globals.aperture * (lens.x * b.u + lens.y * b.v);
+        lens_offset = globals.aperture * (lens.x * globals.u + lens.y * globals.v);
     } else if !ROBUST {
-        return Ray(globals.eye, normalize(to_film), 0.0);
+        return Ray(globals.camera_from, normalize(to_film), 0.0);
     }
     // Its -w component is -focus, so it is zero only for a zero focus
     // distance (eye == target in f32): then the pinhole ray from the eye. The
@@ -124,8 +92,8 @@ fn camera_ray(pixel: vec2<f32>, lens: vec2<f32>) -> Ray {
     let dir = normalize_or(to_focus, normalize(to_film));
     let reach = dot(to_focus, dir);
     if !ROBUST || !(reach > 0.0) {
-        return Ray(globals.eye + lens_offset, dir, 0.0);
+        return Ray(globals.camera_from + lens_offset, dir, 0.0);
     }
-    let on_focus_plane = (target_distance - focus) * b.w + focus * (x * b.u + y * b.v);
-    return Ray(globals.look_at + on_focus_plane, dir, -reach);
+    let on_focus_plane = (target_distance - focus) * globals.w + focus * (x * globals.u + y * globals.v);
+    return Ray(globals.camera_to + on_focus_plane, dir, -reach);
 }

@@ -4,32 +4,33 @@
 // a unit test checks that sizes and field offsets agree. Vectors are vec3 with
 // a scalar packed into the fourth slot, so no field hides implicit padding.
 //
-// Positions (eye, look_at, centres, points, lights, BVH boxes) are relative
+// Positions (camera_from, camera_to, centres, points, lights, BVH boxes) are relative
 // to a frame origin, the camera target, subtracted in f64 on the CPU before
 // rounding (docs/implementation.md, "Camera-relative coordinates"): the
 // numbers stay at the size of what the camera sees wherever that is.
 
 /// Camera, render settings and counts: one uniform buffer, written on every change.
 struct Globals {
-    eye: vec3<f32>,          // camera `from`, relative to the frame origin
+    camera_from: vec3<f32>,  // camera `from`, relative to the frame origin (`from` is reserved)
     film_height: f32,        // h = 2 tan(fov / 2), the film height at unit distance
-    look_at: vec3<f32>,      // camera `to`, relative (0 until the viewer pans)
+    camera_to: vec3<f32>,    // camera `to`, relative (0 until the viewer pans)
     aperture: f32,           // lens radius, 0 = pinhole
-    up: vec3<f32>,
+    u: vec3<f32>,            // the camera's basis, computed once in f64 on the CPU
     focus_distance: f32,
-    background: vec3<f32>,
+    v: vec3<f32>,
+    target_distance: f32,    // |from - to|
+    w: vec3<f32>,
     min_weight: f32,
-    ambient: vec3<f32>,
+    background: vec3<f32>,
     exposure: f32,
+    ambient: vec3<f32>,
+    max_depth: u32,
     resolution: vec2<u32>,   // image size in pixels
     sample_start: u32,       // index of the first sample this pass adds
     sample_count: u32,       // samples per pixel added by this pass
-    max_depth: u32,
     light_count: u32,
     bvh_node_count: u32,     // 0: no bounded shapes (every kind but planes)
-    _pad0: u32,
     output_size: vec2<u32>,  // size of the display target (may exceed `resolution`)
-    _pad1: vec2<u32>,
 }
 
 struct Material {

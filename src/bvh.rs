@@ -516,16 +516,16 @@ mod tests {
         let scene = spheres_scene(8, 3);
         for (prim, b) in prim_bounds(&scene) {
             if let ShapeId::Cube(i) = prim {
-                let c = &scene.cubes[i];
+                let c = &scene.cubes[i].placement;
                 let m = c.rotation_matrix();
-                let h = c.size.edges() * 0.5;
+                let h = c.scale.edges() * 0.5;
                 for corner in 0..8 {
                     let s = DVec3::new(
                         if corner & 1 == 0 { -1.0 } else { 1.0 },
                         if corner & 2 == 0 { -1.0 } else { 1.0 },
                         if corner & 4 == 0 { -1.0 } else { 1.0 },
                     );
-                    let p = c.center + m * (s * h);
+                    let p = c.translate + m * (s * h);
                     assert!(p.cmpge(b.min - 1e-12).all() && p.cmple(b.max + 1e-12).all());
                 }
             }

@@ -65,7 +65,7 @@ proptest! {
         let hit = r32::hit_sphere(&ray, &sph, r32::T_FAR, true);
         check_sphere(hit.map(|h| (f64::from(h.t), finite3(h.point) && finite3(h.normal))), &exact, o, sph.center.as_dvec3(), f64::from(sph.radius), EPS32)?;
         // f64: the reference on f64 inputs.
-        let sph64 = r64::Sphere::new(case.centre, case.radius, 0);
+        let sph64 = r64::Sphere::new(case.centre, case.radius);
         let exact = exact::sphere(case.origin, case.dir, case.centre, case.radius);
         let hit = r64::hit_sphere(&sph64, &ray64(case.origin, case.dir), f64::INFINITY);
         check_sphere(hit.map(|h| (h.t, h.p.is_finite() && h.n.is_finite())), &exact, case.origin, case.centre, case.radius, EPS64)?;
@@ -170,7 +170,7 @@ proptest! {
         prop_assert!(height.abs() <= K_T * EPS32 * p.abs().max_element().max(point.abs().max_element()),
             "hit point {height} off the plane");
         // f64
-        let pl = r64::Plane::new(case.point, case.normal, 0);
+        let pl = r64::Plane::new(case.point, case.normal);
         let exact = exact::plane(case.origin, case.dir, pl.point, pl.normal);
         let hit = r64::hit_plane(&pl, &ray64(case.origin, case.dir), f64::INFINITY)
             .ok_or_else(|| TestCaseError::fail("f64 missed"))?;
@@ -203,7 +203,7 @@ proptest! {
         let again = r32::hit_plane(&r32::Ray { origin, dir }, &pl, r32::T_FAR, true);
         prop_assert!(again.is_none(), "self-hit at t {:?}", again.map(|h| h.t));
         // f64
-        let pl = r64::Plane::new(case.point, case.normal, 0);
+        let pl = r64::Plane::new(case.point, case.normal);
         let hit = r64::hit_plane(&pl, &ray64(case.origin, case.dir), f64::INFINITY).unwrap();
         let ns = pl.normal * case.side;
         let (side, dir) = if through { (-ns, case.dir) } else { (ns, at_angle(ns, unit(tangent), theta, 1.0)) };
@@ -262,7 +262,7 @@ proptest! {
         // rely on unit directions); the zero components stay zero.
         let dir64 = dir.as_dvec3().normalize();
         let exact = exact::cube(origin.as_dvec3(), dir64, centre.as_dvec3(), half.as_dvec3(), DMat3::IDENTITY);
-        let cube = r64::Cube::new(centre.as_dvec3(), 2.0 * half.as_dvec3(), DMat3::IDENTITY, 0);
+        let cube = r64::Cube::new(centre.as_dvec3(), 2.0 * half.as_dvec3(), DMat3::IDENTITY);
         let hit = r64::hit_cube(&cube, &ray64(origin.as_dvec3(), dir64), f64::INFINITY);
         if let Some(h) = hit {
             prop_assert!(h.t.is_finite() && h.p.is_finite() && h.n.is_finite(), "NaN");
@@ -294,7 +294,7 @@ proptest! {
             side.dot(hit.normal) > 0.0,
         )?;
         // f64
-        let sph = r64::Sphere::new(case.centre, case.radius, 0);
+        let sph = r64::Sphere::new(case.centre, case.radius);
         let Some(hit) = r64::hit_sphere(&sph, &ray64(case.origin, case.dir), f64::INFINITY) else { return Ok(()) };
         let ns = if case.dir.dot(hit.n) < 0.0 { hit.n } else { -hit.n };
         let side = if inward { -ns } else { ns };

@@ -5,7 +5,7 @@ use std::path::{Path, PathBuf};
 
 use super::mesh_files;
 use crate::files::write_atomically;
-use crate::scene::{Camera, Folder, Mesh, MeshFiles, Scene, SceneError, bundled};
+use crate::scene::{Camera, Folder, Instance, Mesh, MeshFiles, Scene, SceneError, bundled};
 
 /// A scene being edited, and where it came from.
 pub struct Document {
@@ -122,12 +122,12 @@ impl Document {
         let mut fresh: Vec<Mesh> = Vec::new();
         for mesh in self.scene.meshes.iter().filter(|m| shows(m)) {
             if !fresh.iter().any(|f| f.smooth == mesh.smooth) {
-                let mut copy = mesh.clone();
+                let mut copy = mesh.shape.clone();
                 copy.reload(base.as_deref())?;
                 fresh.push(copy);
             }
         }
-        let give = |meshes: &mut [Mesh]| {
+        let give = |meshes: &mut [Instance<Mesh>]| {
             let mut changed = 0;
             for mesh in meshes.iter_mut().filter(|m| shows(m)) {
                 if let Some(new) = fresh.iter().find(|f| f.smooth == mesh.smooth) {
@@ -263,6 +263,7 @@ impl Document {
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::scene::Placement;
 
     fn temp_dir(name: &str) -> PathBuf {
         let dir =
@@ -344,6 +345,7 @@ mod tests {
         let mesh = doc.mesh_reader(&obj)().unwrap();
         assert_eq!(mesh.file.as_deref(), Some(Path::new("../models/tri.obj")));
         // Two meshes show the same file.
+        let mesh = Instance::new(mesh, Placement::default());
         doc.scene.meshes.extend([mesh.clone(), mesh]);
         doc.save().unwrap();
         let loaded = Scene::load(&path).unwrap();

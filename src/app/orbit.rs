@@ -67,10 +67,10 @@ pub fn pan(camera: &mut Camera, dx: f64, dy: f64, viewport_height: f64) {
     if !(dx.is_finite() && dy.is_finite()) || viewport_height <= 0.0 {
         return;
     }
-    let (u, v, _) = crate::reference::camera_basis(camera.from, camera.to, camera.up);
+    let film = camera.film();
     let distance = (camera.from - camera.to).length();
-    let world_per_pixel = 2.0 * (camera.fov.to_radians() / 2.0).tan() * distance / viewport_height;
-    let shift = (-dx * u + dy * v) * world_per_pixel;
+    let world_per_pixel = film.height * distance / viewport_height;
+    let shift = (-dx * film.u + dy * film.v) * world_per_pixel;
     camera.from += shift;
     camera.to += shift;
 }

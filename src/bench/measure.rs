@@ -10,7 +10,7 @@ use crate::bvh::Bvh;
 use crate::compare::diff_images;
 use crate::gpu::{Gpu, OffscreenRenderer, ShaderOptions, ShaderSource};
 use crate::reference;
-use crate::scene::Scene;
+use crate::scene::{Instance, Scene, Unplaced};
 
 /// Median GPU time of `frames` renders after one warm-up render, and the
 /// last image. The warm-up absorbs shader compilation and first-use costs.
@@ -290,11 +290,12 @@ pub fn sphere_field(n: usize) -> Scene {
         let (i, j) = ((k % side) as f64, (k / side) as f64);
         let x = -5.0 + (i + 0.5 + 0.3 * jitter()) * spacing;
         let z = -5.0 + (j + 0.5 + 0.3 * jitter()) * spacing;
-        scene.spheres.push(crate::scene::Sphere {
+        let sphere = crate::scene::Sphere {
             center: DVec3::new(x, radius, z),
             radius,
-            material: Some("ball".into()),
-        });
+        };
+        let sphere = Instance::new(sphere, Unplaced).with_material("ball");
+        scene.spheres.push(sphere);
     }
     scene
 }

@@ -13,7 +13,7 @@ use super::measure::{self, ConvergedReference, REFERENCE_FACTOR};
 use super::plot::{log_range, register_font};
 use super::{BenchError, Environment, fail, ms};
 use crate::gpu::{Gpu, ShaderOptions};
-use crate::scene::{NamedOption, Scene, Sphere, TorusMethod, bundled};
+use crate::scene::{Instance, NamedOption, Scene, Sphere, TorusMethod, Unplaced, bundled};
 
 /// Samples per pixel of the images whose error is measured: enough that
 /// the knob's error, not the sampling's, separates the settings (the quick
@@ -191,9 +191,9 @@ fn load(name: &str) -> Scene {
 /// the extent of the sets the sliders reach inside their bounding radius 2).
 pub fn spheres_in_place(scene: &Scene) -> Scene {
     let mut out = scene.clone();
-    let sphere = |center, radius, material: &Option<String>| Sphere {
-        center,
-        radius,
+    let sphere = |center, radius, material: &Option<String>| Instance {
+        shape: Sphere { center, radius },
+        placement: Unplaced,
         material: material.clone(),
     };
     for t in out.tori.drain(..) {

@@ -4,7 +4,6 @@
 //! compiler removes, so a spheres-only scene runs no plane, box, refraction
 //! or checker code at all.
 
-use super::shapes::has_flag;
 use crate::scene::{Scene, ShapeKind, TorusMethod, TriangleTest};
 
 /// What a scene needs from the shader. Every flag that is true for a scene
@@ -90,6 +89,10 @@ impl Features {
     }
 }
 
+/// The largest ray-tree stack a scene can need: the deepest `max_depth`,
+/// plus one.
+pub const MAX_STACK_SIZE: u32 = crate::scene::MAX_DEPTH + 1;
+
 /// Values for the shader's pipeline-overridable constants: the variants of
 /// one source.
 #[derive(Debug, Clone, PartialEq, Eq, Hash)]
@@ -107,7 +110,7 @@ pub struct ShaderOptions {
     pub triangles: TriangleTest,
     /// How tori solve their quartic (`TORUS_METHOD`).
     pub torus: TorusMethod,
-    /// The scene's distinct implicit functions (`gpu::shapes::implicit::functions`),
+    /// The scene's distinct implicit functions (`scene::implicit::functions`),
     /// compiled into the source (see `ShaderSource::with_functions`): a
     /// pipeline per distinct set.
     pub functions: Vec<String>,
@@ -119,7 +122,7 @@ impl Default for ShaderOptions {
         ShaderOptions {
             robust: true,
             features: Features::ALL,
-            stack_size: super::shaders::MAX_STACK_SIZE,
+            stack_size: MAX_STACK_SIZE,
             triangles: TriangleTest::default(),
             torus: TorusMethod::default(),
             functions: Vec::new(),
@@ -132,7 +135,7 @@ impl ShaderOptions {
     /// pipeline can do without: they are the scene's own code).
     pub fn generic(scene: &Scene) -> Self {
         ShaderOptions {
-            functions: super::shapes::implicit::functions(scene),
+            functions: crate::scene::implicit::functions(scene),
             ..ShaderOptions::default()
         }
     }
@@ -146,36 +149,8 @@ impl ShaderOptions {
             stack_size: features.stack_size(scene.render.max_depth),
             triangles: TriangleTest::default(),
             torus: TorusMethod::default(),
-            functions: super::shapes::implicit::functions(scene),
+            functions: crate::scene::implicit::functions(scene),
         }
-    }
-
-    /// The `(name, value)` pairs for `PipelineCompilationOptions::constants`:
-    /// the fixed flags, then `HAS_<KINDS>` for every shape kind.
-    pub(super) fn constants(&self) -> Vec<(String, f64)> {
-        let f = &self.features;
-        let fixed = [
-            ("ROBUST", self.robust),
-            ("HAS_LIGHTS", f.lights),
-            ("HAS_MIRRORS", f.mirrors),
-            ("HAS_TRANSPARENCY", f.transparency),
-            ("HAS_CHECKER", f.checker),
-            ("HAS_LENS", f.lens),
-            ("USE_BVH", f.bvh),
-        ]
-        .map(|(name, on)| (name.to_string(), on));
-        let kinds = ShapeKind::ALL.iter().map(|&k| (has_flag(k), f.has(k)));
-        let methods = [
-            ("TRIANGLE_TEST", self.triangles.number()),
-            ("TORUS_METHOD", self.torus.number()),
-        ]
-        .map(|(name, value)| (name.to_string(), f64::from(value)));
-        fixed
-            .into_iter()
-            .chain(kinds)
-            .map(|(name, on)| (name, f64::from(u8::from(on))))
-            .chain(methods)
-            .collect()
     }
 }
 

@@ -6,33 +6,36 @@
 use bytemuck::{Pod, Zeroable};
 use glam::DVec3;
 
-pub use super::shapes::{Cube, Implicit, Julia, Mesh, Plane, Sphere, Torus};
 use super::shapes::{Frame, PackShape, Words, buffer_position, f32x3, pack_all, round_out};
 use crate::bvh::{Aabb, Bvh};
-use crate::scene::{self, Scene, ShapeKind, ShapeList};
+use crate::scene::{self, Scene, ShapeKind};
 
 #[repr(C)]
 #[derive(Debug, Clone, Copy, PartialEq, Pod, Zeroable)]
 pub struct Globals {
-    pub eye: [f32; 3],
+    /// The camera's `from` and `to` (`from` is a reserved word in WGSL).
+    pub camera_from: [f32; 3],
     pub film_height: f32,
-    pub look_at: [f32; 3],
+    pub camera_to: [f32; 3],
     pub aperture: f32,
-    pub up: [f32; 3],
+    /// The camera's basis ([`scene::Film`]), computed in f64 on the CPU.
+    pub u: [f32; 3],
     pub focus_distance: f32,
-    pub background: [f32; 3],
+    pub v: [f32; 3],
+    /// `|from - to|`, in f64 on the CPU.
+    pub target_distance: f32,
+    pub w: [f32; 3],
     pub min_weight: f32,
-    pub ambient: [f32; 3],
+    pub background: [f32; 3],
     pub exposure: f32,
+    pub ambient: [f32; 3],
+    pub max_depth: u32,
     pub resolution: [u32; 2],
     pub sample_start: u32,
     pub sample_count: u32,
-    pub max_depth: u32,
     pub light_count: u32,
     pub bvh_node_count: u32,
-    pub _pad0: u32,
     pub output_size: [u32; 2],
-    pub _pad1: [u32; 2],
 }
 
 /// The viewer's selection outline (`shaders/outline.wgsl`): the shape whose
@@ -184,10 +187,10 @@ impl PackedScene {
             .collect()
     }
 
-    /// The packed shapes of kind `T`, padded to at least one element (the
-    /// count is in [`PackedScene::shape_counts`]).
-    pub fn shapes_of<T: PackShape>(&self) -> &[T] {
-        let position = buffer_position(<T::Source as ShapeList>::KIND);
+    /// The packed shapes of the scene kind `T`, padded to at least one
+    /// element (the count is in [`PackedScene::shape_counts`]).
+    pub fn shapes_of<T: PackShape>(&self) -> &[T::Packed] {
+        let position = buffer_position(T::KIND);
         bytemuck::cast_slice(self.shapes[position].as_slice())
     }
 }
@@ -234,12 +237,16 @@ impl PackedScene {
 
 impl Globals {
     fn set_view(&mut self, camera: &scene::Camera, render: &scene::RenderSettings, frame: &Frame) {
-        self.eye = frame.point(camera.from);
-        self.film_height = (2.0 * (camera.fov.to_radians() / 2.0).tan()) as f32;
-        self.look_at = frame.point(camera.to);
+        let film = camera.film();
+        self.camera_from = frame.point(camera.from);
+        self.film_height = film.height as f32;
+        self.camera_to = frame.point(camera.to);
         self.aperture = camera.aperture as f32;
-        self.up = f32x3(camera.up);
+        self.u = f32x3(film.u);
         self.focus_distance = camera.focus_distance() as f32;
+        self.v = f32x3(film.v);
+        self.target_distance = (camera.from - camera.to).length() as f32;
+        self.w = f32x3(film.w);
         self.background = f32x3(render.background);
         self.min_weight = render.min_weight as f32;
         self.ambient = f32x3(render.ambient);
@@ -333,94 +340,26 @@ mod tests {
         let module = source.validate().expect("embedded shader is valid").0;
         let expected = [
             rust_layout!(Globals {
-                eye,
+                camera_from,
                 film_height,
-                look_at,
+                camera_to,
                 aperture,
-                up,
+                u,
                 focus_distance,
-                background,
+                v,
+                target_distance,
+                w,
                 min_weight,
-                ambient,
+                background,
                 exposure,
+                ambient,
+                max_depth,
                 resolution,
                 sample_start,
                 sample_count,
-                max_depth,
                 light_count,
                 bvh_node_count,
-                _pad0,
-                output_size,
-                _pad1
-            }),
-            rust_layout!(Sphere {
-                center,
-                radius,
-                material,
-                _pad0,
-                _pad1,
-                _pad2
-            }),
-            rust_layout!(Plane {
-                point,
-                material,
-                normal,
-                _pad
-            }),
-            rust_layout!(Cube {
-                center,
-                material,
-                half_size,
-                _pad,
-                rotation
-            }),
-            rust_layout!(Torus {
-                center,
-                major,
-                axis,
-                minor,
-                material,
-                _pad0,
-                _pad1,
-                _pad2
-            }),
-            rust_layout!(Implicit {
-                center,
-                scale,
-                rotation,
-                bounds_min,
-                function,
-                bounds_max,
-                steps,
-                material,
-                _pad0,
-                _pad1,
-                _pad2
-            }),
-            rust_layout!(Julia {
-                center,
-                scale,
-                rotation,
-                c,
-                slice,
-                iterations,
-                epsilon,
-                material,
-                footprint,
-                _pad0,
-                _pad1,
-                _pad2
-            }),
-            rust_layout!(Mesh {
-                to_local,
-                origin,
-                material,
-                normal_to_world,
-                to_world,
-                node_start,
-                tri_start,
-                normal_start,
-                error_scale
+                output_size
             }),
             rust_layout!(Material {
                 color,
@@ -463,18 +402,21 @@ mod tests {
                 .collect();
             assert_eq!(fields, wgsl_fields, "fields and offsets of {name}");
         }
-        // Every registered shape kind must be in the list above.
-        let listed: Vec<&str> = expected.iter().map(|(name, _, _)| *name).collect();
-        macro_rules! assert_listed {
-            ($t:ident, $wgsl:literal) => {
-                assert!(
-                    listed.contains(&$wgsl),
-                    "shape kind {} is registered in gpu/shapes but its layout is not checked here",
-                    $wgsl
-                );
-            };
+        // Every shape kind's struct, from the fields its file lists.
+        for kind in crate::gpu::shapes::kinds() {
+            let (wgsl_size, wgsl_fields) = wgsl_layout(&module, kind.wgsl_struct);
+            assert_eq!(kind.size, wgsl_size, "size of {}", kind.wgsl_struct);
+            let fields: Vec<(String, usize)> = kind
+                .fields
+                .iter()
+                .map(|&(f, o)| (f.to_string(), o))
+                .collect();
+            assert_eq!(
+                fields, wgsl_fields,
+                "fields and offsets of {}",
+                kind.wgsl_struct
+            );
         }
-        crate::gpu::shapes::for_each_packed_shape!(assert_listed);
     }
 
     #[test]
@@ -482,7 +424,7 @@ mod tests {
         let scene = Scene::from_toml_str("[camera]\nfrom = [0, 0, 5]\nto = [0, 0, 0]\n", None)
             .expect("valid scene");
         let packed = PackedScene::new(&scene, 4, 3);
-        assert_eq!(packed.shapes_of::<Sphere>().len(), 1);
+        assert_eq!(packed.shapes_of::<scene::Sphere>().len(), 1);
         assert_eq!(packed.lights.len(), 1);
         assert!(packed.shape_counts.iter().all(|&n| n == 0));
         assert_eq!(packed.globals.light_count, 0);
@@ -512,8 +454,8 @@ mod tests {
         let packed = PackedScene::new(&scene, 4, 3);
         assert_eq!(packed.materials[1].color, [0.0, 0.0, 1.0]);
         assert_eq!(packed.materials[2].color, [1.0, 0.0, 0.0]);
-        assert_eq!(packed.shapes_of::<Sphere>()[0].material, 2);
-        assert_eq!(packed.shapes_of::<Sphere>()[1].material, 0);
+        assert_eq!(packed.shapes_of::<scene::Sphere>()[0].material, 2);
+        assert_eq!(packed.shapes_of::<scene::Sphere>()[1].material, 0);
         assert_eq!(packed.materials[0].color, [0.8, 0.8, 0.8]);
     }
 
@@ -567,23 +509,26 @@ mod tests {
         let near = PackedScene::new(&scene, 4, 3);
         let far = PackedScene::new(&scene.translated(offset), 4, 3);
         assert_eq!(near.frame.origin, scene.camera.to);
-        assert_eq!(near.globals.look_at, [0.0; 3]);
+        assert_eq!(near.globals.camera_to, [0.0; 3]);
         let close = |a: [f32; 3], b: [f32; 3]| {
             (0..3).all(|i| (a[i] - b[i]).abs() <= f32::EPSILON * a[i].abs().max(1.0))
         };
-        assert!(close(near.globals.eye, far.globals.eye));
+        assert!(close(near.globals.camera_from, far.globals.camera_from));
         assert!(close(
-            near.shapes_of::<Sphere>()[0].center,
-            far.shapes_of::<Sphere>()[0].center
-        ));
-        assert!(close(near.shapes_of::<Plane>()[0].point, [0.0, -0.6, 0.0]));
-        assert!(close(
-            near.shapes_of::<Plane>()[0].point,
-            far.shapes_of::<Plane>()[0].point
+            near.shapes_of::<scene::Sphere>()[0].center,
+            far.shapes_of::<scene::Sphere>()[0].center
         ));
         assert!(close(
-            near.shapes_of::<Cube>()[0].center,
-            far.shapes_of::<Cube>()[0].center
+            near.shapes_of::<scene::Plane>()[0].point,
+            [0.0, -0.6, 0.0]
+        ));
+        assert!(close(
+            near.shapes_of::<scene::Plane>()[0].point,
+            far.shapes_of::<scene::Plane>()[0].point
+        ));
+        assert!(close(
+            near.shapes_of::<scene::Cube>()[0].center,
+            far.shapes_of::<scene::Cube>()[0].center
         ));
         assert!(close(near.lights[0].position, far.lights[0].position));
         assert!(close(
@@ -600,7 +545,7 @@ mod tests {
         let world = PackedScene::in_world(&scene.translated(offset), 4, 3);
         assert_eq!(world.frame, Frame::WORLD);
         assert_eq!(
-            world.shapes_of::<Sphere>()[0].center,
+            world.shapes_of::<scene::Sphere>()[0].center,
             [-999999.1, 1000000.7, -999999.0]
         );
         assert_eq!(world.materials[1].checker_phase, [0.0; 3]);
@@ -618,7 +563,7 @@ mod tests {
             rotation = [0, 0, 90]
         "#;
         let scene = Scene::from_toml_str(text, None).expect("valid scene");
-        let cube = PackedScene::new(&scene, 4, 3).shapes_of::<Cube>()[0];
+        let cube = PackedScene::new(&scene, 4, 3).shapes_of::<scene::Cube>()[0];
         assert_eq!(cube.half_size, [1.0, 2.0, 3.0]);
         // Rz(90) maps +x to +y: the first column is the image of +x.
         let x = cube.rotation[0];

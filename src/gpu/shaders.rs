@@ -8,7 +8,8 @@
 use std::fmt;
 use std::path::{Path, PathBuf};
 
-use super::shapes::{KindInfo, has_flag, kinds};
+use super::features::MAX_STACK_SIZE;
+use super::shapes::{KindInfo, has_flag, implicit, kinds};
 use crate::scene::ShapeKind;
 
 /// The shader files in the order they are joined, before the shape kinds'
@@ -91,50 +92,8 @@ impl fmt::Display for ShaderError {
 
 impl std::error::Error for ShaderError {}
 
-/// The largest ray-tree stack a scene can need: the deepest `max_depth`,
-/// plus one.
-pub const MAX_STACK_SIZE: u32 = crate::scene::MAX_DEPTH + 1;
-
 /// Name of the part the program writes in front of the shader files.
 const GENERATED: &str = "(generated) specialisation";
-
-/// Name of the part that holds the implicit surfaces' functions.
-const FUNCTIONS: &str = "(generated) implicit functions";
-
-/// The scene's functions of x, y, z as WGSL (`src/expr`): `implicit_<i>`
-/// and its dual twin per function, and the two functions
-/// `shaders/shapes/implicit.wgsl` calls, which pick one by index. A function
-/// that does not parse (a scene that failed validation never gets here)
-/// becomes the constant 1: no surface.
-fn functions_part(functions: &[String]) -> (String, String) {
-    let mut text = String::from(
-        "// The scene's implicit functions, written by raysandbox (src/gpu/shaders.rs).\n",
-    );
-    let mut values = String::new();
-    let mut gradients = String::new();
-    for (i, source) in functions.iter().enumerate() {
-        let f = crate::expr::Function::parse(source)
-            .unwrap_or_else(|_| crate::expr::Function::parse("1").expect("a constant parses"));
-        text += &f.to_wgsl(&format!("implicit_{i}"));
-        values += &format!("        case {i}u: {{ return implicit_{i}(p); }}\n");
-        gradients += &format!("        case {i}u: {{ return implicit_{i}_dual(p).yzw; }}\n");
-    }
-    text += &format!(
-        "\n/// f(p) of the scene's function number `function`.\n\
-         fn implicit_value(function: u32, p: vec3<f32>) -> f32 {{\n\
-         \x20   switch function {{\n{values}\
-         \x20       default: {{ return 1.0; }}\n\
-         \x20   }}\n\
-         }}\n\n\
-         /// grad f(p), exact (dual numbers).\n\
-         fn implicit_gradient(function: u32, p: vec3<f32>) -> vec3<f32> {{\n\
-         \x20   switch function {{\n{gradients}\
-         \x20       default: {{ return vec3(0.0); }}\n\
-         \x20   }}\n\
-         }}\n"
-    );
-    (FUNCTIONS.to_string(), text)
-}
 
 /// The binding of the first shape kind's array; the fixed bindings of
 /// `shaders/scene.wgsl` come before it.
@@ -378,7 +337,7 @@ impl ShaderSource {
             std::iter::once(generated_part(MAX_STACK_SIZE, ALL_KINDS_BOUND))
                 .chain(files)
                 .chain(shapes)
-                .chain([functions_part(&[])]),
+                .chain([implicit::functions_part(&[])]),
         )
     }
 
@@ -435,19 +394,21 @@ impl ShaderSource {
         Ok(Self::join(
             std::iter::once(generated_part(MAX_STACK_SIZE, ALL_KINDS_BOUND))
                 .chain(files)
-                .chain([functions_part(&[])]),
+                .chain([implicit::functions_part(&[])]),
         ))
     }
 
     /// The same source with `functions` (the scene's distinct implicit
-    /// functions, `gpu::shapes::implicit::functions`) compiled to WGSL in
+    /// functions, `scene::implicit::functions`) compiled to WGSL in
     /// place of the previous ones.
     pub fn with_functions(&self, functions: &[String]) -> Self {
-        let files = self.parts().filter(|(name, _)| *name != FUNCTIONS);
+        let files = self
+            .parts()
+            .filter(|(name, _)| *name != implicit::FUNCTIONS);
         Self::join(
             files
                 .map(|(name, text)| (name.to_string(), text.to_string()))
-                .chain([functions_part(functions)]),
+                .chain([implicit::functions_part(functions)]),
         )
     }
 

@@ -87,7 +87,7 @@ impl Viewport {
         if size.0 > 0 && size.1 > 0 {
             surface.configure(&gpu.device, &config);
         }
-        let empty = PackedScene::new(&scene.without_shapes(), 1, 1);
+        let empty = PackedScene::new(&scene.without_shapes(), size.0.max(1), size.1.max(1));
         let scene = SceneBuffers::new(&gpu.device, &pipelines, empty)
             .expect("a scene without shapes fits any GPU's buffers");
         let accum = Accumulator::new(&gpu.device, &pipelines, size.0.max(1), size.1.max(1));
@@ -154,7 +154,8 @@ impl Viewport {
     /// Uploads a changed scene and restarts refinement. A scene too large
     /// for the device's buffers is refused and the last one stays.
     pub fn set_scene(&mut self, gpu: &Gpu, scene: &Scene) -> Result<(), BufferLimitError> {
-        let packed = PackedScene::new(scene, 1, 1);
+        let (width, height) = self.traced_size();
+        let packed = PackedScene::new(scene, width, height);
         self.scene = SceneBuffers::reusing(&gpu.device, &self.pipelines, packed, &self.scene)?;
         self.restart_refinement();
         Ok(())

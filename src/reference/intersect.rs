@@ -73,7 +73,7 @@ mod tests {
     }
 
     fn unit_sphere_at(c: [f64; 3]) -> Sphere {
-        Sphere::new(DVec3::from(c), 1.0, 0)
+        Sphere::new(DVec3::from(c), 1.0)
     }
 
     #[test]
@@ -140,7 +140,7 @@ mod tests {
     #[test]
     fn small_sphere_far_away() {
         // The textbook b^2 - c loses every digit here; r^2 - |f - b d|^2 does not.
-        let s = Sphere::new(DVec3::new(0.0, 0.0, -1e6), 1e-3, 0);
+        let s = Sphere::new(DVec3::new(0.0, 0.0, -1e6), 1e-3);
         let hit = hit_sphere(&s, &ray([0.0, 5e-4, 0.0], [0.0, 0.0, -1.0]), f64::INFINITY).unwrap();
         let z = (1e-6_f64 - 25e-8).sqrt();
         // Points near z = -1e6 are only known to ~1e-10 (an ulp), which
@@ -151,7 +151,7 @@ mod tests {
     }
 
     fn floor_plane() -> Plane {
-        Plane::new(DVec3::new(0.0, -1.0, 0.0), DVec3::Y, 0)
+        Plane::new(DVec3::new(0.0, -1.0, 0.0), DVec3::Y)
     }
 
     #[test]
@@ -186,13 +186,8 @@ mod tests {
     }
 
     fn cube(center: [f64; 3], size: [f64; 3], rotation_deg: [f64; 3]) -> Cube {
-        let c = scene::Cube {
-            center: DVec3::from(center),
-            size: scene::CubeSize::PerAxis(DVec3::from(size)),
-            rotation: DVec3::from(rotation_deg),
-            material: None,
-        };
-        Cube::new(c.center, c.size.edges(), c.rotation_matrix(), 0)
+        let rotation = scene::rotation_degrees(DVec3::from(rotation_deg));
+        Cube::new(DVec3::from(center), DVec3::from(size), rotation)
     }
 
     #[test]
@@ -365,7 +360,7 @@ mod tests {
         ) {
             let dir = DVec3::from(dir);
             prop_assume!(dir.length() > 0.1);
-            let s = Sphere::new(DVec3::new(1.0, 2.0, 3.0), radius, 0);
+            let s = Sphere::new(DVec3::new(1.0, 2.0, 3.0), radius);
             let r = Ray::new(DVec3::from(origin), dir);
             if let Some(hit) = hit_sphere(&s, &r, f64::INFINITY) {
                 prop_assert!(hit.t > 0.0);

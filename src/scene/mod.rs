@@ -5,6 +5,7 @@
 //! so renderers may rely on positive radii, known material names and so on.
 
 pub mod bundled;
+mod camera;
 mod document;
 mod error;
 mod key_path;
@@ -23,12 +24,14 @@ use glam::DVec3;
 use indexmap::IndexMap;
 use serde::{Deserialize, Serialize};
 
+pub use camera::{Film, camera_basis, normalize_or};
 pub use error::SceneError;
 pub use mesh_file::{Folder, Geometry, GivenFiles, MeshFiles, PerGeometry, load_bytes, load_file};
 pub use named::{NamedOption, named_option};
 pub use shapes::{
-    Cube, CubeSize, Implicit, Julia, Loaded, Mesh, Placement, Plane, Scale, Shape, Sphere, Torus,
-    TorusMethod, TriangleTest, for_each_shape_kind, implicit, julia, rotation_degrees,
+    Centered, Cube, CubeSize, Implicit, Instance, Julia, Loaded, Mesh, Place, Placement, Plane,
+    Scale, Shape, Sphere, Torus, TorusMethod, TriangleTest, Unplaced, for_each_shape_kind,
+    implicit, julia, rotation_degrees,
 };
 
 /// Writes the [`Scene`] struct, [`ShapeKind`], [`ShapeId`] and the methods
@@ -50,7 +53,7 @@ macro_rules! scene_with_shapes {
             pub materials: IndexMap<String, Material>,
             $(
                 #[serde(default, skip_serializing_if = "Vec::is_empty")]
-                pub $field: Vec<$kind>,
+                pub $field: Vec<Instance<$kind>>,
             )*
         }
 
@@ -96,6 +99,21 @@ macro_rules! scene_with_shapes {
             pub fn opaque(self) -> bool {
                 match self {
                     $(ShapeKind::$kind => <$kind as Shape>::OPAQUE,)*
+                }
+            }
+
+            /// The kind whose array of tables is `key` ("spheres").
+            pub fn from_key(key: &str) -> Option<ShapeKind> {
+                match key {
+                    $(stringify!($field) => Some(ShapeKind::$kind),)*
+                    _ => None,
+                }
+            }
+
+            /// Its keys whose arrays are not vectors of 3 ([`Shape::NOT_VECTORS`]).
+            pub fn not_vectors(self) -> &'static [&'static str] {
+                match self {
+                    $(ShapeKind::$kind => <$kind as Shape>::NOT_VECTORS,)*
                 }
             }
 
@@ -148,11 +166,11 @@ macro_rules! scene_with_shapes {
             impl ShapeList for $kind {
                 const KIND: ShapeKind = ShapeKind::$kind;
 
-                fn list(scene: &Scene) -> &[Self] {
+                fn list(scene: &Scene) -> &[Instance<Self>] {
                     &scene.$field
                 }
 
-                fn list_mut(scene: &mut Scene) -> &mut Vec<Self> {
+                fn list_mut(scene: &mut Scene) -> &mut Vec<Instance<Self>> {
                     &mut scene.$field
                 }
             }
@@ -174,13 +192,13 @@ macro_rules! scene_with_shapes {
             /// The material name of a shape, `None` if there is no such shape.
             pub fn shape_material(&self, id: ShapeId) -> Option<&Option<String>> {
                 match id {
-                    $(ShapeId::$kind(i) => self.$field.get(i).map(Shape::material),)*
+                    $(ShapeId::$kind(i) => self.$field.get(i).map(|s| &s.material),)*
                 }
             }
 
             pub fn shape_material_mut(&mut self, id: ShapeId) -> Option<&mut Option<String>> {
                 match id {
-                    $(ShapeId::$kind(i) => self.$field.get_mut(i).map(Shape::material_mut),)*
+                    $(ShapeId::$kind(i) => self.$field.get_mut(i).map(|s| &mut s.material),)*
                 }
             }
 
@@ -245,8 +263,8 @@ for_each_shape_kind!(scene_with_shapes);
 /// The array of one shape kind in a scene.
 pub trait ShapeList: Shape + Sized {
     const KIND: ShapeKind;
-    fn list(scene: &Scene) -> &[Self];
-    fn list_mut(scene: &mut Scene) -> &mut Vec<Self>;
+    fn list(scene: &Scene) -> &[Instance<Self>];
+    fn list_mut(scene: &mut Scene) -> &mut Vec<Instance<Self>>;
 }
 
 /// Deepest secondary ray a scene may ask for (`max_depth` in
@@ -409,7 +427,13 @@ impl Scene {
     pub fn mesh_files(text: &str) -> Vec<PathBuf> {
         let scene = document::Document::parse(text).and_then(|doc| parse::deserialize(&doc));
         scene
-            .map(|scene| scene.meshes.into_iter().filter_map(|m| m.file).collect())
+            .map(|scene| {
+                scene
+                    .meshes
+                    .into_iter()
+                    .filter_map(|m| m.shape.file)
+                    .collect()
+            })
             .unwrap_or_default()
     }
 
@@ -453,14 +477,16 @@ impl Scene {
     /// centre of its box on the target, scaled uniformly so that its longest
     /// side is [`NEW_MESH_SIZE`] of the [`Scene::view_scale`] (files come in
     /// any unit: the bunny is 0.15 across, the teapot 6). Returns its index.
-    pub fn add_mesh_in_view(&mut self, mut mesh: Mesh) -> usize {
-        mesh.placement = Placement::default();
-        let [lo, hi] = mesh.bounds();
+    pub fn add_mesh_in_view(&mut self, mesh: Mesh) -> usize {
+        let [lo, hi] = mesh.bounds(&Placement::default());
         let extent = (hi - lo).max_element().max(f64::MIN_POSITIVE);
         let size = NEW_MESH_SIZE * self.view_scale() / extent;
-        mesh.placement.scale = CubeSize::Uniform(size);
-        mesh.placement.translate = self.camera.to - 0.5 * (lo + hi) * size;
-        self.meshes.push(mesh);
+        let placement = Placement {
+            translate: self.camera.to - 0.5 * (lo + hi) * size,
+            scale: CubeSize::Uniform(size),
+            rotation: DVec3::ZERO,
+        };
+        self.meshes.push(Instance::new(mesh, placement));
         self.meshes.len() - 1
     }
 

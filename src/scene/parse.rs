@@ -8,7 +8,7 @@ use toml::de::{DeValue, ValueDeserializer};
 use super::MAX_DEPTH;
 use super::document::{Document, Node};
 use super::key_path::{KeyPath, Step};
-use super::{Scene, SceneError, Shape, for_each_shape_kind};
+use super::{Scene, SceneError, ShapeKind, for_each_shape_kind};
 
 /// The scene the document describes, not yet checked against the ranges of
 /// the rendering model (that is [`super::validate`]'s job).
@@ -21,17 +21,17 @@ pub(super) fn deserialize(doc: &Document<'_>) -> Result<Scene, SceneError> {
 
 /// glam reads the first three numbers of an array and ignores the rest, so
 /// `to = [0, 1, 0, 5]` would load without a word. Every array of numbers in
-/// a scene is a vector, and a vector has three; but for a Julia set's `c`, a
-/// quaternion of four (serde checks that length), and arrays of vectors (an
-/// implicit surface's `bounds`, whose vectors are checked one by one).
+/// a scene is a vector, and a vector has three; but for the keys a shape
+/// kind names in [`super::Shape::NOT_VECTORS`] (serde checks their length),
+/// and arrays of vectors (an implicit surface's `bounds`, whose vectors are
+/// checked one by one).
 fn check_vector_lengths(doc: &Document<'_>) -> Result<(), SceneError> {
     let wrong_length = |path: &KeyPath, node: &Node<'_>| match node.get_ref() {
         DeValue::Array(items) => {
             let of_tables_or_arrays = items
                 .iter()
                 .all(|v| v.get_ref().is_table() || v.get_ref().is_array());
-            let quaternion = path.to_string().starts_with("julias[") && path.ends_with_key("c");
-            items.len() != 3 && !of_tables_or_arrays && !quaternion
+            items.len() != 3 && !of_tables_or_arrays && !not_a_vector(path)
         }
         _ => false,
     };
@@ -44,28 +44,58 @@ fn check_vector_lengths(doc: &Document<'_>) -> Result<(), SceneError> {
     }
 }
 
+/// Whether `path` is a shape's key that its kind says is no vector
+/// ([`super::Shape::NOT_VECTORS`]).
+fn not_a_vector(path: &KeyPath) -> bool {
+    let [Step::Key(array), Step::Index(_), Step::Key(key)] = path.steps() else {
+        return false;
+    };
+    ShapeKind::from_key(array).is_some_and(|kind| kind.not_vectors().contains(&key.as_str()))
+}
+
 /// serde's error, with the key it is about, placed where serde points (for an
 /// unknown key that is the key, not its value). An empty span is how toml
 /// points at the root table, which has no place in the text.
 fn serde_error(doc: &Document<'_>, e: &toml::de::Error) -> SceneError {
-    match flattened_error(doc, &error_path(doc, e)) {
-        Some(at_key) => located_error(doc, &at_key),
-        None => located_error(doc, e),
+    let root = KeyPath::default();
+    let table = error_path(doc, e, &root);
+    if let Some(at_key) = flattened_error(doc, &table) {
+        return located_error(doc, &at_key, &table);
     }
+    // serde reads a flattened vector of 4 numbers as an error that a table
+    // read alone does not see (glam ignores the fourth): the check of the
+    // vectors' lengths names it.
+    if is_shape_table(doc, &table)
+        && let Err(wrong_length) = check_vector_lengths(doc)
+    {
+        return wrong_length;
+    }
+    located_error(doc, e, &root)
 }
 
-/// The path of the value or key that serde's error points at.
-fn error_path(doc: &Document<'_>, e: &toml::de::Error) -> KeyPath {
-    let span = e.span().filter(|span| !span.is_empty());
-    span.map(|span| doc.path_at(&span)).unwrap_or_default()
+/// Whether `path` is the table of a shape (`spheres[2]`).
+fn is_shape_table(doc: &Document<'_>, path: &KeyPath) -> bool {
+    let [Step::Key(array), Step::Index(_)] = path.steps() else {
+        return false;
+    };
+    let table = doc.get(path).is_some_and(|node| node.get_ref().is_table());
+    table && ShapeKind::from_key(array).is_some()
 }
 
-/// [`serde_error`] once flattened keys are accounted for.
-fn located_error(doc: &Document<'_>, e: &toml::de::Error) -> SceneError {
+/// The path of the value or key that serde's error points at, `otherwise`
+/// for an error that points nowhere.
+fn error_path(doc: &Document<'_>, e: &toml::de::Error, otherwise: &KeyPath) -> KeyPath {
     let span = e.span().filter(|span| !span.is_empty());
-    let path = error_path(doc, e);
-    if let Some(key) = unknown_flattened_key(&path, e.message()) {
-        return doc.error(&path.key(key), format!("unknown key `{key}`"));
+    span.map_or_else(|| otherwise.clone(), |span| doc.path_at(&span))
+}
+
+/// [`serde_error`] once flattened keys are accounted for; an error that
+/// points nowhere is about `otherwise`.
+fn located_error(doc: &Document<'_>, e: &toml::de::Error, otherwise: &KeyPath) -> SceneError {
+    let span = e.span().filter(|span| !span.is_empty());
+    let path = error_path(doc, e, otherwise);
+    if let Some((key, expected)) = unknown_flattened_key(&path, e.message()) {
+        return doc.error(&path.key(key), format!("unknown key `{key}`{expected}"));
     }
     let (path, message) = explain(doc, path, e.message());
     let error = doc.error(&path, message);
@@ -75,22 +105,22 @@ fn located_error(doc: &Document<'_>, e: &toml::de::Error) -> SceneError {
     }
 }
 
-/// serde reads a placement flattened into its shape (docs/implementation.md,
-/// "Adding a shape kind"), from keys that no longer know their place in the
-/// text, and blames an error in one on the shape's table at `table`. Read
-/// alone from the table, the shape's [`Shape::Flattened`] keys give the
-/// error at the key.
+/// serde reads a shape's kind, placement and material flattened into its
+/// table (`Instance`, docs/implementation.md, "Adding a shape kind"), from
+/// keys that no longer know their place in the text, and blames an error in
+/// one on the shape's table at `table`. Read alone from the table, each
+/// gives the error at the key.
 fn flattened_error(doc: &Document<'_>, table: &KeyPath) -> Option<toml::de::Error> {
     let [Step::Key(array), Step::Index(_)] = table.steps() else {
         return None;
     };
     let node = doc.get(table).filter(|node| node.get_ref().is_table())?;
-    let node = ValueDeserializer::from(node.clone());
+    let table = || ValueDeserializer::from(node.clone());
     macro_rules! read_flattened {
         ($($kind:ident: $field:ident),* $(,)?) => {
             match array.as_str() {
                 $(stringify!($field) => {
-                    <super::$kind as Shape>::Flattened::deserialize(node).err()
+                    super::Instance::<super::$kind>::error_at_key(table)
                 })*
                 _ => None,
             }
@@ -99,11 +129,12 @@ fn flattened_error(doc: &Document<'_>, table: &KeyPath) -> Option<toml::de::Erro
     for_each_shape_kind!(read_flattened)
 }
 
-/// The key of serde's "unknown field `key`" when serde blames the table
-/// `path` (a shape with flattened keys) rather than the key.
-fn unknown_flattened_key<'m>(path: &KeyPath, message: &'m str) -> Option<&'m str> {
+/// The key of serde's "unknown field `key`" (and the rest of the message,
+/// the keys expected) when the error blames the table `path` (a shape with
+/// flattened keys) rather than the key.
+fn unknown_flattened_key<'m>(path: &KeyPath, message: &'m str) -> Option<(&'m str, &'m str)> {
     let (key, rest) = message.strip_prefix("unknown field `")?.split_once('`')?;
-    (rest.is_empty() && !path.ends_with_key(key)).then_some(key)
+    (!path.ends_with_key(key)).then_some((key, rest))
 }
 
 /// The key and message to show for serde's `message` about `path`.

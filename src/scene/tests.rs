@@ -271,7 +271,7 @@ fn numbers_may_be_written_as_integers() {
     );
     assert_eq!(scene.spheres[0].radius, 1.0);
     assert_eq!(scene.spheres[0].center, DVec3::new(1.0, 2.0, 3.0));
-    assert_eq!(scene.cubes[0].size, CubeSize::Uniform(2.0));
+    assert_eq!(scene.cubes[0].placement.scale, CubeSize::Uniform(2.0));
     assert_eq!(scene.render.exposure, 2.0);
     assert_eq!(
         scene.materials["m"].checker.as_ref().map(|c| c.size),
@@ -315,6 +315,29 @@ fn vectors_must_have_three_numbers() {
         &vector("render.ambient", "[0.1, 0.1, 0.1, 0.1]"),
         "render.ambient",
         "must be an array of 3 numbers, got [0.1, 0.1, 0.1, 0.1]",
+    );
+}
+
+/// A Julia set's `c` is a quaternion of four numbers (its kind says so,
+/// `Shape::NOT_VECTORS`); its other arrays, and a `c` of 3, are not.
+#[test]
+fn only_the_keys_a_kind_names_may_hold_other_than_three_numbers() {
+    let julia = "[[julias]]\nc = [0.1, 0.2, 0.3, 0.4]\n";
+    assert_eq!(loads(julia).julias[0].c, [0.1, 0.2, 0.3, 0.4]);
+    rejects(
+        &format!("{julia}translate = [0, 0, 0, 0]\n"),
+        "julias[0].translate",
+        "must be an array of 3 numbers, got [0, 0, 0, 0]",
+    );
+    rejects(
+        "[[spheres]]\ncenter = [0, 0, 0, 1]\nradius = 1\n",
+        "spheres[0].center",
+        "must be an array of 3 numbers, got [0, 0, 0, 1]",
+    );
+    rejects_with(
+        "[[julias]]\nc = [0.1, 0.2, 0.3]\n",
+        "julias[0].c",
+        "invalid length 3",
     );
 }
 
@@ -677,7 +700,8 @@ fn wrong_and_unknown_placement_keys_are_named_with_their_line() {
     let e = rejects(
         "[[julias]]\nc = [0, 0, 0, 0]\nscael = 2\n",
         "julias[0].scael",
-        "unknown key `scael`",
+        "unknown key `scael`, expected one of `c`, `slice`, `iterations`, `epsilon`, \
+         `footprint`, `translate`, `scale`, `rotation`, `material`",
     );
     assert_eq!(e.line, Some(3));
     for (text, key) in [
@@ -848,8 +872,11 @@ fn material_defaults_follow_the_spec() {
 #[test]
 fn cube_rotation_defaults_to_none() {
     let cube = &loads("[[cubes]]\ncenter = [0, 0, 0]\nsize = [1, 2, 3]\n").cubes[0];
-    assert_eq!(cube.rotation, DVec3::ZERO);
-    assert_eq!(cube.size, CubeSize::PerAxis(DVec3::new(1.0, 2.0, 3.0)));
+    assert_eq!(cube.placement.rotation, DVec3::ZERO);
+    assert_eq!(
+        cube.placement.scale,
+        CubeSize::PerAxis(DVec3::new(1.0, 2.0, 3.0))
+    );
 }
 
 #[test]
@@ -945,9 +972,9 @@ fn assert_round_trip_at(scene: &Scene, origin: Option<&Path>) {
 #[test]
 fn every_feature_round_trips() {
     let scene = loads(FULL);
-    assert_eq!(scene.cubes[0].size, CubeSize::Uniform(1.0));
+    assert_eq!(scene.cubes[0].placement.scale, CubeSize::Uniform(1.0));
     assert_eq!(
-        scene.cubes[1].size,
+        scene.cubes[1].placement.scale,
         CubeSize::PerAxis(DVec3::new(1.0, 2.0, 3.0))
     );
     assert!(scene.materials["floor"].checker.is_some());
@@ -1046,8 +1073,8 @@ mod properties {
     use proptest::sample::Index;
 
     use super::super::{
-        Camera, Checker, Cube, CubeSize, Implicit, Julia, Light, Material, Placement, Plane,
-        RenderSettings, Scene, Sphere, Torus,
+        Camera, Centered, Checker, Cube, CubeSize, Implicit, Instance, Julia, Light, Material,
+        Placement, Plane, RenderSettings, Scene, Sphere, Torus, Unplaced,
     };
     use super::FULL;
 
@@ -1155,34 +1182,38 @@ mod properties {
             let materials: IndexMap<String, Material> = materials.into_iter().collect();
             let names: Vec<String> = materials.keys().cloned().collect();
             let spheres = spheres.into_iter().map(|(center, radius, m)| {
-                Sphere { center, radius, material: pick(&names, m) }
+                Instance { shape: Sphere { center, radius }, placement: Unplaced, material: pick(&names, m) }
             }).collect();
             let planes = planes.into_iter().map(|(point, normal, m)| {
-                Plane { point, normal, material: pick(&names, m) }
+                Instance { shape: Plane { point, normal }, placement: Unplaced, material: pick(&names, m) }
             }).collect();
-            let cubes = cubes.into_iter().map(|(center, size, rotation, m)| {
-                Cube { center, size, rotation, material: pick(&names, m) }
+            let cubes = cubes.into_iter().map(|(translate, scale, rotation, m)| {
+                let placement = Centered(Placement { translate, scale, rotation });
+                Instance { shape: Cube {}, placement, material: pick(&names, m) }
             }).collect();
-            let tori = tori.into_iter().map(|(major, translate, scale, m)| Torus {
-                major_radius: major,
-                minor_radius: 0.5 * major,
+            let tori = tori.into_iter().map(|(major, translate, scale, m)| Instance {
+                shape: Torus { major_radius: major, minor_radius: 0.5 * major },
                 placement: Placement { translate, scale, rotation: DVec3::new(10.0, 20.0, 30.0) },
                 material: pick(&names, m),
             }).collect();
-            let implicits = implicits.into_iter().map(|(which, translate, steps, m)| Implicit {
-                f: ["x^2 + y^2 + z^2 - 1", "sin(x) * cos(y) - z", "max(abs(x), y) - 0.5"][which]
-                    .to_string(),
-                bounds: [DVec3::splat(-1.0), DVec3::new(1.0, 2.0, 3.0)],
-                steps,
+            let implicits = implicits.into_iter().map(|(which, translate, steps, m)| Instance {
+                shape: Implicit {
+                    f: ["x^2 + y^2 + z^2 - 1", "sin(x) * cos(y) - z", "max(abs(x), y) - 0.5"][which]
+                        .to_string(),
+                    bounds: [DVec3::splat(-1.0), DVec3::new(1.0, 2.0, 3.0)],
+                    steps,
+                },
                 placement: Placement { translate, scale: 2.0, rotation: DVec3::ZERO },
                 material: pick(&names, m),
             }).collect();
-            let julias = julias.into_iter().map(|(c, iterations, epsilon, m)| Julia {
-                c: [c, -c, 0.5 * c, 0.25],
-                slice: c,
-                iterations,
-                epsilon,
-                footprint: iterations % 2 == 0,
+            let julias = julias.into_iter().map(|(c, iterations, epsilon, m)| Instance {
+                shape: Julia {
+                    c: [c, -c, 0.5 * c, 0.25],
+                    slice: c,
+                    iterations,
+                    epsilon,
+                    footprint: iterations % 2 == 0,
+                },
                 placement: Placement::default(),
                 material: pick(&names, m),
             }).collect();
@@ -1238,7 +1269,9 @@ fn a_mesh_from_bytes_is_inline_and_its_scene_text_carries_it() {
     assert_eq!(mesh.positions.len(), 4);
     assert_eq!(mesh.triangles.len(), 2);
     let mut scene = loads(CAMERA);
-    scene.meshes.push(mesh);
+    scene
+        .meshes
+        .push(super::Instance::new(mesh, Placement::default()));
     assert_round_trip(&scene);
 }
 

@@ -120,7 +120,7 @@ impl GpuVariant {
         height: u32,
     ) -> Result<GpuRender, RenderError> {
         // A scene with its own functions needs pipelines with them compiled in.
-        let functions = crate::gpu::shapes::implicit::functions(scene);
+        let functions = crate::scene::implicit::functions(scene);
         if !functions.is_empty() {
             let own = Self::with_functions(gpu, &self.source, self.robust, functions)?;
             return own.render_with_these_pipelines(gpu, scene, width, height);

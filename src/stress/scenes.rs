@@ -167,9 +167,10 @@ pub fn round_to_f32(scene: &Scene) -> Scene {
         plane.normal = v(plane.normal);
     }
     for cube in &mut s.cubes {
-        cube.center = at(cube.center);
-        cube.size = CubeSize::PerAxis(v(cube.size.edges()));
-        cube.rotation = v(cube.rotation);
+        let p = &mut cube.placement;
+        p.translate = at(p.translate);
+        p.scale = CubeSize::PerAxis(v(p.scale.edges()));
+        p.rotation = v(p.rotation);
     }
     let placement = |p: &mut Placement| {
         p.translate = at(p.translate);
@@ -235,8 +236,9 @@ pub fn scaled(scene: &Scene, factor: f64) -> Scene {
         plane.point *= factor;
     }
     for cube in &mut s.cubes {
-        cube.center *= factor;
-        cube.size = match cube.size {
+        let p = &mut cube.placement;
+        p.translate *= factor;
+        p.scale = match p.scale {
             CubeSize::Uniform(e) => CubeSize::Uniform(e * factor),
             CubeSize::PerAxis(e) => CubeSize::PerAxis(e * factor),
         };
@@ -403,8 +405,8 @@ mod tests {
             let mut actual = load(name);
             // The files spell a cube size as a number or a list; compare edges.
             for (a, e) in actual.cubes.iter_mut().zip(&expected.cubes) {
-                if a.size.edges() == e.size.edges() {
-                    a.size = e.size;
+                if a.placement.scale.edges() == e.placement.scale.edges() {
+                    a.placement.scale = e.placement.scale;
                 }
             }
             assert_eq!(actual, expected, "{name}");

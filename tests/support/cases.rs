@@ -195,5 +195,5 @@ pub fn cube32(case: &BoxCase) -> r32::Cube {
 }
 
 pub fn cube64(case: &BoxCase) -> raysandbox::reference::intersect::Cube {
-    raysandbox::reference::intersect::Cube::new(case.centre, 2.0 * case.half, case.rotation, 0)
+    raysandbox::reference::intersect::Cube::new(case.centre, 2.0 * case.half, case.rotation)
 }

@@ -5,23 +5,8 @@
 
 use glam::DVec3;
 
-use super::shapes::{self, Placement};
+use super::shapes::{self, InView};
 use crate::scene::{Camera, Checker, Light, Material, Mesh, Scene, ShapeId, ShapeKind};
-
-/// Unit vectors to the right of the view and up (the camera's `up`), the
-/// frame in which new shapes and lights are placed so that they appear beside
-/// and above the target. Falls back to world axes for a degenerate camera.
-fn camera_frame(camera: &Camera) -> (DVec3, DVec3) {
-    let back = (camera.from - camera.to)
-        .try_normalize()
-        .unwrap_or(DVec3::Z);
-    let up = camera.up.try_normalize().unwrap_or(DVec3::Y);
-    let right = up
-        .cross(back)
-        .try_normalize()
-        .unwrap_or_else(|| back.any_orthonormal_vector());
-    (right, up)
-}
 
 /// A power of ten near a fifth of the scene scale: a round size for new
 /// checker cells (1 for the bundled scenes).
@@ -112,9 +97,10 @@ pub(super) fn rename_material(scene: &mut Scene, old: &str, new: &str) -> Result
     Ok(())
 }
 
-/// Appends a white light of intensity 1 above the target, one scene scale up.
+/// Appends a white light of intensity 1 above the target, one scene scale
+/// up (the camera's `up`).
 pub(super) fn add_light(scene: &mut Scene) {
-    let (_, up) = camera_frame(&scene.camera);
+    let up = camera_up(&scene.camera);
     scene.lights.push(Light {
         position: scene.camera.to + up * scene.view_scale(),
         color: DVec3::ONE,
@@ -151,10 +137,16 @@ pub(super) fn checked_selection(scene: &Scene, selection: Option<ShapeId>) -> Op
     selection.filter(|&id| scene.shape_material(id).is_some())
 }
 
-/// Where new shapes go in this scene's view.
-fn placement(scene: &Scene) -> Placement {
-    let (right, up) = camera_frame(&scene.camera);
-    Placement {
+/// The camera's `up`, unit length (a floor faces it), or +y for a zero one.
+fn camera_up(camera: &Camera) -> DVec3 {
+    camera.up.try_normalize().unwrap_or(DVec3::Y)
+}
+
+/// Where new shapes go in this scene's view: beside the target along the
+/// film's right (`Camera::film`), above it along the camera's `up`.
+fn in_view(scene: &Scene) -> InView {
+    let (right, up) = (scene.camera.film().u, camera_up(&scene.camera));
+    InView {
         target: scene.camera.to,
         right,
         up,
@@ -165,7 +157,7 @@ fn placement(scene: &Scene) -> Placement {
 /// Appends a new shape of `kind` near the target (each kind's
 /// `EditShape::new_near`); returns its id.
 pub(super) fn add_shape(scene: &mut Scene, kind: ShapeKind) -> ShapeId {
-    let at = placement(scene);
+    let at = in_view(scene);
     shapes::add(scene, kind, &at)
 }
 
@@ -179,7 +171,7 @@ pub(super) fn add_mesh(scene: &mut Scene, mesh: Mesh) -> ShapeId {
 /// the view by its own size (a plane: along its normal) so that both stay
 /// visible, and selects the copy.
 pub(super) fn duplicate_selected(scene: &mut Scene, selection: &mut Option<ShapeId>) {
-    let at = placement(scene);
+    let at = in_view(scene);
     let Some(id) = checked_selection(scene, *selection) else {
         return;
     };
@@ -211,7 +203,6 @@ fn selection_after_removal(selected: ShapeId, removed: ShapeId) -> Option<ShapeI
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::scene::Shape;
 
     fn scene() -> Scene {
         let text = r#"
@@ -380,7 +371,7 @@ mod tests {
         let mut selection = Some(ShapeId::Cube(0));
         duplicate_selected(&mut s, &mut selection);
         assert_eq!(selection, Some(ShapeId::Cube(1)));
-        let offset = s.cubes[1].center - s.cubes[0].center;
+        let offset = s.cubes[1].placement.translate - s.cubes[0].placement.translate;
         assert!(
             (offset - DVec3::new(2.0, 0.0, 0.0)).length() < 1e-12,
             "{offset}"
@@ -421,7 +412,7 @@ mod tests {
         assert!(s.spheres[3].radius > 0.0);
         assert!((s.spheres[3].center - s.camera.to).length() < scale);
         assert_eq!(s.planes[1].normal, DVec3::Y);
-        assert!((s.cubes[1].center - s.camera.to).length() < scale);
+        assert!((s.cubes[1].placement.translate - s.camera.to).length() < scale);
         add_light(&mut s);
         let light = s.lights.last().unwrap();
         assert!(light.position.y > s.camera.to.y);
@@ -463,8 +454,7 @@ mod tests {
             DVec3::new(10.0, 2.0, 0.0),
             DVec3::new(10.0, 0.0, 1.0),
         ];
-        let mut mesh = Mesh::inline(&positions, &[[0, 1, 2], [0, 2, 3]]).unwrap();
-        mesh.placement.translate = DVec3::splat(100.0);
+        let mesh = Mesh::inline(&positions, &[[0, 1, 2], [0, 2, 3]]).unwrap();
         let id = add_mesh(&mut s, mesh);
         assert_eq!(id, ShapeId::Mesh(0));
         let [lo, hi] = s.meshes[0].bounds();

@@ -1,50 +1,81 @@
 //! A user's implicit surface as `shaders/shapes/implicit.wgsl` reads it,
-//! and the scene's distinct functions, which the shader gets as generated
-//! WGSL (`src/gpu/shaders.rs`).
+//! and the scene's distinct functions (`scene::implicit::functions`) as
+//! generated WGSL ([`functions_part`], joined to the source by
+//! `src/gpu/shaders.rs`).
 
-use bytemuck::{Pod, Zeroable};
+use bytemuck::Zeroable;
 
-use super::{Frame, PackShape, f32x3, placed};
-use crate::scene::{self, Scene};
+use super::{Frame, PackShape, f32x3, packed_struct, placement};
+use crate::scene::{self, Instance, Scene};
 
-#[repr(C)]
-#[derive(Debug, Clone, Copy, PartialEq, Pod, Zeroable)]
-pub struct Implicit {
-    pub center: [f32; 3],
-    pub scale: f32,
-    /// `mat3x3<f32>`: three columns, each padded to 16 bytes.
-    pub rotation: [[f32; 4]; 3],
-    pub bounds_min: [f32; 3],
-    /// Index into [`functions`] of the scene.
-    pub function: u32,
-    pub bounds_max: [f32; 3],
-    pub steps: u32,
-    pub material: u32,
-    pub _pad0: u32,
-    pub _pad1: u32,
-    pub _pad2: u32,
-}
-
-/// The scene's distinct functions (as written), in order of first use: the
-/// shader has one WGSL function per entry, and a scene whose functions are
-/// the same set reuses its pipeline.
-pub fn functions(scene: &Scene) -> Vec<String> {
-    let mut distinct: Vec<String> = Vec::new();
-    for implicit in &scene.implicits {
-        if !distinct.contains(&implicit.f) {
-            distinct.push(implicit.f.clone());
-        }
+packed_struct! {
+    pub struct Implicit {
+        pub center: [f32; 3],
+        pub scale: f32,
+        /// `mat3x3<f32>`: three columns, each padded to 16 bytes.
+        pub rotation: [[f32; 4]; 3],
+        pub bounds_min: [f32; 3],
+        /// Index into the scene's [`scene::implicit::functions`].
+        pub function: u32,
+        pub bounds_max: [f32; 3],
+        pub steps: u32,
+        pub material: u32,
+        pub _pad0: u32,
+        pub _pad1: u32,
+        pub _pad2: u32,
     }
-    distinct
 }
 
-impl PackShape for Implicit {
-    type Source = scene::Implicit;
+/// Name of the part that holds the implicit surfaces' functions.
+pub(in crate::gpu) const FUNCTIONS: &str = "(generated) implicit functions";
+
+/// The scene's functions of x, y, z as WGSL (`src/expr`): `implicit_<i>`
+/// and its dual twin per function, and the two functions
+/// `shaders/shapes/implicit.wgsl` calls, which pick one by index. A function
+/// that does not parse (a scene that failed validation never gets here)
+/// becomes the constant 1: no surface.
+pub(in crate::gpu) fn functions_part(functions: &[String]) -> (String, String) {
+    let mut text = String::from(
+        "// The scene's implicit functions, written by raysandbox (src/gpu/shapes/implicit.rs).\n",
+    );
+    let mut values = String::new();
+    let mut gradients = String::new();
+    for (i, source) in functions.iter().enumerate() {
+        let f = crate::expr::Function::parse(source)
+            .unwrap_or_else(|_| crate::expr::Function::parse("1").expect("a constant parses"));
+        text += &f.to_wgsl(&format!("implicit_{i}"));
+        values += &format!("        case {i}u: {{ return implicit_{i}(p); }}\n");
+        gradients += &format!("        case {i}u: {{ return implicit_{i}_dual(p).yzw; }}\n");
+    }
+    text += &format!(
+        "\n/// f(p) of the scene's function number `function`.\n\
+         fn implicit_value(function: u32, p: vec3<f32>) -> f32 {{\n\
+         \x20   switch function {{\n{values}\
+         \x20       default: {{ return 1.0; }}\n\
+         \x20   }}\n\
+         }}\n\n\
+         /// grad f(p), exact (dual numbers).\n\
+         fn implicit_gradient(function: u32, p: vec3<f32>) -> vec3<f32> {{\n\
+         \x20   switch function {{\n{gradients}\
+         \x20       default: {{ return vec3(0.0); }}\n\
+         \x20   }}\n\
+         }}\n"
+    );
+    (FUNCTIONS.to_string(), text)
+}
+
+impl PackShape for scene::Implicit {
+    type Packed = Implicit;
     const WGSL: &'static str = include_str!("../../../shaders/shapes/implicit.wgsl");
 
-    fn pack(scene: &Scene, frame: &Frame, i: &scene::Implicit) -> Self {
-        let (center, scale, rotation) = placed::pack(frame, &i.placement);
-        let function = functions(scene)
+    fn pack(
+        scene: &Scene,
+        frame: &Frame,
+        i: &Instance<scene::Implicit>,
+        material: u32,
+    ) -> Implicit {
+        let (center, scale, rotation) = placement::pack(frame, &i.placement);
+        let function = scene::implicit::functions(scene)
             .iter()
             .position(|f| *f == i.f)
             .expect("every implicit's function is in the set") as u32;
@@ -56,7 +87,7 @@ impl PackShape for Implicit {
             function,
             bounds_max: f32x3(i.bounds[1]),
             steps: i.steps,
-            material: scene.material_slot(i.material.as_deref()),
+            material,
             ..Zeroable::zeroed()
         }
     }

@@ -1,35 +1,33 @@
 //! A quaternion Julia set as `shaders/shapes/julia.wgsl` reads it.
 
-use bytemuck::{Pod, Zeroable};
+use super::{Frame, PackShape, packed_struct, placement};
+use crate::scene::{self, Instance, Scene};
 
-use super::{Frame, PackShape, placed};
-use crate::scene::{self, Scene};
-
-#[repr(C)]
-#[derive(Debug, Clone, Copy, PartialEq, Pod, Zeroable)]
-pub struct Julia {
-    pub center: [f32; 3],
-    pub scale: f32,
-    /// `mat3x3<f32>`: three columns, each padded to 16 bytes.
-    pub rotation: [[f32; 4]; 3],
-    pub c: [f32; 4],
-    pub slice: f32,
-    pub iterations: u32,
-    pub epsilon: f32,
-    pub material: u32,
-    /// 1: epsilon grows with the pixel footprint.
-    pub footprint: u32,
-    pub _pad0: u32,
-    pub _pad1: u32,
-    pub _pad2: u32,
+packed_struct! {
+    pub struct Julia {
+        pub center: [f32; 3],
+        pub scale: f32,
+        /// `mat3x3<f32>`: three columns, each padded to 16 bytes.
+        pub rotation: [[f32; 4]; 3],
+        pub c: [f32; 4],
+        pub slice: f32,
+        pub iterations: u32,
+        pub epsilon: f32,
+        pub material: u32,
+        /// 1: epsilon grows with the pixel footprint.
+        pub footprint: u32,
+        pub _pad0: u32,
+        pub _pad1: u32,
+        pub _pad2: u32,
+    }
 }
 
-impl PackShape for Julia {
-    type Source = scene::Julia;
+impl PackShape for scene::Julia {
+    type Packed = Julia;
     const WGSL: &'static str = include_str!("../../../shaders/shapes/julia.wgsl");
 
-    fn pack(scene: &Scene, frame: &Frame, j: &scene::Julia) -> Self {
-        let (center, scale, rotation) = placed::pack(frame, &j.placement);
+    fn pack(_: &Scene, frame: &Frame, j: &Instance<scene::Julia>, material: u32) -> Julia {
+        let (center, scale, rotation) = placement::pack(frame, &j.placement);
         Julia {
             center,
             scale,
@@ -38,7 +36,7 @@ impl PackShape for Julia {
             slice: j.slice as f32,
             iterations: j.iterations,
             epsilon: j.epsilon as f32,
-            material: scene.material_slot(j.material.as_deref()),
+            material,
             footprint: u32::from(j.footprint),
             _pad0: 0,
             _pad1: 0,

@@ -6,34 +6,38 @@
 
 use std::sync::Arc;
 
-use super::placed::columns;
-use super::{Frame, PackShape, Words, round_out};
+use super::placement::columns;
+use super::{Frame, PackShape, Words, material_slot, packed_struct, round_out};
 use crate::bvh::mesh_bvh;
-use crate::scene::{self, Geometry, PerGeometry, Scene, Shape};
-use bytemuck::{Pod, Zeroable};
+use crate::gpu::ShaderOptions;
+use crate::scene::{self, Geometry, Instance, PerGeometry, Scene};
 
-#[repr(C)]
-#[derive(Debug, Clone, Copy, PartialEq, Pod, Zeroable)]
-pub struct Mesh {
-    /// `mat3x3<f32>`: three columns, each padded to 16 bytes.
-    pub to_local: [[f32; 4]; 3],
-    pub origin: [f32; 3],
-    pub material: u32,
-    pub normal_to_world: [[f32; 4]; 3],
-    pub to_world: [[f32; 4]; 3],
-    pub node_start: u32,
-    pub tri_start: u32,
-    pub normal_start: u32,
-    pub error_scale: f32,
+packed_struct! {
+    pub struct Mesh {
+        /// `mat3x3<f32>`: three columns, each padded to 16 bytes.
+        pub to_local: [[f32; 4]; 3],
+        pub origin: [f32; 3],
+        pub material: u32,
+        pub normal_to_world: [[f32; 4]; 3],
+        pub to_world: [[f32; 4]; 3],
+        pub node_start: u32,
+        pub tri_start: u32,
+        pub normal_start: u32,
+        pub error_scale: f32,
+    }
 }
 
-impl PackShape for Mesh {
-    type Source = scene::Mesh;
+impl PackShape for scene::Mesh {
+    type Packed = Mesh;
     const WGSL: &'static str = include_str!("../../../shaders/shapes/mesh.wgsl");
     const DATA: Option<&'static str> = Some("mesh_data");
 
+    fn constants(options: &ShaderOptions) -> Vec<(&'static str, u32)> {
+        vec![("TRIANGLE_TEST", options.triangles.number())]
+    }
+
     /// The placement; the data offsets are set by [`PackShape::pack_kind`].
-    fn pack(scene: &Scene, frame: &Frame, m: &scene::Mesh) -> Self {
+    fn pack(_: &Scene, frame: &Frame, m: &Instance<scene::Mesh>, material: u32) -> Mesh {
         let linear = m.placement.linear();
         let to_local = linear.inverse();
         let [lo, hi] = m.bounds();
@@ -44,7 +48,7 @@ impl PackShape for Mesh {
         Mesh {
             to_local: columns(to_local),
             origin: frame.point(m.placement.translate),
-            material: scene.material_slot(m.material.as_deref()),
+            material,
             normal_to_world: columns(to_local.transpose()),
             to_world: columns(linear),
             node_start: 0,
@@ -57,7 +61,7 @@ impl PackShape for Mesh {
     /// Each geometry's data goes into `mesh_data` once, however many meshes
     /// show it. A scene with one geometry shares its packed block as is, so
     /// that moving the mesh copies no triangle.
-    fn pack_kind(scene: &Scene, frame: &Frame) -> (Vec<Self>, Words) {
+    fn pack_kind(scene: &Scene, frame: &Frame) -> (Vec<Mesh>, Words) {
         let mut blocks: Vec<(*const Geometry, Arc<PackedGeometry>, u32)> = Vec::new();
         let mut next = 0;
         let meshes = scene
@@ -80,7 +84,7 @@ impl PackShape for Mesh {
                     node_start: start,
                     tri_start: start + block.tri_offset,
                     normal_start: block.normal_offset.map_or(0, |offset| start + offset),
-                    ..Mesh::pack(scene, frame, m)
+                    ..Self::pack(scene, frame, m, material_slot(scene, m))
                 }
             })
             .collect();
@@ -205,8 +209,8 @@ mod tests {
             "the triangle data is shared, not packed again"
         );
         assert_ne!(
-            before.shapes_of::<Mesh>()[0],
-            after.shapes_of::<Mesh>()[0],
+            before.shapes_of::<scene::Mesh>()[0],
+            after.shapes_of::<scene::Mesh>()[0],
             "the placement is repacked"
         );
     }

@@ -1,51 +1,57 @@
 //! One file per shape kind: the `#[repr(C)]` twin of the kind's WGSL struct
-//! (field for field, same names), how one scene shape is packed into it, and
-//! the kind's WGSL file (`shaders/shapes/<kind>.wgsl`). Adding a kind here is
-//! one file plus one line in [`for_each_packed_shape!`] (see
-//! docs/implementation.md, "Adding a shape kind"); the buffers, bindings,
-//! counts, feature flags and WGSL loops follow from [`kinds`].
+//! (field for field, same names, written with [`packed_struct!`]), how one
+//! scene shape is packed into it ([`PackShape`], implemented on the scene's
+//! kind), and the kind's WGSL file (`shaders/shapes/<kind>.wgsl`). Adding a
+//! kind here is one file (see docs/implementation.md, "Adding a shape
+//! kind"); the buffers, bindings, counts, feature flags, WGSL loops and the
+//! layout test follow from the registry `for_each_shape_kind!` through
+//! [`kinds`].
 
 use std::sync::Arc;
 
 use bytemuck::{Pod, Zeroable};
 use glam::DVec3;
 
-use crate::scene::{Camera, Scene, ShapeKind, ShapeList};
+use super::ShaderOptions;
+use crate::scene::{Camera, Instance, Scene, ShapeKind, ShapeList, for_each_shape_kind};
 
 mod cube;
 pub mod implicit;
 mod julia;
 mod mesh;
-mod placed;
+mod placement;
 mod plane;
 mod sphere;
 mod torus;
 
-pub use cube::Cube;
-pub use implicit::Implicit;
-pub use julia::Julia;
-pub use mesh::Mesh;
-pub use plane::Plane;
-pub use sphere::Sphere;
-pub use torus::Torus;
-
-/// The registry of packed shape kinds: calls `$m!` with `(Rust type, WGSL
-/// struct name)` for every kind, so that code that must visit every kind
-/// (today: the layout test) cannot forget one.
+/// A `#[repr(C)]` struct that mirrors a WGSL struct, with the list of its
+/// fields and their offsets ([`Layout`]), which the layout test compares
+/// with naga's view of the shader.
 #[macro_export]
 #[doc(hidden)]
-macro_rules! for_each_packed_shape {
-    ($m:ident) => {
-        $m!(Sphere, "Sphere");
-        $m!(Plane, "Plane");
-        $m!(Cube, "Cube");
-        $m!(Torus, "Torus");
-        $m!(Implicit, "Implicit");
-        $m!(Julia, "Julia");
-        $m!(Mesh, "Mesh");
+macro_rules! packed_struct {
+    ($(#[$meta:meta])* pub struct $name:ident {
+        $($(#[$field_meta:meta])* pub $field:ident: $ty:ty,)*
+    }) => {
+        $(#[$meta])*
+        #[repr(C)]
+        #[derive(Debug, Clone, Copy, PartialEq, bytemuck::Pod, bytemuck::Zeroable)]
+        pub struct $name {
+            $($(#[$field_meta])* pub $field: $ty,)*
+        }
+
+        impl $crate::gpu::shapes::Layout for $name {
+            const FIELDS: &[(&str, usize)] = &[$((stringify!($field), std::mem::offset_of!($name, $field))),*];
+        }
     };
 }
-pub use for_each_packed_shape;
+pub use packed_struct;
+
+/// The fields of a struct the shader reads, in declaration order, with
+/// their byte offsets.
+pub trait Layout: Pod {
+    const FIELDS: &[(&str, usize)];
+}
 
 /// The frame that packed positions are measured in. Positions are made
 /// relative to `origin` in f64 *before* rounding to f32, so that a scene far
@@ -77,18 +83,20 @@ impl Frame {
     }
 }
 
-/// A GPU struct packed from one scene shape of its kind.
-pub trait PackShape: Pod + Zeroable {
-    /// The scene's description of one shape of this kind.
-    type Source: ShapeList;
+/// How the shapes of one scene kind reach the GPU: implemented on the
+/// scene's kind in the kind's file of this module.
+pub trait PackShape: ShapeList {
+    /// The twin of the kind's WGSL struct, of the same name.
+    type Packed: Layout;
 
     /// The kind's WGSL: its struct and `hit_<kind>` (embedded; hot reload
     /// reads `shapes/<kind>.wgsl` of the shader folder instead).
     const WGSL: &'static str;
 
-    /// Packs `shape`; `scene` resolves its material name to a slot, `frame`
-    /// says where positions are measured from.
-    fn pack(scene: &Scene, frame: &Frame, shape: &Self::Source) -> Self;
+    /// Packs `shape` with the slot of its material (looked up once for
+    /// every kind); `scene` has what a kind's shapes share (an implicit's
+    /// function list), `frame` says where positions are measured from.
+    fn pack(scene: &Scene, frame: &Frame, shape: &Instance<Self>, material: u32) -> Self::Packed;
 
     /// The name of the kind's second buffer, an `array<vec4<u32>>` of data
     /// its shapes share (a mesh's triangles and BVH), if it has one.
@@ -101,15 +109,27 @@ pub trait PackShape: Pod + Zeroable {
     /// (docs/implementation.md, "Torus").
     const OCCLUDES: bool = false;
 
+    /// The kind's own pipeline constants (`override` in its WGSL) and their
+    /// values for `options`: how it chooses between methods by name (a
+    /// torus's `TORUS_METHOD`, a mesh's `TRIANGLE_TEST`).
+    fn constants(_options: &ShaderOptions) -> Vec<(&'static str, u32)> {
+        Vec::new()
+    }
+
     /// Packs every shape of the kind and the second buffer's contents
     /// (empty without [`PackShape::DATA`]); by default each shape alone.
-    fn pack_kind(scene: &Scene, frame: &Frame) -> (Vec<Self>, Words) {
-        let shapes = Self::Source::list(scene)
+    fn pack_kind(scene: &Scene, frame: &Frame) -> (Vec<Self::Packed>, Words) {
+        let shapes = Self::list(scene)
             .iter()
-            .map(|s| Self::pack(scene, frame, s))
+            .map(|s| Self::pack(scene, frame, s, material_slot(scene, s)))
             .collect();
         (shapes, Words::default())
     }
+}
+
+/// The slot of a shape's material in the material buffer.
+pub fn material_slot<K: ShapeList>(scene: &Scene, shape: &Instance<K>) -> u32 {
+    scene.material_slot(shape.material.as_deref())
 }
 
 /// A buffer's contents as `u32` words, shared: a kind's second buffer (a
@@ -139,7 +159,7 @@ pub(crate) fn f32x3(v: DVec3) -> [f32; 3] {
 }
 
 /// A packed kind as the shader composer and the buffers see it.
-#[derive(Debug, Clone, Copy, PartialEq)]
+#[derive(Debug, Clone, Copy)]
 pub struct KindInfo {
     pub kind: ShapeKind,
     /// The WGSL struct name, e.g. `Sphere`.
@@ -150,6 +170,12 @@ pub struct KindInfo {
     pub data: Option<&'static str>,
     /// Whether shadow rays call its `occludes_<kind>` ([`PackShape::OCCLUDES`]).
     pub occludes: bool,
+    /// Its pipeline constants for given options ([`PackShape::constants`]).
+    pub constants: fn(&ShaderOptions) -> Vec<(&'static str, u32)>,
+    /// The packed struct's fields and offsets ([`Layout`]).
+    pub fields: &'static [(&'static str, usize)],
+    /// The packed struct's size in bytes.
+    pub size: usize,
 }
 
 impl KindInfo {
@@ -172,20 +198,21 @@ pub fn has_flag(kind: ShapeKind) -> String {
 /// Every packed kind, in registry order (which is also the order of their
 /// buffers' bindings, from `FIRST_SHAPE_BINDING`).
 pub fn kinds() -> Vec<KindInfo> {
-    let mut kinds = Vec::new();
     macro_rules! info {
-        ($t:ident, $wgsl:literal) => {
-            kinds.push(KindInfo {
-                kind: <<$t as PackShape>::Source as ShapeList>::KIND,
-                wgsl_struct: $wgsl,
-                wgsl: <$t as PackShape>::WGSL,
-                data: <$t as PackShape>::DATA,
-                occludes: <$t as PackShape>::OCCLUDES,
-            });
+        ($($kind:ident: $field:ident),* $(,)?) => {
+            vec![$(KindInfo {
+                kind: ShapeKind::$kind,
+                wgsl_struct: stringify!($kind),
+                wgsl: <crate::scene::$kind as PackShape>::WGSL,
+                data: <crate::scene::$kind as PackShape>::DATA,
+                occludes: <crate::scene::$kind as PackShape>::OCCLUDES,
+                constants: <crate::scene::$kind as PackShape>::constants,
+                fields: <<crate::scene::$kind as PackShape>::Packed as Layout>::FIELDS,
+                size: size_of::<<crate::scene::$kind as PackShape>::Packed>(),
+            }),*]
         };
     }
-    for_each_packed_shape!(info);
-    kinds
+    for_each_shape_kind!(info)
 }
 
 /// The buffers of one kind as `u32` words (every packed struct is made of
@@ -195,7 +222,7 @@ pub fn kinds() -> Vec<KindInfo> {
 pub fn pack_kind<T: PackShape>(scene: &Scene, frame: &Frame) -> Vec<Words> {
     let (mut shapes, data) = T::pack_kind(scene, frame);
     if shapes.is_empty() {
-        shapes.push(T::zeroed());
+        shapes.push(T::Packed::zeroed());
     }
     let mut buffers = vec![Arc::new(bytemuck::cast_slice(&shapes).to_vec())];
     if T::DATA.is_some() {
@@ -212,11 +239,11 @@ pub fn pack_kind<T: PackShape>(scene: &Scene, frame: &Frame) -> Vec<Words> {
 pub fn pack_all(scene: &Scene, frame: &Frame) -> Vec<Words> {
     let mut buffers = Vec::new();
     macro_rules! pack {
-        ($t:ident, $wgsl:literal) => {
-            buffers.extend(pack_kind::<$t>(scene, frame));
+        ($($kind:ident: $field:ident),* $(,)?) => {
+            $(buffers.extend(pack_kind::<crate::scene::$kind>(scene, frame));)*
         };
     }
-    for_each_packed_shape!(pack);
+    for_each_shape_kind!(pack);
     buffers
 }
 
@@ -240,23 +267,35 @@ pub fn buffer_count() -> usize {
         .sum()
 }
 
-#[cfg(test)]
-mod tests {
-    use super::*;
-
-    /// A scene kind without a packed twin would never reach the GPU.
-    #[test]
-    fn every_scene_kind_is_packed_once() {
-        let packed: Vec<ShapeKind> = kinds().iter().map(|k| k.kind).collect();
-        for kind in ShapeKind::ALL {
-            let times = packed.iter().filter(|k| *k == kind).count();
-            assert_eq!(
-                times,
-                1,
-                "{} is packed {times} times in gpu/shapes",
-                kind.name()
-            );
-        }
-        assert_eq!(packed.len(), ShapeKind::ALL.len());
+/// The pipeline constants are the kinds' business as much as the
+/// features': written here, beside the kinds they visit, so that the
+/// features need not know the kinds' modules.
+impl ShaderOptions {
+    /// The `(name, value)` pairs for `PipelineCompilationOptions::constants`:
+    /// the fixed flags, then `HAS_<KINDS>` for every shape kind, then each
+    /// kind's own ([`PackShape::constants`]).
+    pub(in crate::gpu) fn constants(&self) -> Vec<(String, f64)> {
+        let f = &self.features;
+        let fixed = [
+            ("ROBUST", self.robust),
+            ("HAS_LIGHTS", f.lights),
+            ("HAS_MIRRORS", f.mirrors),
+            ("HAS_TRANSPARENCY", f.transparency),
+            ("HAS_CHECKER", f.checker),
+            ("HAS_LENS", f.lens),
+            ("USE_BVH", f.bvh),
+        ]
+        .map(|(name, on)| (name.to_string(), on));
+        let present = ShapeKind::ALL.iter().map(|&k| (has_flag(k), f.has(k)));
+        let methods = kinds()
+            .into_iter()
+            .flat_map(|k| (k.constants)(self))
+            .map(|(name, value)| (name.to_string(), f64::from(value)));
+        fixed
+            .into_iter()
+            .chain(present)
+            .map(|(name, on)| (name, f64::from(u8::from(on))))
+            .chain(methods)
+            .collect()
     }
 }

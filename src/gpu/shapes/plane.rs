@@ -1,27 +1,25 @@
 //! An infinite plane as `shaders/shapes/plane.wgsl` reads it.
 
-use bytemuck::{Pod, Zeroable};
+use super::{Frame, PackShape, f32x3, packed_struct};
+use crate::scene::{self, Instance, Scene};
 
-use super::{Frame, PackShape, f32x3};
-use crate::scene::{self, Scene};
-
-#[repr(C)]
-#[derive(Debug, Clone, Copy, PartialEq, Pod, Zeroable)]
-pub struct Plane {
-    pub point: [f32; 3],
-    pub material: u32,
-    pub normal: [f32; 3],
-    pub _pad: u32,
+packed_struct! {
+    pub struct Plane {
+        pub point: [f32; 3],
+        pub material: u32,
+        pub normal: [f32; 3],
+        pub _pad: u32,
+    }
 }
 
-impl PackShape for Plane {
-    type Source = scene::Plane;
+impl PackShape for scene::Plane {
+    type Packed = Plane;
     const WGSL: &'static str = include_str!("../../../shaders/shapes/plane.wgsl");
 
-    fn pack(scene: &Scene, frame: &Frame, p: &scene::Plane) -> Self {
+    fn pack(_: &Scene, frame: &Frame, p: &Instance<scene::Plane>, material: u32) -> Plane {
         Plane {
             point: frame.point(p.point),
-            material: scene.material_slot(p.material.as_deref()),
+            material,
             normal: f32x3(p.normal),
             _pad: 0,
         }

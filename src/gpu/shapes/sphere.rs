@@ -1,30 +1,30 @@
 //! A sphere as `shaders/shapes/sphere.wgsl` reads it.
 
-use bytemuck::{Pod, Zeroable};
+use bytemuck::Zeroable;
 
-use super::{Frame, PackShape};
-use crate::scene::{self, Scene};
+use super::{Frame, PackShape, packed_struct};
+use crate::scene::{self, Instance, Scene};
 
-#[repr(C)]
-#[derive(Debug, Clone, Copy, PartialEq, Pod, Zeroable)]
-pub struct Sphere {
-    pub center: [f32; 3],
-    pub radius: f32,
-    pub material: u32,
-    pub _pad0: u32,
-    pub _pad1: u32,
-    pub _pad2: u32,
+packed_struct! {
+    pub struct Sphere {
+        pub center: [f32; 3],
+        pub radius: f32,
+        pub material: u32,
+        pub _pad0: u32,
+        pub _pad1: u32,
+        pub _pad2: u32,
+    }
 }
 
-impl PackShape for Sphere {
-    type Source = scene::Sphere;
+impl PackShape for scene::Sphere {
+    type Packed = Sphere;
     const WGSL: &'static str = include_str!("../../../shaders/shapes/sphere.wgsl");
 
-    fn pack(scene: &Scene, frame: &Frame, s: &scene::Sphere) -> Self {
+    fn pack(_: &Scene, frame: &Frame, s: &Instance<scene::Sphere>, material: u32) -> Sphere {
         Sphere {
             center: frame.point(s.center),
             radius: s.radius as f32,
-            material: scene.material_slot(s.material.as_deref()),
+            material,
             ..Zeroable::zeroed()
         }
     }

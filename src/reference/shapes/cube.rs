@@ -6,7 +6,7 @@ use super::{Prepare, Trace};
 use crate::reference::ReferenceOptions;
 use crate::reference::hit::{Hit, foot};
 use crate::reference::ray::Ray;
-use crate::scene;
+use crate::scene::{self, Instance};
 
 /// A box `center + rotation * p_local` for `p_local` in `[-half, half]`.
 #[derive(Debug, Clone)]
@@ -18,14 +18,13 @@ pub struct Cube {
     pub rotation: DMat3,
     /// Its transpose (= inverse): world to local.
     pub inverse: DMat3,
-    pub material: usize,
     /// `|center|_max + |half|`, see [`Hit::error_scale`].
     pub error_scale: f64,
 }
 
 impl Cube {
     /// A box of edge lengths `edges` turned by the rotation matrix `rotation`.
-    pub fn new(center: DVec3, edges: DVec3, rotation: DMat3, material: usize) -> Self {
+    pub fn new(center: DVec3, edges: DVec3, rotation: DMat3) -> Self {
         let half = 0.5 * edges;
         Self {
             center,
@@ -33,7 +32,6 @@ impl Cube {
             rotation,
             // A rotation's inverse is its transpose.
             inverse: rotation.transpose(),
-            material,
             error_scale: center.abs().max_element() + half.length(),
         }
     }
@@ -42,12 +40,11 @@ impl Cube {
 impl Prepare for scene::Cube {
     type Traced = Cube;
 
-    fn prepare(&self, material: usize) -> Cube {
+    fn prepare(shape: &Instance<Self>) -> Cube {
         Cube::new(
-            self.center,
-            self.size.edges(),
-            self.rotation_matrix(),
-            material,
+            shape.placement.translate,
+            shape.placement.scale.edges(),
+            shape.placement.rotation_matrix(),
         )
     }
 }
@@ -59,10 +56,6 @@ impl Trace for Cube {
         } else {
             hit_cube_naive(self, ray, t_max)
         }
-    }
-
-    fn material(&self) -> usize {
-        self.material
     }
 }
 

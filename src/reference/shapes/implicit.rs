@@ -7,13 +7,13 @@ use std::sync::Arc;
 
 use glam::DVec3;
 
-use super::placed::{LocalRay, Placed};
+use super::placement::{LocalRay, Placed};
 use super::{Prepare, Trace};
 use crate::expr::Function;
 use crate::reference::ReferenceOptions;
 use crate::reference::hit::Hit;
 use crate::reference::ray::{Ray, offset_ray_scale};
-use crate::scene;
+use crate::scene::{self, Instance};
 
 #[derive(Debug, Clone)]
 pub struct Implicit {
@@ -22,7 +22,6 @@ pub struct Implicit {
     /// The local box `[min, max]` the surface is looked for in.
     pub bounds: [DVec3; 2],
     pub steps: u32,
-    pub material: usize,
 }
 
 /// The refined root is within this fraction of the segment's length of the
@@ -32,15 +31,14 @@ pub const ROOT_TOLERANCE: f64 = 1e-6;
 impl Prepare for scene::Implicit {
     type Traced = Implicit;
 
-    fn prepare(&self, material: usize) -> Implicit {
+    fn prepare(shape: &Instance<Self>) -> Implicit {
         // A validated scene's function parses; the fallback is never used.
-        let f = Function::parse(&self.f).unwrap_or_else(|_| Function::parse("1").unwrap());
+        let f = Function::parse(&shape.f).unwrap_or_else(|_| Function::parse("1").unwrap());
         Implicit {
-            placed: Placed::new(&self.placement),
+            placed: Placed::new(&shape.placement),
             f: Arc::new(f),
-            bounds: self.bounds,
-            steps: self.steps,
-            material,
+            bounds: shape.bounds,
+            steps: shape.steps,
         }
     }
 }
@@ -48,10 +46,6 @@ impl Prepare for scene::Implicit {
 impl Trace for Implicit {
     fn hit(&self, ray: &Ray, t_max: f64, _options: &ReferenceOptions) -> Option<Hit> {
         hit_implicit(self, ray, t_max)
-    }
-
-    fn material(&self) -> usize {
-        self.material
     }
 }
 

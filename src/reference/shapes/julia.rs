@@ -3,12 +3,12 @@
 
 use glam::{DVec3, DVec4};
 
-use super::placed::Placed;
+use super::placement::Placed;
 use super::{Prepare, Trace};
 use crate::reference::ReferenceOptions;
 use crate::reference::hit::Hit;
 use crate::reference::ray::{Ray, offset_ray_scale};
-use crate::scene;
+use crate::scene::{self, Instance};
 
 /// The set, its iteration and the sphere tracer's settings.
 #[derive(Debug, Clone)]
@@ -23,7 +23,6 @@ pub struct Julia {
     pub epsilon: f64,
     /// Grow epsilon with the pixel footprint ([`surface_distance`]).
     pub footprint: bool,
-    pub material: usize,
 }
 
 /// Radius of the sphere that holds the set (|c| <= 2), local units.
@@ -38,15 +37,14 @@ const ESCAPE: f64 = 4.0;
 impl Prepare for scene::Julia {
     type Traced = Julia;
 
-    fn prepare(&self, material: usize) -> Julia {
+    fn prepare(shape: &Instance<Self>) -> Julia {
         Julia {
-            placed: Placed::new(&self.placement),
-            c: DVec4::from_array(self.c),
-            slice: self.slice,
-            iterations: self.iterations,
-            epsilon: self.epsilon,
-            footprint: self.footprint,
-            material,
+            placed: Placed::new(&shape.placement),
+            c: DVec4::from_array(shape.c),
+            slice: shape.slice,
+            iterations: shape.iterations,
+            epsilon: shape.epsilon,
+            footprint: shape.footprint,
         }
     }
 }
@@ -54,10 +52,6 @@ impl Prepare for scene::Julia {
 impl Trace for Julia {
     fn hit(&self, ray: &Ray, t_max: f64, options: &ReferenceOptions) -> Option<Hit> {
         hit_julia(self, ray, t_max, options.pixel_angle)
-    }
-
-    fn material(&self) -> usize {
-        self.material
     }
 }
 
@@ -144,19 +138,18 @@ mod tests {
     use super::*;
 
     fn julia(footprint: bool) -> Julia {
-        let scene = scene::Julia {
+        let julia = scene::Julia {
             c: [-0.2, 0.6, 0.2, 0.2],
             slice: 0.0,
             iterations: 6,
             epsilon: 1e-3,
             footprint,
-            placement: scene::Placement {
-                scale: 2.0,
-                ..Default::default()
-            },
-            material: None,
         };
-        scene.prepare(0)
+        let placement = scene::Placement {
+            scale: 2.0,
+            ..Default::default()
+        };
+        scene::Julia::prepare(&Instance::new(julia, placement))
     }
 
     /// Off: epsilon at every distance. On: epsilon up close, then one

@@ -12,7 +12,7 @@ use crate::bvh::{Bvh, mesh_bvh};
 use crate::reference::ReferenceOptions;
 use crate::reference::hit::Hit;
 use crate::reference::ray::Ray;
-use crate::scene::{self, Geometry, TriangleTest};
+use crate::scene::{self, Geometry, Instance, TriangleTest};
 
 /// A placed mesh: its shared geometry and BVH, and the transform.
 #[derive(Debug, Clone)]
@@ -23,7 +23,6 @@ pub struct Mesh {
     /// Local to world, `R * diag(scale)`, and its inverse.
     pub linear: DMat3,
     pub inverse: DMat3,
-    pub material: usize,
     /// The largest world coordinate of the mesh's box, see
     /// `Hit::error_scale`.
     pub error_scale: f64,
@@ -32,17 +31,15 @@ pub struct Mesh {
 impl Prepare for scene::Mesh {
     type Traced = Mesh;
 
-    fn prepare(&self, material: usize) -> Mesh {
-        use crate::scene::Shape;
-        let [lo, hi] = self.bounds();
-        let linear = self.placement.linear();
+    fn prepare(shape: &Instance<Self>) -> Mesh {
+        let [lo, hi] = shape.bounds();
+        let linear = shape.placement.linear();
         Mesh {
-            geometry: self.geometry.0.clone(),
-            bvh: mesh_bvh(&self.geometry.0),
-            translate: self.placement.translate,
+            geometry: shape.geometry.0.clone(),
+            bvh: mesh_bvh(&shape.geometry.0),
+            translate: shape.placement.translate,
             linear,
             inverse: linear.inverse(),
-            material,
             error_scale: lo.abs().max(hi.abs()).max_element(),
         }
     }
@@ -78,10 +75,6 @@ impl Trace for Mesh {
         });
         let (tri, h) = nearest?;
         Some(self.surface(tri, h))
-    }
-
-    fn material(&self) -> usize {
-        self.material
     }
 }
 

@@ -7,7 +7,7 @@ pub mod cube;
 pub mod implicit;
 pub mod julia;
 pub mod mesh;
-pub mod placed;
+pub mod placement;
 pub mod plane;
 pub mod sphere;
 pub mod torus;
@@ -17,15 +17,14 @@ use std::fmt::Debug;
 use super::ReferenceOptions;
 use super::hit::Hit;
 use super::ray::Ray;
-use crate::scene::{self, Scene, Shape, ShapeId};
+use crate::scene::{self, Instance, Scene, Shape, ShapeId};
 
 /// A scene shape kind made ready for the tracer.
 pub trait Prepare: Shape {
     /// The shape as its hit test reads it (matrices computed once, ...).
     type Traced: Trace;
 
-    /// `material` is the shape's slot in `PreparedScene::materials`.
-    fn prepare(&self, material: usize) -> Self::Traced;
+    fn prepare(shape: &Instance<Self>) -> Self::Traced;
 }
 
 /// The hit test of one prepared shape.
@@ -34,9 +33,14 @@ pub trait Trace: Debug + Clone {
     /// (docs/implementation.md) or, with `options.robust = false`, the
     /// lecture's; triangles by `options.triangles`.
     fn hit(&self, ray: &Ray, t_max: f64, options: &ReferenceOptions) -> Option<Hit>;
+}
 
-    /// The slot of its material.
-    fn material(&self) -> usize;
+/// A prepared shape and the slot of its material in
+/// `PreparedScene::materials`, kept beside it for every kind alike.
+#[derive(Debug, Clone)]
+pub struct Prepared<T> {
+    pub traced: T,
+    pub material: usize,
 }
 
 macro_rules! prepared_shapes {
@@ -44,30 +48,32 @@ macro_rules! prepared_shapes {
         /// Every shape of a scene, prepared, kind by kind.
         #[derive(Debug, Clone)]
         pub struct Shapes {
-            $($field: Vec<<scene::$kind as Prepare>::Traced>,)*
+            $($field: Vec<Prepared<<scene::$kind as Prepare>::Traced>>,)*
         }
 
         impl Shapes {
             /// Prepares every shape of a validated scene (a material name
             /// that validation would have rejected falls back to the default).
             pub fn new(scene: &Scene) -> Self {
-                let slot = |name: &Option<String>| scene.material_slot(name.as_deref()) as usize;
                 Shapes {
-                    $($field: scene.$field.iter().map(|s| s.prepare(slot(s.material()))).collect(),)*
+                    $($field: scene.$field.iter().map(|s| Prepared {
+                        traced: scene::$kind::prepare(s),
+                        material: scene.material_slot(s.material.as_deref()) as usize,
+                    }).collect(),)*
                 }
             }
 
             /// The hit of shape `id` with `0 < t < t_max`.
             pub fn hit(&self, id: ShapeId, ray: &Ray, t_max: f64, options: &ReferenceOptions) -> Option<Hit> {
                 match id {
-                    $(ShapeId::$kind(i) => self.$field[i].hit(ray, t_max, options),)*
+                    $(ShapeId::$kind(i) => self.$field[i].traced.hit(ray, t_max, options),)*
                 }
             }
 
             /// The material slot of shape `id`.
             pub fn material(&self, id: ShapeId) -> usize {
                 match id {
-                    $(ShapeId::$kind(i) => self.$field[i].material(),)*
+                    $(ShapeId::$kind(i) => self.$field[i].material,)*
                 }
             }
         }

@@ -6,14 +6,13 @@ use super::{Prepare, Trace};
 use crate::reference::ReferenceOptions;
 use crate::reference::hit::{Hit, foot};
 use crate::reference::ray::Ray;
-use crate::scene;
+use crate::scene::{self, Instance};
 
 /// An infinite, two-sided, thin plane with unit `normal`.
 #[derive(Debug, Clone)]
 pub struct Plane {
     pub point: DVec3,
     pub normal: DVec3,
-    pub material: usize,
     /// `|point|_max`, see [`Hit::error_scale`].
     pub error_scale: f64,
 }
@@ -21,11 +20,10 @@ pub struct Plane {
 impl Plane {
     /// `normal` is normalised here; a zero normal (which validation rejects)
     /// gives a plane that every ray misses.
-    pub fn new(point: DVec3, normal: DVec3, material: usize) -> Self {
+    pub fn new(point: DVec3, normal: DVec3) -> Self {
         Self {
             point,
             normal: normal.normalize_or_zero(),
-            material,
             error_scale: point.abs().max_element(),
         }
     }
@@ -36,8 +34,8 @@ impl Prepare for scene::Plane {
 
     /// Loading normalises plane normals already; `Plane::new` does it again
     /// for scenes built by hand.
-    fn prepare(&self, material: usize) -> Plane {
-        Plane::new(self.point, self.normal, material)
+    fn prepare(shape: &Instance<Self>) -> Plane {
+        Plane::new(shape.point, shape.normal)
     }
 }
 
@@ -48,10 +46,6 @@ impl Trace for Plane {
         } else {
             hit_plane_naive(self, ray, t_max)
         }
-    }
-
-    fn material(&self) -> usize {
-        self.material
     }
 }
 

@@ -6,31 +6,26 @@ use super::{Prepare, Trace};
 use crate::reference::ReferenceOptions;
 use crate::reference::hit::{Hit, foot, major_axis};
 use crate::reference::ray::Ray;
-use crate::scene;
+use crate::scene::{self, Instance};
 
 /// A sphere; `material` indexes `PreparedScene::materials`.
 #[derive(Debug, Clone)]
 pub struct Sphere {
     pub center: DVec3,
     pub radius: f64,
-    pub material: usize,
 }
 
 impl Sphere {
-    pub fn new(center: DVec3, radius: f64, material: usize) -> Self {
-        Self {
-            center,
-            radius,
-            material,
-        }
+    pub fn new(center: DVec3, radius: f64) -> Self {
+        Self { center, radius }
     }
 }
 
 impl Prepare for scene::Sphere {
     type Traced = Sphere;
 
-    fn prepare(&self, material: usize) -> Sphere {
-        Sphere::new(self.center, self.radius, material)
+    fn prepare(shape: &Instance<Self>) -> Sphere {
+        Sphere::new(shape.center, shape.radius)
     }
 }
 
@@ -41,10 +36,6 @@ impl Trace for Sphere {
         } else {
             hit_sphere_naive(self, ray, t_max)
         }
-    }
-
-    fn material(&self) -> usize {
-        self.material
     }
 }
 

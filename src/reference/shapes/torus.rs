@@ -3,12 +3,12 @@
 
 use glam::DVec3;
 
-use super::placed::{LocalRay, Placed};
+use super::placement::{LocalRay, Placed};
 use super::{Prepare, Trace};
 use crate::reference::ReferenceOptions;
 use crate::reference::hit::Hit;
 use crate::reference::ray::Ray;
-use crate::scene;
+use crate::scene::{self, Instance};
 
 /// A torus around the local y axis: the tube of radius `minor` around the
 /// circle of radius `major`.
@@ -17,18 +17,16 @@ pub struct Torus {
     pub placed: Placed,
     pub major: f64,
     pub minor: f64,
-    pub material: usize,
 }
 
 impl Prepare for scene::Torus {
     type Traced = Torus;
 
-    fn prepare(&self, material: usize) -> Torus {
+    fn prepare(shape: &Instance<Self>) -> Torus {
         Torus {
-            placed: Placed::new(&self.placement),
-            major: self.major_radius,
-            minor: self.minor_radius,
-            material,
+            placed: Placed::new(&shape.placement),
+            major: shape.major_radius,
+            minor: shape.minor_radius,
         }
     }
 }
@@ -37,10 +35,6 @@ impl Trace for Torus {
     /// One method for both variants: the textbook has no torus to compare with.
     fn hit(&self, ray: &Ray, t_max: f64, _options: &ReferenceOptions) -> Option<Hit> {
         hit_torus(self, ray, t_max)
-    }
-
-    fn material(&self) -> usize {
-        self.material
     }
 }
 

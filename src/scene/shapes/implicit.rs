@@ -6,13 +6,13 @@ use serde::{Deserialize, Serialize};
 
 use super::{Context, Placement, Shape};
 use crate::expr::Function;
+use crate::scene::Scene;
 use crate::scene::key_path::KeyPath;
-use crate::scene::validate::{Check, FINITE, Issue, material_name, vector};
+use crate::scene::validate::{Check, FINITE, Issue, vector};
 
 /// The surface where `f` changes sign, looked for inside the local box
 /// `bounds`; the outside is where `f > 0`.
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
-#[serde(deny_unknown_fields)]
 pub struct Implicit {
     /// The function of x, y, z, in the syntax of docs/scene-format.md.
     pub f: String,
@@ -20,10 +20,6 @@ pub struct Implicit {
     pub bounds: [DVec3; 2],
     #[serde(default = "default_steps")]
     pub steps: u32,
-    #[serde(flatten)]
-    pub placement: Placement,
-    #[serde(default, skip_serializing_if = "Option::is_none")]
-    pub material: Option<String>,
 }
 
 /// Most samples along a ray.
@@ -34,7 +30,7 @@ fn default_steps() -> u32 {
 }
 
 impl Shape for Implicit {
-    fn validate(&mut self, path: &KeyPath, context: &Context) -> Check {
+    fn validate(&mut self, path: &KeyPath, _context: &Context) -> Check {
         Function::parse(&self.f).map_err(|e| Issue::new(&path.key("f"), e.to_string()))?;
         let bounds = path.key("bounds");
         vector(&bounds.index(0), self.bounds[0], &FINITE)?;
@@ -54,15 +50,25 @@ impl Shape for Implicit {
                 format!("must be 1..={MAX_STEPS}, got {}", self.steps),
             ));
         }
-        self.placement.validate(path)?;
-        material_name(path, self.material.as_deref(), context.materials)
+        Ok(())
     }
 
-    type Flattened = Placement;
+    type Placement = Placement;
 
-    shape_accessors!(placement.translate);
-
-    fn bounds(&self) -> [DVec3; 2] {
-        self.placement.bounds(self.bounds)
+    fn bounds(&self, placement: &Placement) -> [DVec3; 2] {
+        placement.bounds(self.bounds)
     }
+}
+
+/// The scene's distinct functions (as written), in order of first use: the
+/// shader has one WGSL function per entry, and a scene whose functions are
+/// the same set reuses its pipeline.
+pub fn functions(scene: &Scene) -> Vec<String> {
+    let mut distinct: Vec<String> = Vec::new();
+    for implicit in &scene.implicits {
+        if !distinct.contains(&implicit.f) {
+            distinct.push(implicit.f.clone());
+        }
+    }
+    distinct
 }

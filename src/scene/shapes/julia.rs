@@ -6,12 +6,11 @@ use serde::{Deserialize, Serialize};
 
 use super::{Context, Placement, Shape};
 use crate::scene::key_path::KeyPath;
-use crate::scene::validate::{Check, FINITE, Issue, POSITIVE, material_name, number};
+use crate::scene::validate::{Check, FINITE, Issue, POSITIVE, number};
 
 /// The set of quaternions whose orbit under `z <- z^2 + c` stays bounded,
 /// cut by the slice `w = slice`.
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
-#[serde(deny_unknown_fields)]
 pub struct Julia {
     /// Real, i, j, k; `|c| <= 2`.
     pub c: [f64; 4],
@@ -27,10 +26,6 @@ pub struct Julia {
     /// one pixel wide at any zoom.
     #[serde(default, skip_serializing_if = "is_false")]
     pub footprint: bool,
-    #[serde(flatten)]
-    pub placement: Placement,
-    #[serde(default, skip_serializing_if = "Option::is_none")]
-    pub material: Option<String>,
 }
 
 /// Most iterations a Julia set may ask for.
@@ -49,7 +44,7 @@ fn is_false(b: &bool) -> bool {
 }
 
 impl Shape for Julia {
-    fn validate(&mut self, path: &KeyPath, context: &Context) -> Check {
+    fn validate(&mut self, path: &KeyPath, _context: &Context) -> Check {
         let c_path = path.key("c");
         for (i, &x) in self.c.iter().enumerate() {
             number(&c_path.index(i), x, &FINITE)?;
@@ -69,19 +64,17 @@ impl Shape for Julia {
             ));
         }
         number(&path.key("epsilon"), self.epsilon, &POSITIVE)?;
-        self.placement.validate(path)?;
-        material_name(path, self.material.as_deref(), context.materials)
+        Ok(())
     }
 
-    type Flattened = Placement;
-
-    shape_accessors!(placement.translate);
+    type Placement = Placement;
 
     const OPAQUE: bool = true;
 
+    const NOT_VECTORS: &[&str] = &["c"];
+
     /// The sphere of radius 2 that holds the set.
-    fn bounds(&self) -> [DVec3; 2] {
-        self.placement
-            .bounds([DVec3::splat(-2.0), DVec3::splat(2.0)])
+    fn bounds(&self, placement: &Placement) -> [DVec3; 2] {
+        placement.bounds([DVec3::splat(-2.0), DVec3::splat(2.0)])
     }
 }

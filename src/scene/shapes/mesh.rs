@@ -11,10 +11,12 @@ use serde::{Deserialize, Serialize};
 use super::{Context, CubeSize, Placement, Shape};
 use crate::scene::key_path::KeyPath;
 use crate::scene::mesh_file::{self, Folder, Geometry};
-use crate::scene::validate::{Check, Issue, material_name};
+use crate::scene::validate::{Check, Issue};
 
+/// A mesh's own keys: where its triangles come from and how they are
+/// shaded. Its placement (`scale` a number or `[x, y, z]`, like a cube's
+/// size) is a `Placement<CubeSize>` beside it in the [`super::Instance`].
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
-#[serde(deny_unknown_fields)]
 pub struct Mesh {
     /// An OBJ or PLY file, relative to the scene file; kept as written, so
     /// that a saved scene refers to the same file.
@@ -29,11 +31,6 @@ pub struct Mesh {
     pub normals: Vec<DVec3>,
     #[serde(default)]
     pub smooth: bool,
-    /// `scale` is a number or `[x, y, z]`, like a cube's size.
-    #[serde(flatten)]
-    pub placement: Placement<CubeSize>,
-    #[serde(default, skip_serializing_if = "Option::is_none")]
-    pub material: Option<String>,
     /// The geometry, loaded and checked by validation; shared between
     /// copies of the scene, so moving a mesh keeps it (and its BVH).
     #[serde(skip)]
@@ -75,7 +72,7 @@ impl Mesh {
         Ok(Mesh {
             positions: positions.to_vec(),
             triangles: triangles.to_vec(),
-            ..Mesh::unplaced(geometry)
+            ..Mesh::with_geometry(geometry)
         })
     }
 
@@ -85,7 +82,7 @@ impl Mesh {
     pub fn from_file(file: PathBuf, base: Option<&Path>) -> Result<Mesh, String> {
         let mut mesh = Mesh {
             file: Some(file),
-            ..Mesh::unplaced(Geometry::default())
+            ..Mesh::with_geometry(Geometry::default())
         };
         mesh.reload(base)?;
         Ok(mesh)
@@ -100,21 +97,18 @@ impl Mesh {
         Ok(Mesh {
             positions: geometry.positions.clone(),
             triangles: geometry.triangles.clone(),
-            ..Mesh::unplaced(geometry)
+            ..Mesh::with_geometry(geometry)
         })
     }
 
-    /// `geometry` at the origin, unscaled, unrotated, flat shaded, with the
-    /// default material and no source yet.
-    fn unplaced(geometry: Geometry) -> Mesh {
+    /// `geometry`, flat shaded, with no source yet.
+    fn with_geometry(geometry: Geometry) -> Mesh {
         Mesh {
             file: None,
             positions: Vec::new(),
             triangles: Vec::new(),
             normals: Vec::new(),
             smooth: false,
-            placement: Placement::default(),
-            material: None,
             geometry: Loaded(Arc::new(geometry)),
         }
     }
@@ -160,11 +154,9 @@ impl Mesh {
 }
 
 impl Shape for Mesh {
-    /// Checks the placement, then loads the geometry (file or inline) and
-    /// keeps it; degenerate triangles dropped are reported as a warning.
+    /// Loads the geometry (file or inline) and keeps it; degenerate
+    /// triangles dropped are reported as a warning.
     fn validate(&mut self, path: &KeyPath, context: &Context) -> Check {
-        self.placement.validate(path)?;
-        material_name(path, self.material.as_deref(), context.materials)?;
         let geometry = self.load(path, context)?;
         if geometry.dropped > 0 {
             log::warn!(
@@ -176,17 +168,15 @@ impl Shape for Mesh {
         Ok(())
     }
 
-    type Flattened = Placement<CubeSize>;
-
-    shape_accessors!(placement.translate);
+    type Placement = Placement<CubeSize>;
 
     /// The world box of the transformed vertices.
-    fn bounds(&self) -> [DVec3; 2] {
-        let m = self.placement.linear();
+    fn bounds(&self, placement: &Placement<CubeSize>) -> [DVec3; 2] {
+        let m = placement.linear();
         self.geometry.0.positions.iter().fold(
             [DVec3::INFINITY, DVec3::NEG_INFINITY],
             |[lo, hi], &p| {
-                let w = self.placement.translate + m * p;
+                let w = placement.translate + m * p;
                 [lo.min(w), hi.max(w)]
             },
         )

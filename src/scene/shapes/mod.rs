@@ -1,32 +1,14 @@
-//! The shape kinds of a scene, one file each: the serde struct of one shape
-//! (its TOML table, docs/scene-format.md), its validation and its moves.
+//! The shape kinds of a scene, one file each: the serde struct of a kind's
+//! own keys (read into its TOML table beside the placement and material of
+//! an [`Instance`], docs/scene-format.md), their validation and bounds.
 //! A kind is registered by one line in [`for_each_shape_kind!`], which the
 //! other layers (BVH, reference, GPU, panel) expand to visit every kind, so a
 //! kind that one of them does not handle is a compile error there (see
 //! docs/implementation.md, "Adding a shape kind").
 
-/// The [`Shape`] methods every kind writes alike: `translate` moves the
-/// point at `$point` (a sphere's `center`, a placed kind's
-/// `placement.translate`); `material` and `material_mut` give the
-/// `material` key.
-macro_rules! shape_accessors {
-    ($($point:ident).+) => {
-        fn translate(&mut self, offset: glam::DVec3) {
-            self.$($point).+ += offset;
-        }
-
-        fn material(&self) -> &Option<String> {
-            &self.material
-        }
-
-        fn material_mut(&mut self) -> &mut Option<String> {
-            &mut self.material
-        }
-    };
-}
-
 mod cube;
 pub mod implicit;
+mod instance;
 pub mod julia;
 mod mesh;
 mod placement;
@@ -36,15 +18,18 @@ mod torus;
 
 pub use cube::Cube;
 pub use implicit::Implicit;
+pub use instance::Instance;
 pub use julia::Julia;
 pub use mesh::{Loaded, Mesh, TriangleTest};
-pub use placement::{CubeSize, Placement, Scale};
+pub use placement::{Centered, CubeSize, Place, Placement, Scale, Unplaced};
 pub use plane::Plane;
 pub use sphere::Sphere;
 pub use torus::{Torus, TorusMethod};
 
 use glam::{DMat3, DVec3};
 use indexmap::IndexMap;
+use serde::Serialize;
+use serde::de::DeserializeOwned;
 
 use super::Material;
 use super::key_path::KeyPath;
@@ -86,34 +71,31 @@ pub fn rotation_degrees(degrees: DVec3) -> DMat3 {
     DMat3::from_rotation_z(r.z) * DMat3::from_rotation_y(r.y) * DMat3::from_rotation_x(r.x)
 }
 
-/// What every shape kind of the scene provides.
-pub trait Shape: Clone {
+/// What every shape kind of the scene provides: its own keys, read
+/// flattened into an [`Instance`] beside its placement and material (a
+/// kind is not `deny_unknown_fields`: the instance is).
+pub trait Shape: Clone + PartialEq + std::fmt::Debug + Serialize + DeserializeOwned {
+    /// How shapes of this kind are placed: a [`Placement`], a [`Centered`]
+    /// one, or [`Unplaced`] for a kind placed by its own keys.
+    type Placement: Place;
+
     /// Checks the rules of docs/rendering-model.md that serde cannot express
-    /// (ranges, finiteness, known material names); `path` names the shape in
-    /// messages. May make values canonical (a plane's unit normal).
+    /// (ranges, finiteness) for the kind's own keys; `path` names the shape
+    /// in messages. May make values canonical (a plane's unit normal) or
+    /// load what the keys name (a mesh's file).
     fn validate(&mut self, path: &KeyPath, context: &Context) -> Check;
 
-    /// The keys serde reads flattened into the shape: a [`Placement`], or
-    /// [`serde::de::IgnoredAny`] for a kind placed by its own keys. serde
-    /// sees flattened keys without their place in the text and would blame
-    /// an error in one on its table; the parser reads them alone to name
-    /// the key (src/scene/parse.rs).
-    type Flattened: serde::de::DeserializeOwned;
-
-    /// Moves the shape by `offset` (`Scene::translated`).
-    fn translate(&mut self, offset: DVec3);
-
-    /// The name of its material; `None` is the default material.
-    fn material(&self) -> &Option<String>;
-
-    fn material_mut(&mut self) -> &mut Option<String>;
+    /// Moves the kind's own position keys by `offset`; the placement moves
+    /// itself ([`Place::translate`]).
+    fn translate(&mut self, _offset: DVec3) {}
 
     /// Whether shapes of this kind have bounds. An unbounded kind (planes)
     /// stays out of the BVH; renderers test its shapes in a loop.
     const BOUNDED: bool = true;
 
-    /// The world-space bounding box `[min, max]` of a bounded shape.
-    fn bounds(&self) -> [DVec3; 2];
+    /// The world-space bounding box `[min, max]` of a bounded shape placed
+    /// by `placement`.
+    fn bounds(&self, placement: &Self::Placement) -> [DVec3; 2];
 
     /// A thin shape (a plane) has no inside: a ray through it always
     /// enters, and refraction passes it on unbent (docs/rendering-model.md,
@@ -124,4 +106,9 @@ pub trait Shape: Clone {
     /// lets no light through: its material's transparency counts as 0
     /// (docs/rendering-model.md, "Implicit surfaces").
     const OPAQUE: bool = false;
+
+    /// The kind's keys whose arrays of numbers are not vectors of 3 (a
+    /// Julia set's quaternion `c`); serde checks their length, the parser
+    /// every other array's (src/scene/parse.rs).
+    const NOT_VECTORS: &[&str] = &[];
 }

@@ -1,10 +1,14 @@
 //! `translate`, `scale` and `rotation`: how a shape written in local
-//! coordinates (a torus, a user's function, a Julia set, a mesh) sits in the
-//! world (docs/rendering-model.md, "Implicit surfaces" and "Triangle
+//! coordinates (a box, a torus, a user's function, a Julia set, a mesh) sits
+//! in the world (docs/rendering-model.md, "Implicit surfaces" and "Triangle
 //! meshes"): a local point `p` is at `translate + Rz Ry Rx (scale p)`.
 //!
-//! A placed kind holds one [`Placement`] read flattened (`#[serde(flatten)]`),
-//! so its three keys stay in the shape's own table of the scene file.
+//! The placement is not part of a kind: [`super::Instance`] holds it beside
+//! the kind's own keys, read flattened (`#[serde(flatten)]`), so its keys
+//! stay in the shape's own table of the scene file. Each kind names its
+//! form ([`super::Shape::Placement`]): a [`Placement`], a [`Centered`] one
+//! (a cube's `center`, `size`, `rotation`) or none ([`Unplaced`], a sphere
+//! and a plane, placed by their own keys).
 
 use std::fmt::Debug;
 
@@ -96,7 +100,7 @@ impl<S: Scale> Default for Placement<S> {
 }
 
 impl<S: Scale> Placement<S> {
-    /// `Rz(rz) Ry(ry) Rx(rx)`, the cube's convention.
+    /// `Rz(rz) Ry(ry) Rx(rx)` (docs/rendering-model.md, "Shapes").
     pub fn rotation_matrix(&self) -> DMat3 {
         super::rotation_degrees(self.rotation)
     }
@@ -106,11 +110,24 @@ impl<S: Scale> Placement<S> {
         self.rotation_matrix() * DMat3::from_diagonal(self.scale.axes())
     }
 
-    /// Checks the three keys in the shape's table at `path`.
-    pub fn validate(&self, path: &KeyPath) -> Check {
-        vector(&path.key("translate"), self.translate, &FINITE)?;
-        self.scale.validate(&path.key("scale"))?;
-        vector(&path.key("rotation"), self.rotation, &FINITE)
+    /// Checks the three keys in the shape's table at `path`, named
+    /// `[translate, scale, rotation]` in the file.
+    fn validate_keys(&self, path: &KeyPath, [translate, scale, rotation]: [&str; 3]) -> Check {
+        vector(&path.key(translate), self.translate, &FINITE)?;
+        self.scale.validate(&path.key(scale))?;
+        vector(&path.key(rotation), self.rotation, &FINITE)
+    }
+}
+
+impl Placement<CubeSize> {
+    /// The world box of the box of edge lengths `scale` centred on the
+    /// local origin: along each world axis, `translate` plus or minus `|R|`
+    /// times its half size.
+    pub fn box_bounds(&self) -> [DVec3; 2] {
+        let m = self.rotation_matrix();
+        let abs = DMat3::from_cols(m.x_axis.abs(), m.y_axis.abs(), m.z_axis.abs());
+        let half = abs * (self.scale.edges() * 0.5);
+        [self.translate - half, self.translate + half]
     }
 }
 
@@ -124,4 +141,106 @@ impl Placement {
         let half = self.scale * (abs * (0.5 * (hi - lo)));
         [centre - half, centre + half]
     }
+}
+
+/// Where a shape of one kind is and how it moves: the part of an
+/// [`super::Instance`] that every kind of the same form shares, validated
+/// and moved here once.
+pub trait Place: Clone + PartialEq + Debug + Serialize + serde::de::DeserializeOwned {
+    /// Checks its keys in the shape's table at `path`.
+    fn validate(&self, path: &KeyPath) -> Check;
+
+    /// Moves it by `offset` (`Scene::translated`).
+    fn translate(&mut self, offset: DVec3);
+}
+
+impl<S: Scale + serde::de::DeserializeOwned> Place for Placement<S> {
+    fn validate(&self, path: &KeyPath) -> Check {
+        self.validate_keys(path, ["translate", "scale", "rotation"])
+    }
+
+    fn translate(&mut self, offset: DVec3) {
+        self.translate += offset;
+    }
+}
+
+/// A cube's placement: the shared [`Placement`] of a unit box, whose keys
+/// the scene file names `center` and `size` (both required) and `rotation`
+/// (docs/scene-format.md, "`[[cubes]]`").
+#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
+#[serde(from = "CenteredKeys", into = "CenteredKeys")]
+pub struct Centered(pub Placement<CubeSize>);
+
+/// [`Centered`] as the scene file writes it.
+#[derive(Clone, Copy, Serialize, Deserialize)]
+struct CenteredKeys {
+    center: DVec3,
+    size: CubeSize,
+    #[serde(default)]
+    rotation: DVec3,
+}
+
+impl From<CenteredKeys> for Centered {
+    fn from(keys: CenteredKeys) -> Self {
+        Centered(Placement {
+            translate: keys.center,
+            scale: keys.size,
+            rotation: keys.rotation,
+        })
+    }
+}
+
+impl From<Centered> for CenteredKeys {
+    fn from(Centered(p): Centered) -> Self {
+        CenteredKeys {
+            center: p.translate,
+            size: p.scale,
+            rotation: p.rotation,
+        }
+    }
+}
+
+impl std::ops::Deref for Centered {
+    type Target = Placement<CubeSize>;
+
+    fn deref(&self) -> &Placement<CubeSize> {
+        &self.0
+    }
+}
+
+impl std::ops::DerefMut for Centered {
+    fn deref_mut(&mut self) -> &mut Placement<CubeSize> {
+        &mut self.0
+    }
+}
+
+impl Place for Centered {
+    fn validate(&self, path: &KeyPath) -> Check {
+        self.0.validate_keys(path, ["center", "size", "rotation"])
+    }
+
+    fn translate(&mut self, offset: DVec3) {
+        self.0.translate += offset;
+    }
+}
+
+/// No placement keys: the kind places itself by its own (a sphere's
+/// `center`, a plane's `point`) and moves them in [`super::Shape::translate`].
+#[derive(Debug, Clone, Copy, Default, PartialEq, Serialize)]
+pub struct Unplaced;
+
+/// Reads nothing: the keys of the table belong to the kind and the
+/// instance (and a table read alone for an error's place has them).
+impl<'de> Deserialize<'de> for Unplaced {
+    fn deserialize<D: serde::Deserializer<'de>>(deserializer: D) -> Result<Self, D::Error> {
+        serde::de::IgnoredAny::deserialize(deserializer).map(|_| Unplaced)
+    }
+}
+
+impl Place for Unplaced {
+    fn validate(&self, _path: &KeyPath) -> Check {
+        Ok(())
+    }
+
+    fn translate(&mut self, _offset: DVec3) {}
 }

@@ -5,19 +5,14 @@ use serde::{Deserialize, Serialize};
 
 use super::{Context, Placement, Shape};
 use crate::scene::key_path::KeyPath;
-use crate::scene::validate::{Check, Issue, POSITIVE, material_name, number};
+use crate::scene::validate::{Check, Issue, POSITIVE, number};
 
 /// The tube of radius `minor_radius` around the circle of radius
 /// `major_radius` about the local y axis.
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
-#[serde(deny_unknown_fields)]
 pub struct Torus {
     pub major_radius: f64,
     pub minor_radius: f64,
-    #[serde(flatten)]
-    pub placement: Placement,
-    #[serde(default, skip_serializing_if = "Option::is_none")]
-    pub material: Option<String>,
 }
 
 crate::named_option! {
@@ -40,7 +35,7 @@ crate::named_option! {
 }
 
 impl Shape for Torus {
-    fn validate(&mut self, path: &KeyPath, context: &Context) -> Check {
+    fn validate(&mut self, path: &KeyPath, _context: &Context) -> Check {
         number(&path.key("major_radius"), self.major_radius, &POSITIVE)?;
         number(&path.key("minor_radius"), self.minor_radius, &POSITIVE)?;
         if self.minor_radius >= self.major_radius {
@@ -52,17 +47,13 @@ impl Shape for Torus {
                 ),
             ));
         }
-        self.placement.validate(path)?;
-        material_name(path, self.material.as_deref(), context.materials)
+        Ok(())
     }
 
-    type Flattened = Placement;
+    type Placement = Placement;
 
-    shape_accessors!(placement.translate);
-
-    fn bounds(&self) -> [DVec3; 2] {
+    fn bounds(&self, placement: &Placement) -> [DVec3; 2] {
         let (big, r) = (self.major_radius + self.minor_radius, self.minor_radius);
-        self.placement
-            .bounds([DVec3::new(-big, -r, -big), DVec3::new(big, r, big)])
+        placement.bounds([DVec3::new(-big, -r, -big), DVec3::new(big, r, big)])
     }
 }

@@ -1,43 +1,31 @@
-//! The cube's editor: centre, one edge length or three, rotation.
+//! The cube's editor: none of its own (its placement shows centre, size
+//! and rotation), and the toggle between one edge length and three.
 
 use egui::Ui;
 use glam::DVec3;
 
-use super::{EditShape, Placement};
-use crate::app::panel::field;
-use crate::app::panel::widgets::{COORDINATES, vec3_row};
-use crate::scene::{Cube, CubeSize};
+use super::{EditShape, InView};
+use crate::scene::{Centered, Cube, CubeSize, Instance, Placement};
 
+/// A cube has no keys of its own: its rows are its placement's (centre,
+/// size, rotation).
 impl EditShape for Cube {
     /// Unrotated, left of the target (where a new sphere does not go).
-    fn new_near(at: &Placement) -> Self {
-        Cube {
-            center: at.target - at.right * (0.25 * at.scale),
-            size: CubeSize::Uniform(0.15 * at.scale),
+    fn new_near(at: &InView) -> Instance<Cube> {
+        let placement = Placement {
+            translate: at.target - at.right * (0.25 * at.scale),
+            scale: CubeSize::Uniform(0.15 * at.scale),
             rotation: DVec3::ZERO,
-            material: None,
-        }
+        };
+        Instance::new(Cube {}, Centered(placement))
     }
 
-    /// Moved right by its longest edge.
-    fn beside(&self, at: &Placement) -> Self {
-        let mut copy = self.clone();
-        copy.center += at.right * self.size.edges().max_element();
-        copy
+    /// Right by its longest edge.
+    fn beside(cube: &Instance<Cube>, at: &InView) -> DVec3 {
+        at.right * cube.placement.scale.edges().max_element()
     }
 
-    fn edit(&mut self, ui: &mut Ui, scale: f64) -> bool {
-        field(ui, "center", "Centre (x, y, z)");
-        vec3_row(ui, &mut self.center, 0.005 * scale, COORDINATES);
-        ui.end_row();
-        field(
-            ui,
-            "size",
-            "Edge length, or lengths along the cube's own x, y, z",
-        );
-        super::size_row(ui, &mut self.size, 0.002 * scale);
-        ui.end_row();
-        super::placed::rotation_row(ui, &mut self.rotation);
+    fn edit(&mut self, _ui: &mut Ui, _scale: f64) -> bool {
         false
     }
 }

@@ -6,13 +6,12 @@
 use egui::{Color32, Ui};
 use glam::DVec3;
 
-use super::placed::placement_rows;
-use super::{EditShape, Placement};
+use super::{EditShape, InView};
 use crate::app::panel::field;
 use crate::app::panel::widgets::{COORDINATES, vec3_row};
 use crate::expr::Function;
 use crate::scene::implicit::MAX_STEPS;
-use crate::scene::{self, Implicit};
+use crate::scene::{Implicit, Instance, Placement};
 
 /// A preset: name, function, local box.
 pub struct Preset {
@@ -80,30 +79,27 @@ struct Draft {
 
 impl EditShape for Implicit {
     /// The sphere preset at the target, a tenth of the scene scale.
-    fn new_near(at: &Placement) -> Self {
+    fn new_near(at: &InView) -> Instance<Implicit> {
         let preset = &PRESETS[1];
-        Implicit {
+        let implicit = Implicit {
             f: preset.f.to_string(),
             bounds: preset.bounds.map(DVec3::from_array),
             steps: 256,
-            placement: scene::Placement {
-                translate: at.target,
-                scale: 0.1 * at.scale,
-                rotation: DVec3::ZERO,
-            },
-            material: None,
-        }
+        };
+        let placement = Placement {
+            translate: at.target,
+            scale: 0.1 * at.scale,
+            rotation: DVec3::ZERO,
+        };
+        Instance::new(implicit, placement)
     }
 
-    /// Moved right by its box's width.
-    fn beside(&self, at: &Placement) -> Self {
-        let mut copy = self.clone();
-        copy.placement.translate +=
-            at.right * ((self.bounds[1].x - self.bounds[0].x) * self.placement.scale);
-        copy
+    /// Right by its box's width.
+    fn beside(implicit: &Instance<Implicit>, at: &InView) -> DVec3 {
+        at.right * ((implicit.bounds[1].x - implicit.bounds[0].x) * implicit.placement.scale)
     }
 
-    fn edit(&mut self, ui: &mut Ui, scale: f64) -> bool {
+    fn edit(&mut self, ui: &mut Ui, _scale: f64) -> bool {
         field(
             ui,
             "f",
@@ -139,7 +135,6 @@ impl EditShape for Implicit {
         field(ui, "steps", "Samples along the ray inside the box");
         ui.add(egui::Slider::new(&mut self.steps, 1..=MAX_STEPS).logarithmic(true));
         ui.end_row();
-        placement_rows(ui, &mut self.placement, scale);
         held
     }
 

@@ -5,38 +5,35 @@
 use egui::Ui;
 use glam::{DVec3, DVec4};
 
-use super::placed::placement_rows;
-use super::{EditShape, Placement};
+use super::{EditShape, InView};
 use crate::app::panel::field;
 use crate::scene::julia::MAX_ITERATIONS;
-use crate::scene::{self, Julia};
+use crate::scene::{Instance, Julia, Placement};
 
 impl EditShape for Julia {
     /// Crane's example c, a tenth of the scene scale in size.
-    fn new_near(at: &Placement) -> Self {
-        Julia {
+    fn new_near(at: &InView) -> Instance<Julia> {
+        let julia = Julia {
             c: [-0.2, 0.6, 0.2, 0.2],
             slice: 0.0,
             iterations: 10,
             epsilon: 1e-3,
             footprint: false,
-            placement: scene::Placement {
-                translate: at.target + at.up * (0.25 * at.scale),
-                scale: 0.1 * at.scale,
-                rotation: DVec3::ZERO,
-            },
-            material: None,
-        }
+        };
+        let placement = Placement {
+            translate: at.target + at.up * (0.25 * at.scale),
+            scale: 0.1 * at.scale,
+            rotation: DVec3::ZERO,
+        };
+        Instance::new(julia, placement)
     }
 
-    /// Moved right by its width.
-    fn beside(&self, at: &Placement) -> Self {
-        let mut copy = self.clone();
-        copy.placement.translate += at.right * (4.0 * self.placement.scale);
-        copy
+    /// Right by its width.
+    fn beside(julia: &Instance<Julia>, at: &InView) -> DVec3 {
+        at.right * (4.0 * julia.placement.scale)
     }
 
-    fn edit(&mut self, ui: &mut Ui, scale: f64) -> bool {
+    fn edit(&mut self, ui: &mut Ui, _scale: f64) -> bool {
         let mut held = false;
         for (i, name) in ["c (real)", "c (i)", "c (j)", "c (k)"]
             .into_iter()
@@ -71,7 +68,6 @@ impl EditShape for Julia {
         );
         ui.checkbox(&mut self.footprint, "epsilon at least one pixel");
         ui.end_row();
-        placement_rows(ui, &mut self.placement, scale);
         held
     }
 }
@@ -99,13 +95,13 @@ mod tests {
     /// leaves the other components alone; the scene stays valid.
     #[test]
     fn a_component_dragged_past_two_stops_on_the_sphere() {
-        let at = Placement {
+        let at = InView {
             target: DVec3::ZERO,
             right: DVec3::X,
             up: DVec3::Y,
             scale: 1.0,
         };
-        let mut julia = Julia::new_near(&at);
+        let mut julia = Julia::new_near(&at).shape;
         julia.c = [1.5, -1.9, 0.25, 0.0];
         julia.keep_c_inside(1);
         assert_eq!([julia.c[0], julia.c[2], julia.c[3]], [1.5, 0.25, 0.0]);

@@ -4,15 +4,15 @@
 use egui::Ui;
 use glam::DVec3;
 
-use super::{EditShape, Placement};
+use super::{EditShape, InView};
 use crate::app::panel::field;
 use crate::bvh::{MAX_DEPTH, mesh_bvh_built};
-use crate::scene::{CubeSize, Mesh};
+use crate::scene::{CubeSize, Instance, Mesh, Placement};
 
 impl EditShape for Mesh {
     /// A tetrahedron below the right of the target, a fifth of the scene
     /// scale across.
-    fn new_near(at: &Placement) -> Self {
+    fn new_near(at: &InView) -> Instance<Mesh> {
         let positions = [
             DVec3::new(1.0, 0.0, 1.0),
             DVec3::new(-1.0, 0.0, 1.0),
@@ -20,25 +20,24 @@ impl EditShape for Mesh {
             DVec3::new(0.0, 1.5, 0.0),
         ];
         let triangles = [[0, 2, 1], [0, 1, 3], [1, 2, 3], [2, 0, 3]];
-        let mut mesh = Mesh::inline(&positions, &triangles)
+        let mesh = Mesh::inline(&positions, &triangles)
             .expect("the tetrahedron has four non-degenerate faces");
-        mesh.placement.translate =
-            at.target + at.right * (0.25 * at.scale) - at.up * (0.1 * at.scale);
-        mesh.placement.scale = CubeSize::Uniform(0.1 * at.scale);
-        mesh
+        let placement = Placement {
+            translate: at.target + at.right * (0.25 * at.scale) - at.up * (0.1 * at.scale),
+            scale: CubeSize::Uniform(0.1 * at.scale),
+            rotation: DVec3::ZERO,
+        };
+        Instance::new(mesh, placement)
     }
 
-    /// Moved right by its size.
-    fn beside(&self, at: &Placement) -> Self {
-        let mut copy = self.clone();
-        let [lo, hi] = crate::scene::Shape::bounds(self);
-        copy.placement.translate += at.right * (hi - lo).max_element();
-        copy
+    /// Right by its size.
+    fn beside(mesh: &Instance<Mesh>, at: &InView) -> DVec3 {
+        let [lo, hi] = mesh.bounds();
+        at.right * (hi - lo).max_element()
     }
 
-    fn edit(&mut self, ui: &mut Ui, scale: f64) -> bool {
+    fn edit(&mut self, ui: &mut Ui, _scale: f64) -> bool {
         geometry_rows(ui, self);
-        super::placed::placement_rows(ui, &mut self.placement, scale);
         false
     }
 }

@@ -8,7 +8,7 @@ mod cube;
 mod implicit;
 mod julia;
 mod mesh;
-mod placed;
+mod placement;
 mod plane;
 mod sphere;
 mod torus;
@@ -17,11 +17,13 @@ use egui::Ui;
 use glam::DVec3;
 
 use super::widgets::{MIN_POSITIVE, VALUE_LIMIT, number, vec3_row};
-use crate::scene::{self, CubeSize, Scene, Shape, ShapeId, ShapeKind};
+use crate::scene::{self, CubeSize, Instance, Scene, Shape, ShapeId, ShapeKind};
+use placement::EditPlacement;
 
 /// Where new shapes go and how big they are: from the view, so that a new
-/// shape appears in sight and at the size of the scene.
-pub(super) struct Placement {
+/// shape appears in sight and at the size of the scene. (Not a shape's
+/// `scene::Placement`, which says where one shape is.)
+pub(super) struct InView {
     /// The camera target.
     pub target: DVec3,
     /// The view's right and up directions, unit length.
@@ -31,17 +33,19 @@ pub(super) struct Placement {
     pub scale: f64,
 }
 
-/// The panel's view of one shape kind.
-pub(super) trait EditShape: Shape {
+/// The panel's view of one shape kind. Its placement has rows of its own
+/// ([`EditPlacement`]), shown after the kind's.
+pub(super) trait EditShape: Shape<Placement: EditPlacement> {
     /// A new shape near the target ("Add <kind>").
-    fn new_near(at: &Placement) -> Self;
+    fn new_near(at: &InView) -> Instance<Self>;
 
-    /// The copy "Duplicate" makes, moved so that both stay visible.
-    fn beside(&self, at: &Placement) -> Self;
+    /// How far "Duplicate" moves the copy of `shape` so that both stay
+    /// visible.
+    fn beside(shape: &Instance<Self>, at: &InView) -> DVec3;
 
-    /// Its rows in the editor grid (a `Grid` of two columns). Returns true
-    /// while a value is being dragged or typed that [`EditShape::settle`]
-    /// must leave alone until the edit is done.
+    /// The rows of its own keys in the editor grid (a `Grid` of two
+    /// columns). Returns true while a value is being dragged or typed that
+    /// [`EditShape::settle`] must leave alone until the edit is done.
     fn edit(&mut self, ui: &mut Ui, scale: f64) -> bool;
 
     /// Makes values canonical again once no edit holds them (a plane's
@@ -52,7 +56,7 @@ pub(super) trait EditShape: Shape {
 macro_rules! editors {
     ($($kind:ident: $field:ident),* $(,)?) => {
         /// Appends a new shape of `kind`; returns its id.
-        pub(super) fn add(scene: &mut Scene, kind: ShapeKind, at: &Placement) -> ShapeId {
+        pub(super) fn add(scene: &mut Scene, kind: ShapeKind, at: &InView) -> ShapeId {
             match kind {
                 $(ShapeKind::$kind => {
                     scene.$field.push(<scene::$kind as EditShape>::new_near(at));
@@ -63,10 +67,12 @@ macro_rules! editors {
 
         /// Appends a copy of shape `id` beside it; returns the copy's id,
         /// `None` if there is no such shape.
-        pub(super) fn duplicate(scene: &mut Scene, id: ShapeId, at: &Placement) -> Option<ShapeId> {
+        pub(super) fn duplicate(scene: &mut Scene, id: ShapeId, at: &InView) -> Option<ShapeId> {
             match id {
                 $(ShapeId::$kind(i) => {
-                    let copy = scene.$field.get(i)?.beside(at);
+                    let shape = scene.$field.get(i)?;
+                    let mut copy = shape.clone();
+                    copy.translate(<scene::$kind as EditShape>::beside(shape, at));
                     scene.$field.push(copy);
                     Some(ShapeId::$kind(scene.$field.len() - 1))
                 })*
@@ -77,7 +83,7 @@ macro_rules! editors {
         /// (see [`EditShape::edit`]).
         pub(super) fn edit(ui: &mut Ui, scene: &mut Scene, id: ShapeId, scale: f64) -> bool {
             match id {
-                $(ShapeId::$kind(i) => scene.$field.get_mut(i).is_some_and(|s| s.edit(ui, scale)),)*
+                $(ShapeId::$kind(i) => scene.$field.get_mut(i).is_some_and(|s| edit_instance(ui, s, scale)),)*
             }
         }
 
@@ -85,13 +91,20 @@ macro_rules! editors {
         pub(super) fn settle(scene: &mut Scene, held: Option<ShapeId>) {
             $(for (i, shape) in scene.$field.iter_mut().enumerate() {
                 if held != Some(ShapeId::$kind(i)) {
-                    shape.settle();
+                    shape.shape.settle();
                 }
             })*
         }
     };
 }
 crate::scene::for_each_shape_kind!(editors);
+
+/// The kind's rows, then its placement's; true while an edit holds a value.
+fn edit_instance<K: EditShape>(ui: &mut Ui, shape: &mut Instance<K>, scale: f64) -> bool {
+    let held = shape.shape.edit(ui, scale);
+    shape.placement.rows(ui, scale);
+    held
+}
 
 /// One length or three (a cube's size, a mesh's scale), with a toggle
 /// between the two forms.

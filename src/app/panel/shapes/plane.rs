@@ -4,10 +4,10 @@
 use egui::Ui;
 use glam::DVec3;
 
-use super::{EditShape, Placement};
+use super::{EditShape, InView};
 use crate::app::panel::field;
 use crate::app::panel::widgets::{COORDINATES, VALUE_LIMIT, vec3_row};
-use crate::scene::Plane;
+use crate::scene::{Instance, Plane, Unplaced};
 
 /// How far from 1 the squared length of a normal may be for it to count as
 /// unit length already (as the scene loader does): normalising it again could
@@ -27,19 +27,17 @@ fn unit_normal(n: DVec3) -> Option<DVec3> {
 
 impl EditShape for Plane {
     /// A floor: facing the camera's up, a little below the target.
-    fn new_near(at: &Placement) -> Self {
-        Plane {
+    fn new_near(at: &InView) -> Instance<Plane> {
+        let plane = Plane {
             point: at.target - at.up * (0.2 * at.scale),
             normal: at.up,
-            material: None,
-        }
+        };
+        Instance::new(plane, Unplaced)
     }
 
-    /// Moved along its normal by a tenth of the scene scale.
-    fn beside(&self, at: &Placement) -> Self {
-        let mut copy = self.clone();
-        copy.point += self.normal * (0.1 * at.scale);
-        copy
+    /// Along its normal by a tenth of the scene scale.
+    fn beside(plane: &Instance<Plane>, at: &InView) -> DVec3 {
+        plane.normal * (0.1 * at.scale)
     }
 
     /// While the user drags or types a component of the normal the raw

@@ -2,26 +2,26 @@
 
 use egui::Ui;
 
-use super::{EditShape, Placement};
+use glam::DVec3;
+
+use super::{EditShape, InView};
 use crate::app::panel::field;
 use crate::app::panel::widgets::{COORDINATES, MIN_POSITIVE, VALUE_LIMIT, number, vec3_row};
-use crate::scene::Sphere;
+use crate::scene::{Instance, Sphere, Unplaced};
 
 impl EditShape for Sphere {
     /// Right of the target, a tenth of the scene scale in radius.
-    fn new_near(at: &Placement) -> Self {
-        Sphere {
+    fn new_near(at: &InView) -> Instance<Sphere> {
+        let sphere = Sphere {
             center: at.target + at.right * (0.25 * at.scale),
             radius: 0.1 * at.scale,
-            material: None,
-        }
+        };
+        Instance::new(sphere, Unplaced)
     }
 
-    /// Moved right by its diameter.
-    fn beside(&self, at: &Placement) -> Self {
-        let mut copy = self.clone();
-        copy.center += at.right * (2.0 * self.radius);
-        copy
+    /// Right by its diameter.
+    fn beside(sphere: &Instance<Sphere>, at: &InView) -> DVec3 {
+        at.right * (2.0 * sphere.radius)
     }
 
     fn edit(&mut self, ui: &mut Ui, scale: f64) -> bool {

@@ -1,32 +1,29 @@
 //! The torus's editor: the two radii and the placement.
 
-use super::placed::placement_rows;
-use super::{EditShape, Placement};
+use super::{EditShape, InView};
 use crate::app::panel::field;
 use crate::app::panel::widgets::{MIN_POSITIVE, VALUE_LIMIT, number};
-use crate::scene::{self, Torus};
+use crate::scene::{Instance, Placement, Torus};
 use egui::Ui;
+use glam::DVec3;
 
 impl EditShape for Torus {
     /// Below the target, lying flat, a fifth of the scene scale across.
-    fn new_near(at: &Placement) -> Self {
-        Torus {
+    fn new_near(at: &InView) -> Instance<Torus> {
+        let torus = Torus {
             major_radius: 0.1 * at.scale,
             minor_radius: 0.03 * at.scale,
-            placement: scene::Placement {
-                translate: at.target - at.up * (0.25 * at.scale),
-                ..Default::default()
-            },
-            material: None,
-        }
+        };
+        let placement = Placement {
+            translate: at.target - at.up * (0.25 * at.scale),
+            ..Default::default()
+        };
+        Instance::new(torus, placement)
     }
 
-    /// Moved right by its width.
-    fn beside(&self, at: &Placement) -> Self {
-        let mut copy = self.clone();
-        copy.placement.translate +=
-            at.right * (2.0 * (self.major_radius + self.minor_radius) * self.placement.scale);
-        copy
+    /// Right by its width.
+    fn beside(torus: &Instance<Torus>, at: &InView) -> DVec3 {
+        at.right * (2.0 * (torus.major_radius + torus.minor_radius) * torus.placement.scale)
     }
 
     fn edit(&mut self, ui: &mut Ui, scale: f64) -> bool {
@@ -44,7 +41,6 @@ impl EditShape for Torus {
             MIN_POSITIVE..=self.major_radius * (1.0 - 1e-6),
         ));
         ui.end_row();
-        placement_rows(ui, &mut self.placement, scale);
         false
     }
 
