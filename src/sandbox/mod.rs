@@ -5,9 +5,9 @@
 //!
 //! | module | what |
 //! | --- | --- |
-//! | `compose` | language and style, the preludes, the GLSL rewrite, validation |
+//! | `compose` | language and style, the preludes, the GLSL rewrite, validation (one file per language and step) |
 //! | `gaps` | small source rewrites for what naga's GLSL front end does not take |
-//! | `params` | annotations, values, the bytes the GPU reads, the sidecar file |
+//! | `params` | annotations, values, the bytes the GPU reads, the sidecar file (a file each) |
 //! | `uniforms` | the per-frame values (time, mouse, resolution, date) |
 //! | `mouse` | the mouse uniforms: Shadertoy's click and drag, GLSL Sandbox's surface |
 //! | `clock` | pause, resume, restart, step |
