@@ -128,6 +128,7 @@ fn open_window(
         options,
         gfx: None,
         watch: None,
+        watched_includes: Vec::new(),
         fatal: None,
         panel: PanelState {
             show: true,
@@ -216,6 +217,8 @@ struct SandboxApp {
     scale: f32,
     gfx: Option<Graphics>,
     watch: Option<watch::Watch>,
+    /// The included files `watch` watches besides the shader file.
+    watched_includes: Vec<PathBuf>,
     fatal: Option<ViewerError>,
     panel: PanelState,
     mouse: Mouse,
@@ -253,13 +256,6 @@ impl ApplicationHandler<SandboxEvent> for SandboxApp {
             Ok(gfx) => {
                 self.gfx = Some(gfx);
                 self.load(false);
-                let proxy = self.proxy.clone();
-                match watch::watch_file(&self.options.file, move || {
-                    let _ = proxy.send_event(SandboxEvent::FileChanged);
-                }) {
-                    Ok(w) => self.watch = Some(w),
-                    Err(e) => self.panel.message = Some(e),
-                }
             }
             Err(e) => {
                 self.fatal = Some(e);
@@ -381,7 +377,9 @@ impl SandboxApp {
         if self.gfx.is_none() {
             return;
         }
-        let compiled = match self.session.compile() {
+        let compiled = self.session.compile();
+        self.watch_files();
+        let compiled = match compiled {
             Ok(Some(c)) => c,
             Ok(None) => return,
             Err(e) => {
@@ -408,6 +406,25 @@ impl SandboxApp {
                 reloaded,
             });
         });
+    }
+
+    /// Watches the shader file and the files it includes (docs/sandbox.md,
+    /// "Includes"): after a compile that changed the includes, the watch is
+    /// made again for the new set.
+    fn watch_files(&mut self) {
+        let includes = self.session.includes();
+        if self.watch.is_some() && self.watched_includes == includes {
+            return;
+        }
+        self.watched_includes = includes.to_vec();
+        let proxy = self.proxy.clone();
+        let notify = move |_| {
+            let _ = proxy.send_event(SandboxEvent::FileChanged);
+        };
+        match watch::watch(None, Some(&self.options.file), includes, notify) {
+            Ok(w) => self.watch = Some(w),
+            Err(e) => self.panel.message = Some(e),
+        }
     }
 
     fn built(

@@ -6,6 +6,7 @@
 //! | module | what |
 //! | --- | --- |
 //! | `compose` | language and style, the preludes, the GLSL rewrite, validation (one file per language and step) |
+//! | `include` | glslViewer's `#include "file"`, with the map back to each file's lines |
 //! | `gaps` | small source rewrites for what naga's GLSL front end does not take |
 //! | `params` | annotations, values, the bytes the GPU reads, the sidecar file (a file each) |
 //! | `uniforms` | the per-frame values (time, mouse, resolution, date) |
@@ -28,6 +29,7 @@ pub mod clock;
 pub mod compose;
 pub mod constants;
 mod gaps;
+pub mod include;
 pub mod mouse;
 pub mod params;
 pub mod render;
@@ -95,17 +97,18 @@ pub struct ShaderArgs {
     pub nan_color: NanColor,
     /// The image of Shadertoy's `iChannel0` (PNG, JPEG, ...), also the
     /// first `uniform sampler2D` of a GLSL Sandbox file other than
-    /// `backbuffer`. Without it, a built-in noise image.
-    #[arg(long, value_name = "IMAGE")]
+    /// `backbuffer`, and glslViewer's `u_tex0` (so also `--tex0`, as
+    /// glslViewer spells it). Without it, a built-in noise image.
+    #[arg(long, value_name = "IMAGE", visible_alias = "tex0")]
     pub channel0: Option<PathBuf>,
-    /// The image of `iChannel1` (see --channel0).
-    #[arg(long, value_name = "IMAGE")]
+    /// The image of `iChannel1` and `u_tex1` (see --channel0).
+    #[arg(long, value_name = "IMAGE", visible_alias = "tex1")]
     pub channel1: Option<PathBuf>,
-    /// The image of `iChannel2` (see --channel0).
-    #[arg(long, value_name = "IMAGE")]
+    /// The image of `iChannel2` and `u_tex2` (see --channel0).
+    #[arg(long, value_name = "IMAGE", visible_alias = "tex2")]
     pub channel2: Option<PathBuf>,
-    /// The image of `iChannel3` (see --channel0).
-    #[arg(long, value_name = "IMAGE")]
+    /// The image of `iChannel3` and `u_tex3` (see --channel0).
+    #[arg(long, value_name = "IMAGE", visible_alias = "tex3")]
     pub channel3: Option<PathBuf>,
     /// Print one line per event (ready, shader-reloaded, shader-error, ...)
     /// on stdout, for scripts and tests that drive the window.

@@ -8,6 +8,7 @@ use super::glsl_prelude::{
     GLSL_TEXTURES, glsl_frame_block, glsl_param_type, glsl_sandbox_surface, glsl_texture_names,
     is_matrix, old_shadertoy_names, shadertoy_channels, standard_uniforms,
 };
+use super::glslviewer;
 use super::param_block::{GLSL_BOOL_PREFIX, read_params};
 use super::{
     Compiled, EPILOGUE_NAME, GLSL_ENTRY, PRELUDE_NAME, Style, at_end_of_file, error_at, find_pair,
@@ -54,6 +55,8 @@ pub(super) fn compile_glsl(name: &str, scan: &Scan) -> Result<Compiled, ShaderEr
     let sandbox_port = user_main && declares_uniform(tokens, &["time", "resolution", "mouse"]);
     let style = if find_pair(tokens, "mainImage", "(").is_some() && !sandbox_port {
         Style::Shadertoy
+    } else if user_main && glslviewer::is_glslviewer(tokens) {
+        Style::GlslViewer
     } else if user_main {
         Style::GlslSandbox
     } else {
@@ -161,7 +164,8 @@ pub(super) fn compile_glsl(name: &str, scan: &Scan) -> Result<Compiled, ShaderEr
     }
     let resolution = match style {
         Style::Shadertoy => "iResolution",
-        _ if declared.contains(&"resolution") => "resolution",
+        Style::GlslViewer if declared.contains(&"u_resolution") => "u_resolution",
+        Style::GlslSandbox if declared.contains(&"resolution") => "resolution",
         _ => "rsb_resolution",
     };
     let _ = write!(
@@ -193,6 +197,7 @@ pub(super) fn compile_glsl(name: &str, scan: &Scan) -> Result<Compiled, ShaderEr
             prelude.push_str(&old_shadertoy_names(&used));
             prelude.push_str(&shadertoy_channels(&used));
         }
+        Style::GlslViewer => prelude.push_str(&glslviewer::prelude(&declared, resolution)),
         _ => prelude.push_str(&glsl_sandbox_surface(
             resolution,
             rewrite.surface_position,
@@ -252,6 +257,7 @@ pub(super) fn compile_glsl(name: &str, scan: &Scan) -> Result<Compiled, ShaderEr
         module,
         entry_point: GLSL_ENTRY,
         params,
+        includes: Vec::new(),
         reads_backbuffer,
     })
 }

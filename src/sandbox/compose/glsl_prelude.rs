@@ -5,6 +5,7 @@
 use std::fmt::Write as _;
 
 use super::glsl_decls::UniformDecl;
+use super::glslviewer;
 use super::{Style, error_at};
 use crate::gpu::ShaderError;
 use crate::sandbox::scan::Scan;
@@ -30,6 +31,7 @@ pub(super) fn standard_uniforms(style: Style) -> &'static [(&'static str, &'stat
             ("iChannel2", "sampler2D"),
             ("iChannel3", "sampler2D"),
         ],
+        Style::GlslViewer => glslviewer::UNIFORMS,
         _ => &[
             ("time", "float"),
             ("mouse", "vec2"),
@@ -40,9 +42,10 @@ pub(super) fn standard_uniforms(style: Style) -> &'static [(&'static str, &'stat
 }
 
 /// The GLSL declaration of the frame uniforms for `style`. In the GLSL
-/// Sandbox style a standard name is only given to the members the user
-/// declared (as on glslsandbox.com, where you declare what you use); the
-/// others get an `rsb_` name, so they cannot clash with the user's names.
+/// Sandbox and glslViewer styles a standard name is only given to the
+/// members the user declared (as on glslsandbox.com, where you declare what
+/// you use); the others get an `rsb_` name, so they cannot clash with the
+/// user's names.
 pub(super) fn glsl_frame_block(style: Style, declared: &[&str]) -> String {
     let members: Vec<(&str, String)> = if style == Style::Shadertoy {
         [
@@ -61,21 +64,25 @@ pub(super) fn glsl_frame_block(style: Style, declared: &[&str]) -> String {
         .map(|(t, n)| (*t, n.to_string()))
         .collect()
     } else {
-        let named = |standard: &str| {
-            if declared.contains(&standard) {
-                standard.to_string()
-            } else {
-                format!("rsb_{standard}")
-            }
+        // The name a style gives a slot of the block, if it has one.
+        let conventional = |slot: &'static str| match style {
+            Style::GlslViewer => glslviewer::slot_name(slot),
+            _ => ["resolution", "time", "mouse"]
+                .contains(&slot)
+                .then_some(slot),
+        };
+        let named = |slot: &'static str| match conventional(slot) {
+            Some(name) if declared.contains(&name) => name.to_string(),
+            _ => format!("rsb_{slot}"),
         };
         vec![
             ("vec2", named("resolution")),
             ("float", "rsb_pixel_aspect".into()),
             ("float", named("time")),
             ("vec4", "rsb_mouse_px".into()),
-            ("vec4", "rsb_date".into()),
-            ("float", "rsb_time_delta".into()),
-            ("int", "rsb_frame".into()),
+            ("vec4", named("date")),
+            ("float", named("time_delta")),
+            ("int", named("frame")),
             ("float", "rsb_frame_rate".into()),
             ("float", "rsb_surface_height".into()),
             ("vec2", named("mouse")),
@@ -156,11 +163,12 @@ layout(set = 0, binding = 7) uniform texture2D rsb_backbuffer;
 ";
 
 /// Channels are numbered 0 to 3.
-const CHANNELS: usize = 4;
+pub(super) const CHANNELS: usize = 4;
 
 /// `#define`s for the `uniform sampler2D` names the file declared: GLSL
 /// Sandbox's `backbuffer` is the previous frame, Shadertoy's `iChannelN`
-/// channel N, and any other name the next channel in the order declared.
+/// and glslViewer's `u_texN` channel N, and any other name the next free
+/// channel in the order declared.
 pub(super) fn glsl_texture_names(
     name: &str,
     scan: &Scan,
@@ -169,13 +177,18 @@ pub(super) fn glsl_texture_names(
     textures: &[&str],
 ) -> Result<String, ShaderError> {
     let mut text = String::new();
-    let mut next = 0;
+    let numbered = |texture: &str| match style {
+        Style::GlslViewer => glslviewer::texture_channel(texture),
+        _ => None,
+    };
+    let mut taken: Vec<usize> = textures.iter().filter_map(|t| numbered(t)).collect();
     for texture in textures {
         if style == Style::GlslSandbox && *texture == "backbuffer" {
             text.push_str("#define backbuffer sampler2D(rsb_backbuffer, rsb_sampler)\n");
             continue;
         }
-        if next == CHANNELS {
+        let free = (0..CHANNELS).find(|k| !taken.contains(k));
+        let Some(channel) = numbered(texture).or(free) else {
             let decl = uniforms
                 .iter()
                 .find(|d| d.name == *texture)
@@ -186,7 +199,7 @@ pub(super) fn glsl_texture_names(
                 decl.offset,
                 format!("`{texture}`: at most {CHANNELS} textures (channels 0 to 3)"),
             ));
-        }
+        };
         // The front-end gaps rename a variable called `texture`.
         let renamed = if *texture == "texture" {
             "rsb_texture"
@@ -195,9 +208,11 @@ pub(super) fn glsl_texture_names(
         };
         let _ = writeln!(
             text,
-            "#define {renamed} sampler2D(rsb_channel{next}, rsb_sampler)"
+            "#define {renamed} sampler2D(rsb_channel{channel}, rsb_sampler)"
         );
-        next += 1;
+        if numbered(texture).is_none() {
+            taken.push(channel);
+        }
     }
     Ok(text)
 }

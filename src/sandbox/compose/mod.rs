@@ -16,17 +16,20 @@
 //! | `wgsl` | the WGSL prelude and epilogue, `struct Params` |
 //! | `glsl` | the GLSL style, the prelude's assembly, validation |
 //! | `glsl_decls` | the blanking rewrite of the user's top-level declarations |
+//! | `glslviewer` | glslViewer's and The Book of Shaders' uniforms |
 //! | `glsl_prelude` | the pieces of the GLSL preludes: frame block, textures, old names |
 //! | `param_block` | the parameters read from the validated module's uniform block |
 
 mod glsl;
 mod glsl_decls;
 mod glsl_prelude;
+mod glslviewer;
 mod param_block;
 mod wgsl;
 
-use std::path::Path;
+use std::path::{Path, PathBuf};
 
+use super::include::{self, Expanded, include_target};
 use super::params::ParamSet;
 use super::scan::{Scan, Token};
 use crate::gpu::{ShaderError, ShaderSource};
@@ -44,6 +47,9 @@ pub enum Style {
     /// GLSL with `void mainImage(out vec4 fragColor, in vec2 fragCoord)`
     /// and `iTime`, `iResolution`, `iMouse`, ... (shadertoy.com).
     Shadertoy,
+    /// GLSL with `void main()`, `gl_FragColor` and the uniforms `u_time`,
+    /// `u_resolution`, `u_mouse`, ... (glslViewer, The Book of Shaders).
+    GlslViewer,
 }
 
 impl Style {
@@ -52,6 +58,7 @@ impl Style {
             Style::Wgsl => "WGSL",
             Style::GlslSandbox => "GLSL (GLSL Sandbox style)",
             Style::Shadertoy => "GLSL (Shadertoy style)",
+            Style::GlslViewer => "GLSL (glslViewer style)",
         }
     }
 }
@@ -82,6 +89,8 @@ pub struct Compiled {
     /// each frame is copied for the next one to read (docs/sandbox.md,
     /// "Textures").
     pub reads_backbuffer: bool,
+    /// The files `#include`d, to reload when one changes.
+    pub includes: Vec<PathBuf>,
 }
 
 /// Reads and compiles a shader file. Unreadable files are errors too, named
@@ -96,7 +105,17 @@ pub fn compile_file(path: &Path) -> Result<Compiled, ShaderError> {
         source_line: String::new(),
         label: String::new(),
     })?;
-    compile(&name, &text)
+    let (expanded, included) = include::expand(path, &text);
+    included?;
+    compile_expanded(&name, &expanded)
+}
+
+/// Compiles a file whose includes are joined in: errors are at the line of
+/// the file, included or not, that they are in.
+pub fn compile_expanded(name: &str, expanded: &Expanded) -> Result<Compiled, ShaderError> {
+    let mut compiled = compile(name, &expanded.text).map_err(|e| expanded.locate(e, name))?;
+    compiled.includes = expanded.included().to_vec();
+    Ok(compiled)
 }
 
 /// Compiles the text of a shader file called `name` (its extension, if any,
@@ -104,6 +123,21 @@ pub fn compile_file(path: &Path) -> Result<Compiled, ShaderError> {
 /// GLSL; otherwise the text decides).
 pub fn compile(name: &str, text: &str) -> Result<Compiled, ShaderError> {
     let scan = Scan::new(text);
+    if let Some(t) = scan
+        .tokens
+        .iter()
+        .find(|t| include_target(t.text).is_some())
+    {
+        // Without a file there is no folder to find it in.
+        return Err(error_at(
+            name,
+            &scan,
+            t.start,
+            "`#include` needs the shader as a file on disk (raysandbox shader FILE): \
+             the included file is found next to it"
+                .into(),
+        ));
+    }
     let extension = Path::new(name)
         .extension()
         .map(|e| e.to_string_lossy().to_ascii_lowercase());

@@ -92,6 +92,7 @@ pub(super) fn compile_wgsl(name: &str, text: &str, scan: &Scan) -> Result<Compil
         module,
         entry_point: WGSL_ENTRY,
         params,
+        includes: Vec::new(),
         reads_backbuffer: tokens.iter().any(|t| t.is("backbuffer")),
     })
 }
