@@ -141,6 +141,7 @@ fn open_window(
         check_next: true,
         last_check: now,
         warning: None,
+        source_warnings: Vec::new(),
         gpu_time: None,
         last_tick: None,
         after_present: Vec::new(),
@@ -231,6 +232,8 @@ struct SandboxApp {
     last_check: Instant,
     /// What the last check found.
     warning: Option<String>,
+    /// The warnings of the running shader's source, as shown.
+    source_warnings: Vec<String>,
     /// GPU time of the last drawn frame, submit to done.
     gpu_time: Option<Duration>,
     last_tick: Option<Tick>,
@@ -408,6 +411,28 @@ impl SandboxApp {
         });
     }
 
+    /// The warnings of the shader's source (uniforms nothing sets,
+    /// docs/sandbox.md): logged and announced once, when they change, and
+    /// shown at the top of the window while the shader runs.
+    fn note_source_warnings(&mut self) {
+        let warnings: Vec<String> = self
+            .session
+            .compiled()
+            .map(|c| c.warnings.iter().map(ToString::to_string).collect())
+            .unwrap_or_default();
+        if warnings == self.source_warnings {
+            return;
+        }
+        for w in &warnings {
+            log::warn!("{w}");
+        }
+        if !warnings.is_empty() {
+            self.after_present
+                .push(format!("shader-warning {}", warnings.len()));
+        }
+        self.source_warnings = warnings;
+    }
+
     /// Watches the shader file and the files it includes (docs/sandbox.md,
     /// "Includes"): after a compile that changed the includes, the watch is
     /// made again for the new set.
@@ -450,6 +475,7 @@ impl SandboxApp {
         for w in &warnings {
             log::warn!("{w}");
         }
+        self.note_source_warnings();
         self.panel.message = warnings.into_iter().next();
         self.draw_next = true;
         self.check_next = true;
@@ -518,7 +544,7 @@ impl SandboxApp {
         let panel = &mut self.panel;
         let mouse = &mut self.mouse;
         let scale = self.scale;
-        let warning = self.warning.clone();
+        let warning = shown_warning(self.warning.as_deref(), &self.source_warnings);
         let channel_paths = &mut self.channels.paths;
         let file = self.options.file.file_name().map_or_else(
             || self.options.file.display().to_string(),
@@ -1016,4 +1042,14 @@ mod tests {
         assert_eq!(scaled((800, 450), 1.0), (800, 450));
         assert_eq!(scaled((1, 1), 0.25), (1, 1));
     }
+}
+
+/// The warning at the top of the window: what the output check found, and
+/// the warnings of the shader's source.
+fn shown_warning(output: Option<&str>, source: &[String]) -> Option<String> {
+    let lines: Vec<&str> = output
+        .into_iter()
+        .chain(source.iter().map(String::as_str))
+        .collect();
+    (!lines.is_empty()).then(|| lines.join("\n"))
 }

@@ -8,11 +8,11 @@ use super::glsl_prelude::{
     GLSL_TEXTURES, glsl_frame_block, glsl_param_type, glsl_sandbox_surface, glsl_texture_names,
     is_matrix, old_shadertoy_names, shadertoy_channels, standard_uniforms,
 };
-use super::glslviewer;
 use super::param_block::{GLSL_BOOL_PREFIX, read_params};
 use super::{
     Compiled, EPILOGUE_NAME, GLSL_ENTRY, PRELUDE_NAME, Style, at_end_of_file, error_at, find_pair,
 };
+use super::{glslviewer, silent_zeros};
 use crate::gpu::{ShaderError, ShaderSource};
 use crate::sandbox::scan::{self, Kind, Scan, Token};
 use crate::sandbox::{gaps, repair};
@@ -76,13 +76,22 @@ pub(super) fn compile_glsl(name: &str, scan: &Scan) -> Result<Compiled, ShaderEr
     let mut textures = Vec::new();
     // Declared but never set by GLSL Sandbox: zero, as in WebGL.
     let mut zero = Vec::new();
+    let mut warnings = Vec::new();
     for decl in &rewrite.uniforms {
         match standard.iter().find(|(n, _)| *n == decl.name) {
             Some((n, t)) if *t == decl.type_name => declared.push(*n),
             // `uniform vec4 mouse;`: the pointer in xy, zw zero.
-            Some(("mouse", _)) if ["vec3", "vec4"].contains(&decl.type_name.as_str()) => {
+            Some((n @ ("mouse" | "u_mouse"), _))
+                if ["vec3", "vec4"].contains(&decl.type_name.as_str()) =>
+            {
+                let xy = if *n == "mouse" {
+                    "rsb_mouse"
+                } else {
+                    declared.push(glslviewer::MOUSE_PIXELS);
+                    "rsb_u_mouse()"
+                };
                 zero.push(format!(
-                    "#define mouse {}(rsb_mouse, {})\n",
+                    "#define {n} {}({xy}, {})\n",
                     decl.type_name,
                     if decl.type_name == "vec3" {
                         "0.0"
@@ -106,12 +115,20 @@ pub(super) fn compile_glsl(name: &str, scan: &Scan) -> Result<Compiled, ShaderEr
                 ));
             }
             None if decl.type_name == "sampler2D" => textures.push(decl.name),
-            None if is_matrix(&decl.type_name) => zero.push(format!(
-                "const {0} {1} = {0}(0.0);\n",
-                decl.type_name, decl.name
-            )),
+            None if is_matrix(&decl.type_name) => {
+                warnings.push(silent_zeros::warning(name, scan, decl, false));
+                zero.push(format!(
+                    "const {0} {1} = {0}(0.0);\n",
+                    decl.type_name, decl.name
+                ));
+            }
             None => match glsl_param_type(&decl.type_name) {
-                Some(_) => user_params.push(decl),
+                Some(_) => {
+                    if silent_zeros::is_unset(scan, decl) {
+                        warnings.push(silent_zeros::warning(name, scan, decl, true));
+                    }
+                    user_params.push(decl);
+                }
                 None => {
                     return Err(error_at(
                         name,
@@ -258,6 +275,7 @@ pub(super) fn compile_glsl(name: &str, scan: &Scan) -> Result<Compiled, ShaderEr
         entry_point: GLSL_ENTRY,
         params,
         includes: Vec::new(),
+        warnings,
         reads_backbuffer,
     })
 }

@@ -51,17 +51,23 @@ pub(super) fn texture_channel(name: &str) -> Option<usize> {
     (n < CHANNELS && name.len() == "u_tex".len() + 1).then_some(n)
 }
 
+/// Stands for a `uniform vec3 u_mouse;` or `vec4` in the declared names:
+/// the pixels' function is wanted, the file defines the name itself.
+pub(super) const MOUSE_PIXELS: &str = "rsb_u_mouse";
+
 /// The definitions of the declared uniforms that are not members of the
 /// frame block: `u_mouse`, the pointer over the image in pixels, y up, no
 /// click needed (glslViewer's), and `u_texNResolution`, channel N's size.
 pub(super) fn prelude(declared: &[&str], resolution: &str) -> String {
     let mut text = String::new();
-    if declared.contains(&"u_mouse") {
-        let _ = write!(
+    if declared.contains(&"u_mouse") || declared.contains(&MOUSE_PIXELS) {
+        let _ = writeln!(
             text,
-            "vec2 rsb_u_mouse() {{ return rsb_mouse * {resolution}; }}\n\
-             #define u_mouse rsb_u_mouse()\n"
+            "vec2 {MOUSE_PIXELS}() {{ return rsb_mouse * {resolution}; }}"
         );
+    }
+    if declared.contains(&"u_mouse") {
+        let _ = writeln!(text, "#define u_mouse {MOUSE_PIXELS}()");
     }
     for k in 0..CHANNELS {
         let name = format!("u_tex{k}Resolution");

@@ -18,6 +18,7 @@
 //! | `glsl_decls` | the blanking rewrite of the user's top-level declarations |
 //! | `glslviewer` | glslViewer's and The Book of Shaders' uniforms |
 //! | `glsl_prelude` | the pieces of the GLSL preludes: frame block, textures, old names |
+//! | `silent_zeros` | the warnings for uniforms that nothing sets |
 //! | `param_block` | the parameters read from the validated module's uniform block |
 
 mod glsl;
@@ -25,6 +26,7 @@ mod glsl_decls;
 mod glsl_prelude;
 mod glslviewer;
 mod param_block;
+mod silent_zeros;
 mod wgsl;
 
 use std::path::{Path, PathBuf};
@@ -34,6 +36,7 @@ use super::params::ParamSet;
 use super::scan::{Scan, Token};
 use crate::gpu::{ShaderError, ShaderSource};
 use glsl::{GLSL_DEFINES, compile_glsl};
+pub use silent_zeros::Warning;
 use wgsl::compile_wgsl;
 
 /// Which kind of shader the file is.
@@ -91,6 +94,8 @@ pub struct Compiled {
     pub reads_backbuffer: bool,
     /// The files `#include`d, to reload when one changes.
     pub includes: Vec<PathBuf>,
+    /// Uniforms that stay 0 (docs/sandbox.md, "Uniforms nobody sets").
+    pub warnings: Vec<Warning>,
 }
 
 /// Reads and compiles a shader file. Unreadable files are errors too, named
@@ -115,6 +120,12 @@ pub fn compile_file(path: &Path) -> Result<Compiled, ShaderError> {
 pub fn compile_expanded(name: &str, expanded: &Expanded) -> Result<Compiled, ShaderError> {
     let mut compiled = compile(name, &expanded.text).map_err(|e| expanded.locate(e, name))?;
     compiled.includes = expanded.included().to_vec();
+    for w in &mut compiled.warnings {
+        if let Some((file, line)) = expanded.origin(w.line) {
+            w.file = file.display().to_string();
+            w.line = line;
+        }
+    }
     Ok(compiled)
 }
 

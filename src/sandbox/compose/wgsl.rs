@@ -93,6 +93,7 @@ pub(super) fn compile_wgsl(name: &str, text: &str, scan: &Scan) -> Result<Compil
         entry_point: WGSL_ENTRY,
         params,
         includes: Vec::new(),
+        warnings: Vec::new(),
         reads_backbuffer: tokens.iter().any(|t| t.is("backbuffer")),
     })
 }
