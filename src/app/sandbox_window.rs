@@ -1032,6 +1032,16 @@ fn help_window(ctx: &egui::Context, open: &mut bool) {
         });
 }
 
+/// The warning at the top of the window: what the output check found, and
+/// the warnings of the shader's source.
+fn shown_warning(output: Option<&str>, source: &[String]) -> Option<String> {
+    let lines: Vec<&str> = output
+        .into_iter()
+        .chain(source.iter().map(String::as_str))
+        .collect();
+    (!lines.is_empty()).then(|| lines.join("\n"))
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -1042,14 +1052,4 @@ mod tests {
         assert_eq!(scaled((800, 450), 1.0), (800, 450));
         assert_eq!(scaled((1, 1), 0.25), (1, 1));
     }
-}
-
-/// The warning at the top of the window: what the output check found, and
-/// the warnings of the shader's source.
-fn shown_warning(output: Option<&str>, source: &[String]) -> Option<String> {
-    let lines: Vec<&str> = output
-        .into_iter()
-        .chain(source.iter().map(String::as_str))
-        .collect();
-    (!lines.is_empty()).then(|| lines.join("\n"))
 }
