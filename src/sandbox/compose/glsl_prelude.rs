@@ -6,7 +6,7 @@ use std::fmt::Write as _;
 
 use super::glsl_decls::UniformDecl;
 use super::glslviewer;
-use super::{Style, error_at};
+use super::{CHANNELS, Style, error_at};
 use crate::gpu::ShaderError;
 use crate::sandbox::scan::Scan;
 
@@ -162,8 +162,6 @@ layout(set = 0, binding = 6) uniform sampler rsb_sampler;
 layout(set = 0, binding = 7) uniform texture2D rsb_backbuffer;
 ";
 
-/// Channels are numbered 0 to 3.
-pub(super) const CHANNELS: usize = 4;
 
 /// `#define`s for the `uniform sampler2D` names the file declared: GLSL
 /// Sandbox's `backbuffer` is the previous frame, Shadertoy's `iChannelN`

@@ -5,7 +5,7 @@
 
 use std::fmt::Write as _;
 
-use super::glsl_prelude::CHANNELS;
+use super::CHANNELS;
 use crate::sandbox::scan::Token;
 
 /// The uniforms glslViewer sets (name, GLSL type), other than the textures

@@ -71,6 +71,9 @@ pub const PRELUDE_NAME: &str = "<sandbox prelude>";
 /// The name errors give the program's code after the user's file.
 pub const EPILOGUE_NAME: &str = "<sandbox epilogue>";
 
+/// Channels are numbered 0 to 3 (docs/sandbox.md, "Textures").
+const CHANNELS: usize = 4;
+
 /// The fragment entry point of a compiled shader.
 pub const WGSL_ENTRY: &str = "rsb_fragment";
 pub const GLSL_ENTRY: &str = "main";
