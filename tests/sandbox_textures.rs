@@ -90,6 +90,45 @@ fn a_shader_sampling_ichannel0_reproduces_the_given_image() {
     std::fs::remove_dir_all(&dir).unwrap();
 }
 
+/// glslViewer's names (docs/sandbox.md, "glslViewer and The Book of
+/// Shaders"): `u_tex1` is channel 1 whatever the order of declaration,
+/// `u_tex1Resolution` its size, and `--tex1` gives its image.
+const SHOW_TEX1: &str = "\
+uniform sampler2D u_tex1;
+uniform sampler2D u_tex0;
+uniform vec2 u_tex1Resolution;
+void main() {
+    gl_FragColor = texture2D(u_tex1, gl_FragCoord.xy / u_tex1Resolution) + 0.0 * texture2D(u_tex0, vec2(0.0));
+}
+";
+
+#[test]
+fn tex1_gives_glslviewers_u_tex1_its_image() {
+    if common::gpu().is_none() {
+        return;
+    }
+    let dir = temp_dir("tex1");
+    let input = RgbaImage::from_fn(37, 23, |x, y| {
+        image::Rgba([(x * 7) as u8, (y * 11) as u8, ((x * y) % 256) as u8, 255])
+    });
+    let input_path = dir.join("input.png");
+    input.save(&input_path).unwrap();
+    let shader = write(&dir, "book.frag", SHOW_TEX1);
+    let out = dir.join("out.png");
+    succeeded(&raysandbox(&[
+        "shader",
+        shader.to_str().unwrap(),
+        "--tex1",
+        input_path.to_str().unwrap(),
+        "--render",
+        out.to_str().unwrap(),
+        "--size",
+        "37x23",
+    ]));
+    assert_eq!(open(&out), input);
+    std::fs::remove_dir_all(&dir).unwrap();
+}
+
 #[test]
 fn without_a_channel_image_the_channel_is_the_built_in_noise() {
     if common::gpu().is_none() {

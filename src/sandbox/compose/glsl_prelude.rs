@@ -162,7 +162,6 @@ layout(set = 0, binding = 6) uniform sampler rsb_sampler;
 layout(set = 0, binding = 7) uniform texture2D rsb_backbuffer;
 ";
 
-
 /// `#define`s for the `uniform sampler2D` names the file declared: GLSL
 /// Sandbox's `backbuffer` is the previous frame, Shadertoy's `iChannelN`
 /// and glslViewer's `u_texN` channel N, and any other name the next free

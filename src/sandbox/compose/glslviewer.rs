@@ -23,12 +23,13 @@ pub(super) const UNIFORMS: &[(&str, &str)] = &[
     ("u_tex3Resolution", "vec2"),
 ];
 
-/// Whether the file reads glslViewer's uniforms: its style is glslViewer's
-/// (a file with `main()` that does not is GLSL Sandbox's).
+/// Whether the file reads glslViewer's uniforms (any of them, `u_tex0`
+/// too): its style is glslViewer's (a file with `main()` that does not is
+/// GLSL Sandbox's).
 pub(super) fn is_glslviewer(tokens: &[Token]) -> bool {
-    tokens
-        .iter()
-        .any(|t| ["u_time", "u_resolution", "u_mouse"].contains(&t.text))
+    tokens.iter().any(|t| {
+        UNIFORMS.iter().any(|(name, _)| t.is(name)) || texture_channel(t.text).is_some()
+    })
 }
 
 /// The glslViewer name of a member of the frame block (its slot, as the
