@@ -63,6 +63,17 @@ fn an_error_in_an_included_file_is_at_its_own_line() {
         .map(|p| p.strip_prefix(&dir).unwrap().display().to_string())
         .collect();
     assert_eq!(names, ["lib/a.glsl", "lib/b.glsl"]);
+    // A parameter declared after the include has the line of its file.
+    write(
+        &dir,
+        "main.frag",
+        &MAIN.replace(
+            "void main",
+            "uniform float gain; // @slider(0, 1)\nvoid main",
+        ),
+    );
+    let compiled = compile_file(&main).unwrap_or_else(|e| panic!("{e}"));
+    assert_eq!(compiled.params.specs[0].line, 3);
     // An error in the including file after the include is at its own line.
     write(&dir, "main.frag", &MAIN.replace("vec4(f(", "vec4(ff("));
     let e = compile_file(&main).unwrap_err();

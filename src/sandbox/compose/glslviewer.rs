@@ -27,9 +27,9 @@ pub(super) const UNIFORMS: &[(&str, &str)] = &[
 /// too): its style is glslViewer's (a file with `main()` that does not is
 /// GLSL Sandbox's).
 pub(super) fn is_glslviewer(tokens: &[Token]) -> bool {
-    tokens.iter().any(|t| {
-        UNIFORMS.iter().any(|(name, _)| t.is(name)) || texture_channel(t.text).is_some()
-    })
+    tokens
+        .iter()
+        .any(|t| UNIFORMS.iter().any(|(name, _)| t.is(name)) || texture_channel(t.text).is_some())
 }
 
 /// The glslViewer name of a member of the frame block (its slot, as the

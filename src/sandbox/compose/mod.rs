@@ -129,6 +129,12 @@ pub fn compile_expanded(name: &str, expanded: &Expanded) -> Result<Compiled, Sha
             w.line = line;
         }
     }
+    // The panel's tooltips name the declaration's line in its own file.
+    for spec in &mut compiled.params.specs {
+        if let Some((_, line)) = expanded.origin(spec.line) {
+            spec.line = line;
+        }
+    }
     Ok(compiled)
 }
 
