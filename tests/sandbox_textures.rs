@@ -57,39 +57,6 @@ void mainImage(out vec4 fragColor, in vec2 fragCoord) {
 }
 ";
 
-#[test]
-fn a_shader_sampling_ichannel0_reproduces_the_given_image() {
-    if common::gpu().is_none() {
-        return;
-    }
-    let dir = temp_dir("channel");
-    // Not a multiple of 64 wide, and every pixel different.
-    let input = RgbaImage::from_fn(37, 23, |x, y| {
-        image::Rgba([(x * 7) as u8, (y * 11) as u8, ((x * y) % 256) as u8, 255])
-    });
-    let input_path = dir.join("input.png");
-    input.save(&input_path).unwrap();
-    for (name, text) in [
-        ("show.glsl", SHOW_CHANNEL0),
-        ("show_old.glsl", SHOW_CHANNEL0_OLD),
-    ] {
-        let shader = write(&dir, name, text);
-        let out = dir.join(format!("{name}.png"));
-        succeeded(&raysandbox(&[
-            "shader",
-            shader.to_str().unwrap(),
-            "--channel0",
-            input_path.to_str().unwrap(),
-            "--render",
-            out.to_str().unwrap(),
-            "--size",
-            "37x23",
-        ]));
-        assert_eq!(open(&out), input, "{name}");
-    }
-    std::fs::remove_dir_all(&dir).unwrap();
-}
-
 /// glslViewer's names (docs/sandbox.md, "glslViewer and The Book of
 /// Shaders"): `u_tex1` is channel 1 whatever the order of declaration,
 /// `u_tex1Resolution` its size, and `--tex1` gives its image.
@@ -103,29 +70,36 @@ void main() {
 ";
 
 #[test]
-fn tex1_gives_glslviewers_u_tex1_its_image() {
+fn a_shader_sampling_a_channel_reproduces_the_given_image() {
     if common::gpu().is_none() {
         return;
     }
-    let dir = temp_dir("tex1");
+    let dir = temp_dir("channel");
+    // Not a multiple of 64 wide, and every pixel different.
     let input = RgbaImage::from_fn(37, 23, |x, y| {
         image::Rgba([(x * 7) as u8, (y * 11) as u8, ((x * y) % 256) as u8, 255])
     });
     let input_path = dir.join("input.png");
     input.save(&input_path).unwrap();
-    let shader = write(&dir, "book.frag", SHOW_TEX1);
-    let out = dir.join("out.png");
-    succeeded(&raysandbox(&[
-        "shader",
-        shader.to_str().unwrap(),
-        "--tex1",
-        input_path.to_str().unwrap(),
-        "--render",
-        out.to_str().unwrap(),
-        "--size",
-        "37x23",
-    ]));
-    assert_eq!(open(&out), input);
+    for (name, text, flag) in [
+        ("show.glsl", SHOW_CHANNEL0, "--channel0"),
+        ("show_old.glsl", SHOW_CHANNEL0_OLD, "--channel0"),
+        ("show_tex1.frag", SHOW_TEX1, "--tex1"),
+    ] {
+        let shader = write(&dir, name, text);
+        let out = dir.join(format!("{name}.png"));
+        succeeded(&raysandbox(&[
+            "shader",
+            shader.to_str().unwrap(),
+            flag,
+            input_path.to_str().unwrap(),
+            "--render",
+            out.to_str().unwrap(),
+            "--size",
+            "37x23",
+        ]));
+        assert_eq!(open(&out), input, "{name}");
+    }
     std::fs::remove_dir_all(&dir).unwrap();
 }
 
