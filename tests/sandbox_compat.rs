@@ -9,7 +9,7 @@ use std::path::{Path, PathBuf};
 
 use image::RgbaImage;
 use raysandbox::gpu::Gpu;
-use raysandbox::sandbox::{Checked, check_file, render_file};
+use raysandbox::sandbox::{Checked, Flat, check_file, render_file};
 
 const SIZE: (u32, u32) = (32, 18);
 
@@ -311,7 +311,7 @@ fn the_compatibility_suite_gives_the_expected_result_per_file() {
         let verdict = check_file(&gpu, path, SIZE, 1.0);
         let name = path.display().to_string();
         match (expectation(path), verdict) {
-            (Expected::Pass(_), Ok(())) => {}
+            (Expected::Pass(_), Ok(_)) => {}
             (Expected::Error(expected), Err(Checked::Failed(error))) => {
                 let first = error.lines().next().unwrap_or_default();
                 let after_name = first.strip_prefix(&format!("{name}:")).unwrap_or(first);
@@ -343,7 +343,13 @@ fn check_all_prints_a_verdict_per_file_and_the_totals() {
         Some(2),
         "some files are broken on purpose"
     );
-    assert!(stdout.contains("28 of 33 pass (84.8%), 5 fail"), "{stdout}");
+    assert!(
+        stdout.contains(
+            "35 of 41 pass (85.4%), 6 fail; of those 10 drew a picture, 25 one flat colour, \
+         0 every pixel NaN; 1 with uniforms nothing sets (silent zeros)"
+        ),
+        "{stdout}"
+    );
     let typo = stdout
         .lines()
         .find(|l| l.contains("broken_typo.frag"))
@@ -358,6 +364,71 @@ fn check_all_prints_a_verdict_per_file_and_the_totals() {
             .any(|l| l.starts_with("pass  ") && l.ends_with("surface.frag")),
         "{stdout}"
     );
+    // The warning column: a flat picture, and the uniform nothing sets.
+    let silent = stdout
+        .lines()
+        .find(|l| l.contains("silent_zero.frag"))
+        .unwrap();
+    assert!(
+        silent.starts_with("pass  ")
+            && silent.ends_with(&format!(
+                "silent_zero.frag  | one flat colour (0, 0, 0)  | \
+                 {}/silent_zero.frag:10: warning: uniform `u_speed` is not set \
+                 by raysandbox: it stays 0; annotate it to get a control (docs/sandbox.md, \
+                 \"Parameters\") (and 1 more)",
+                dir.display()
+            )),
+        "{silent}"
+    );
+}
+
+/// No silent zeros: each uniform that nothing sets is a warning at its
+/// line, only those (docs/sandbox.md, "Uniforms nobody sets"); a picture
+/// entirely NaN is told apart from one flat colour.
+#[test]
+fn uniforms_nothing_sets_and_flat_or_nan_pictures_are_reported() {
+    let Some(gpu) = common::gpu() else { return };
+    let path = Path::new(env!("CARGO_MANIFEST_DIR")).join("tests/shaders/compat/silent_zero.frag");
+    let report = check_file(&gpu, &path, SIZE, 1.0).unwrap();
+    let lines: Vec<(u32, &str)> = report
+        .warnings
+        .iter()
+        .map(|w| (w.line, w.message.as_str()))
+        .collect();
+    assert_eq!(
+        lines,
+        [
+            (
+                10,
+                "uniform `u_speed` is not set by raysandbox: it stays 0; annotate it to get a \
+                 control (docs/sandbox.md, \"Parameters\")"
+            ),
+            (
+                13,
+                "uniform `u_rotation` is not set by raysandbox: it stays 0; a matrix gets no \
+                 control: give it a value in the code"
+            )
+        ]
+    );
+    assert_eq!(report.flat(), Some(Flat::Colour([0, 0, 0])));
+    let dir = temp_dir("nan");
+    let nan = write(
+        &dir,
+        "nan.frag",
+        "uniform float u_time;\nvoid main() { gl_FragColor = vec4(sqrt(-1.0 - u_time)); }\n",
+    );
+    let report = check_file(&gpu, &nan, SIZE, 1.0).unwrap();
+    assert!(report.warnings.is_empty(), "{:?}", report.warnings);
+    assert_eq!(report.flat(), Some(Flat::Nan));
+    let picture = write(
+        &dir,
+        "picture.frag",
+        "uniform vec2 u_resolution;\nvoid main() { gl_FragColor = vec4(gl_FragCoord.xy / u_resolution, 0.0, 1.0); }\n",
+    );
+    let report = check_file(&gpu, &picture, SIZE, 1.0).unwrap();
+    assert_eq!(report.flat(), None);
+    assert_eq!(report.column(), "");
+    std::fs::remove_dir_all(&dir).unwrap();
 }
 
 /// The suite's files that pass draw with no warning, and those that state

@@ -57,8 +57,20 @@ void mainImage(out vec4 fragColor, in vec2 fragCoord) {
 }
 ";
 
+/// glslViewer's names (docs/sandbox.md, "glslViewer and The Book of
+/// Shaders"): `u_tex1` is channel 1 whatever the order of declaration,
+/// `u_tex1Resolution` its size, and `--tex1` gives its image.
+const SHOW_TEX1: &str = "\
+uniform sampler2D u_tex1;
+uniform sampler2D u_tex0;
+uniform vec2 u_tex1Resolution;
+void main() {
+    gl_FragColor = texture2D(u_tex1, gl_FragCoord.xy / u_tex1Resolution) + 0.0 * texture2D(u_tex0, vec2(0.0));
+}
+";
+
 #[test]
-fn a_shader_sampling_ichannel0_reproduces_the_given_image() {
+fn a_shader_sampling_a_channel_reproduces_the_given_image() {
     if common::gpu().is_none() {
         return;
     }
@@ -69,16 +81,17 @@ fn a_shader_sampling_ichannel0_reproduces_the_given_image() {
     });
     let input_path = dir.join("input.png");
     input.save(&input_path).unwrap();
-    for (name, text) in [
-        ("show.glsl", SHOW_CHANNEL0),
-        ("show_old.glsl", SHOW_CHANNEL0_OLD),
+    for (name, text, flag) in [
+        ("show.glsl", SHOW_CHANNEL0, "--channel0"),
+        ("show_old.glsl", SHOW_CHANNEL0_OLD, "--channel0"),
+        ("show_tex1.frag", SHOW_TEX1, "--tex1"),
     ] {
         let shader = write(&dir, name, text);
         let out = dir.join(format!("{name}.png"));
         succeeded(&raysandbox(&[
             "shader",
             shader.to_str().unwrap(),
-            "--channel0",
+            flag,
             input_path.to_str().unwrap(),
             "--render",
             out.to_str().unwrap(),

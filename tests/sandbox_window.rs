@@ -130,6 +130,72 @@ fn the_window_renders_the_file_and_follows_its_edits() {
     std::fs::remove_dir_all(&dir).unwrap();
 }
 
+/// A glslViewer-style shader that includes its colour from a library and
+/// declares a uniform nothing sets.
+const INCLUDING: &str = "\
+uniform vec2 u_resolution;
+uniform float u_gain;
+#include \"lib/tint.glsl\"
+void main() {
+    vec2 st = gl_FragCoord.xy / u_resolution;
+    gl_FragColor = vec4(tint() * st.x + u_gain, 1.0);
+}
+";
+
+/// Includes (docs/sandbox.md, "Includes"): an edit of the included file
+/// reloads the shader in the window; and the uniform nothing sets is
+/// announced once ("Uniforms nobody sets").
+#[test]
+fn the_window_follows_included_files_and_warns_of_uniforms_nothing_sets() {
+    let Some(display) = Display::start() else {
+        return;
+    };
+    let gpu = common::gpu().unwrap();
+    let dir =
+        std::env::temp_dir().join(format!("raysandbox-window-include-{}", std::process::id()));
+    std::fs::create_dir_all(dir.join("lib")).unwrap();
+    let shader = dir.join("book.frag");
+    let library = dir.join("lib/tint.glsl");
+    std::fs::write(&library, "vec3 tint() { return vec3(1.0, 0.5, 0.0); }\n").unwrap();
+    std::fs::write(&shader, INCLUDING).unwrap();
+    let mut window = Window::open(
+        &display,
+        &["shader", shader.to_str().unwrap(), "--start-paused"],
+        (WIDTH, HEIGHT),
+    );
+    assert_eq!(window.wait_for("shader-warning").trim(), "1");
+    // Below the warning shown at the top of the image.
+    let x = window.part("panel").right() + 48;
+    let area = Rect {
+        x,
+        y: 220,
+        w: WIDTH as i32 - x,
+        h: 120,
+    }
+    .crop();
+    let headless = || {
+        let (image, _) = render_file(&gpu, &shader, (WIDTH, HEIGHT), 0.0, None).unwrap();
+        crop(&image, area)
+    };
+    let first = crop(&window.capture(), area);
+    let d = diff_images(&first, &headless());
+    assert!(d.max_abs <= 1, "the window shows the shader: {d:?}");
+
+    std::fs::write(&library, "vec3 tint() { return vec3(0.0, 0.5, 1.0); }\n").unwrap();
+    window.wait_for("shader-reloaded");
+    let second = crop(&window.capture(), area);
+    assert!(diff_images(&first, &second).max_abs > 50, "the edit shows");
+    let d = diff_images(&second, &headless());
+    assert!(d.max_abs <= 1, "the window shows the edit: {d:?}");
+
+    // A mistake in the included file: reported at its own line.
+    std::fs::write(&library, "\nvec3 tint() { return vec3(0.0, 0.5, 1.0) }\n").unwrap();
+    let location = window.wait_for("shader-error");
+    assert!(location.ends_with("lib/tint.glsl:2:42"), "{location}");
+    drop(window);
+    std::fs::remove_dir_all(&dir).unwrap();
+}
+
 const SHOW_CHANNEL0: &str = "\
 void mainImage(out vec4 fragColor, in vec2 fragCoord) {
     fragColor = texture(iChannel0, fragCoord / iResolution.xy);

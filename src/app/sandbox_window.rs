@@ -128,6 +128,7 @@ fn open_window(
         options,
         gfx: None,
         watch: None,
+        watched_includes: Vec::new(),
         fatal: None,
         panel: PanelState {
             show: true,
@@ -140,6 +141,7 @@ fn open_window(
         check_next: true,
         last_check: now,
         warning: None,
+        source_warnings: Vec::new(),
         gpu_time: None,
         last_tick: None,
         after_present: Vec::new(),
@@ -216,6 +218,8 @@ struct SandboxApp {
     scale: f32,
     gfx: Option<Graphics>,
     watch: Option<watch::Watch>,
+    /// The included files `watch` watches besides the shader file.
+    watched_includes: Vec<PathBuf>,
     fatal: Option<ViewerError>,
     panel: PanelState,
     mouse: Mouse,
@@ -228,6 +232,8 @@ struct SandboxApp {
     last_check: Instant,
     /// What the last check found.
     warning: Option<String>,
+    /// The warnings of the running shader's source, as shown.
+    source_warnings: Vec<String>,
     /// GPU time of the last drawn frame, submit to done.
     gpu_time: Option<Duration>,
     last_tick: Option<Tick>,
@@ -253,13 +259,6 @@ impl ApplicationHandler<SandboxEvent> for SandboxApp {
             Ok(gfx) => {
                 self.gfx = Some(gfx);
                 self.load(false);
-                let proxy = self.proxy.clone();
-                match watch::watch_file(&self.options.file, move || {
-                    let _ = proxy.send_event(SandboxEvent::FileChanged);
-                }) {
-                    Ok(w) => self.watch = Some(w),
-                    Err(e) => self.panel.message = Some(e),
-                }
             }
             Err(e) => {
                 self.fatal = Some(e);
@@ -381,7 +380,9 @@ impl SandboxApp {
         if self.gfx.is_none() {
             return;
         }
-        let compiled = match self.session.compile() {
+        let compiled = self.session.compile();
+        self.watch_files();
+        let compiled = match compiled {
             Ok(Some(c)) => c,
             Ok(None) => return,
             Err(e) => {
@@ -410,6 +411,47 @@ impl SandboxApp {
         });
     }
 
+    /// The warnings of the shader's source (uniforms nothing sets,
+    /// docs/sandbox.md): logged and announced once, when they change, and
+    /// shown at the top of the window while the shader runs.
+    fn note_source_warnings(&mut self) {
+        let warnings: Vec<String> = self
+            .session
+            .compiled()
+            .map(|c| c.warnings.iter().map(ToString::to_string).collect())
+            .unwrap_or_default();
+        if warnings == self.source_warnings {
+            return;
+        }
+        for w in &warnings {
+            log::warn!("{w}");
+        }
+        if !warnings.is_empty() {
+            self.after_present
+                .push(format!("shader-warning {}", warnings.len()));
+        }
+        self.source_warnings = warnings;
+    }
+
+    /// Watches the shader file and the files it includes (docs/sandbox.md,
+    /// "Includes"): after a compile that changed the includes, the watch is
+    /// made again for the new set.
+    fn watch_files(&mut self) {
+        let includes = self.session.includes();
+        if self.watch.is_some() && self.watched_includes == includes {
+            return;
+        }
+        self.watched_includes = includes.to_vec();
+        let proxy = self.proxy.clone();
+        let notify = move |_| {
+            let _ = proxy.send_event(SandboxEvent::FileChanged);
+        };
+        match watch::watch(None, Some(&self.options.file), includes, notify) {
+            Ok(w) => self.watch = Some(w),
+            Err(e) => self.panel.message = Some(e),
+        }
+    }
+
     fn built(
         &mut self,
         compiled: Compiled,
@@ -433,6 +475,7 @@ impl SandboxApp {
         for w in &warnings {
             log::warn!("{w}");
         }
+        self.note_source_warnings();
         self.panel.message = warnings.into_iter().next();
         self.draw_next = true;
         self.check_next = true;
@@ -501,7 +544,7 @@ impl SandboxApp {
         let panel = &mut self.panel;
         let mouse = &mut self.mouse;
         let scale = self.scale;
-        let warning = self.warning.clone();
+        let warning = shown_warning(self.warning.as_deref(), &self.source_warnings);
         let channel_paths = &mut self.channels.paths;
         let file = self.options.file.file_name().map_or_else(
             || self.options.file.display().to_string(),
@@ -987,6 +1030,16 @@ fn help_window(ctx: &egui::Context, open: &mut bool) {
             ui.label("Annotate parameters in a comment: // @slider(0, 1), @color, @checkbox, @select(a, b), @log(1e-3, 1).");
             ui.label("docs/sandbox.md lists the uniforms and the preludes.");
         });
+}
+
+/// The warning at the top of the window: what the output check found, and
+/// the warnings of the shader's source.
+fn shown_warning(output: Option<&str>, source: &[String]) -> Option<String> {
+    let lines: Vec<&str> = output
+        .into_iter()
+        .chain(source.iter().map(String::as_str))
+        .collect();
+    (!lines.is_empty()).then(|| lines.join("\n"))
 }
 
 #[cfg(test)]

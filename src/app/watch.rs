@@ -139,12 +139,6 @@ pub fn watch(
     })
 }
 
-/// Watches one file (the sandbox's shader), calling `notify` for every
-/// debounced change of it. Its folder is watched, as for the scene file.
-pub fn watch_file(file: &Path, notify: impl Fn() + Send + 'static) -> Result<Watch, String> {
-    watch(None, Some(file), &[], move |_| notify())
-}
-
 /// The absolute path, resolved through links where the file exists (events
 /// report absolute paths; the user may have typed a relative one).
 fn canonical(path: &Path) -> PathBuf {

@@ -17,7 +17,16 @@
 //!   prelude adds for floats and float vectors;
 //! - a `sampler2D` parameter, which naga's Vulkan GLSL has no type for:
 //!   a `texture2D` parameter, each use of it in the function's body wrapped
-//!   as `sampler2D(NAME, rsb_sampler)` with the prelude's sampler.
+//!   as `sampler2D(NAME, rsb_sampler)` with the prelude's sampler;
+//! - a precision qualifier (`highp vec2 p`), which naga rejects in a
+//!   parameter list: blanked everywhere, it means nothing in Vulkan GLSL;
+//! - a local `const int N = 4;` used as an array size (`float a[N];`),
+//!   which naga does not know as a constant: `[N]` becomes `[4]`.
+//!
+//! The rewrites of names and calls (not `dot`) also apply inside the body
+//! of a `#define`, so that a macro expands to what naga takes. `dot(` in
+//! the declaration of a global `const` (a constant expression, where naga
+//! takes no call of a function), is left as it is.
 //!
 //! Blanking keeps every offset. An insertion moves the rest of its line to
 //! the right, never to another line, and [`Bridged::original_column`] moves
@@ -88,6 +97,9 @@ const TEXTURE_FUNCTIONS: [(&str, &str); 7] = [
     ("texture2DProjLodEXT", "textureProjLod"),
 ];
 
+/// GLSL ES's precision qualifiers.
+const PRECISION: [&str; 3] = ["lowp", "mediump", "highp"];
+
 /// Qualifiers that may come before a parameter's type.
 const PARAMETER_QUALIFIERS: [&str; 8] = [
     "const", "in", "out", "inout", "lowp", "mediump", "highp", "precise",
@@ -101,10 +113,15 @@ pub fn bridge(scan: &Scan, mut text: String) -> Bridged {
     let mut uses_mat2 = false;
     let mut uses_dot = false;
     let (mut braces, mut parens) = (0i32, 0i32);
+    // In the declaration of a global `const` (a constant expression).
+    let mut global_const = false;
     for (i, t) in tokens.iter().enumerate() {
         if text[t.start..t.end()].trim().is_empty() {
             // Blanked by the GLSL rewrite (a `uniform` declaration).
             continue;
+        }
+        if braces == 0 && parens == 0 && (t.is("const") || t.is(";")) {
+            global_const = t.is("const");
         }
         match t.text {
             "{" => braces += 1,
@@ -112,38 +129,22 @@ pub fn bridge(scan: &Scan, mut text: String) -> Bridged {
             "(" => parens += 1,
             ")" => parens -= 1,
             "const" if braces == 0 && parens > 0 => scan::blank(&mut text, t.start..t.end()),
-            word if t.kind == Kind::Ident && NEW_KEYWORDS.contains(&word) => {
-                insertions.push((t.start, "rsb_".to_string()));
+            _ if t.kind == Kind::Directive => {
+                uses_mat2 |= define_body_rewrites(t, &mut text, &mut insertions);
             }
-            // A texture named `texture` (`uniform sampler2D texture;`), not
-            // the function.
-            "texture" if !tokens.get(i + 1).is_some_and(|n| n.is("(")) => {
-                insertions.push((t.start, "rsb_".to_string()));
+            "dot" if global_const => {}
+            _ => {
+                let used = rewrite_token(tokens, i, &mut text, &mut insertions);
+                uses_mat2 |= used == Some("mat2");
+                uses_dot |= used == Some("dot");
             }
-            "mat2" if single_argument(tokens, i + 1) => {
-                insertions.push((t.start, "rsb_".to_string()));
-                uses_mat2 = true;
-            }
-            "dot" if tokens.get(i + 1).is_some_and(|n| n.is("(")) => {
-                insertions.push((t.start, "rsb_".to_string()));
-                uses_dot = true;
-            }
-            number if t.kind == Kind::Number && is_infinite_float(number) => {
-                overwrite(&mut text, t.start..t.end(), "");
-                insertions.push((t.start, LARGEST_FLOAT.to_string()));
-            }
-            word if tokens.get(i + 1).is_some_and(|n| n.is("(")) => {
-                if let Some((_, new)) = TEXTURE_FUNCTIONS.iter().find(|(old, _)| *old == word) {
-                    overwrite(&mut text, t.start..t.end(), new);
-                }
-            }
-            _ => {}
         }
         if braces == 0 && parens == 0 && t.kind == Kind::Ident {
             name_prototype_parameters(tokens, i, &mut insertions);
         }
     }
     sampler_parameters(tokens, &mut text, &mut insertions);
+    const_array_sizes(tokens, &mut text, &mut insertions);
     insertions.sort_by_key(|(offset, _)| *offset);
     for (offset, inserted) in insertions.iter().rev() {
         text.insert_str(*offset, inserted);
@@ -153,6 +154,127 @@ pub fn bridge(scan: &Scan, mut text: String) -> Bridged {
         uses_mat2,
         uses_dot,
         insertions,
+    }
+}
+
+/// The rewrites of one token (other than brackets) at `i`; returns
+/// `Some("mat2")` or `Some("dot")` when the prelude needs those overloads.
+fn rewrite_token(
+    tokens: &[Token],
+    i: usize,
+    text: &mut String,
+    insertions: &mut Vec<(usize, String)>,
+) -> Option<&'static str> {
+    let t = &tokens[i];
+    match t.text {
+        word if t.kind == Kind::Ident && PRECISION.contains(&word) => {
+            scan::blank(text, t.start..t.end());
+        }
+        word if t.kind == Kind::Ident && NEW_KEYWORDS.contains(&word) => {
+            insertions.push((t.start, "rsb_".to_string()));
+        }
+        // A texture named `texture` (`uniform sampler2D texture;`), not
+        // the function.
+        "texture" if !tokens.get(i + 1).is_some_and(|n| n.is("(")) => {
+            insertions.push((t.start, "rsb_".to_string()));
+        }
+        "mat2" if single_argument(tokens, i + 1) => {
+            insertions.push((t.start, "rsb_".to_string()));
+            return Some("mat2");
+        }
+        "dot" if tokens.get(i + 1).is_some_and(|n| n.is("(")) => {
+            insertions.push((t.start, "rsb_".to_string()));
+            return Some("dot");
+        }
+        number if t.kind == Kind::Number && is_infinite_float(number) => {
+            overwrite(text, t.start..t.end(), "");
+            insertions.push((t.start, LARGEST_FLOAT.to_string()));
+        }
+        word if tokens.get(i + 1).is_some_and(|n| n.is("(")) => {
+            if let Some((_, new)) = TEXTURE_FUNCTIONS.iter().find(|(old, _)| *old == word) {
+                overwrite(text, t.start..t.end(), new);
+            }
+        }
+        _ => {}
+    }
+    None
+}
+
+/// The rewrites of [`rewrite_token`] inside the body of `#define` (the
+/// directive token `t`), but `dot`: a macro with `dot` is also used in
+/// constant expressions, which take no call of a helper. Returns whether
+/// `rsb_mat2` is used.
+fn define_body_rewrites(
+    t: &Token,
+    text: &mut String,
+    insertions: &mut Vec<(usize, String)>,
+) -> bool {
+    let Some(body) = t.text.strip_prefix('#') else {
+        return false;
+    };
+    let inner = Scan::new(body);
+    if !inner.tokens.first().is_some_and(|d| d.is("define")) {
+        return false;
+    }
+    // The macro's tokens at their offsets in the whole text.
+    let tokens: Vec<Token> = inner
+        .tokens
+        .iter()
+        .map(|k| Token {
+            start: t.start + 1 + k.start,
+            ..*k
+        })
+        .collect();
+    let mut uses_mat2 = false;
+    // From the macro's name on (its parameters are names too).
+    for i in 1..tokens.len() {
+        if tokens[i].is("dot") {
+            continue;
+        }
+        uses_mat2 |= rewrite_token(&tokens, i, text, insertions) == Some("mat2");
+    }
+    uses_mat2
+}
+
+/// A local `const int NAME = NUMBER;` is not a constant to naga: an array
+/// size `[NAME]` after it in the same function becomes `[NUMBER]` (the
+/// same value).
+fn const_array_sizes(tokens: &[Token], text: &mut String, out: &mut Vec<(usize, String)>) {
+    let mut braces = 0i32;
+    let mut constants: Vec<(&str, &str)> = Vec::new();
+    for (i, t) in tokens.iter().enumerate() {
+        match t.text {
+            "{" => braces += 1,
+            "}" => {
+                braces -= 1;
+                if braces == 0 {
+                    constants.clear();
+                }
+            }
+            "const" if braces > 0 => {
+                let words: Vec<&Token> = tokens[i + 1..].iter().take(5).collect();
+                if let [ty, name, eq, value, end] = words[..]
+                    && ty.is("int")
+                    && name.kind == Kind::Ident
+                    && eq.is("=")
+                    && value.kind == Kind::Number
+                    && end.is(";")
+                {
+                    constants.push((name.text, value.text));
+                }
+            }
+            word if t.kind == Kind::Ident
+                && i > 0
+                && tokens[i - 1].is("[")
+                && tokens.get(i + 1).is_some_and(|n| n.is("]")) =>
+            {
+                if let Some((_, value)) = constants.iter().rev().find(|(n, _)| *n == word) {
+                    overwrite(text, t.start..t.end(), "");
+                    out.push((t.start, (*value).to_string()));
+                }
+            }
+            _ => {}
+        }
     }
 }
 
@@ -388,6 +510,53 @@ mod tests {
                 "vec4 g() { return texture(s, p); }",
             ]
         );
+    }
+
+    #[test]
+    fn precision_qualifiers_are_blanked_in_place() {
+        let text = "float f(highp vec2 p) { lowp float s = 1.0; return s; }";
+        let (b, _) = bridged(text);
+        assert_eq!(
+            b.text,
+            "float f(      vec2 p) {      float s = 1.0; return s; }"
+        );
+    }
+
+    #[test]
+    fn local_const_int_array_sizes_become_their_value() {
+        let (b, _) = bridged(
+            "void f() {\n    const int N = 4;\n    const int M = 16;\n    float a[N]; float b[M]; a[i] = b[K];\n}\nvoid g() { float c[N]; }",
+        );
+        assert_eq!(
+            b.text.lines().collect::<Vec<_>>(),
+            [
+                "void f() {",
+                "    const int N = 4;",
+                "    const int M = 16;",
+                "    float a[4 ]; float b[16 ]; a[i] = b[K];",
+                "}",
+                "void g() { float c[N]; }",
+            ]
+        );
+    }
+
+    #[test]
+    fn rewrites_reach_into_define_bodies_but_dot_stays_in_constants() {
+        let (b, _) = bridged(
+            "#define R(v) mat2(v)\n#define T(uv) texture2D(c, uv)\n#define sample 0.5\n#define D dot(a, b)\nconst float d = dot(a, a);\nvoid f() { float e = dot(a, b); }",
+        );
+        assert_eq!(
+            b.text.lines().collect::<Vec<_>>(),
+            [
+                "#define R(v) rsb_mat2(v)",
+                "#define T(uv) texture  (c, uv)",
+                "#define rsb_sample 0.5",
+                "#define D dot(a, b)",
+                "const float d = dot(a, a);",
+                "void f() { float e = rsb_dot(a, b); }",
+            ]
+        );
+        assert!(b.uses_mat2 && b.uses_dot);
     }
 
     #[test]

@@ -5,15 +5,17 @@
 //!
 //! | module | what |
 //! | --- | --- |
-//! | `compose` | language and style, the preludes, the GLSL rewrite, validation |
+//! | `compose` | language and style, the preludes, the GLSL rewrite, validation (one file per language and step) |
+//! | `include` | glslViewer's `#include "file"`, with the map back to each file's lines |
 //! | `gaps` | small source rewrites for what naga's GLSL front end does not take |
-//! | `params` | annotations, values, the bytes the GPU reads, the sidecar file |
+//! | `params` | annotations, values, the bytes the GPU reads, the sidecar file (a file each) |
 //! | `uniforms` | the per-frame values (time, mouse, resolution, date) |
 //! | `mouse` | the mouse uniforms: Shadertoy's click and drag, GLSL Sandbox's surface |
 //! | `clock` | pause, resume, restart, step |
 //! | `repair` | workarounds for naga bugs, applied to the parsed module |
 //! | `render` | the GPU passes: the user's shader into a canvas, the canvas shown, the previous frame kept |
 //! | `bundled` | the example shaders, embedded (the page's menu) |
+//! | `check` | `--check-all`: one frame of each file of a folder, the verdicts and warnings |
 //! | `channels` | the images a shader samples: files, or the built-in noise |
 //! | `session` | one file: the last good pipeline, reloads, parameter values |
 //! | `watchdog` | the window's trial frame that refuses shaders too slow to run |
@@ -24,10 +26,12 @@
 
 pub mod bundled;
 pub mod channels;
+mod check;
 pub mod clock;
 pub mod compose;
 pub mod constants;
 mod gaps;
+pub mod include;
 pub mod mouse;
 pub mod params;
 pub mod render;
@@ -40,7 +44,8 @@ pub mod watchdog;
 use std::path::{Path, PathBuf};
 use std::time::Instant;
 
-pub use compose::{Compiled, Style, compile, compile_file};
+pub use check::{Checked, Flat, Report, check_file};
+pub use compose::{Compiled, Style, Warning, compile, compile_file};
 pub use constants::SourceParams;
 pub use params::{Control, ParamSet, ParamSpec};
 use render::{BuildFailed, FRAME_LIMIT, build_too_slow};
@@ -95,17 +100,18 @@ pub struct ShaderArgs {
     pub nan_color: NanColor,
     /// The image of Shadertoy's `iChannel0` (PNG, JPEG, ...), also the
     /// first `uniform sampler2D` of a GLSL Sandbox file other than
-    /// `backbuffer`. Without it, a built-in noise image.
-    #[arg(long, value_name = "IMAGE")]
+    /// `backbuffer`, and glslViewer's `u_tex0` (so also `--tex0`, as
+    /// glslViewer spells it). Without it, a built-in noise image.
+    #[arg(long, value_name = "IMAGE", visible_alias = "tex0")]
     pub channel0: Option<PathBuf>,
-    /// The image of `iChannel1` (see --channel0).
-    #[arg(long, value_name = "IMAGE")]
+    /// The image of `iChannel1` and `u_tex1` (see --channel0).
+    #[arg(long, value_name = "IMAGE", visible_alias = "tex1")]
     pub channel1: Option<PathBuf>,
-    /// The image of `iChannel2` (see --channel0).
-    #[arg(long, value_name = "IMAGE")]
+    /// The image of `iChannel2` and `u_tex2` (see --channel0).
+    #[arg(long, value_name = "IMAGE", visible_alias = "tex2")]
     pub channel2: Option<PathBuf>,
-    /// The image of `iChannel3` (see --channel0).
-    #[arg(long, value_name = "IMAGE")]
+    /// The image of `iChannel3` and `u_tex3` (see --channel0).
+    #[arg(long, value_name = "IMAGE", visible_alias = "tex3")]
     pub channel3: Option<PathBuf>,
     /// Print one line per event (ready, shader-reloaded, shader-error, ...)
     /// on stdout, for scripts and tests that drive the window.
@@ -178,11 +184,14 @@ pub fn require_file(path: &Path) -> Result<(), SandboxError> {
 /// `raysandbox shader --check-all DIR`.
 pub fn run_headless(args: &ShaderArgs) -> Result<(), SandboxError> {
     if args.check_all {
-        return check_all(args);
+        return check::check_all(args);
     }
     require_file(&args.file)?;
     let images = args.channel_images()?;
     let compiled = compile_file(&args.file).map_err(|e| SandboxError::Input(e.to_string()))?;
+    for warning in &compiled.warnings {
+        eprintln!("{warning}");
+    }
     let mut params = compiled.params.clone();
     let sidecar = params::sidecar_path(&args.file);
     if let Ok(text) = std::fs::read_to_string(&sidecar) {
@@ -321,100 +330,6 @@ fn render_sequence<E>(
         };
         let image = offscreen.image(gpu).map_err(wait)?;
         each(k, image, stats).map_err(RenderError::Output)?;
-    }
-    Ok(())
-}
-
-/// The extensions of shader files (docs/sandbox.md, "Which kind of file").
-const SHADER_EXTENSIONS: [&str; 6] = ["wgsl", "glsl", "frag", "fs", "fsh", "fragment"];
-
-/// `--check-all DIR`: every shader file of DIR compiled and drawn once.
-fn check_all(args: &ShaderArgs) -> Result<(), SandboxError> {
-    let dir = &args.file;
-    let entries = std::fs::read_dir(dir)
-        .map_err(|e| SandboxError::Input(format!("{}: {e}", dir.display())))?;
-    let mut files: Vec<PathBuf> = entries
-        .filter_map(|e| e.ok().map(|e| e.path()))
-        .filter(|p| {
-            p.extension()
-                .is_some_and(|e| SHADER_EXTENSIONS.contains(&e.to_string_lossy().as_ref()))
-        })
-        .collect();
-    files.sort();
-    if files.is_empty() {
-        return Err(SandboxError::Input(format!(
-            "{}: no shader files (.{}) in this folder",
-            dir.display(),
-            SHADER_EXTENSIONS.join(", .")
-        )));
-    }
-    let size = args.size.unwrap_or((64, 36));
-    let mut gpu = Gpu::headless().map_err(|e| SandboxError::Runtime(e.to_string()))?;
-    let mut failed = 0;
-    for path in &files {
-        match check_file(&gpu, path, size, args.time) {
-            Ok(()) => println!("pass  {}", path.display()),
-            Err(e) => {
-                failed += 1;
-                let first = e.message().lines().next().unwrap_or_default().to_string();
-                println!("FAIL  {first}");
-                if let Checked::Stopped(_) = e {
-                    // That device is still busy with the frame: a new one.
-                    std::mem::forget(gpu);
-                    gpu = Gpu::headless().map_err(|e| SandboxError::Runtime(e.to_string()))?;
-                }
-            }
-        }
-    }
-    let total = files.len();
-    println!(
-        "{} of {total} pass ({:.1}%), {failed} fail",
-        total - failed,
-        100.0 * (total - failed) as f64 / total as f64
-    );
-    match failed {
-        0 => Ok(()),
-        _ => Err(SandboxError::Input(format!(
-            "{failed} of {total} shaders in {} failed",
-            dir.display()
-        ))),
-    }
-}
-
-/// Why a shader did not pass [`check_file`].
-#[derive(Debug, Clone, PartialEq)]
-pub enum Checked {
-    /// It does not compile, or wgpu refused it: the error, at the file.
-    Failed(String),
-    /// Its frame was stopped by the watchdog: the device is still busy.
-    Stopped(String),
-}
-
-impl Checked {
-    pub fn message(&self) -> &str {
-        match self {
-            Checked::Failed(m) | Checked::Stopped(m) => m,
-        }
-    }
-}
-
-/// Compiles `path` and draws one frame of it at `time` (what "it runs"
-/// means for `--check-all` and the compatibility suite).
-pub fn check_file(gpu: &Gpu, path: &Path, size: (u32, u32), time: f64) -> Result<(), Checked> {
-    let compiled = compile_file(path).map_err(|e| Checked::Failed(e.to_string()))?;
-    let mut offscreen = Offscreen::new(gpu);
-    let pipeline = match offscreen.builder(gpu).build_within(&compiled, FRAME_LIMIT) {
-        Ok(pipeline) => pipeline,
-        Err(BuildFailed::Refused(m)) => return Err(Checked::Failed(m)),
-        Err(BuildFailed::TooSlow) => {
-            std::mem::forget(offscreen);
-            return Err(Checked::Stopped(build_too_slow(&compiled.file)));
-        }
-    };
-    let frame = FrameUniforms::at(time, 0, size);
-    if let Err(stopped) = offscreen.draw(gpu, &pipeline, &compiled.params, &frame) {
-        std::mem::forget((offscreen, pipeline));
-        return Err(Checked::Stopped(format!("{}: {stopped}", path.display())));
     }
     Ok(())
 }

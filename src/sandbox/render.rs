@@ -332,6 +332,9 @@ pub struct CanvasStats {
     pub non_finite: u64,
     /// Pixels that are exactly (0, 0, 0, 0): nothing written.
     pub empty: u64,
+    /// The colour every pixel is shown in (8-bit RGB, NaN drawn black), if
+    /// they are all the same: a picture of one flat colour.
+    pub flat: Option<[u8; 3]>,
 }
 
 impl CanvasStats {
@@ -619,6 +622,7 @@ impl Canvas {
             pixels: u64::from(width) * u64::from(height),
             ..Default::default()
         };
+        let mut shown = Vec::with_capacity(data.len() / 16);
         for px in data.chunks_exact(16) {
             let c: [f32; 4] = bytemuck::pod_read_unaligned(px);
             if c[..3].iter().any(|v| !v.is_finite()) {
@@ -626,9 +630,23 @@ impl Canvas {
             } else if c == [0.0; 4] {
                 stats.empty += 1;
             }
+            shown.push(shown_rgb(c));
         }
+        stats.flat = shown
+            .first()
+            .copied()
+            .filter(|first| shown.iter().all(|c| c == first));
         Ok(stats)
     }
+}
+
+/// The 8-bit colour a pixel of the canvas is shown in: clamped, NaN and
+/// infinite pixels black (docs/sandbox.md, "The window").
+fn shown_rgb(c: [f32; 4]) -> [u8; 3] {
+    if c[..3].iter().any(|v| !v.is_finite()) {
+        return [0; 3];
+    }
+    [0, 1, 2].map(|k| (c[k].clamp(0.0, 1.0) * 255.0).round() as u8)
 }
 
 /// The longest one frame of a user's shader may take without a window

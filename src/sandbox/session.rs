@@ -8,7 +8,8 @@
 use std::fmt;
 use std::path::{Path, PathBuf};
 
-use super::compose::{Compiled, Style, compile, compile_file};
+use super::compose::{Compiled, Style, compile_expanded, compile_file};
+use super::include;
 use super::params::{ParamSet, sidecar_path};
 use super::render::{PipelineBuilder, ShaderPipeline};
 use crate::files::write_atomically;
@@ -50,9 +51,12 @@ pub struct Session {
     pub params: ParamSet,
     /// The last reload's error, until a reload succeeds.
     pub error: Option<ReloadError>,
-    /// The text of the last compile attempt: a change event that leaves the
-    /// text as it was (a touch, a save without edits) is not a reload.
+    /// The text of the last compile attempt, includes joined in: a change
+    /// event that leaves the text as it was (a touch, a save without edits)
+    /// is not a reload.
     last_text: Option<String>,
+    /// The files the last compile attempt included, to watch.
+    includes: Vec<PathBuf>,
 }
 
 impl Session {
@@ -64,11 +68,18 @@ impl Session {
             params: ParamSet::default(),
             error: None,
             last_text: None,
+            includes: Vec::new(),
         }
     }
 
     pub fn path(&self) -> &Path {
         &self.path
+    }
+
+    /// The files the shader includes (as far as the last compile read
+    /// them): a change in any is a change of the shader.
+    pub fn includes(&self) -> &[PathBuf] {
+        &self.includes
     }
 
     /// Reads and compiles the file (naga only; quick), unless its text is
@@ -81,11 +92,17 @@ impl Session {
             // Unreadable (e.g. replaced this instant): compile_file says why.
             Err(_) => return self.compiled_or_error(compile_file(&self.path)).map(Some),
         };
-        if self.last_text.as_deref() == Some(text.as_str()) {
+        let (expanded, included) = include::expand(&self.path, &text);
+        self.includes = expanded.included().to_vec();
+        if let Err(e) = included {
+            self.last_text = None;
+            return self.compiled_or_error(Err(e)).map(Some);
+        }
+        if self.last_text.as_deref() == Some(expanded.text.as_str()) {
             return Ok(None);
         }
-        let result = compile(&name, &text);
-        self.last_text = Some(text);
+        let result = compile_expanded(&name, &expanded);
+        self.last_text = Some(expanded.text);
         self.compiled_or_error(result).map(Some)
     }
 

@@ -1,0 +1,281 @@
+//! GLSL files: the style, the prelude assembled around the rewritten text,
+//! the front-end gaps bridged, the module parsed, repaired and validated.
+
+use std::fmt::Write as _;
+
+use super::glsl_decls::rewrite_glsl;
+use super::glsl_prelude::{
+    GLSL_TEXTURES, glsl_frame_block, glsl_param_type, glsl_sandbox_surface, glsl_texture_names,
+    is_matrix, old_shadertoy_names, shadertoy_channels, standard_uniforms,
+};
+use super::param_block::{GLSL_BOOL_PREFIX, read_params};
+use super::{
+    Compiled, EPILOGUE_NAME, GLSL_ENTRY, PRELUDE_NAME, Style, at_end_of_file, error_at, find_pair,
+};
+use super::{glslviewer, silent_zeros};
+use crate::gpu::{ShaderError, ShaderSource};
+use crate::sandbox::scan::{self, Kind, Scan, Token};
+use crate::sandbox::{gaps, repair};
+
+/// Whether `word` occurs in `text` as a whole identifier.
+fn has_word(text: &str, word: &str) -> bool {
+    text.split(|c: char| !(c.is_ascii_alphanumeric() || c == '_'))
+        .any(|w| w == word)
+}
+
+/// Whether a top-level `uniform` declares one of `names`.
+fn declares_uniform(tokens: &[Token], names: &[&str]) -> bool {
+    tokens.iter().enumerate().any(|(i, t)| {
+        t.is("uniform")
+            && tokens[i + 1..]
+                .iter()
+                .take_while(|n| !n.is(";"))
+                .any(|n| names.contains(&n.text))
+    })
+}
+
+/// Macros defined before the user's GLSL, as WebGL defines them: shaders
+/// written `#ifdef GL_ES precision mediump float; #endif` expect it.
+pub(super) const GLSL_DEFINES: &[&str] = &["GL_ES"];
+
+pub(super) fn compile_glsl(name: &str, scan: &Scan) -> Result<Compiled, ShaderError> {
+    if let Some(offset) = scan.too_deep() {
+        let message = format!(
+            "nested more than {} levels deep (brackets and signs): more than the GLSL \
+             compiler can parse",
+            scan::MAX_NESTING
+        );
+        return Err(error_at(name, scan, offset, message));
+    }
+    let tokens = &scan.tokens;
+    // A file with `mainImage` is Shadertoy's, also with a `main()` of its own
+    // that calls it (as exports for other sites have), unless it declares
+    // GLSL Sandbox's uniforms: then it is a port to GLSL Sandbox.
+    let user_main = find_pair(tokens, "main", "(").is_some();
+    let sandbox_port = user_main && declares_uniform(tokens, &["time", "resolution", "mouse"]);
+    let style = if find_pair(tokens, "mainImage", "(").is_some() && !sandbox_port {
+        Style::Shadertoy
+    } else if user_main && glslviewer::is_glslviewer(tokens) {
+        Style::GlslViewer
+    } else if user_main {
+        Style::GlslSandbox
+    } else {
+        return Err(at_end_of_file(
+            name,
+            scan,
+            "neither `void main()` (GLSL Sandbox style) nor \
+             `void mainImage(out vec4 fragColor, in vec2 fragCoord)` (Shadertoy style) \
+             in this GLSL file (see docs/sandbox.md)"
+                .into(),
+        ));
+    };
+    let rewrite = rewrite_glsl(name, scan)?;
+    let standard = standard_uniforms(style);
+    let mut declared = Vec::new();
+    let mut user_params = Vec::new();
+    let mut textures = Vec::new();
+    // Declared but never set by GLSL Sandbox: zero, as in WebGL.
+    let mut zero = Vec::new();
+    let mut warnings = Vec::new();
+    for decl in &rewrite.uniforms {
+        match standard.iter().find(|(n, _)| *n == decl.name) {
+            Some((n, t)) if *t == decl.type_name => declared.push(*n),
+            // `uniform vec4 mouse;`: the pointer in xy, zw zero.
+            Some((n @ ("mouse" | "u_mouse"), _))
+                if ["vec3", "vec4"].contains(&decl.type_name.as_str()) =>
+            {
+                let xy = if *n == "mouse" {
+                    "rsb_mouse"
+                } else {
+                    declared.push(glslviewer::MOUSE_PIXELS);
+                    "rsb_u_mouse()"
+                };
+                zero.push(format!(
+                    "#define {n} {}({xy}, {})\n",
+                    decl.type_name,
+                    if decl.type_name == "vec3" {
+                        "0.0"
+                    } else {
+                        "0.0, 0.0"
+                    }
+                ));
+            }
+            // Old exports declare it `uniform float iChannelTime[4];` or so.
+            Some((n, t)) if t.starts_with(decl.type_name.as_str()) => declared.push(*n),
+            Some((n, t)) => {
+                return Err(error_at(
+                    name,
+                    scan,
+                    decl.offset,
+                    format!(
+                        "`{n}` is a {t} in the {}, not a {}",
+                        style.describe(),
+                        decl.type_name
+                    ),
+                ));
+            }
+            None if decl.type_name == "sampler2D" => textures.push(decl.name),
+            None if is_matrix(&decl.type_name) => {
+                warnings.push(silent_zeros::warning(name, scan, decl, false));
+                zero.push(format!(
+                    "const {0} {1} = {0}(0.0);\n",
+                    decl.type_name, decl.name
+                ));
+            }
+            None => match glsl_param_type(&decl.type_name) {
+                Some(_) => {
+                    if silent_zeros::is_unset(scan, decl) {
+                        warnings.push(silent_zeros::warning(name, scan, decl, true));
+                    }
+                    user_params.push(decl);
+                }
+                None => {
+                    return Err(error_at(
+                        name,
+                        scan,
+                        decl.offset,
+                        format!(
+                            "uniform `{}`: a {} cannot be a parameter here (no matrices, \
+                             the only textures are sampler2D); use float, int, uint, bool \
+                             or a vector of them",
+                            decl.name, decl.type_name
+                        ),
+                    ));
+                }
+            },
+        }
+    }
+
+    let mut prelude = format!(
+        "#version 450\n// raysandbox prelude for {}, see docs/sandbox.md\n",
+        style.describe()
+    );
+    prelude.push_str(&glsl_frame_block(style, &declared));
+    prelude.push_str(GLSL_TEXTURES);
+    prelude.push_str(&zero.concat());
+    let reads_backbuffer = style == Style::GlslSandbox && textures.contains(&"backbuffer");
+    prelude.push_str(&glsl_texture_names(
+        name,
+        scan,
+        style,
+        &rewrite.uniforms,
+        &textures,
+    )?);
+    if !user_params.is_empty() {
+        prelude.push_str("layout(set = 0, binding = 1) uniform RsbParams {\n");
+        for decl in &user_params {
+            if decl.type_name == "bool" {
+                let _ = writeln!(prelude, "    int {GLSL_BOOL_PREFIX}{};", decl.name);
+            } else {
+                let _ = writeln!(prelude, "    {} {};", decl.type_name, decl.name);
+            }
+        }
+        prelude.push_str("};\n");
+        for decl in user_params.iter().filter(|d| d.type_name == "bool") {
+            let _ = writeln!(
+                prelude,
+                "#define {0} ({GLSL_BOOL_PREFIX}{0} != 0)",
+                decl.name
+            );
+        }
+    }
+    let resolution = match style {
+        Style::Shadertoy => "iResolution",
+        Style::GlslViewer if declared.contains(&"u_resolution") => "u_resolution",
+        Style::GlslSandbox if declared.contains(&"resolution") => "resolution",
+        _ => "rsb_resolution",
+    };
+    let _ = write!(
+        prelude,
+        "layout(location = 0) out vec4 rsb_frag_color;\n\
+         // Shadertoy's and GLSL Sandbox's convention: y up (Vulkan's gl_FragCoord is y down).\n\
+         vec4 rsb_frag_coord() {{\n\
+         \x20   return vec4(gl_FragCoord.x, {resolution}.y - gl_FragCoord.y, gl_FragCoord.z, gl_FragCoord.w);\n\
+         }}\n\
+         #define gl_FragCoord rsb_frag_coord()\n\
+         #define gl_FragColor rsb_frag_color\n"
+    );
+    if let Some(output) = rewrite.output {
+        let _ = writeln!(prelude, "#define {output} rsb_frag_color");
+    }
+    // Names the file uses and does not `#define` itself.
+    // Also in the body of a `#define` (`#define FONT iChannel0`).
+    let used = |word: &str| {
+        tokens
+            .iter()
+            .any(|t| t.is(word) || (t.kind == Kind::Directive && has_word(t.text, word)))
+            && !tokens.iter().any(|t| {
+                t.kind == Kind::Directive
+                    && t.text[1..].split_whitespace().take(2).eq(["define", word])
+            })
+    };
+    match style {
+        Style::Shadertoy => {
+            prelude.push_str(&old_shadertoy_names(&used));
+            prelude.push_str(&shadertoy_channels(&used));
+        }
+        Style::GlslViewer => prelude.push_str(&glslviewer::prelude(&declared, resolution)),
+        _ => prelude.push_str(&glsl_sandbox_surface(
+            resolution,
+            rewrite.surface_position,
+            declared.contains(&"surfaceSize"),
+        )),
+    }
+    let epilogue = match style {
+        Style::Shadertoy if user_main => String::new(),
+        Style::Shadertoy => "\n// raysandbox epilogue (Shadertoy style)\n\
+             void main() {\n\
+             \x20   vec4 color = vec4(0.0);\n\
+             \x20   mainImage(color, gl_FragCoord.xy);\n\
+             \x20   rsb_frag_color = color;\n\
+             }\n"
+        .to_string(),
+        _ => String::new(),
+    };
+    let bridged = gaps::bridge(scan, rewrite.text);
+    if bridged.uses_mat2 {
+        prelude.push_str(gaps::MAT2_OVERLOADS);
+    }
+    if bridged.uses_dot {
+        prelude.push_str(gaps::DOT_OVERLOADS);
+    }
+    let mut parts = vec![
+        (PRELUDE_NAME.to_string(), prelude),
+        (name.to_string(), bridged.text.clone()),
+    ];
+    if !epilogue.is_empty() {
+        parts.push((EPILOGUE_NAME.to_string(), epilogue));
+    }
+    let source = ShaderSource::from_parts(parts);
+    // Errors in the user's text are at the rewritten column: move it back.
+    let at_users_column = |mut e: ShaderError| {
+        if e.file == name && e.line > 0 {
+            e.column = bridged.original_column(scan, e.line, e.column);
+        }
+        e
+    };
+    let mut module = source
+        .parse_glsl_fragment(GLSL_DEFINES)
+        .map_err(at_users_column)?;
+    repair::define_before_use(&mut module);
+    repair::spill_pointer_arguments(&mut module);
+    let (module, info) = source.validate_module(module).map_err(at_users_column)?;
+    source
+        .check_translation(&module, &info)
+        .map_err(at_users_column)?;
+    let params = read_params(&module, name, scan, |member| {
+        let decl = user_params.iter().find(|d| d.name == member)?;
+        Some((decl.offset, decl.initializer.clone()))
+    })?;
+    Ok(Compiled {
+        style,
+        file: name.to_string(),
+        source,
+        module,
+        entry_point: GLSL_ENTRY,
+        params,
+        includes: Vec::new(),
+        warnings,
+        reads_backbuffer,
+    })
+}

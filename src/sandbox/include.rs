@@ -1,0 +1,182 @@
+//! glslViewer's `#include "file"` (docs/sandbox.md, "Includes"): the line
+//! is replaced by the file's text, found relative to the including file, so
+//! that shader libraries such as LYGIA work from a local copy. Each file is
+//! included once (as glslViewer does, so libraries that include each other
+//! need no guards); one that includes itself, directly or through others,
+//! is an error at the `#include` that closes the cycle. Lines are copied
+//! whole, so a map from the joined text's lines to (file, line) puts every
+//! error at the included file's own line and column.
+
+use std::path::{Path, PathBuf};
+
+use crate::gpu::ShaderError;
+
+/// Includes nested deeper than this are an error (a runaway chain of
+/// generated files, not a library).
+pub const MAX_DEPTH: usize = 32;
+/// The joined text may not grow beyond this many bytes.
+pub const MAX_BYTES: usize = 8 << 20;
+/// At most this many files are included.
+pub const MAX_FILES: usize = 1024;
+
+/// A file with its includes joined in.
+#[derive(Debug, Clone, Default)]
+pub struct Expanded {
+    /// The joined text.
+    pub text: String,
+    /// The files read: the including file first, then each included one.
+    pub files: Vec<PathBuf>,
+    /// For each line of `text` (0-based): the index in `files` and the
+    /// 1-based line there.
+    lines: Vec<(usize, u32)>,
+    /// `files`, canonical: how a file included twice is recognised.
+    keys: Vec<PathBuf>,
+}
+
+impl Expanded {
+    /// The files included (all but the first), to watch for changes.
+    pub fn included(&self) -> &[PathBuf] {
+        self.files.get(1..).unwrap_or_default()
+    }
+
+    /// Moves an error at a line of the joined text called `name` to the file
+    /// and line the text came from (the line's text is the same).
+    pub fn locate(&self, mut e: ShaderError, name: &str) -> ShaderError {
+        if e.file != name || e.line == 0 {
+            return e;
+        }
+        if let Some(&(file, line)) = self.lines.get(e.line as usize - 1) {
+            if file > 0 {
+                e.file = self.files[file].display().to_string();
+            }
+            e.line = line;
+        }
+        e
+    }
+
+    /// The (file, line) a 1-based line of the joined text came from.
+    pub fn origin(&self, line: u32) -> Option<(&Path, u32)> {
+        let &(file, original) = self.lines.get((line as usize).checked_sub(1)?)?;
+        Some((self.files[file].as_path(), original))
+    }
+}
+
+/// The path of `#include "path"` if `line` is one.
+pub(crate) fn include_target(line: &str) -> Option<&str> {
+    let rest = line.trim_start().strip_prefix('#')?.trim_start();
+    let rest = rest.strip_prefix("include")?.trim_start();
+    let rest = rest.strip_prefix('"')?;
+    let end = rest.find('"')?;
+    Some(&rest[..end])
+}
+
+/// Joins the includes of `text`, the content of the file `path`. The files
+/// read are in the result also when it is an error (to watch them: fixing
+/// one is a reason to reload).
+pub fn expand(path: &Path, text: &str) -> (Expanded, Result<(), ShaderError>) {
+    let mut out = Expanded {
+        files: vec![path.to_path_buf()],
+        keys: vec![canonical(path)],
+        ..Default::default()
+    };
+    let mut stack = out.keys.clone();
+    let result = expand_into(&mut out, 0, text, &mut stack);
+    (out, result)
+}
+
+fn canonical(path: &Path) -> PathBuf {
+    path.canonicalize().unwrap_or_else(|_| path.to_path_buf())
+}
+
+/// Appends the lines of `text` (of `out.files[file]`) to `out`, each
+/// include replaced by its file's lines. `stack` holds the files being
+/// included, outermost first.
+fn expand_into(
+    out: &mut Expanded,
+    file: usize,
+    text: &str,
+    stack: &mut Vec<PathBuf>,
+) -> Result<(), ShaderError> {
+    for (k, line) in text.split_inclusive('\n').enumerate() {
+        let number = k as u32 + 1;
+        let Some(target) = include_target(line) else {
+            out.text.push_str(line);
+            out.lines.push((file, number));
+            continue;
+        };
+        let fail = |message: String| ShaderError {
+            file: out.files[file].display().to_string(),
+            line: number,
+            column: (line.len() - line.trim_start().len()) as u32 + 1,
+            message,
+            source_line: line.trim_end().to_string(),
+            label: String::new(),
+        };
+        let dir = out.files[file].parent().unwrap_or(Path::new(""));
+        let included = dir.join(target);
+        let key = canonical(&included);
+        if stack.contains(&key) {
+            return Err(fail(format!(
+                "include cycle: \"{target}\" is already being included ({})",
+                cycle(stack, &key)
+            )));
+        }
+        // Included once: a second `#include` of a file is left out.
+        let seen = out.keys.contains(&key);
+        if !seen {
+            if stack.len() > MAX_DEPTH {
+                return Err(fail(format!("includes nested more than {MAX_DEPTH} deep")));
+            }
+            if out.files.len() >= MAX_FILES {
+                return Err(fail(format!("more than {MAX_FILES} included files")));
+            }
+            let content = std::fs::read_to_string(&included)
+                .map_err(|e| fail(format!("cannot read {}: {e}", included.display())))?;
+            if out.text.len() + content.len() > MAX_BYTES {
+                return Err(fail(format!(
+                    "the includes make the shader longer than {} MB",
+                    MAX_BYTES >> 20
+                )));
+            }
+            out.files.push(included);
+            out.keys.push(key.clone());
+            stack.push(key);
+            expand_into(out, out.files.len() - 1, &content, stack)?;
+            stack.pop();
+            if !out.text.ends_with('\n') {
+                out.text.push('\n');
+            }
+        }
+        // The `#include` line itself stays, blanked, at its own line.
+        out.text.push_str(&" ".repeat(line.trim_end().len()));
+        out.text.push_str(&line[line.trim_end().len()..]);
+        out.lines.push((file, number));
+    }
+    Ok(())
+}
+
+/// `a.glsl -> b.glsl -> a.glsl`, from where `key` is on the stack.
+fn cycle(stack: &[PathBuf], key: &Path) -> String {
+    let from = stack.iter().position(|p| p == key).unwrap_or(0);
+    let name = |p: &Path| {
+        p.file_name()
+            .map_or_else(String::new, |n| n.to_string_lossy().into_owned())
+    };
+    let mut names: Vec<String> = stack[from..].iter().map(|p| name(p)).collect();
+    names.push(name(key));
+    names.join(" includes ")
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn include_lines_are_recognised() {
+        assert_eq!(include_target("#include \"a/b.glsl\"\n"), Some("a/b.glsl"));
+        assert_eq!(include_target("  # include \"x\" // c"), Some("x"));
+        assert_eq!(include_target("#include <x>"), None);
+        assert_eq!(include_target("// #include \"x\""), None);
+        assert_eq!(include_target("#define include \"x\""), None);
+    }
+}
