@@ -162,7 +162,7 @@ impl PackedScene {
     }
 
     /// Every array that becomes a storage buffer, named for a user (what
-    /// [`super::context::check_buffers`] reports), with its size in bytes.
+    /// [`super::limits::check_buffers`] reports), with its size in bytes.
     pub fn arrays(&self) -> Vec<(String, u64)> {
         use std::mem::size_of_val;
         let fixed = [

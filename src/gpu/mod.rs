@@ -10,6 +10,7 @@ mod id_pass;
 pub mod interaction;
 mod jobs;
 pub mod layout;
+mod limits;
 mod offscreen;
 mod outline;
 pub mod shaders;
@@ -19,13 +20,12 @@ mod timer;
 mod tracer;
 mod viewport;
 
-pub use context::{
-    BufferLimitError, Gpu, GpuError, GpuWaitError, SizeError, TIMER_FEATURES, WAIT_LIMIT,
-};
+pub use context::{Gpu, GpuError, GpuWaitError, SizeError, TIMER_FEATURES, WAIT_LIMIT};
 pub use features::{Features, ShaderOptions};
 pub use id_pass::{FirstHit, IdRenderer};
 pub use interaction::MIN_SCALE;
 pub use jobs::JOB_BUDGET;
+pub use limits::BufferLimitError;
 pub use offscreen::{OffscreenRenderer, RenderError, read_texels, read_texture, render_image};
 pub use outline::OUTLINE_COLOR;
 pub use shaders::{ShaderError, ShaderSource};

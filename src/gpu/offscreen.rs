@@ -2,9 +2,10 @@
 
 use web_time::{Duration, Instant};
 
-use super::context::{BufferLimitError, Gpu, GpuWaitError, SizeError};
+use super::context::{Gpu, GpuWaitError, SizeError};
 use super::features::ShaderOptions;
 use super::layout::PackedScene;
+use super::limits::BufferLimitError;
 use super::shaders::ShaderSource;
 use super::texture::render_target;
 use super::timer::{GpuTimer, Timing};

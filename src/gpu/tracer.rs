@@ -9,10 +9,10 @@
 use std::sync::Arc;
 
 use super::buffer;
-use super::context::{BufferLimitError, check_buffers};
 use super::features::{ShaderOptions, borrowed};
 use super::fullscreen;
 use super::layout::PackedScene;
+use super::limits::{BufferLimitError, check_buffers};
 use super::outline::OutlinePipelines;
 use super::shaders::{FIRST_SHAPE_BINDING, ShaderError, ShaderSource, is_bound};
 use super::texture::render_target;

@@ -7,11 +7,12 @@ use std::sync::{Arc, Mutex, PoisonError};
 
 use web_time::{Duration, Instant};
 
-use super::context::{BufferLimitError, Gpu, GpuWaitError};
+use super::context::{Gpu, GpuWaitError};
 use super::id_pass::FirstHit;
 use super::interaction::MIN_SCALE;
 use super::jobs::{JOB_BUDGET, JobPlanner};
 use super::layout::PackedScene;
+use super::limits::BufferLimitError;
 use super::outline::Outline;
 use super::texture::render_target;
 use super::timer::{GpuTimer, Timing};
