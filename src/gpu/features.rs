@@ -111,6 +111,11 @@ pub struct ShaderOptions {
     /// compiled into the source (see `ShaderSource::with_functions`): a
     /// pipeline per distinct set.
     pub functions: Vec<String>,
+    /// The ray-counting variant (`COUNT_RAYS`): the trace pass writes the
+    /// number of rays traced per pixel by kind instead of the radiance
+    /// (docs/performance.md, "Rays per second"). Off in every pipeline
+    /// that draws.
+    pub count_rays: bool,
 }
 
 impl Default for ShaderOptions {
@@ -123,6 +128,7 @@ impl Default for ShaderOptions {
             triangles: TriangleTest::default(),
             torus: TorusMethod::default(),
             functions: Vec::new(),
+            count_rays: false,
         }
     }
 }
@@ -147,6 +153,7 @@ impl ShaderOptions {
             triangles: TriangleTest::default(),
             torus: TorusMethod::default(),
             functions: super::shapes::implicit::functions(scene),
+            count_rays: false,
         }
     }
 
@@ -162,6 +169,7 @@ impl ShaderOptions {
             ("HAS_CHECKER", f.checker),
             ("HAS_LENS", f.lens),
             ("USE_BVH", f.bvh),
+            ("COUNT_RAYS", self.count_rays),
         ]
         .map(|(name, on)| (name.to_string(), on));
         let kinds = ShapeKind::ALL.iter().map(|&k| (has_flag(k), f.has(k)));

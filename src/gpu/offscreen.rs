@@ -147,6 +147,15 @@ impl OffscreenRenderer {
         self.accum.samples()
     }
 
+    /// The per-pixel sums of the passes since the last [`Self::render`],
+    /// four floats per pixel, row by row: the radiance (and 1 per pass), or
+    /// in the ray-counting variant (`ShaderOptions::count_rays`) the rays
+    /// traced by kind.
+    pub fn read_sums(&self, gpu: &Gpu) -> Result<Vec<f32>, GpuWaitError> {
+        let bytes = read_texels(gpu, self.accum.sum())?;
+        Ok(bytemuck::pod_collect_to_vec(&bytes))
+    }
+
     /// Copies the last rendered image back to the CPU.
     pub fn read_image(&self, gpu: &Gpu) -> Result<image::RgbaImage, GpuWaitError> {
         read_texture(gpu, &self.target)

@@ -328,6 +328,7 @@ pub const DEFAULT_MIN_WEIGHT: f64 = 1e-3;
 
 /// Two radiance-sum textures used in turn, and how many samples they hold.
 pub struct Accumulator {
+    textures: [wgpu::Texture; 2],
     views: [wgpu::TextureView; 2],
     bind_groups: [wgpu::BindGroup; 2],
     /// Index of the texture that holds the current sum.
@@ -338,16 +339,19 @@ pub struct Accumulator {
 
 impl Accumulator {
     pub fn new(device: &wgpu::Device, pipelines: &Pipelines, width: u32, height: u32) -> Self {
-        let views = std::array::from_fn(|_| {
+        // COPY_SRC: the ray-counting variant's counts are read back.
+        let textures: [wgpu::Texture; 2] = std::array::from_fn(|_| {
             render_target(
                 device,
                 "accumulated radiance",
                 (width, height),
                 ACCUM_FORMAT,
-                wgpu::TextureUsages::TEXTURE_BINDING,
+                wgpu::TextureUsages::TEXTURE_BINDING | wgpu::TextureUsages::COPY_SRC,
             )
-            .create_view(&Default::default())
         });
+        let views = textures
+            .each_ref()
+            .map(|t| t.create_view(&Default::default()));
         let bind_groups = std::array::from_fn(|i| {
             device.create_bind_group(&wgpu::BindGroupDescriptor {
                 label: Some("accumulated radiance"),
@@ -359,6 +363,7 @@ impl Accumulator {
             })
         });
         Accumulator {
+            textures,
             views,
             bind_groups,
             front: 0,
@@ -375,6 +380,11 @@ impl Accumulator {
     /// Size in pixels.
     pub fn size(&self) -> (u32, u32) {
         self.size
+    }
+
+    /// The texture that holds the current sum.
+    pub fn sum(&self) -> &wgpu::Texture {
+        &self.textures[self.front]
     }
 
     /// Forgets the accumulated samples (the scene or view changed).
