@@ -3,6 +3,7 @@
 //! `rtcIntersect1`, on two threads, as the anchor of `bench --throughput`.
 
 use std::ffi::c_void;
+use std::time::Duration;
 
 unsafe extern "C" {
     fn rs_embree_new(
@@ -45,21 +46,45 @@ impl Embree {
     }
 
     /// Whether each ray (origin, direction) hits the mesh, the rays split
-    /// into [`THREADS`] contiguous parts traced at the same time.
-    pub fn trace(&self, rays: &[[f32; 6]]) -> Vec<bool> {
+    /// into [`THREADS`] contiguous parts traced at the same time, and the
+    /// CPU time the threads spent.
+    pub fn trace(&self, rays: &[[f32; 6]]) -> (Vec<bool>, Duration) {
         let mut hits = vec![0u8; rays.len()];
         let part = rays.len().div_ceil(THREADS).max(1);
-        std::thread::scope(|s| {
-            for (r, h) in rays.chunks(part).zip(hits.chunks_mut(part)) {
-                s.spawn(move || {
-                    // SAFETY: `r` and `h` have the same length, the scene
-                    // lives as long as `self`.
-                    unsafe { rs_embree_trace(self.0, r.as_ptr().cast(), r.len(), h.as_mut_ptr()) }
-                });
-            }
+        let cpu = std::thread::scope(|s| {
+            let threads: Vec<_> = rays
+                .chunks(part)
+                .zip(hits.chunks_mut(part))
+                .map(|(r, h)| {
+                    s.spawn(move || {
+                        let start = thread_cpu_time();
+                        // SAFETY: `r` and `h` have the same length, the
+                        // scene lives as long as `self`.
+                        unsafe {
+                            rs_embree_trace(self.0, r.as_ptr().cast(), r.len(), h.as_mut_ptr())
+                        }
+                        thread_cpu_time().saturating_sub(start)
+                    })
+                })
+                .collect();
+            threads
+                .into_iter()
+                .map(|t| t.join().expect("an Embree thread panicked"))
+                .sum()
         });
-        hits.into_iter().map(|h| h != 0).collect()
+        (hits.into_iter().map(|h| h != 0).collect(), cpu)
     }
+}
+
+/// The CPU time of the calling thread.
+fn thread_cpu_time() -> Duration {
+    let mut t = libc::timespec {
+        tv_sec: 0,
+        tv_nsec: 0,
+    };
+    // SAFETY: a valid timespec to write into; this clock exists on Linux.
+    unsafe { libc::clock_gettime(libc::CLOCK_THREAD_CPUTIME_ID, &mut t) };
+    Duration::new(t.tv_sec as u64, t.tv_nsec as u32)
 }
 
 impl Drop for Embree {

@@ -63,7 +63,11 @@ impl OffscreenRenderer {
         gpu.check_size((width, height))?;
         let device = &gpu.device;
         let pipelines = Pipelines::new(device, source, &[OUTPUT_FORMAT], options)?;
-        let scene = SceneBuffers::new(device, &pipelines, PackedScene::new(scene, width, height));
+        let scene = SceneBuffers::new(
+            (device, &gpu.queue),
+            &pipelines,
+            PackedScene::new(scene, width, height),
+        );
         let accum = Accumulator::new(device, &pipelines, width, height);
         let target = render_target(
             device,

@@ -61,7 +61,11 @@ impl Viewport {
         if size.0 > 0 && size.1 > 0 {
             surface.configure(&gpu.device, &config);
         }
-        let scene = SceneBuffers::new(&gpu.device, &pipelines, PackedScene::new(scene, 1, 1));
+        let scene = SceneBuffers::new(
+            (&gpu.device, &gpu.queue),
+            &pipelines,
+            PackedScene::new(scene, 1, 1),
+        );
         let accum = Accumulator::new(&gpu.device, &pipelines, size.0.max(1), size.1.max(1));
         Viewport {
             surface,
@@ -122,7 +126,12 @@ impl Viewport {
     /// Uploads a changed scene and restarts refinement.
     pub fn set_scene(&mut self, gpu: &Gpu, scene: &Scene) {
         let packed = PackedScene::new(scene, 1, 1);
-        self.scene = SceneBuffers::reusing(&gpu.device, &self.pipelines, packed, &self.scene);
+        self.scene = SceneBuffers::reusing(
+            (&gpu.device, &gpu.queue),
+            &self.pipelines,
+            packed,
+            &self.scene,
+        );
         self.accum.reset();
     }
 
@@ -137,7 +146,11 @@ impl Viewport {
     /// The scene buffers and accumulator are rebuilt against their layouts.
     pub fn set_pipelines(&mut self, gpu: &Gpu, pipelines: Pipelines) {
         self.pipelines = pipelines;
-        self.scene = SceneBuffers::new(&gpu.device, &self.pipelines, self.scene.packed().clone());
+        self.scene = SceneBuffers::new(
+            (&gpu.device, &gpu.queue),
+            &self.pipelines,
+            self.scene.packed().clone(),
+        );
         let (w, h) = self.accum.size();
         self.accum = Accumulator::new(&gpu.device, &self.pipelines, w, h);
         self.outline.forget_layouts();
