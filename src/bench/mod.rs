@@ -23,6 +23,7 @@ use measure::{ConvergedReference, REFERENCE_FACTOR};
 
 pub use measure::{median, process_cpu_time, sphere_field};
 pub use sweeps::spheres_in_place;
+pub use throughput::{RayCounts, count_rays};
 
 #[derive(clap::Args, Debug, Clone)]
 pub struct BenchArgs {
