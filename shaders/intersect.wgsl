@@ -76,31 +76,25 @@ fn foot(ray: Ray, anchor: vec3<f32>) -> Foot {
 }
 
 /// Whether the ray meets the box for some t_min <= t < t_max: the slab test
-/// with the same care as hit_cube (a parallel axis decided on its own, the
+/// with the same care as hit_cube (a parallel axis decided by a branch, the
 /// far bound widened by 1 + 2 gamma(3)). `inv_d` is 1 / d, 0 where |d_i| is
-/// below 1e-20 (those components are not used). The three axes are tested
-/// at once, without a loop or a branch per axis: on a CPU rasteriser every
-/// branch of every lane costs all lanes, and this test runs at every BVH
-/// node (docs/performance.md, "Where the time goes").
+/// below 1e-20 (those components are not used).
 fn hit_box(lo: vec3<f32>, hi: vec3<f32>, ray: Ray, inv_d: vec3<f32>, t_max: f32) -> bool {
-    let span = box_span(lo, hi, ray, inv_d, t_max);
-    return span.x <= span.y;
-}
-
-/// The ray's parameters (near, far) inside the box, clipped to
-/// [t_min, t_max]: the box is met where near <= far (hit_box), and near
-/// orders the children of a BVH node front to back.
-fn box_span(lo: vec3<f32>, hi: vec3<f32>, ray: Ray, inv_d: vec3<f32>, t_max: f32) -> vec2<f32> {
-    // A parallel axis bounds no t; it misses if the origin is outside its slab.
-    let parallel = abs(ray.dir) < vec3(1e-20);
-    if any(parallel & ((ray.origin < lo) | (ray.origin > hi))) {
-        return vec2(1.0, 0.0);
+    var near = ray.t_min;
+    var far = t_max;
+    for (var i = 0u; i < 3u; i++) {
+        if abs(ray.dir[i]) < 1e-20 {
+            if ray.origin[i] < lo[i] || ray.origin[i] > hi[i] {
+                return false;
+            }
+            continue;
+        }
+        let ta = (lo[i] - ray.origin[i]) * inv_d[i];
+        let tb = (hi[i] - ray.origin[i]) * inv_d[i];
+        near = max(near, min(ta, tb));
+        far = min(far, max(ta, tb) * (1.0 + 2.0 * GAMMA3));
     }
-    let ta = (lo - ray.origin) * inv_d;
-    let tb = (hi - ray.origin) * inv_d;
-    let near = select(min(ta, tb), vec3(-T_FAR), parallel);
-    let far = select(max(ta, tb) * (1.0 + 2.0 * GAMMA3), vec3(T_FAR), parallel);
-    return vec2(max(ray.t_min, max3(near)), min(t_max, min(far.x, min(far.y, far.z))));
+    return near <= far;
 }
 
 /// The nearest hit of a bounded shape (every kind but planes) through the
