@@ -32,6 +32,15 @@ fn fs_trace(@builtin(position) frag: vec4<f32>) -> @location(0) vec4<f32> {
             }
         }
     }
+    if COUNT_RAYS {
+        // The counting variant sums its counts over the passes, as the
+        // others sum radiance.
+        var counts = ray_counts;
+        if globals.sample_start > 0u {
+            counts += textureLoad(accumulated, vec2<i32>(frag.xy), 0);
+        }
+        return counts;
+    }
     if globals.sample_start > 0u {
         sum += textureLoad(accumulated, vec2<i32>(frag.xy), 0).rgb;
     }

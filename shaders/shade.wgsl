@@ -131,7 +131,11 @@ fn shade_local(hit: Hit, ns: vec3<f32>, d: vec3<f32>, m: Material, albedo: vec3<
         }
         let to_light = light.position - shadow_origin;
         let dist = scaled_length(to_light);
-        if dist <= 0.0 || occluded(Ray(shadow_origin, to_light / dist, 0.0), dist) {
+        if dist <= 0.0 {
+            continue;
+        }
+        count_ray(1u);
+        if occluded(Ray(shadow_origin, to_light / dist, 0.0), dist) {
             continue;
         }
         var highlight = 0.0;
@@ -142,6 +146,22 @@ fn shade_local(hit: Hit, ns: vec3<f32>, d: vec3<f32>, m: Material, albedo: vec3<
         color += light.radiance * (m.diffuse * albedo * n_dot_l + highlight);
     }
     return color;
+}
+
+/// The ray-counting variant (`raysandbox bench --throughput`,
+/// docs/performance.md, "Rays per second"): true adds up, per pixel, the
+/// rays traced by kind (primary, shadow, reflected, refracted) in
+/// `ray_counts`, which fs_trace then writes instead of the radiance. Every
+/// other pipeline has it false, and the counting is dead code there.
+override COUNT_RAYS: bool = false;
+var<private> ray_counts: vec4<f32>;
+
+/// Counts one traced ray of kind `kind` (0 primary, 1 shadow, 2 reflected,
+/// 3 refracted) in the counting variant.
+fn count_ray(kind: u32) {
+    if COUNT_RAYS {
+        ray_counts[kind] += 1.0;
+    }
 }
 
 /// A ray waiting to be traced: the explicit stack replaces the recursion of
@@ -172,6 +192,7 @@ fn trace(primary: Ray) -> vec3<f32> {
     var top = 0u;
     stack[0] = PendingRay(primary, 0u, 1.0, vec3(1.0));
     top = 1u;
+    count_ray(0u);
     var radiance = vec3(0.0);
     while top > 0u {
         top -= 1u;
@@ -220,6 +241,7 @@ fn trace(primary: Ray) -> vec3<f32> {
             let origin = offset_ray(hit.point, -ng, hit.error_scale);
             stack[top] = PendingRay(Ray(origin, dir, 0.0), child_depth, refracted_weight, job.throughput * wt * albedo);
             top += 1u;
+            count_ray(3u);
         }
         let reflected_weight = job.weight * wr;
         let reflects = HAS_MIRRORS || HAS_TRANSPARENCY;
@@ -227,6 +249,7 @@ fn trace(primary: Ray) -> vec3<f32> {
             let origin = offset_ray(hit.point, ng, hit.error_scale);
             stack[top] = PendingRay(Ray(origin, reflect_dir(ray.dir, ns), 0.0), child_depth, reflected_weight, job.throughput * wr);
             top += 1u;
+            count_ray(2u);
         }
     }
     return radiance;

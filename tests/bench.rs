@@ -7,7 +7,10 @@ mod common;
 use std::path::Path;
 use std::process::Command;
 
-use raysandbox::bench::{ERROR_COLUMNS, PIPELINE_COLUMNS, REFERENCE_COLUMNS, SCALING_COLUMNS};
+use raysandbox::bench::{
+    ERROR_COLUMNS, PIPELINE_COLUMNS, REFERENCE_COLUMNS, RayCounts, SCALING_COLUMNS, count_rays,
+};
+use raysandbox::scene::{Scene, bundled};
 
 fn check_csv(path: &Path, columns: &str, text_columns: usize) -> usize {
     let text = std::fs::read_to_string(path).unwrap_or_else(|e| panic!("{}: {e}", path.display()));
@@ -100,4 +103,43 @@ fn quick_bench_writes_csv_markdown_and_plots() {
         assert!(image.pixels().any(|p| p != first), "{plot} is blank");
     }
     std::fs::remove_dir_all(&out).unwrap();
+}
+
+/// The counting variant of the tracer (`bench --throughput`) counts what
+/// the rendering model traces: one primary ray per pixel and sample, no
+/// shadow ray without a light, no child ray without a mirror or glass, and
+/// in the Whitted scene (two lights, a mirror and a glass sphere) every
+/// kind, at most two shadow rays per ray traced.
+#[test]
+fn the_tracer_counts_its_rays_by_kind() {
+    let Some(gpu) = common::gpu() else { return };
+    let plain = Scene::from_toml_str(
+        "[camera]\nfrom = [0, 0, 4]\nto = [0, 0, 0]\nfov = 40\n\
+         [materials.clay]\ncolor = [0.8, 0.5, 0.4]\n\
+         [[spheres]]\ncenter = [0, 0, 0]\nradius = 1\nmaterial = \"clay\"\n",
+        None,
+    )
+    .unwrap();
+    let only_primary = |primary| RayCounts {
+        primary,
+        shadow: 0,
+        reflected: 0,
+        refracted: 0,
+    };
+    assert_eq!(
+        count_rays(&gpu, &plain, (32, 18), 1).unwrap(),
+        only_primary(576)
+    );
+    assert_eq!(
+        count_rays(&gpu, &plain, (32, 18), 3).unwrap(),
+        only_primary(3 * 576)
+    );
+    let whitted = Scene::from_toml_str(bundled::text("whitted").unwrap(), None).unwrap();
+    let c = count_rays(&gpu, &whitted, (32, 18), 1).unwrap();
+    assert_eq!(c.primary, 576);
+    assert!(c.shadow > 0 && c.reflected > 0 && c.refracted > 0, "{c:?}");
+    assert!(
+        c.shadow <= 2 * (c.primary + c.reflected + c.refracted),
+        "{c:?}"
+    );
 }

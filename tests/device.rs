@@ -1,44 +1,38 @@
 //! The GPU device's limits and its loss (docs/reliability.md, "The GPU's
 //! limits and a lost device"): a scene whose data does not fit in one of the
-//! device's buffers is refused with an error naming the limit, never a
+//! device's buffers or textures is refused with an error naming the limit, never a
 //! wgpu validation panic; a lost device is reported as such, and a new one
 //! renders the same scene again.
 
 mod common;
 
-use raysandbox::gpu::layout::PackedScene;
-use raysandbox::gpu::{Gpu, RenderError, render_image};
+use raysandbox::gpu::layout::{PackedArray, PackedScene};
+use raysandbox::gpu::{Gpu, RenderError, check_buffers, render_image};
 use raysandbox::scene::Scene;
 
 const WIDTH: u32 = 48;
 const HEIGHT: u32 = 32;
 
-fn teapot_scene() -> Scene {
-    Scene::load(&common::scenes_dir().join("meshes/mirror_teapot.toml")).unwrap()
+fn scene(name: &str) -> Scene {
+    Scene::load(&common::scenes_dir().join(name)).unwrap()
 }
 
-/// The teapot's triangles need more bytes than any other array of its
-/// scene; a device whose storage bindings stop halfway refuses the scene
-/// and names the limit, and the same device still renders a scene that
-/// fits.
+/// A device whose storage bindings stop between the two largest storage
+/// buffers of a scene of many spheres refuses the scene and names the
+/// array and the limit; the same device still renders a scene that fits.
 #[test]
-fn a_mesh_beyond_the_storage_buffer_limit_is_refused_naming_the_limit() {
+fn a_scene_beyond_the_storage_buffer_limit_is_refused_naming_the_limit() {
     let gpu = common::gpu().expect("a GPU");
-    let scene = teapot_scene();
-    let arrays = PackedScene::new(&scene, WIDTH, HEIGHT).arrays();
-    let (largest, bytes) = arrays.iter().max_by_key(|(_, bytes)| *bytes).unwrap();
-    assert!(
-        largest.starts_with("meshes"),
-        "the largest array is {largest}"
-    );
-    let others = arrays
-        .iter()
-        .filter(|(what, _)| what != largest)
-        .map(|(_, bytes)| *bytes)
-        .max()
-        .unwrap();
-    let limit = (bytes / 2).next_multiple_of(256);
-    assert!(others <= limit, "{arrays:?}");
+    let scene = scene("many_spheres.toml");
+    let mut buffers: Vec<PackedArray> = PackedScene::new(&scene, WIDTH, HEIGHT)
+        .arrays()
+        .into_iter()
+        .filter(|a| !a.texture)
+        .collect();
+    buffers.sort_by_key(|a| std::cmp::Reverse(a.bytes));
+    let (largest, second) = (&buffers[0], buffers[1].bytes);
+    let limit = (largest.bytes + second) / 2 / 256 * 256;
+    assert!(second <= limit && limit < largest.bytes, "{buffers:?}");
     let small = pollster::block_on(Gpu::request_with_limits(
         gpu.instance.clone(),
         gpu.adapter.clone(),
@@ -49,23 +43,42 @@ fn a_mesh_beyond_the_storage_buffer_limit_is_refused_naming_the_limit() {
     match render_image(&small, &scene, WIDTH, HEIGHT, 1) {
         Err(RenderError::Buffers(e)) => {
             assert_eq!(e.limit, "max_storage_buffer_binding_size");
-            assert_eq!((e.bytes, e.allowed), (*bytes, limit));
+            assert_eq!(
+                (e.what.as_str(), e.bytes, e.allowed),
+                (largest.what.as_str(), largest.bytes, limit)
+            );
             let message = e.to_string();
             println!("{message}");
             assert!(
-                message.contains("max_storage_buffer_binding_size") && message.contains("meshes"),
+                message.contains("max_storage_buffer_binding_size")
+                    && message.contains(&largest.what),
                 "{message}"
             );
             assert!(RenderError::Buffers(e).is_input());
         }
-        Ok(_) => {
-            panic!("a scene {bytes} bytes large in one buffer rendered with a {limit}-byte limit")
-        }
+        Ok(_) => panic!("{largest:?} rendered with a {limit}-byte limit"),
         Err(e) => panic!("the wrong error: {e}"),
     }
-    let without_teapot = scene.without_shapes();
-    render_image(&small, &without_teapot, WIDTH, HEIGHT, 1)
+    render_image(&small, &scene.without_shapes(), WIDTH, HEIGHT, 1)
         .expect("a scene that fits renders on the same device");
+}
+
+/// A mesh's BVH and triangles live in a texture 4096 texels wide: the
+/// rows it needs are checked against the largest texture.
+#[test]
+fn a_mesh_beyond_the_largest_texture_is_refused_naming_the_limit() {
+    let packed = PackedScene::new(&scene("meshes/mirror_teapot.toml"), WIDTH, HEIGHT);
+    let limits = wgpu::Limits {
+        max_texture_dimension_2d: 1,
+        ..wgpu::Limits::default()
+    };
+    let e = check_buffers(&limits, &packed).expect_err("a teapot in one row of 4096 texels");
+    assert_eq!(
+        (e.what.as_str(), e.limit),
+        ("meshes (mesh_data)", "max_texture_dimension_2d")
+    );
+    assert_eq!(e.allowed, 4096 * 16);
+    check_buffers(&wgpu::Limits::default(), &packed).expect("the teapot fits the default limits");
 }
 
 /// A device destroyed under the renderer (as a driver reset would lose it)
@@ -74,7 +87,7 @@ fn a_mesh_beyond_the_storage_buffer_limit_is_refused_naming_the_limit() {
 #[test]
 fn a_lost_device_is_reported_and_a_new_one_renders_the_scene() {
     let gpu = common::gpu().expect("a GPU");
-    let scene = Scene::load(&common::scenes_dir().join("whitted.toml")).unwrap();
+    let scene = scene("whitted.toml");
     let before = render_image(&gpu, &scene, WIDTH, HEIGHT, 1).expect("the first render");
     assert_eq!(gpu.lost(), None);
 

@@ -10,7 +10,8 @@
 // coordinates (t does not change, the direction is not unit length there),
 // so moving a mesh only changes this struct.
 
-/// A placed mesh. `mesh_data` holds, from `node_start`, its BVH nodes (two
+/// A placed mesh. `mesh_data` (a texture, read by `mesh_data_at`, see
+/// src/gpu/shaders.rs) holds, from `node_start`, its BVH nodes (two
 /// vec4 each: min.xyz and `first`, max.xyz and `count`, floats as bits);
 /// from `tri_start`, its triangles in leaf order (three vec4: p0, p1, p2);
 /// from `normal_start` (smooth meshes only), their vertex normals (three
@@ -39,7 +40,7 @@ struct TriangleHit {
 }
 
 fn data_vec3(i: u32) -> vec3<f32> {
-    return bitcast<vec3<f32>>(mesh_data[i].xyz);
+    return bitcast<vec3<f32>>(mesh_data_at(i).xyz);
 }
 
 /// A hit if every weight is >= 0 and t_min < t < t_max.
@@ -161,8 +162,8 @@ fn hit_mesh(ray: Ray, m: Mesh, index: u32, best: Hit) -> Hit {
     while top > 0u {
         top -= 1u;
         let at = m.node_start + 2u * stack[top];
-        let lo = mesh_data[at];
-        let hi = mesh_data[at + 1u];
+        let lo = mesh_data_at(at);
+        let hi = mesh_data_at(at + 1u);
         if !hit_box(bitcast<vec3<f32>>(lo.xyz), bitcast<vec3<f32>>(hi.xyz), local, inv_d, t_best) {
             continue;
         }

@@ -24,7 +24,7 @@ use crate::scene::{CubeSize, Geometry, NamedOption, Scene, ShapeId, TriangleTest
 
 /// The meshes, smallest first: name and file relative to the project. The
 /// last two are not in the repository: scripts/fetch-meshes writes them.
-const MESHES: [(&str, &str); 6] = [
+pub(super) const MESHES: [(&str, &str); 6] = [
     ("teapot", "assets/meshes/teapot.obj"),
     ("bunny", "assets/meshes/bunny.obj"),
     ("dragon_res4", "assets/meshes/dragon_res4.ply"),
@@ -66,12 +66,12 @@ material = "floor"
 "#;
 
 /// The project folder: the meshes are read from there.
-fn project() -> &'static Path {
+pub(super) fn project() -> &'static Path {
     Path::new(env!("CARGO_MANIFEST_DIR"))
 }
 
 /// The stage with the mesh of `path` (flat shading) on it.
-fn staged(path: &Path) -> Result<Scene, String> {
+pub(super) fn staged(path: &Path) -> Result<Scene, String> {
     let text = format!(
         "{STAGE}\n[[meshes]]\nfile = {:?}\nmaterial = \"clay\"\n",
         path.display().to_string()

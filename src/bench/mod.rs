@@ -2,11 +2,14 @@
 //! pipelines, and scaling with the number of shapes, with and without the
 //! BVH. Writes CSV files, a Markdown report and PNG plots to `--out`.
 
+#[cfg(feature = "embree")]
+mod embree;
 mod measure;
 mod meshes;
 mod plot;
 pub mod storage;
 mod sweeps;
+mod throughput;
 
 use std::fmt::Write as _;
 use std::path::{Path, PathBuf};
@@ -20,6 +23,7 @@ use measure::{ConvergedReference, REFERENCE_FACTOR};
 
 pub use measure::{median, process_cpu_time, sphere_field};
 pub use sweeps::spheres_in_place;
+pub use throughput::{RayCounts, count_rays};
 
 #[derive(clap::Args, Debug, Clone)]
 pub struct BenchArgs {
@@ -45,6 +49,12 @@ pub struct BenchArgs {
     /// `implicit_knobs.csv`, `implicit_costs.csv` and plots.
     #[arg(long)]
     pub implicit: bool,
+    /// Only rays per second (docs/performance.md, "Rays per second"): per
+    /// bundled scene, rays by kind as the tracer counts them; per mesh, its
+    /// primary rays alone, against Intel Embree on the same rays where
+    /// built with the `embree` feature. `throughput.md`.
+    #[arg(long)]
+    pub throughput: bool,
 }
 
 /// What one run sweeps.
@@ -253,6 +263,9 @@ pub fn run(args: &BenchArgs) -> Result<(), BenchError> {
         env.cpu
     );
     std::fs::create_dir_all(&args.out).map_err(|e| fail(&args.out, e))?;
+    if args.throughput {
+        return throughput::run(&gpu, &env, args);
+    }
     if args.implicit {
         return sweeps::run(&gpu, &env, &args.out, args.quick, args.frames);
     }

@@ -122,10 +122,15 @@ pub fn run(args: &Args) -> Result<(), Failure> {
             ms(first)
         );
         if args.frames > 1 {
-            let mut times: Vec<Duration> = (0..args.frames)
-                .map(|_| renderer.render(&gpu, args.spp))
-                .collect::<Result<_, _>>()
-                .map_err(gpu_failure)?;
+            let mut times = Vec::new();
+            let mut cpu_times = Vec::new();
+            for _ in 0..args.frames {
+                let before = crate::bench::process_cpu_time();
+                times.push(renderer.render(&gpu, args.spp).map_err(gpu_failure)?);
+                if let (Some(a), Some(b)) = (before, crate::bench::process_cpu_time()) {
+                    cpu_times.push(b.saturating_sub(a));
+                }
+            }
             times.sort();
             println!(
                 "{} frames after warm-up: median {:.2} ms, fastest {:.2} ms, slowest {:.2} ms",
@@ -134,6 +139,15 @@ pub fn run(args: &Args) -> Result<(), Failure> {
                 ms(times[0]),
                 ms(times[times.len() - 1]),
             );
+            // On lavapipe the GPU is this process's threads: their CPU time
+            // is the frame's work, which a loaded machine does not stretch
+            // (docs/performance.md, "Where the time goes").
+            if cpu_times.len() == times.len() {
+                println!(
+                    "CPU time per frame: median {:.2} ms",
+                    ms(crate::bench::median(cpu_times))
+                );
+            }
         }
         renderer.read_image(&gpu).map_err(gpu_failure)?
     };

@@ -114,6 +114,11 @@ pub struct ShaderOptions {
     /// compiled into the source (see `ShaderSource::with_functions`): a
     /// pipeline per distinct set.
     pub functions: Vec<String>,
+    /// The ray-counting variant (`COUNT_RAYS`): the trace pass writes the
+    /// number of rays traced per pixel by kind instead of the radiance
+    /// (docs/performance.md, "Rays per second"). Off in every pipeline
+    /// that draws.
+    pub count_rays: bool,
 }
 
 impl Default for ShaderOptions {
@@ -126,6 +131,7 @@ impl Default for ShaderOptions {
             triangles: TriangleTest::default(),
             torus: TorusMethod::default(),
             functions: Vec::new(),
+            count_rays: false,
         }
     }
 }
@@ -150,6 +156,7 @@ impl ShaderOptions {
             triangles: TriangleTest::default(),
             torus: TorusMethod::default(),
             functions: crate::scene::implicit::functions(scene),
+            count_rays: false,
         }
     }
 }

@@ -101,8 +101,12 @@ impl IdRenderer {
         } else {
             PackedScene::in_world(scene, width, height)
         };
-        let scene =
-            SceneBuffers::with_layout(device, (&self.layout, ALL_KINDS_BOUND), packed, None)?;
+        let scene = SceneBuffers::with_layout(
+            (device, &gpu.queue),
+            (&self.layout, ALL_KINDS_BOUND),
+            packed,
+            None,
+        )?;
         let bind_group = &scene.bind_group;
         let target = render_target(
             device,

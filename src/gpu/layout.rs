@@ -117,6 +117,17 @@ pub struct PackedScene {
     pub bvh_prims: Vec<u32>,
 }
 
+/// One array of a packed scene, as the GPU holds it.
+#[derive(Debug, Clone, PartialEq, Eq)]
+pub struct PackedArray {
+    /// What it holds ("BVH nodes", "meshes (mesh_data)").
+    pub what: String,
+    pub bytes: u64,
+    /// In a data texture ([`super::shaders::DATA_TEXTURE_WIDTH`] texels
+    /// of 16 bytes a row) rather than a storage buffer.
+    pub texture: bool,
+}
+
 impl PackedScene {
     /// Packs `scene` for an image of `width` x `height` pixels, with every
     /// position relative to the camera target ([`Frame::around_target`]),
@@ -161,29 +172,37 @@ impl PackedScene {
         }
     }
 
-    /// Every array that becomes a storage buffer, named for a user (what
+    /// Every array the GPU holds, named for a user (what
     /// [`super::limits::check_buffers`] reports), with its size in bytes.
-    pub fn arrays(&self) -> Vec<(String, u64)> {
+    pub fn arrays(&self) -> Vec<PackedArray> {
         use std::mem::size_of_val;
         let fixed = [
+            ("globals", size_of_val(&self.globals)),
             ("materials", size_of_val(self.materials.as_slice())),
             ("lights", size_of_val(self.lights.as_slice())),
             ("BVH nodes", size_of_val(self.bvh_nodes.as_slice())),
             ("BVH shape list", size_of_val(self.bvh_prims.as_slice())),
         ]
-        .map(|(what, bytes)| (what.to_string(), bytes));
-        // A kind's own array, then its second one (e.g. a mesh's triangles).
+        .map(|(what, bytes)| (what.to_string(), bytes, false));
+        // A kind's own array (a storage buffer), then its shared data (a
+        // texture, e.g. a mesh's BVH and triangles).
         let shape_names = super::shapes::kinds().into_iter().flat_map(|k| {
-            let data = k.data.map(|data| format!("{} ({data})", k.kind.key()));
-            std::iter::once(k.kind.key().to_string()).chain(data)
+            let data = k
+                .data
+                .map(|data| (format!("{} ({data})", k.kind.key()), true));
+            std::iter::once((k.kind.key().to_string(), false)).chain(data)
         });
         let shapes = shape_names
             .zip(&self.shapes)
-            .map(|(what, words)| (what, size_of_val(words.as_slice())));
+            .map(|((what, texture), words)| (what, size_of_val(words.as_slice()), texture));
         fixed
             .into_iter()
             .chain(shapes)
-            .map(|(what, bytes)| (what, bytes as u64))
+            .map(|(what, bytes, texture)| PackedArray {
+                what,
+                bytes: bytes as u64,
+                texture,
+            })
             .collect()
     }
 

@@ -3,14 +3,15 @@
 //! named (docs/reliability.md, "The GPU's limits and a lost device").
 
 use super::layout::PackedScene;
+use super::shaders::DATA_TEXTURE_WIDTH;
 
-/// A scene whose data does not fit in the device's storage buffers: one of
-/// its arrays (a mesh's triangles, the BVH, ...) is larger than one binding
-/// may be.
+/// A scene whose data does not fit in the device's buffers: one of its
+/// arrays (a mesh's triangles, the BVH, ...) is larger than one storage
+/// binding or data texture may be.
 #[derive(Debug, Clone, PartialEq, Eq, thiserror::Error)]
 #[error(
-    "the scene needs {} for its {what} in one GPU buffer, but this GPU allows at most {} per \
-     buffer ({limit} = {allowed} bytes): use fewer or smaller shapes (e.g. a mesh with fewer \
+    "the scene needs {} for its {what} in one GPU buffer, but this GPU allows at most {} there \
+     ({limit}: {allowed} bytes): use fewer or smaller shapes (e.g. a mesh with fewer \
      triangles)",
     readable_size(*.bytes), readable_size(*.allowed)
 )]
@@ -23,10 +24,11 @@ pub struct BufferLimitError {
     pub allowed: u64,
 }
 
-/// Checks every array of `packed` against `limits`: the smaller of the
-/// largest storage binding and the largest buffer.
+/// Checks every array of `packed` against `limits`: a storage buffer
+/// against the smaller of the largest storage binding and the largest
+/// buffer, a data texture against the rows a texture may have.
 pub fn check_buffers(limits: &wgpu::Limits, packed: &PackedScene) -> Result<(), BufferLimitError> {
-    let (limit, allowed) = if limits.max_buffer_size < limits.max_storage_buffer_binding_size {
+    let buffer = if limits.max_buffer_size < limits.max_storage_buffer_binding_size {
         ("max_buffer_size", limits.max_buffer_size)
     } else {
         (
@@ -34,14 +36,18 @@ pub fn check_buffers(limits: &wgpu::Limits, packed: &PackedScene) -> Result<(), 
             limits.max_storage_buffer_binding_size,
         )
     };
-    match packed
-        .arrays()
-        .into_iter()
-        .find(|(_, bytes)| *bytes > allowed)
-    {
-        Some((what, bytes)) => Err(BufferLimitError {
-            what,
-            bytes,
+    let texture_row = u64::from(DATA_TEXTURE_WIDTH) * 16;
+    let texture = (
+        "max_texture_dimension_2d",
+        texture_row * u64::from(limits.max_texture_dimension_2d),
+    );
+    match packed.arrays().into_iter().find_map(|array| {
+        let (limit, allowed) = if array.texture { texture } else { buffer };
+        (array.bytes > allowed).then_some((array, limit, allowed))
+    }) {
+        Some((array, limit, allowed)) => Err(BufferLimitError {
+            what: array.what,
+            bytes: array.bytes,
             limit,
             allowed,
         }),

@@ -25,7 +25,7 @@ pub use features::{Features, ShaderOptions};
 pub use id_pass::{FirstHit, IdRenderer};
 pub use interaction::MIN_SCALE;
 pub use jobs::JOB_BUDGET;
-pub use limits::BufferLimitError;
+pub use limits::{BufferLimitError, check_buffers};
 pub use offscreen::{OffscreenRenderer, RenderError, read_texels, read_texture, render_image};
 pub use outline::OUTLINE_COLOR;
 pub use shaders::{ShaderError, ShaderSource};

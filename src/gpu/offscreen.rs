@@ -67,7 +67,11 @@ impl OffscreenRenderer {
         gpu.check_size((width, height))?;
         let device = &gpu.device;
         let pipelines = Pipelines::new(device, source, &[OUTPUT_FORMAT], options)?;
-        let scene = SceneBuffers::new(device, &pipelines, PackedScene::new(scene, width, height))?;
+        let scene = SceneBuffers::new(
+            (device, &gpu.queue),
+            &pipelines,
+            PackedScene::new(scene, width, height),
+        )?;
         let accum = Accumulator::new(device, &pipelines, width, height);
         let target = render_target(
             device,
@@ -149,6 +153,15 @@ impl OffscreenRenderer {
     /// Samples per pixel accumulated so far.
     pub fn samples(&self) -> u32 {
         self.accum.samples()
+    }
+
+    /// The per-pixel sums of the passes since the last [`Self::render`],
+    /// four floats per pixel, row by row: the radiance (and 1 per pass), or
+    /// in the ray-counting variant (`ShaderOptions::count_rays`) the rays
+    /// traced by kind.
+    pub fn read_sums(&self, gpu: &Gpu) -> Result<Vec<f32>, GpuWaitError> {
+        let bytes = read_texels(gpu, self.accum.sum())?;
+        Ok(bytemuck::pod_collect_to_vec(&bytes))
     }
 
     /// Copies the last rendered image back to the CPU.

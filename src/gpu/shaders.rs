@@ -148,17 +148,23 @@ fn shape_glue(kinds: &[KindInfo], bound_kinds: u32) -> String {
             flag = has_flag(k.kind),
         );
         let bound = is_bound(bound_kinds, k.kind);
-        let mut array = |name: &str, ty: &str| {
-            declarations += &if bound {
-                format!("@group(0) @binding({binding}) var<storage, read> {name}: array<{ty}>;\n")
-            } else {
-                format!("var<private> {name}: array<{ty}, 1>;\n")
-            };
-            binding += 1;
+        declarations += &if bound {
+            format!(
+                "@group(0) @binding({binding}) var<storage, read> {}: array<{}>;\n",
+                k.kind.key(),
+                k.wgsl_struct
+            )
+        } else {
+            format!(
+                "var<private> {}: array<{}, 1>;\n",
+                k.kind.key(),
+                k.wgsl_struct
+            )
         };
-        array(k.kind.key(), k.wgsl_struct);
+        binding += 1;
         if let Some(data) = k.data {
-            array(data, "vec4<u32>");
+            declarations += &data_texture(data, bound.then_some(binding));
+            binding += 1;
         }
     }
     let (bounded, unbounded): (Vec<&KindInfo>, Vec<&KindInfo>) =
@@ -249,6 +255,29 @@ fn shape_glue(kinds: &[KindInfo], bound_kinds: u32) -> String {
         kind_loops(&unbounded),
         kind_loops(&bounded),
     )
+}
+
+/// Width in texels of a kind's data texture (a mesh's BVH and triangles);
+/// its rows follow one another, so texel i is at (i % width, i / width).
+pub const DATA_TEXTURE_WIDTH: u32 = 4096;
+
+/// A kind's shared data (`mesh_data`) and `<data>_at(i)`, its `vec4<u32>`
+/// number i. The data is an `Rgba32Uint` texture, not a storage buffer:
+/// llvmpipe reads a storage buffer at an index that differs between the
+/// lanes one lane at a time, with a bounds test each, and a texel fetch
+/// with one gather; two more texel fetches per BVH node cost a tenth of two
+/// more storage reads (docs/performance.md, "Where the time goes").
+/// Unbound (a scene without the kind), `<data>_at` returns zeros.
+fn data_texture(data: &str, binding: Option<u32>) -> String {
+    match binding {
+        Some(binding) => format!(
+            "@group(0) @binding({binding}) var {data}: texture_2d<u32>;\n\
+             fn {data}_at(i: u32) -> vec4<u32> {{\n\
+             \x20   return textureLoad({data}, vec2(i % {DATA_TEXTURE_WIDTH}u, i / {DATA_TEXTURE_WIDTH}u), 0);\n\
+             }}\n"
+        ),
+        None => format!("fn {data}_at(i: u32) -> vec4<u32> {{\n    return vec4(0u);\n}}\n"),
+    }
 }
 
 /// `KIND_SPHERE`.

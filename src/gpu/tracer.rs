@@ -14,8 +14,11 @@ use super::fullscreen;
 use super::layout::PackedScene;
 use super::limits::{BufferLimitError, check_buffers};
 use super::outline::OutlinePipelines;
-use super::shaders::{FIRST_SHAPE_BINDING, ShaderError, ShaderSource, is_bound};
+use super::shaders::{
+    DATA_TEXTURE_WIDTH, FIRST_SHAPE_BINDING, ShaderError, ShaderSource, is_bound,
+};
 use super::texture::render_target;
+use wgpu::util::DeviceExt;
 
 /// Where the radiance sum is kept: full f32 precision, so 1000s of samples
 /// add up without banding.
@@ -176,38 +179,99 @@ impl Pipelines {
 
 /// Binding 0: the globals (a storage buffer, see `scene.wgsl`); 1..=5:
 /// materials, lights, BVH nodes, BVH shape list and shape counts; from [`FIRST_SHAPE_BINDING`] on, one array
-/// per shape kind in the registry order of `gpu::shapes` (all read-only
+/// per shape kind in the registry order of `gpu::shapes` (read-only
 /// storage buffers, the order of `scene.wgsl` and of the generated WGSL),
-/// of which only those of `bound_kinds` are bound (see
+/// each followed by its data texture if the kind has one (`mesh_data`), of
+/// which only those of `bound_kinds` are bound (see
 /// [`ShaderSource::specialised`]).
 pub(super) fn scene_layout_entries(bound_kinds: u32) -> Vec<wgpu::BindGroupLayoutEntry> {
     bound_bindings(bound_kinds)
         .into_iter()
-        .map(|i| wgpu::BindGroupLayoutEntry {
+        .map(|(i, texture)| wgpu::BindGroupLayoutEntry {
             binding: i,
             visibility: wgpu::ShaderStages::FRAGMENT,
-            ty: wgpu::BindingType::Buffer {
-                ty: wgpu::BufferBindingType::Storage { read_only: true },
-                has_dynamic_offset: false,
-                min_binding_size: None,
+            ty: if texture {
+                wgpu::BindingType::Texture {
+                    sample_type: wgpu::TextureSampleType::Uint,
+                    view_dimension: wgpu::TextureViewDimension::D2,
+                    multisampled: false,
+                }
+            } else {
+                wgpu::BindingType::Buffer {
+                    ty: wgpu::BufferBindingType::Storage { read_only: true },
+                    has_dynamic_offset: false,
+                    min_binding_size: None,
+                }
             },
             count: None,
         })
         .collect()
 }
 
-/// The binding numbers of [`scene_layout_entries`], in order.
-fn bound_bindings(bound_kinds: u32) -> Vec<u32> {
-    let mut bindings: Vec<u32> = (0..FIRST_SHAPE_BINDING).collect();
+/// The binding numbers of [`scene_layout_entries`], in order, each with
+/// whether it is a kind's data texture.
+fn bound_bindings(bound_kinds: u32) -> Vec<(u32, bool)> {
+    let mut bindings: Vec<(u32, bool)> = (0..FIRST_SHAPE_BINDING).map(|i| (i, false)).collect();
     let mut binding = FIRST_SHAPE_BINDING;
     for k in super::shapes::kinds() {
-        let count = 1 + u32::from(k.data.is_some());
         if is_bound(bound_kinds, k.kind) {
-            bindings.extend(binding..binding + count);
+            bindings.push((binding, false));
+            if k.data.is_some() {
+                bindings.push((binding + 1, true));
+            }
         }
-        binding += count;
+        binding += 1 + u32::from(k.data.is_some());
     }
     bindings
+}
+
+/// A kind's shared data as an `Rgba32Uint` texture [`DATA_TEXTURE_WIDTH`]
+/// texels wide, its last row padded with zeros (`<data>_at` in the
+/// generated WGSL reads it).
+fn data_texture(device: &wgpu::Device, queue: &wgpu::Queue, words: &[u32]) -> wgpu::TextureView {
+    let texels = words.len().div_ceil(4).max(1) as u32;
+    let width = texels.min(DATA_TEXTURE_WIDTH);
+    let rows = texels.div_ceil(width);
+    let mut padded = words.to_vec();
+    padded.resize((4 * width * rows) as usize, 0);
+    device
+        .create_texture_with_data(
+            queue,
+            &wgpu::TextureDescriptor {
+                label: Some("shape data"),
+                size: wgpu::Extent3d {
+                    width,
+                    height: rows,
+                    depth_or_array_layers: 1,
+                },
+                mip_level_count: 1,
+                sample_count: 1,
+                dimension: wgpu::TextureDimension::D2,
+                format: wgpu::TextureFormat::Rgba32Uint,
+                usage: wgpu::TextureUsages::TEXTURE_BINDING,
+                view_formats: &[],
+            },
+            wgpu::util::TextureDataOrder::LayerMajor,
+            bytemuck::cast_slice(&padded),
+        )
+        .create_view(&Default::default())
+}
+
+/// A shape kind's array (a storage buffer) or shared data (a texture).
+#[derive(Clone)]
+enum ShapeResource {
+    Buffer(wgpu::Buffer),
+    Texture(wgpu::TextureView),
+}
+
+/// For each entry of `PackedScene::shapes` (registry order, see
+/// `gpu::shapes::pack_all`), whether it is a kind's shared data, which goes
+/// into a texture.
+fn data_positions() -> Vec<bool> {
+    super::shapes::kinds()
+        .iter()
+        .flat_map(|k| std::iter::once(false).chain(k.data.map(|_| true)))
+        .collect()
 }
 
 /// The scene in GPU buffers, with the CPU copy it was made from.
@@ -215,29 +279,34 @@ pub struct SceneBuffers {
     packed: PackedScene,
     globals: wgpu::Buffer,
     /// One per entry of `packed.shapes`.
-    shape_buffers: Vec<wgpu::Buffer>,
+    shape_buffers: Vec<ShapeResource>,
     pub(super) bind_group: wgpu::BindGroup,
 }
 
 impl SceneBuffers {
     pub fn new(
-        device: &wgpu::Device,
+        (device, queue): (&wgpu::Device, &wgpu::Queue),
         pipelines: &Pipelines,
         packed: PackedScene,
     ) -> Result<Self, BufferLimitError> {
-        Self::with_layout(device, pipelines.scene_layout(), packed, None)
+        Self::with_layout((device, queue), pipelines.scene_layout(), packed, None)
     }
 
     /// The buffers of `packed`, keeping those of `previous` whose contents
     /// are shared with it (a moved mesh's triangles: nothing is uploaded
     /// again).
     pub fn reusing(
-        device: &wgpu::Device,
+        (device, queue): (&wgpu::Device, &wgpu::Queue),
         pipelines: &Pipelines,
         packed: PackedScene,
         previous: &SceneBuffers,
     ) -> Result<Self, BufferLimitError> {
-        Self::with_layout(device, pipelines.scene_layout(), packed, Some(previous))
+        Self::with_layout(
+            (device, queue),
+            pipelines.scene_layout(),
+            packed,
+            Some(previous),
+        )
     }
 
     /// The buffers and their bind group for any pipeline whose group 0 is
@@ -245,7 +314,7 @@ impl SceneBuffers {
     /// an array larger than the device allows is refused before any buffer
     /// is made (wgpu would otherwise fail validation).
     pub(super) fn with_layout(
-        device: &wgpu::Device,
+        (device, queue): (&wgpu::Device, &wgpu::Queue),
         (layout, bound_kinds): (&wgpu::BindGroupLayout, u32),
         packed: PackedScene,
         previous: Option<&SceneBuffers>,
@@ -267,7 +336,8 @@ impl SceneBuffers {
             storage("bvh shapes", bytemuck::cast_slice(&packed.bvh_prims)),
             storage("shape counts", bytemuck::cast_slice(&packed.shape_counts)),
         ];
-        let shape_buffers: Vec<wgpu::Buffer> = packed
+        let is_texture = data_positions();
+        let shape_buffers: Vec<ShapeResource> = packed
             .shapes
             .iter()
             .enumerate()
@@ -276,18 +346,34 @@ impl SceneBuffers {
                     let same = Arc::ptr_eq(p.packed.shapes.get(i)?, words);
                     same.then(|| p.shape_buffers[i].clone())
                 });
-                shared.unwrap_or_else(|| storage("shapes", bytemuck::cast_slice(words.as_slice())))
+                shared.unwrap_or_else(|| {
+                    if is_texture[i] {
+                        ShapeResource::Texture(data_texture(device, queue, words))
+                    } else {
+                        ShapeResource::Buffer(storage(
+                            "shapes",
+                            bytemuck::cast_slice(words.as_slice()),
+                        ))
+                    }
+                })
             })
             .collect();
-        let buffers: Vec<&wgpu::Buffer> = std::iter::once(&globals)
-            .chain(&fixed)
-            .chain(&shape_buffers)
-            .collect();
+        let resource = |i: u32| -> wgpu::BindingResource {
+            let i = i as usize;
+            match i.checked_sub(FIRST_SHAPE_BINDING as usize) {
+                None if i == 0 => globals.as_entire_binding(),
+                None => fixed[i - 1].as_entire_binding(),
+                Some(j) => match &shape_buffers[j] {
+                    ShapeResource::Buffer(b) => b.as_entire_binding(),
+                    ShapeResource::Texture(t) => wgpu::BindingResource::TextureView(t),
+                },
+            }
+        };
         let entries: Vec<wgpu::BindGroupEntry> = bound_bindings(bound_kinds)
             .into_iter()
-            .map(|i| wgpu::BindGroupEntry {
+            .map(|(i, _)| wgpu::BindGroupEntry {
                 binding: i,
-                resource: buffers[i as usize].as_entire_binding(),
+                resource: resource(i),
             })
             .collect();
         let bind_group = device.create_bind_group(&wgpu::BindGroupDescriptor {
@@ -332,6 +418,7 @@ pub const DEFAULT_MIN_WEIGHT: f64 = 1e-3;
 
 /// Two radiance-sum textures used in turn, and how many samples they hold.
 pub struct Accumulator {
+    textures: [wgpu::Texture; 2],
     views: [wgpu::TextureView; 2],
     bind_groups: [wgpu::BindGroup; 2],
     /// Index of the texture that holds the current sum.
@@ -345,16 +432,19 @@ pub struct Accumulator {
 
 impl Accumulator {
     pub fn new(device: &wgpu::Device, pipelines: &Pipelines, width: u32, height: u32) -> Self {
-        let views = std::array::from_fn(|_| {
+        // COPY_SRC: the ray-counting variant's counts are read back.
+        let textures: [wgpu::Texture; 2] = std::array::from_fn(|_| {
             render_target(
                 device,
                 "accumulated radiance",
                 (width, height),
                 ACCUM_FORMAT,
-                wgpu::TextureUsages::TEXTURE_BINDING,
+                wgpu::TextureUsages::TEXTURE_BINDING | wgpu::TextureUsages::COPY_SRC,
             )
-            .create_view(&Default::default())
         });
+        let views = textures
+            .each_ref()
+            .map(|t| t.create_view(&Default::default()));
         let bind_groups = std::array::from_fn(|i| {
             device.create_bind_group(&wgpu::BindGroupDescriptor {
                 label: Some("accumulated radiance"),
@@ -366,6 +456,7 @@ impl Accumulator {
             })
         });
         Accumulator {
+            textures,
             views,
             bind_groups,
             front: 0,
@@ -388,6 +479,11 @@ impl Accumulator {
     /// Rows of the next sample traced so far by [`encode_rows`].
     pub fn rows_done(&self) -> u32 {
         self.rows_done
+    }
+
+    /// The texture that holds the current sum.
+    pub fn sum(&self) -> &wgpu::Texture {
+        &self.textures[self.front]
     }
 
     /// Forgets the accumulated samples, and the sample in progress (the

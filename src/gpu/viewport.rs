@@ -89,7 +89,7 @@ impl Viewport {
             surface.configure(&gpu.device, &config);
         }
         let empty = PackedScene::new(&scene.without_shapes(), size.0.max(1), size.1.max(1));
-        let scene = SceneBuffers::new(&gpu.device, &pipelines, empty)
+        let scene = SceneBuffers::new((&gpu.device, &gpu.queue), &pipelines, empty)
             .expect("a scene without shapes fits any GPU's buffers");
         let accum = Accumulator::new(&gpu.device, &pipelines, size.0.max(1), size.1.max(1));
         Viewport {
@@ -157,7 +157,12 @@ impl Viewport {
     pub fn set_scene(&mut self, gpu: &Gpu, scene: &Scene) -> Result<(), BufferLimitError> {
         let (width, height) = self.traced_size();
         let packed = PackedScene::new(scene, width, height);
-        self.scene = SceneBuffers::reusing(&gpu.device, &self.pipelines, packed, &self.scene)?;
+        self.scene = SceneBuffers::reusing(
+            (&gpu.device, &gpu.queue),
+            &self.pipelines,
+            packed,
+            &self.scene,
+        )?;
         self.restart_refinement();
         Ok(())
     }
@@ -174,8 +179,13 @@ impl Viewport {
     pub fn set_pipelines(&mut self, gpu: &Gpu, pipelines: Pipelines) {
         self.pipelines = pipelines;
         let packed = self.scene.packed().clone();
-        self.scene = SceneBuffers::reusing(&gpu.device, &self.pipelines, packed, &self.scene)
-            .expect("the scene on the GPU fitted this device's buffers already");
+        self.scene = SceneBuffers::reusing(
+            (&gpu.device, &gpu.queue),
+            &self.pipelines,
+            packed,
+            &self.scene,
+        )
+        .expect("the scene on the GPU fitted this device's buffers already");
         let (w, h) = self.accum.size();
         self.accum = Accumulator::new(&gpu.device, &self.pipelines, w, h);
         self.outline.forget_layouts();

@@ -32,11 +32,11 @@ use rayon::prelude::*;
 use crate::bvh::Bvh;
 use crate::scene::{Material, Scene, TriangleTest};
 
+pub use camera::{Camera, camera_ray};
 pub use intersect::ShapeId;
 pub use output::{encode_srgb8, to_rgba8};
 pub use sampling::{r4, r4_rotated};
 
-use camera::{Camera, camera_ray};
 use intersect::nearest_hit;
 use sampling::concentric_disk;
 use shade::trace;

@@ -141,7 +141,7 @@ impl GpuVariant {
         } else {
             PackedScene::in_world(scene, width, height)
         };
-        let buffers = SceneBuffers::new(device, &self.pipelines, packed)?;
+        let buffers = SceneBuffers::new((device, &gpu.queue), &self.pipelines, packed)?;
         let mut accum = Accumulator::new(device, &self.pipelines, width, height);
         let texture = render_target(
             device,

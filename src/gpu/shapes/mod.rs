@@ -284,6 +284,7 @@ impl ShaderOptions {
             ("HAS_CHECKER", f.checker),
             ("HAS_LENS", f.lens),
             ("USE_BVH", f.bvh),
+            ("COUNT_RAYS", self.count_rays),
         ]
         .map(|(name, on)| (name.to_string(), on));
         let present = ShapeKind::ALL.iter().map(|&k| (has_flag(k), f.has(k)));
