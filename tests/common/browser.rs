@@ -422,15 +422,20 @@ impl Browser {
     }
 
     /// The page's picture once it is on the X screen: the browser composites
-    /// the canvas some time after the page presented it, so the screen is
-    /// captured until it shows more than a blank window (or [`TIMEOUT`]).
+    /// the canvas some time after the page presented it, and the page
+    /// presents the rows of a sample as its short GPU jobs finish them, so
+    /// the screen is captured until it shows more than a blank window and
+    /// two captures half a second apart agree (or [`TIMEOUT`]).
     pub fn capture_picture(&self) -> RgbaImage {
         let deadline = Instant::now() + TIMEOUT;
+        let mut last: Option<RgbaImage> = None;
         loop {
             let screen = self.capture_screen();
-            if distinct_colors(&screen, 16) >= 16 || Instant::now() > deadline {
+            let settled = last.as_ref() == Some(&screen);
+            if (settled && distinct_colors(&screen, 16) >= 16) || Instant::now() > deadline {
                 return screen;
             }
+            last = Some(screen);
             std::thread::sleep(Duration::from_millis(500));
         }
     }
