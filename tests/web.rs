@@ -309,7 +309,11 @@ fn canvas_beside_editor(page: &Browser) -> RgbaImage {
 /// Captures the canvas beside the editor until `shows` holds (the browser
 /// composites some time after the page drew); fails with the last picture
 /// saved when it does not within the browser module's timeout.
-fn wait_for_picture(page: &Browser, what: &str, shows: impl Fn(&RgbaImage) -> bool) -> RgbaImage {
+fn wait_for_picture(
+    page: &Browser,
+    what: &str,
+    mut shows: impl FnMut(&RgbaImage) -> bool,
+) -> RgbaImage {
     let deadline = std::time::Instant::now() + browser::TIMEOUT;
     loop {
         let picture = canvas_beside_editor(page);
@@ -326,6 +330,18 @@ fn wait_for_picture(page: &Browser, what: &str, shows: impl Fn(&RgbaImage) -> bo
         }
         std::thread::sleep(std::time::Duration::from_millis(300));
     }
+}
+
+/// As [`wait_for_picture`], for a picture that stops changing: captured
+/// until two captures agree, so not a frame of a sample whose jobs are
+/// still adding rows (docs/performance.md, "Short GPU jobs").
+fn wait_for_still_picture(page: &Browser, what: &str) -> RgbaImage {
+    let mut last: Option<RgbaImage> = None;
+    wait_for_picture(page, what, |picture| {
+        let same = last.as_ref() == Some(picture);
+        last = Some(picture.clone());
+        same && distinct_colors(picture, 16) >= 16
+    })
 }
 
 /// Whether the middle of `picture` is `rgb`, give or take 2.
@@ -368,7 +384,7 @@ fn a_syntax_error_typed_in_the_scene_editor_shows_its_line_and_keeps_the_picture
     };
     assert_eq!(page.wait_for("scene"), "whitted");
     page.wait_for("ready");
-    let before = wait_for_picture(&page, "the scene", |p| distinct_colors(p, 16) >= 16);
+    let before = wait_for_still_picture(&page, "the scene");
     let text = whitted().0;
     page.evaluate(
         "(() => { const t = document.getElementById('scene-text'); t.focus(); \
