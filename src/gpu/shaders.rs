@@ -65,6 +65,20 @@ pub struct ShaderError {
     pub label: String,
 }
 
+impl ShaderError {
+    /// A file that could not be read: the error has no position.
+    pub fn unreadable(file: String, e: &std::io::Error) -> Self {
+        ShaderError {
+            file,
+            line: 0,
+            column: 0,
+            message: format!("cannot read the file: {e}"),
+            source_line: String::new(),
+            label: String::new(),
+        }
+    }
+}
+
 impl fmt::Display for ShaderError {
     /// `FILE:LINE:COLUMN: error: MESSAGE`, then the source line with a caret,
     /// in the style of rustc, so editors and people both recognise it.
@@ -410,14 +424,8 @@ impl ShaderSource {
         let mut files = Vec::new();
         for name in names {
             let path: PathBuf = dir.join(name);
-            let text = std::fs::read_to_string(&path).map_err(|e| ShaderError {
-                file: path.display().to_string(),
-                line: 0,
-                column: 0,
-                message: format!("cannot read the file: {e}"),
-                source_line: String::new(),
-                label: String::new(),
-            })?;
+            let text = std::fs::read_to_string(&path)
+                .map_err(|e| ShaderError::unreadable(path.display().to_string(), &e))?;
             files.push((path.display().to_string(), text));
         }
         Ok(Self::join(

@@ -105,14 +105,8 @@ pub struct Compiled {
 /// like compile errors.
 pub fn compile_file(path: &Path) -> Result<Compiled, ShaderError> {
     let name = path.display().to_string();
-    let text = std::fs::read_to_string(path).map_err(|e| ShaderError {
-        file: name.clone(),
-        line: 0,
-        column: 0,
-        message: format!("cannot read the file: {e}"),
-        source_line: String::new(),
-        label: String::new(),
-    })?;
+    let text =
+        std::fs::read_to_string(path).map_err(|e| ShaderError::unreadable(name.clone(), &e))?;
     let (expanded, included) = include::expand(path, &text);
     included?;
     compile_expanded(&name, &expanded)
