@@ -7,7 +7,7 @@
 // branches.
 
 /// Largest ray parameter we ever use; finite, so comparisons stay defined.
-const T_FAR: f32 = 1e30;
+const T_FAR: f32 = 1e38;
 
 /// pbrt-v4's gamma(3) = 3 eps / (1 - 3 eps) with eps = 2^-24: the relative
 /// error bound of three f32 operations, used to widen the far slab bound.

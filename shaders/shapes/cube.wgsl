@@ -90,7 +90,7 @@ fn hit_cube(ray: Ray, cube: Cube, index: u32, best: Hit) -> Hit {
     var n_local = vec3(0.0);
     n_local[axis] = sign;
     let p = cube.center + cube.rotation * p_local;
-    let scale = max3(abs(cube.center)) + length(h);
+    let scale = max3(abs(cube.center)) + scaled_length(h);
     return surface_hit(t, p, cube.rotation * n_local, KIND_CUBE, index, scale);
 }
 

@@ -13,7 +13,7 @@
 use glam::{Mat3, Vec3};
 
 /// The shader's `T_FAR`: no ray parameter is ever larger.
-pub const T_FAR: f32 = 1e30;
+pub const T_FAR: f32 = 1e38;
 /// The shader's `GAMMA3`: pbrt-v4's gamma(3) for f32 (eps = 2^-24).
 pub const GAMMA3: f32 = 1.788_139_6e-7;
 /// The shader's `OFFSET_ULPS`: the offset is this many units of 2^-23 of
@@ -352,7 +352,7 @@ mod tests {
     fn the_constants_are_the_shaders() {
         let intersect = include_str!("../../shaders/intersect.wgsl");
         let shade = include_str!("../../shaders/shade.wgsl");
-        assert!(intersect.contains("const T_FAR: f32 = 1e30;"));
+        assert!(intersect.contains("const T_FAR: f32 = 1e38;"));
         assert!(intersect.contains("const GAMMA3: f32 = 1.7881396e-7;"));
         assert!(shade.contains(&format!(
             "const OFFSET_ULPS: f32 = {OFFSET_ULPS:.1} * 1.1920929e-7;"

@@ -53,7 +53,7 @@ impl Trace for Plane {
 ///
 /// `t = ((point - o).n) / (n.d)`. A ray parallel to the plane (`n.d = 0`, or
 /// so small that `t` would be astronomically large) misses: the test
-/// `|num| < |denom| 1e30` rejects it without ever forming inf or NaN. The hit
+/// `|num| < |denom| 1e38` rejects it without ever forming inf or NaN. The hit
 /// point is `o + t d` or, when that involves larger numbers (a plane seen from
 /// far away), `point + q` from the foot of the perpendicular from `point`
 /// ([`foot`]), then re-projected onto the plane. `t` stays the plain
@@ -62,8 +62,8 @@ pub fn hit_plane(plane: &Plane, ray: &Ray, t_max: f64) -> Option<Hit> {
     let n = plane.normal;
     let denom = n.dot(ray.dir);
     let num = (plane.point - ray.origin).dot(n);
-    // A hit needs |num| < |denom| 1e30; with denom = 0 nothing is below 0.
-    if num.abs() >= denom.abs() * 1e30 {
+    // A hit needs |num| < |denom| 1e38; with denom = 0 nothing is below 0.
+    if num.abs() >= denom.abs() * 1e38 {
         return None;
     }
     let t = num / denom;
