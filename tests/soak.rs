@@ -2,7 +2,10 @@
 //! sandbox window under Xvfb (tests/common/xwindow.rs) go through scene-file
 //! saves, shader saves, panel edits, scene switches among bundled scenes
 //! (meshes and the Julia set among them) and mesh-file reloads, and the
-//! sandbox through shader saves, while their resident memory is sampled.
+//! sandbox through shader saves, while their resident memory is sampled;
+//! the page in Chromium (tests/common/browser.rs) goes through scene edits,
+//! orbits, shader edits and scene switches typed into its editor, while its
+//! JS heap and WebAssembly memory are read through the DevTools protocol.
 //! After a warm-up round of every action, memory may grow by at most
 //! [`MAX_GROWTH_MB`] over the rest of the soak, counted from the most it
 //! held during the warm-up.
@@ -15,7 +18,9 @@ mod common;
 
 use std::path::{Path, PathBuf};
 
+use common::browser::{self, Browser, Button};
 use common::xwindow::{Display, Window};
+use serde_json::json;
 
 /// The bound on growth after the warm-up, over the whole soak, in MB.
 const MAX_GROWTH_MB: f64 = 50.0;
@@ -31,6 +36,10 @@ struct Counts {
     scene_switches: usize,
     mesh_reloads: usize,
     sandbox_saves: usize,
+    page_scene_edits: usize,
+    page_shader_edits: usize,
+    page_orbits: usize,
+    page_switches: usize,
 }
 
 impl Counts {
@@ -42,6 +51,10 @@ impl Counts {
         scene_switches: 5,
         mesh_reloads: 10,
         sandbox_saves: 20,
+        page_scene_edits: 10,
+        page_shader_edits: 5,
+        page_orbits: 5,
+        page_switches: 5,
     };
     /// An hour of editing, as docs/reliability.md asks.
     const FULL: Counts = Counts {
@@ -51,6 +64,10 @@ impl Counts {
         scene_switches: 200,
         mesh_reloads: 100,
         sandbox_saves: 1000,
+        page_scene_edits: 1000,
+        page_shader_edits: 1000,
+        page_orbits: 500,
+        page_switches: 200,
     };
 
     /// `RAYSANDBOX_SOAK`: `full`, or a whole number `N` for N times the
@@ -63,6 +80,10 @@ impl Counts {
             scene_switches: Self::SHORT.scene_switches * n,
             mesh_reloads: Self::SHORT.mesh_reloads * n,
             sandbox_saves: Self::SHORT.sandbox_saves * n,
+            page_scene_edits: Self::SHORT.page_scene_edits * n,
+            page_shader_edits: Self::SHORT.page_shader_edits * n,
+            page_orbits: Self::SHORT.page_orbits * n,
+            page_switches: Self::SHORT.page_switches * n,
         };
         match std::env::var("RAYSANDBOX_SOAK").as_deref() {
             Ok("full") => Counts::FULL,
@@ -83,10 +104,10 @@ fn resident_mb(pid: u32) -> f64 {
     kb / 1024.0
 }
 
-/// Resident memory during the warm-up and after each action.
+/// A memory figure (resident memory, a heap) during the warm-up and after
+/// each action, in MB.
 struct Samples {
     what: &'static str,
-    pid: u32,
     /// The most resident during the warm-up round: its working set (which
     /// of the scenes' pipelines and meshes happen to be held moves it by
     /// tens of MB from one action to the next, leak or not).
@@ -97,11 +118,9 @@ struct Samples {
 }
 
 impl Samples {
-    fn start(what: &'static str, pid: u32) -> Samples {
-        let now = resident_mb(pid);
+    fn start(what: &'static str, now: f64) -> Samples {
         Samples {
             what,
-            pid,
             after_warm_up: now,
             peak: now,
             last: now,
@@ -111,14 +130,14 @@ impl Samples {
 
     /// A sample during the warm-up: it raises the level growth is counted
     /// from.
-    fn warm_up(&mut self) {
-        self.after_warm_up = self.after_warm_up.max(resident_mb(self.pid));
+    fn warm_up(&mut self, now: f64) {
+        self.after_warm_up = self.after_warm_up.max(now);
         self.peak = self.after_warm_up;
         self.last = self.after_warm_up;
     }
 
-    fn sample(&mut self) {
-        self.last = resident_mb(self.pid);
+    fn sample(&mut self, now: f64) {
+        self.last = now;
         self.peak = self.peak.max(self.last);
         self.actions += 1;
         if self.actions.is_multiple_of(50) {
@@ -134,7 +153,7 @@ impl Samples {
         let growth = self.last - self.after_warm_up;
         let peak = self.peak - self.after_warm_up;
         println!(
-            "{}: {} actions; resident after warm-up {:.1} MB, at the end {:.1} MB \
+            "{}: {} actions; after warm-up {:.1} MB, at the end {:.1} MB \
              (growth {growth:+.1} MB), peak {:.1} MB ({peak:+.1} MB)",
             self.what, self.actions, self.after_warm_up, self.last, self.peak
         );
@@ -284,38 +303,39 @@ fn soak_viewer(display: &Display, counts: Counts) {
         SIZE,
     );
     // Warm-up: every action once (every scene of the switches too).
-    let mut samples = Samples::start("viewer", viewer.pid());
+    let pid = viewer.pid();
+    let mut samples = Samples::start("viewer", resident_mb(pid));
     scene_save(&mut viewer, &ws, 0);
-    samples.warm_up();
+    samples.warm_up(resident_mb(pid));
     shader_save(&mut viewer, &ws, 0);
-    samples.warm_up();
+    samples.warm_up(resident_mb(pid));
     mesh_reload(&mut viewer, &ws, 0);
-    samples.warm_up();
+    samples.warm_up(resident_mb(pid));
     panel_edit(&mut viewer, 0);
-    samples.warm_up();
+    samples.warm_up(resident_mb(pid));
     for n in 0..ws.switches.len() {
         scene_switch(&mut viewer, &ws, n);
-        samples.warm_up();
+        samples.warm_up(resident_mb(pid));
     }
     for n in 1..=counts.scene_saves {
         scene_save(&mut viewer, &ws, n);
-        samples.sample();
+        samples.sample(resident_mb(pid));
     }
     for n in 1..=counts.shader_saves {
         shader_save(&mut viewer, &ws, n);
-        samples.sample();
+        samples.sample(resident_mb(pid));
     }
     for n in 1..=counts.mesh_reloads {
         mesh_reload(&mut viewer, &ws, n);
-        samples.sample();
+        samples.sample(resident_mb(pid));
     }
     for n in 1..=counts.panel_edits {
         panel_edit(&mut viewer, n);
-        samples.sample();
+        samples.sample(resident_mb(pid));
     }
     for n in 0..counts.scene_switches {
         scene_switch(&mut viewer, &ws, n);
-        samples.sample();
+        samples.sample(resident_mb(pid));
     }
     assert!(viewer.is_running());
     samples.check();
@@ -334,15 +354,207 @@ fn soak_sandbox(display: &Display, counts: Counts) {
         save(&file, &format!("{WAVES}// soak edit {n}\n"));
         window.wait_for("shader-reloaded");
     };
-    let mut samples = Samples::start("sandbox", window.pid());
+    let pid = window.pid();
+    let mut samples = Samples::start("sandbox", resident_mb(pid));
     edit(&mut window, 0);
-    samples.warm_up();
+    samples.warm_up(resident_mb(pid));
     for n in 1..=counts.sandbox_saves {
         edit(&mut window, n);
-        samples.sample();
+        samples.sample(resident_mb(pid));
     }
     assert!(window.is_running());
     samples.check();
+}
+
+/// The page's memory in MB, read through the DevTools protocol after a
+/// garbage collection: the JS heap in use, and the linear memory of every
+/// `WebAssembly.Memory` (the Rust side's heap; it only ever grows, so it
+/// holds the most the page ever needed).
+fn page_memory_mb(page: &mut Browser) -> (f64, f64) {
+    page.call("HeapProfiler.collectGarbage", json!({}));
+    let heap = page.call("Runtime.getHeapUsage", json!({}));
+    let js = heap["usedSize"].as_f64().expect("usedSize");
+    let group = json!("soak");
+    let prototype = page.call(
+        "Runtime.evaluate",
+        json!({ "expression": "WebAssembly.Memory.prototype", "objectGroup": group }),
+    );
+    let found = page.call(
+        "Runtime.queryObjects",
+        json!({ "prototypeObjectId": prototype["result"]["objectId"], "objectGroup": group }),
+    );
+    let bytes = page.call(
+        "Runtime.callFunctionOn",
+        json!({
+            "objectId": found["objects"]["objectId"],
+            "functionDeclaration":
+                "function () { return this.reduce((sum, m) => sum + m.buffer.byteLength, 0); }",
+            "returnByValue": true,
+        }),
+    );
+    page.call(
+        "Runtime.releaseObjectGroup",
+        json!({ "objectGroup": group }),
+    );
+    let wasm = bytes["result"]["value"]
+        .as_f64()
+        .expect("wasm memory bytes");
+    assert!(wasm > 0.0, "the page holds no WebAssembly memory");
+    (js / 1e6, wasm / 1e6)
+}
+
+/// Resident memory of Chromium's GPU process in MB: where SwiftShader
+/// holds the page's buffers, textures and pipelines (what the JS heap and
+/// the WebAssembly memory do not show). It is a grandchild of the browser
+/// process (through the zygote).
+fn gpu_process_mb(page: &Browser) -> f64 {
+    let parent_of = |pid: u32| -> Option<u32> {
+        let stat = std::fs::read_to_string(format!("/proc/{pid}/stat")).ok()?;
+        // After the command name in parentheses: the state, then the parent.
+        let (_, rest) = stat.rsplit_once(')')?;
+        rest.split_whitespace().nth(1)?.parse().ok()
+    };
+    let descends_from_browser = |mut pid: u32| {
+        while let Some(parent) = parent_of(pid).filter(|&p| p > 1) {
+            if parent == page.pid() {
+                return true;
+            }
+            pid = parent;
+        }
+        false
+    };
+    let is_gpu_process = |pid: &u32| {
+        let cmdline = std::fs::read(format!("/proc/{pid}/cmdline")).unwrap_or_default();
+        String::from_utf8_lossy(&cmdline).contains("--type=gpu-process")
+    };
+    let gpu = std::fs::read_dir("/proc")
+        .unwrap()
+        .filter_map(|entry| entry.ok()?.file_name().to_str()?.parse::<u32>().ok())
+        .find(|pid| is_gpu_process(pid) && descends_from_browser(*pid))
+        .expect("Chromium's GPU process");
+    resident_mb(gpu)
+}
+
+/// Shows the editor's tab `doc` and puts `text` in place of its document,
+/// as a user selecting all and typing.
+fn page_edit(page: &mut Browser, doc: &str, text: &str) {
+    page.evaluate(&format!(
+        "(() => {{ document.getElementById('{doc}-tab').click(); \
+         const t = document.getElementById('{doc}-text'); t.focus(); t.select(); }})()"
+    ));
+    page.insert_text(text);
+}
+
+/// The page through scene edits (a sphere's radius typed in the editor),
+/// orbits (a drag on the canvas, which rewrites the scene text and the
+/// address), shader edits (the sandbox's shader with a comment appended)
+/// and scene switches (bundled scenes typed in: the Julia set, the mirror
+/// teapot's model fetched, implicit surfaces, boxes, back to Whitted).
+fn soak_page(display: &Display, counts: Counts) {
+    let url = browser::serve(browser::page_dir());
+    let mut page = Browser::open(display, &format!("{url}?samples=1&editor"));
+    page.wait_for("ready");
+    let whitted = std::fs::read_to_string(common::scenes_dir().join("whitted.toml")).unwrap();
+    let bundled = |file: &str| std::fs::read_to_string(common::scenes_dir().join(file)).unwrap();
+    let switches = [
+        bundled("julia.toml"),
+        bundled("meshes/mirror_teapot.toml"),
+        bundled("implicits.toml"),
+        bundled("rotated_cubes.toml"),
+        whitted.clone(),
+    ];
+    let scene_edit = |page: &mut Browser, n: usize| {
+        let radius = 0.8 + 0.001 * (n % 50 + 1) as f64;
+        page_edit(
+            page,
+            "scene",
+            &whitted.replacen("radius = 0.8", &format!("radius = {radius:.3}"), 1),
+        );
+        page.wait_for("scene ok");
+        page.wait_for("ready");
+    };
+    let shader_edit = |page: &mut Browser, n: usize| {
+        page_edit(page, "shader", &format!("{WAVES}// soak edit {n}\n"));
+        page.wait_for("shader ok");
+    };
+    // After a scene edit: the canvas shows the scene.
+    let orbit = |page: &mut Browser, n: usize| {
+        let (x, y) = (
+            f64::from(browser::SIZE.0) / 4.0,
+            f64::from(browser::SIZE.1) / 2.0,
+        );
+        let dx = if n.is_multiple_of(2) { 40.0 } else { -40.0 };
+        page.drag(Button::Left, (x, y), (x + dx, y));
+        page.wait_for("ready");
+    };
+    let switch = |page: &mut Browser, n: usize| {
+        page_edit(page, "scene", &switches[n % switches.len()]);
+        page.wait_for("scene ok");
+        page.wait_for("ready");
+    };
+
+    let (js, wasm) = page_memory_mb(&mut page);
+    let mut heap = Samples::start("page JS heap", js);
+    let mut linear = Samples::start("page wasm memory", wasm);
+    let mut gpu = Samples::start("page GPU process", gpu_process_mb(&page));
+    let start = std::time::Instant::now();
+    let mut sample = |page: &mut Browser, warm_up: bool| {
+        let (js, wasm) = page_memory_mb(page);
+        let resident = gpu_process_mb(page);
+        println!(
+            "page at {:.0} s: JS heap {js:.1} MB, wasm memory {wasm:.1} MB, GPU process {resident:.1} MB",
+            start.elapsed().as_secs_f64()
+        );
+        if warm_up {
+            heap.warm_up(js);
+            linear.warm_up(wasm);
+            gpu.warm_up(resident);
+        } else {
+            heap.sample(js);
+            linear.sample(wasm);
+            gpu.sample(resident);
+        }
+    };
+    scene_edit(&mut page, 0);
+    sample(&mut page, true);
+    orbit(&mut page, 0);
+    sample(&mut page, true);
+    shader_edit(&mut page, 0);
+    sample(&mut page, true);
+    for n in 0..switches.len() {
+        switch(&mut page, n);
+        sample(&mut page, true);
+    }
+    for n in 1..=counts.page_scene_edits {
+        scene_edit(&mut page, n);
+        sample(&mut page, false);
+    }
+    for n in 1..=counts.page_orbits {
+        orbit(&mut page, n);
+        sample(&mut page, false);
+    }
+    for n in 1..=counts.page_shader_edits {
+        shader_edit(&mut page, n);
+        sample(&mut page, false);
+    }
+    for n in 0..counts.page_switches {
+        switch(&mut page, n);
+        sample(&mut page, false);
+    }
+    assert_eq!(page.exceptions(), Vec::<String>::new());
+    heap.check();
+    linear.check();
+    gpu.check();
+}
+
+#[test]
+fn page_memory_stays_flat_under_live_editing() {
+    let Some(display) = Display::start() else {
+        return;
+    };
+    let counts = Counts::chosen();
+    println!("page soak: {counts:?}, bound {MAX_GROWTH_MB} MB after the warm-up");
+    soak_page(&display, counts);
 }
 
 #[test]

@@ -279,6 +279,12 @@ impl Browser {
         browser
     }
 
+    /// The process id of Chromium's browser process (its GPU and renderer
+    /// processes are its children).
+    pub fn pid(&self) -> u32 {
+        self.child.id()
+    }
+
     /// Opens `url` in the window; forgets the previous page's lines.
     pub fn navigate(&mut self, url: &str) {
         self.lines.clear();
