@@ -299,7 +299,7 @@ impl ShaderSource {
     /// Runs a step of naga and turns a panic inside it (a bug of naga's that
     /// some inputs hit) into an error: a shader must never take the program
     /// down. The error has no position; it names the first part.
-    fn without_panics<T>(&self, step: impl FnOnce() -> T) -> Result<T, ShaderError> {
+    pub fn without_panics<T>(&self, step: impl FnOnce() -> T) -> Result<T, ShaderError> {
         catch_panic(step).map_err(|message| {
             self.locate(
                 naga::Span::default(),
@@ -325,26 +325,6 @@ impl ShaderSource {
         self.parts.iter().enumerate().map(|(i, part)| {
             let end = self.parts.get(i + 1).map_or(self.joined.len(), |p| p.start);
             (part.name.as_str(), &self.joined[part.start..end])
-        })
-    }
-
-    /// Parses the joined source as a GLSL fragment shader (naga's GLSL front
-    /// end: `#version 450`, Vulkan-style resources), with each of `defines`
-    /// defined as a macro (`1`). Validate the module with
-    /// [`Self::validate_module`], after any repairs. Errors
-    /// are located like WGSL errors: naga's spans are byte offsets of the
-    /// joined text, mapped back to the part they fall in.
-    pub fn parse_glsl_fragment(&self, defines: &[&str]) -> Result<naga::Module, ShaderError> {
-        let mut options = naga::front::glsl::Options::from(naga::ShaderStage::Fragment);
-        for name in defines {
-            options.defines.insert(name.to_string(), "1".to_string());
-        }
-        let parsed = self.without_panics(|| {
-            naga::front::glsl::Frontend::default().parse(&options, &self.joined)
-        })?;
-        parsed.map_err(|errors| match errors.errors.first() {
-            Some(e) => self.locate(e.meta, e.kind.to_string(), String::new()),
-            None => self.locate(naga::Span::default(), errors.to_string(), String::new()),
         })
     }
 
