@@ -89,26 +89,8 @@ pub(in crate::gpu) fn shape_glue(kinds: &[KindInfo], bound_kinds: u32) -> String
             )
         })
         .collect();
-    let thin: Vec<String> = kinds
-        .iter()
-        .filter(|k| k.kind.thin())
-        .map(|k| format!("kind == {}", kind_const(k)))
-        .collect();
-    let thin = if thin.is_empty() {
-        "false".to_string()
-    } else {
-        thin.join(" || ")
-    };
-    let opaque: Vec<String> = kinds
-        .iter()
-        .filter(|k| k.kind.opaque())
-        .map(|k| format!("kind == {}", kind_const(k)))
-        .collect();
-    let opaque = if opaque.is_empty() {
-        "false".to_string()
-    } else {
-        opaque.join(" || ")
-    };
+    let thin = kind_test(kinds, |k| k.kind.thin());
+    let opaque = kind_test(kinds, |k| k.kind.opaque());
     format!(
         "{declarations}\n{queries}\
          /// The hit of one bounded shape, by kind number and index (BVH leaves);\n\
@@ -149,6 +131,21 @@ pub(in crate::gpu) fn shape_glue(kinds: &[KindInfo], bound_kinds: u32) -> String
         kind_loops(&unbounded),
         kind_loops(&bounded),
     )
+}
+
+/// The WGSL condition that `kind` is one of the kinds `which` picks:
+/// `kind == KIND_A || kind == KIND_B`, or `false` for none.
+fn kind_test(kinds: &[KindInfo], which: impl Fn(&KindInfo) -> bool) -> String {
+    let tests: Vec<String> = kinds
+        .iter()
+        .filter(|k| which(k))
+        .map(|k| format!("kind == {}", kind_const(k)))
+        .collect();
+    if tests.is_empty() {
+        "false".to_string()
+    } else {
+        tests.join(" || ")
+    }
 }
 
 /// Width in texels of a kind's data texture (a mesh's BVH and triangles);

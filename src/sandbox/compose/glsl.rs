@@ -14,8 +14,8 @@ use super::{
 };
 use super::{glslviewer, silent_zeros};
 use crate::gpu::{ShaderError, ShaderSource};
-use crate::sandbox::scan::{self, Kind, Scan, Token};
 use crate::sandbox::{gaps, repair};
+use crate::shader_params::scan::{self, Kind, Scan, Token};
 
 /// Whether `word` occurs in `text` as a whole identifier.
 fn has_word(text: &str, word: &str) -> bool {

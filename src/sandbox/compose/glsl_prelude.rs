@@ -8,8 +8,8 @@ use super::glsl_decls::UniformDecl;
 use super::glslviewer;
 use super::{CHANNELS, Style, error_at};
 use crate::gpu::ShaderError;
-use crate::sandbox::scan::Scan;
 use crate::sandbox::uniforms::FrameUniforms;
+use crate::shader_params::scan::Scan;
 
 /// The standard uniforms of a style: (name, GLSL type). The members of the
 /// frame block, in order, are given by [`glsl_frame_block`].

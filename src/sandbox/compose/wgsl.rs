@@ -9,9 +9,9 @@ use super::{
     Compiled, EPILOGUE_NAME, PRELUDE_NAME, Style, WGSL_ENTRY, at_end_of_file, error_at, find_pair,
 };
 use crate::gpu::{ShaderError, ShaderSource};
-use crate::sandbox::params::ParamSet;
-use crate::sandbox::scan::{Kind, Scan};
 use crate::sandbox::uniforms;
+use crate::shader_params::ParamSet;
+use crate::shader_params::scan::{Kind, Scan};
 
 /// A field of the user's `struct Params`, as found in the text.
 struct Field {
