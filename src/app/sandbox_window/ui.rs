@@ -6,12 +6,13 @@ use crate::app::controls::ClockAction;
 use crate::app::layout::Layout;
 use crate::app::{controls, layout, overlay};
 use crate::gpu::Timing;
+use crate::sandbox::Session;
 use crate::sandbox::channels::CHANNELS;
 use crate::sandbox::clock::Tick;
 use crate::sandbox::mouse::Mouse;
 use egui::{Key, KeyboardShortcut, Modifiers, RichText, Sense};
 use std::path::PathBuf;
-use std::time::Instant;
+use std::time::{Duration, Instant};
 
 impl SandboxApp {
     /// Runs the egui frame.
@@ -31,22 +32,9 @@ impl SandboxApp {
             Some(_) => Timing::GpuTimestamps,
             None => Timing::SubmitToDone,
         };
-        let status = format!(
-            "{} x {}   {}   {}",
-            canvas_size.0,
-            canvas_size.1,
-            self.gpu_time.map_or("-".to_string(), |t| format!(
-                "{:.1} ms GPU",
-                t.as_secs_f64() * 1e3
-            )),
-            if self.clock.is_paused() {
-                String::new()
-            } else {
-                format!("{:.0} fps", tick.rate)
-            },
-        );
-        let adapter = gfx.gpu.adapter.get_info().name;
         let paused = self.clock.is_paused();
+        let status = status_text(canvas_size, self.gpu_time, paused, tick.rate);
+        let adapter = gfx.gpu.adapter.get_info().name;
         let session = &mut self.session;
         let panel = &mut self.panel;
         let mouse = &mut self.mouse;
@@ -73,57 +61,14 @@ impl SandboxApp {
                         if let Some(a) = controls::clock_controls(ui, paused, &tick) {
                             actions.clock = Some(a);
                         }
-                        ui.horizontal(|ui| {
-                            let mut s = scale;
-                            ui.label("render scale");
-                            if ui
-                                .add(egui::Slider::new(&mut s, 0.25..=1.0).step_by(0.05))
-                                .on_hover_text(
-                                    "fraction of the window resolution the shader renders at",
-                                )
-                                .changed()
-                            {
-                                actions.scale = Some(s);
-                            }
-                        });
+                        scale_row(ui, scale, &mut actions);
                         ui.label(RichText::new(&status).monospace())
                             .on_hover_text(format!(
                                 "time of the shader's pass, {}\nadapter: {adapter}",
                                 timing.describe()
                             ));
                         if !session.params.is_empty() {
-                            ui.separator();
-                            ui.strong("Parameters");
-                            egui::ScrollArea::vertical()
-                                .max_height(ui.ctx().content_rect().height() * 0.6)
-                                .show(ui, |ui| {
-                                    actions.params_changed |=
-                                        controls::params_ui(ui, &mut session.params);
-                                });
-                            ui.horizontal(|ui| {
-                                let sidecar = session.sidecar().display().to_string();
-                                if ui
-                                    .button("Reset")
-                                    .on_hover_text("the defaults of the source")
-                                    .clicked()
-                                {
-                                    actions.reset_params = true;
-                                }
-                                if ui
-                                    .button("Save")
-                                    .on_hover_text(format!("to {sidecar} (Ctrl+S)"))
-                                    .clicked()
-                                {
-                                    actions.save_params = true;
-                                }
-                                if ui
-                                    .button("Load")
-                                    .on_hover_text(format!("from {sidecar}"))
-                                    .clicked()
-                                {
-                                    actions.load_params = true;
-                                }
-                            });
+                            params_rows(ui, session, &mut actions);
                         }
                         ui.separator();
                         egui::CollapsingHeader::new("Channels")
@@ -166,6 +111,70 @@ impl SandboxApp {
         }
         (actions, output)
     }
+}
+
+/// The panel's status line: render size, the shader's GPU time, and the
+/// frame rate while the clock runs.
+fn status_text(size: (u32, u32), gpu_time: Option<Duration>, paused: bool, rate: f64) -> String {
+    let gpu = gpu_time.map_or("-".to_string(), |t| {
+        format!("{:.1} ms GPU", t.as_secs_f64() * 1e3)
+    });
+    let fps = if paused {
+        String::new()
+    } else {
+        format!("{rate:.0} fps")
+    };
+    format!("{} x {}   {gpu}   {fps}", size.0, size.1)
+}
+
+/// The render scale's slider.
+fn scale_row(ui: &mut egui::Ui, scale: f32, actions: &mut Actions) {
+    ui.horizontal(|ui| {
+        let mut s = scale;
+        ui.label("render scale");
+        if ui
+            .add(egui::Slider::new(&mut s, 0.25..=1.0).step_by(0.05))
+            .on_hover_text("fraction of the window resolution the shader renders at")
+            .changed()
+        {
+            actions.scale = Some(s);
+        }
+    });
+}
+
+/// The shader's parameters and the buttons that reset, save and load them.
+fn params_rows(ui: &mut egui::Ui, session: &mut Session, actions: &mut Actions) {
+    ui.separator();
+    ui.strong("Parameters");
+    egui::ScrollArea::vertical()
+        .max_height(ui.ctx().content_rect().height() * 0.6)
+        .show(ui, |ui| {
+            actions.params_changed |= controls::params_ui(ui, &mut session.params);
+        });
+    ui.horizontal(|ui| {
+        let sidecar = session.sidecar().display().to_string();
+        if ui
+            .button("Reset")
+            .on_hover_text("the defaults of the source")
+            .clicked()
+        {
+            actions.reset_params = true;
+        }
+        if ui
+            .button("Save")
+            .on_hover_text(format!("to {sidecar} (Ctrl+S)"))
+            .clicked()
+        {
+            actions.save_params = true;
+        }
+        if ui
+            .button("Load")
+            .on_hover_text(format!("from {sidecar}"))
+            .clicked()
+        {
+            actions.load_params = true;
+        }
+    });
 }
 
 /// Keys work only while no text field has the keyboard.
