@@ -145,7 +145,7 @@ fn hit_bounded_bvh(ray: Ray, best_in: Hit, any: bool) -> Hit {
 
 /// The nearest hit with 0 < t < best.t over unbounded shapes (planes, in a
 /// loop) and bounded ones (the BVH, or a loop: hit_unbounded_loop,
-/// hit_bounded_loop and hit_bounded are generated, src/gpu/shaders.rs); with
+/// hit_bounded_loop and hit_bounded are generated, src/gpu/shapes/glue.rs); with
 /// `any`, any hit will do.
 fn hit_shapes(ray: Ray, best_in: Hit, any: bool) -> Hit {
     var best = hit_unbounded_loop(ray, best_in, any);

@@ -82,7 +82,7 @@ struct Light {
 @group(0) @binding(5) var<storage, read> shape_counts: array<u32>;
 // Bindings 6 and up: one array per shape kind (`spheres`, `planes`, ...),
 // generated with the kinds' KIND_* numbers and HAS_* flags from the
-// registry (src/gpu/shaders.rs); their structs are in shaders/shapes/.
+// registry (src/gpu/shapes/glue.rs); their structs are in shaders/shapes/.
 
 // What the scene uses, as pipeline-overridable constants (src/gpu/features.rs):
 // the pipeline for a scene is compiled with false for what it does not use,

@@ -20,6 +20,7 @@ pub mod gpu;
 pub mod reference;
 pub mod sandbox;
 pub mod scene;
+pub mod shader_params;
 #[cfg(not(target_arch = "wasm32"))]
 pub mod stress;
 pub mod web;

@@ -25,6 +25,7 @@ const LAYERS: &[&str] = &[
     "compare",
     "reference",
     "gpu",
+    "shader_params",
     "stress",
     "bench",
     "sandbox",

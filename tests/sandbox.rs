@@ -12,9 +12,10 @@ use image::RgbaImage;
 use raysandbox::compare::diff_images;
 use raysandbox::gpu::{Gpu, render_image};
 use raysandbox::sandbox::{
-    Control, FrameUniforms, NanColor, Offscreen, Session, Style, compile_file, render_file,
+    FrameUniforms, NanColor, Offscreen, Session, Style, compile_file, render_file,
 };
 use raysandbox::scene::Scene;
+use raysandbox::shader_params::Control;
 
 const SIZE: (u32, u32) = (128, 72);
 

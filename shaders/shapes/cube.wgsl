@@ -4,7 +4,7 @@
 // test checks it), and `hit_cube(ray, shape, index, best) -> Hit`, the
 // nearest hit with ray.t_min < t < best.t or `best`. The buffer, the
 // KIND_CUBE number, the HAS_CUBES flag and the loops that call hit_cube are
-// generated from the registry (src/gpu/shaders.rs).
+// generated from the registry (src/gpu/shapes/glue.rs).
 
 /// A box: world = center + rotation * local, local in [-half_size, half_size].
 struct Cube {

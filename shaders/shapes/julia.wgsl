@@ -1,7 +1,7 @@
 // shapes/julia.wgsl: the quaternion Julia set (docs/rendering-model.md,
 // "Implicit surfaces"; Crane 2005). The f64 twin is
 // src/reference/shapes/julia.rs. Buffer, KIND_JULIA, HAS_JULIAS and the loops
-// are generated (src/gpu/shaders.rs).
+// are generated (src/gpu/shapes/glue.rs).
 
 /// A Julia set placed by world = center + scale * rotation * local.
 struct Julia {

@@ -3,7 +3,7 @@
 // A shape kind's WGSL: its struct, twin of src/gpu/shapes/mesh.rs (the layout
 // test checks it), and `hit_mesh(ray, shape, index, best) -> Hit`. The
 // buffers `meshes` and `mesh_data`, KIND_MESH, HAS_MESHES and the loops that
-// call hit_mesh are generated from the registry (src/gpu/shaders.rs).
+// call hit_mesh are generated from the registry (src/gpu/shapes/glue.rs).
 //
 // A mesh's triangles live in its own coordinates, in a BVH of their own
 // (src/bvh.rs, built once per loaded file): the ray is taken into those
@@ -11,7 +11,7 @@
 // so moving a mesh only changes this struct.
 
 /// A placed mesh. `mesh_data` (a texture, read by `mesh_data_at`, see
-/// src/gpu/shaders.rs) holds, from `node_start`, its BVH nodes (two
+/// src/gpu/shapes/glue.rs) holds, from `node_start`, its BVH nodes (two
 /// vec4 each: min.xyz and `first`, max.xyz and `count`, floats as bits);
 /// from `tri_start`, its triangles in leaf order (three vec4: p0, p1, p2);
 /// from `normal_start` (smooth meshes only), their vertex normals (three

@@ -4,7 +4,7 @@
 // test checks it), and `hit_plane(ray, shape, index, best) -> Hit`, the
 // nearest hit with ray.t_min < t < best.t or `best`. The buffer, the
 // KIND_PLANE number, the HAS_PLANES flag and the loops that call hit_plane are
-// generated from the registry (src/gpu/shaders.rs).
+// generated from the registry (src/gpu/shapes/glue.rs).
 
 /// An infinite two-sided plane; `normal` is unit length.
 struct Plane {

@@ -4,7 +4,7 @@
 // test checks it), and `hit_sphere(ray, shape, index, best) -> Hit`, the
 // nearest hit with ray.t_min < t < best.t or `best`. The buffer, the
 // KIND_SPHERE number, the HAS_SPHERES flag and the loops that call hit_sphere are
-// generated from the registry (src/gpu/shaders.rs).
+// generated from the registry (src/gpu/shapes/glue.rs).
 
 struct Sphere {
     center: vec3<f32>,

@@ -2,7 +2,7 @@
 //
 // A shape kind's WGSL: its struct, twin of src/gpu/shapes/torus.rs (the layout
 // test checks it), and `hit_torus(ray, shape, index, best) -> Hit`. The
-// buffer, KIND_TORUS, HAS_TORI and the loops are generated (src/gpu/shaders.rs).
+// buffer, KIND_TORUS, HAS_TORI and the loops are generated (src/gpu/shapes/glue.rs).
 // The f64 twin is src/reference/shapes/torus.rs; the method is described in
 // docs/implementation.md, "Torus".
 

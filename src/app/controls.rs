@@ -4,7 +4,7 @@
 use egui::{Grid, RichText, Ui};
 
 use crate::sandbox::clock::Tick;
-use crate::sandbox::params::{Control, ParamSet, ParamSpec, Scalar};
+use crate::shader_params::{Control, ParamSet, ParamSpec, Scalar};
 
 /// What the user asked of the clock.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]

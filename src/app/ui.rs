@@ -9,8 +9,8 @@ use egui::{Key, KeyboardShortcut, Modifiers, PointerButton, Sense};
 use super::document::Document;
 use super::panel::{self, PanelAction, PanelState, ViewSettings};
 use super::{controls, layout, overlay};
-use crate::sandbox::ParamSet;
 use crate::scene::Scene;
+use crate::shader_params::ParamSet;
 
 /// UI state that is not part of the scene.
 pub struct Editor {

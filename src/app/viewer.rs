@@ -18,8 +18,8 @@ use super::ui::{self, Command, Editor, Host, Status, ViewInput};
 use super::{orbit, panel};
 use crate::gpu::{FrameStatus, Gpu, Pipelines, Refine, ShaderOptions, ShaderSource, Viewport};
 use crate::reference;
-use crate::sandbox::SourceParams;
 use crate::scene::{Scene, SceneError};
+use crate::shader_params::SourceParams;
 
 /// Width of the selection outline in logical pixels (scaled by the window's
 /// DPI factor).

@@ -19,8 +19,8 @@ use super::ui::{Command, Host};
 use super::viewer::{Platform, Viewer};
 use super::{memory, mesh_files, pipelines, watch};
 use crate::gpu::{Gpu, Pipelines, ShaderSource, Viewport};
-use crate::sandbox::SourceParams;
 use crate::scene::{Mesh, Scene, bundled};
+use crate::shader_params::SourceParams;
 
 /// How the viewer was started (the `view` subcommand's options).
 #[derive(Debug, Clone, Default)]

@@ -123,7 +123,7 @@ pub struct PackedArray {
     /// What it holds ("BVH nodes", "meshes (mesh_data)").
     pub what: String,
     pub bytes: u64,
-    /// In a data texture ([`super::shaders::DATA_TEXTURE_WIDTH`] texels
+    /// In a data texture ([`super::shapes::glue::DATA_TEXTURE_WIDTH`] texels
     /// of 16 bytes a row) rather than a storage buffer.
     pub texture: bool,
 }

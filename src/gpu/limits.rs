@@ -3,7 +3,7 @@
 //! named (docs/reliability.md, "The GPU's limits and a lost device").
 
 use super::layout::PackedScene;
-use super::shaders::DATA_TEXTURE_WIDTH;
+use super::shapes::glue::DATA_TEXTURE_WIDTH;
 
 /// A scene whose data does not fit in the device's buffers: one of its
 /// arrays (a mesh's triangles, the BVH, ...) is larger than one storage

@@ -17,6 +17,8 @@ pub mod shaders;
 pub mod shapes;
 mod texture;
 mod timer;
+#[cfg(test)]
+mod toy_kind;
 mod tracer;
 mod viewport;
 

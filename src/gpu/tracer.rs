@@ -14,9 +14,8 @@ use super::fullscreen;
 use super::layout::PackedScene;
 use super::limits::{BufferLimitError, check_buffers};
 use super::outline::OutlinePipelines;
-use super::shaders::{
-    DATA_TEXTURE_WIDTH, FIRST_SHAPE_BINDING, ShaderError, ShaderSource, is_bound,
-};
+use super::shaders::{ShaderError, ShaderSource};
+use super::shapes::glue::{DATA_TEXTURE_WIDTH, FIRST_SHAPE_BINDING, is_bound};
 use super::texture::render_target;
 use wgpu::util::DeviceExt;
 

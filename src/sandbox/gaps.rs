@@ -32,7 +32,7 @@
 //! the right, never to another line, and [`Bridged::original_column`] moves
 //! an error's column back, so errors show the user's line and column.
 
-use super::scan::{self, Kind, Scan, Token};
+use crate::shader_params::scan::{self, Kind, Scan, Token};
 
 /// The overloads behind `rsb_mat2(...)`, for the prelude.
 pub const MAT2_OVERLOADS: &str = "\

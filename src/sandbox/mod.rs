@@ -29,14 +29,11 @@ pub mod channels;
 mod check;
 pub mod clock;
 pub mod compose;
-pub mod constants;
 mod gaps;
 pub mod include;
 pub mod mouse;
-pub mod params;
 pub mod render;
 mod repair;
-mod scan;
 pub mod session;
 pub mod uniforms;
 pub mod watchdog;
@@ -46,8 +43,6 @@ use std::time::Instant;
 
 pub use check::{Checked, Flat, Report, check_file};
 pub use compose::{Compiled, Style, Warning, compile, compile_file};
-pub use constants::SourceParams;
-pub use params::{Control, ParamSet, ParamSpec};
 use render::{BuildFailed, FRAME_LIMIT, build_too_slow};
 pub use render::{CanvasStats, NanColor, Offscreen, render_once};
 pub use session::{ReloadError, Session};
@@ -55,6 +50,7 @@ pub use uniforms::FrameUniforms;
 
 use crate::cli::parse_size;
 use crate::gpu::{Gpu, GpuWaitError};
+use crate::shader_params::{self, ParamSet};
 
 /// Arguments of `raysandbox shader`.
 #[derive(Debug, Clone, clap::Args)]
@@ -193,7 +189,7 @@ pub fn run_headless(args: &ShaderArgs) -> Result<(), SandboxError> {
         eprintln!("{warning}");
     }
     let mut params = compiled.params.clone();
-    let sidecar = params::sidecar_path(&args.file);
+    let sidecar = shader_params::sidecar_path(&args.file);
     if let Ok(text) = std::fs::read_to_string(&sidecar) {
         let warnings = params
             .apply_toml(&text)

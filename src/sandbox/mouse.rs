@@ -4,7 +4,7 @@
 //! and the page share it.
 
 use super::clock::Tick;
-use super::uniforms::{self, FrameUniforms};
+use super::uniforms::FrameUniforms;
 
 /// The mouse as Shadertoy reports it, in canvas pixels with y up.
 #[derive(Debug, Default, Clone, Copy, PartialEq)]
@@ -79,17 +79,13 @@ impl Mouse {
     /// the mouse as it is now and the date of the system clock.
     pub fn frame_uniforms(&self, tick: &Tick, size: (u32, u32)) -> FrameUniforms {
         FrameUniforms {
-            resolution: [size.0 as f32, size.1 as f32],
-            pixel_aspect: 1.0,
-            time: tick.time as f32,
             mouse: self.shadertoy(),
-            date: uniforms::date_now(),
             time_delta: tick.delta as f32,
-            frame: tick.frame,
             frame_rate: tick.rate as f32,
             surface_height: self.surface.height,
             mouse_uv: self.uv,
             surface_center: self.surface.center,
+            ..FrameUniforms::at(tick.time, tick.frame, size)
         }
     }
 }

@@ -8,11 +8,11 @@ use std::borrow::Cow;
 
 use super::channels::{self, CHANNELS};
 use super::compose::Compiled;
-use super::params::ParamSet;
 use super::uniforms::{FRAME_UNIFORMS_SIZE, FrameUniforms};
 use crate::gpu::{
     EXPORT_FORMAT, Gpu, GpuWaitError, fullscreen, read_texels, read_texture, render_target,
 };
+use crate::shader_params::ParamSet;
 
 /// What the user's shader draws into.
 pub const CANVAS_FORMAT: wgpu::TextureFormat = wgpu::TextureFormat::Rgba32Float;

@@ -10,10 +10,10 @@ use std::path::{Path, PathBuf};
 
 use super::compose::{Compiled, Style, compile_expanded, compile_file};
 use super::include;
-use super::params::{ParamSet, sidecar_path};
 use super::render::{PipelineBuilder, ShaderPipeline};
 use crate::files::write_atomically;
 use crate::gpu::ShaderError;
+use crate::shader_params::{ParamSet, sidecar_path};
 
 /// Why a reload did not take.
 #[derive(Debug, Clone)]

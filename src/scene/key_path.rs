@@ -18,12 +18,12 @@ pub struct KeyPath(Vec<Step>);
 
 impl KeyPath {
     /// This path followed by the table key `key`.
-    pub(super) fn key(&self, key: &str) -> Self {
+    pub(crate) fn key(&self, key: &str) -> Self {
         self.with(Step::Key(key.to_owned()))
     }
 
     /// This path followed by the array index `index`.
-    pub(super) fn index(&self, index: usize) -> Self {
+    pub(crate) fn index(&self, index: usize) -> Self {
         self.with(Step::Index(index))
     }
 

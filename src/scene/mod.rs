@@ -26,13 +26,16 @@ use serde::{Deserialize, Serialize};
 
 pub use camera::{Film, camera_basis, normalize_or};
 pub use error::SceneError;
+pub use key_path::KeyPath;
 pub use mesh_file::{Folder, Geometry, GivenFiles, MeshFiles, PerGeometry, load_bytes, load_file};
 pub use named::{NamedOption, named_option};
+pub use shapes::Context;
 pub use shapes::{
     Centered, Cube, CubeSize, Implicit, Instance, Julia, Loaded, Mesh, Place, Placement, Plane,
     Scale, Shape, Sphere, Torus, TorusMethod, TriangleTest, Unplaced, for_each_shape_kind,
     implicit, julia, rotation_degrees,
 };
+pub use validate::{Check, Issue};
 
 /// Writes the [`Scene`] struct, [`ShapeKind`], [`ShapeId`] and the methods
 /// that visit every shape kind, from the registry [`for_each_shape_kind!`].

@@ -39,12 +39,12 @@ fn load(text: &str, meshes: &dyn MeshFiles) -> Result<Scene, SceneError> {
 /// A broken rule: which value, and what is wrong with it. The line is looked
 /// up later, from the path, in the document.
 pub struct Issue {
-    path: KeyPath,
-    message: String,
+    pub(crate) path: KeyPath,
+    pub(crate) message: String,
 }
 
 impl Issue {
-    pub(super) fn new(path: &KeyPath, message: String) -> Self {
+    pub(crate) fn new(path: &KeyPath, message: String) -> Self {
         Self {
             path: path.clone(),
             message,

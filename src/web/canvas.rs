@@ -32,8 +32,8 @@ use crate::app::shell;
 use crate::app::ui::{Command, Host, MenuItem};
 use crate::app::viewer::{Platform, Viewer};
 use crate::gpu::{Gpu, GpuError, Pipelines, Refine, ShaderSource, Viewport};
-use crate::sandbox::SourceParams;
 use crate::scene::{Scene, bundled};
+use crate::shader_params::SourceParams;
 
 /// Samples per pixel the page accumulates before it stops drawing, as the
 /// native viewer's progressive refinement does; `?samples=N` in the address

@@ -12,8 +12,8 @@ use std::sync::LazyLock;
 use arbitrary::{Result, Unstructured};
 use glam::DVec3;
 use raysandbox::expr::{FUNCTIONS, Function};
-use raysandbox::sandbox::params::{self, ParamSet, ParamSpec, ParamType, Scalar};
 use raysandbox::scene::{GivenFiles, Scene};
+use raysandbox::shader_params::{self as params, ParamSet, ParamSpec, ParamType, Scalar};
 use raysandbox::web::link;
 
 use super::common;

@@ -16,6 +16,7 @@ use super::ShaderOptions;
 use crate::scene::{Camera, Instance, Scene, ShapeKind, ShapeList, for_each_shape_kind};
 
 mod cube;
+pub mod glue;
 pub mod implicit;
 mod julia;
 mod mesh;

@@ -14,8 +14,8 @@ use super::{
 };
 use super::{glslviewer, silent_zeros};
 use crate::gpu::{ShaderError, ShaderSource};
-use crate::sandbox::scan::{self, Kind, Scan, Token};
 use crate::sandbox::{gaps, repair};
+use crate::shader_params::scan::{self, Kind, Scan, Token};
 
 /// Whether `word` occurs in `text` as a whole identifier.
 fn has_word(text: &str, word: &str) -> bool {
@@ -254,9 +254,7 @@ pub(super) fn compile_glsl(name: &str, scan: &Scan) -> Result<Compiled, ShaderEr
         }
         e
     };
-    let mut module = source
-        .parse_glsl_fragment(GLSL_DEFINES)
-        .map_err(at_users_column)?;
+    let mut module = parse_glsl_fragment(&source, GLSL_DEFINES).map_err(at_users_column)?;
     repair::define_before_use(&mut module);
     repair::spill_pointer_arguments(&mut module);
     let (module, info) = source.validate_module(module).map_err(at_users_column)?;
@@ -277,5 +275,26 @@ pub(super) fn compile_glsl(name: &str, scan: &Scan) -> Result<Compiled, ShaderEr
         includes: Vec::new(),
         warnings,
         reads_backbuffer,
+    })
+}
+
+/// Parses the joined source as a GLSL fragment shader (naga's GLSL front
+/// end: `#version 450`, Vulkan-style resources), with each of `defines`
+/// defined as a macro (`1`). Errors are located like WGSL errors: naga's
+/// spans are byte offsets of the joined text, mapped back to the part they
+/// fall in.
+fn parse_glsl_fragment(
+    source: &ShaderSource,
+    defines: &[&str],
+) -> Result<naga::Module, ShaderError> {
+    let mut options = naga::front::glsl::Options::from(naga::ShaderStage::Fragment);
+    for name in defines {
+        options.defines.insert(name.to_string(), "1".to_string());
+    }
+    let parsed = source
+        .without_panics(|| naga::front::glsl::Frontend::default().parse(&options, source.text()))?;
+    parsed.map_err(|errors| match errors.errors.first() {
+        Some(e) => source.error_at(e.meta, e.kind.to_string()),
+        None => source.error_at(naga::Span::default(), errors.to_string()),
     })
 }

@@ -5,8 +5,8 @@
 
 use super::error_at;
 use crate::gpu::ShaderError;
-use crate::sandbox::params;
-use crate::sandbox::scan::{self, Kind, Scan, Token};
+use crate::shader_params;
+use crate::shader_params::scan::{self, Kind, Scan, Token};
 
 /// A `uniform` declaration at the top level of the user's GLSL.
 pub(super) struct UniformDecl<'a> {
@@ -223,7 +223,7 @@ fn initializer_values(tokens: &[Token]) -> Vec<f64> {
         match (t.kind, t.text) {
             (Kind::Punct, "-") => negative = true,
             (Kind::Number, n) => {
-                if let Some(v) = params::parse_number(n) {
+                if let Some(v) = shader_params::parse_number(n) {
                     values.push(if negative { -v } else { v });
                 }
                 negative = false;

@@ -8,7 +8,8 @@ use super::glsl_decls::UniformDecl;
 use super::glslviewer;
 use super::{CHANNELS, Style, error_at};
 use crate::gpu::ShaderError;
-use crate::sandbox::scan::Scan;
+use crate::sandbox::uniforms::FrameUniforms;
+use crate::shader_params::scan::Scan;
 
 /// The standard uniforms of a style: (name, GLSL type). The members of the
 /// frame block, in order, are given by [`glsl_frame_block`].
@@ -47,51 +48,24 @@ pub(super) fn standard_uniforms(style: Style) -> &'static [(&'static str, &'stat
 /// you use); the others get an `rsb_` name, so they cannot clash with the
 /// user's names.
 pub(super) fn glsl_frame_block(style: Style, declared: &[&str]) -> String {
-    let members: Vec<(&str, String)> = if style == Style::Shadertoy {
-        [
-            ("vec3", "iResolution"),
-            ("float", "iTime"),
-            ("vec4", "iMouse"),
-            ("vec4", "iDate"),
-            ("float", "iTimeDelta"),
-            ("int", "iFrame"),
-            ("float", "iFrameRate"),
-            ("float", "rsb_surface_height"),
-            ("vec2", "rsb_mouse_uv"),
-            ("vec2", "rsb_surface_center"),
-        ]
-        .iter()
-        .map(|(t, n)| (*t, n.to_string()))
-        .collect()
-    } else {
-        // The name a style gives a slot of the block, if it has one.
-        let conventional = |slot: &'static str| match style {
-            Style::GlslViewer => glslviewer::slot_name(slot),
-            _ => ["resolution", "time", "mouse"]
-                .contains(&slot)
-                .then_some(slot),
-        };
-        let named = |slot: &'static str| match conventional(slot) {
-            Some(name) if declared.contains(&name) => name.to_string(),
-            _ => format!("rsb_{slot}"),
-        };
-        vec![
-            ("vec2", named("resolution")),
-            ("float", "rsb_pixel_aspect".into()),
-            ("float", named("time")),
-            ("vec4", "rsb_mouse_px".into()),
-            ("vec4", named("date")),
-            ("float", named("time_delta")),
-            ("int", named("frame")),
-            ("float", "rsb_frame_rate".into()),
-            ("float", "rsb_surface_height".into()),
-            ("vec2", named("mouse")),
-            ("vec2", "rsb_surface_center".into()),
-        ]
+    // The name a style gives a slot of the block, if it has one.
+    let conventional = |slot: &str| match style {
+        Style::GlslViewer => glslviewer::slot_name(slot),
+        _ => ["resolution", "time", "mouse"]
+            .into_iter()
+            .find(|&name| name == slot),
     };
     let mut text = String::from("layout(set = 0, binding = 0) uniform RsbFrame {\n");
-    for (t, n) in &members {
-        let _ = writeln!(text, "    {t} {n};");
+    for field in FrameUniforms::FIELDS {
+        let (glsl, name) = match (style, field.shadertoy) {
+            (Style::Shadertoy, None) => continue,
+            (Style::Shadertoy, Some((glsl, name))) => (glsl, name.to_string()),
+            _ => match conventional(field.slot) {
+                Some(name) if declared.contains(&name) => (field.glsl, name.to_string()),
+                _ => (field.glsl, format!("rsb_{}", field.slot)),
+            },
+        };
+        let _ = writeln!(text, "    {glsl} {name};");
     }
     text.push_str("};\n");
     text

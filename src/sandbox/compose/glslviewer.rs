@@ -6,7 +6,7 @@
 use std::fmt::Write as _;
 
 use super::CHANNELS;
-use crate::sandbox::scan::Token;
+use crate::shader_params::scan::Token;
 
 /// The uniforms glslViewer sets (name, GLSL type), other than the textures
 /// `u_tex0..3` (see [`texture_channel`]).

@@ -32,9 +32,9 @@ mod wgsl;
 use std::path::{Path, PathBuf};
 
 use super::include::{self, Expanded, include_target};
-use super::params::ParamSet;
-use super::scan::{Scan, Token};
 use crate::gpu::{ShaderError, ShaderSource};
+use crate::shader_params::ParamSet;
+use crate::shader_params::scan::{Scan, Token};
 use glsl::{GLSL_DEFINES, compile_glsl};
 pub use silent_zeros::Warning;
 use wgsl::compile_wgsl;
@@ -298,8 +298,8 @@ fn find_pair(tokens: &[Token], a: &str, b: &str) -> Option<usize> {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::sandbox::params::{Control, Scalar};
-    use crate::sandbox::scan;
+    use crate::shader_params::scan;
+    use crate::shader_params::{Control, Scalar};
 
     const WGSL: &str = "\
 struct Params {

@@ -4,8 +4,8 @@
 
 use super::error_at;
 use crate::gpu::ShaderError;
-use crate::sandbox::params::{self, ParamSet, ParamSpec, ParamType, Scalar};
-use crate::sandbox::scan::Scan;
+use crate::shader_params::scan::Scan;
+use crate::shader_params::{self, ParamSet, ParamSpec, ParamType, Scalar};
 
 /// Prefix of the int member that stores a GLSL `bool` parameter.
 pub(super) const GLSL_BOOL_PREFIX: &str = "rsb_bool_";
@@ -45,7 +45,7 @@ pub(super) fn read_params(
             continue;
         };
         let line = scan.line_of(offset);
-        let annotation = params::parse_annotation(&scan.comments_for_line(line))
+        let annotation = shader_params::parse_annotation(&scan.comments_for_line(line))
             .map_err(|(at, message)| error_at(name, scan, at, message))?;
         let mut ty = param_type(&module.types[member.ty].inner);
         if bool_int {

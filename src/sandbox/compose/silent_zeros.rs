@@ -7,8 +7,8 @@
 use std::fmt;
 
 use super::glsl_decls::UniformDecl;
-use crate::sandbox::params::parse_annotation;
-use crate::sandbox::scan::Scan;
+use crate::shader_params::parse_annotation;
+use crate::shader_params::scan::Scan;
 
 /// Something the user should know about a shader that compiled.
 #[derive(Debug, Clone, PartialEq, Eq)]

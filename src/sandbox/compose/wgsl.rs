@@ -9,9 +9,9 @@ use super::{
     Compiled, EPILOGUE_NAME, PRELUDE_NAME, Style, WGSL_ENTRY, at_end_of_file, error_at, find_pair,
 };
 use crate::gpu::{ShaderError, ShaderSource};
-use crate::sandbox::params::ParamSet;
-use crate::sandbox::scan::{Kind, Scan};
-use crate::sandbox::uniforms::WGSL_STRUCT;
+use crate::sandbox::uniforms;
+use crate::shader_params::ParamSet;
+use crate::shader_params::scan::{Kind, Scan};
 
 /// A field of the user's `struct Params`, as found in the text.
 struct Field {
@@ -23,9 +23,10 @@ struct Field {
 fn wgsl_prelude() -> String {
     format!(
         "// raysandbox WGSL prelude: the values every sandbox shader can read.\n\
-         {WGSL_STRUCT}\
+         {}\
          @group(0) @binding(0) var<uniform> u: Uniforms;\n\
-         {WGSL_TEXTURES}"
+         {WGSL_TEXTURES}",
+        uniforms::wgsl_struct()
     )
 }
 

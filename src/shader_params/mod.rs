@@ -1,6 +1,8 @@
-//! Parameters declared in the shader source and annotated in a comment
+//! Parameters declared in a shader's source and annotated in a comment
 //! (`// @slider(0, 5, 0.1)`), their values, the bytes the GPU reads, and the
-//! sidecar file (`FILE.params.toml`) they are saved to.
+//! sidecar file (`FILE.params.toml`) they are saved to. Both the sandbox
+//! (its uniforms) and the viewer (the tracer's annotated constants,
+//! [`SourceParams`]) use them, so they live below both.
 //!
 //! The types and byte offsets come from naga's module (the compiler decides
 //! the layout, not this code); the controls come from the comments.
@@ -8,16 +10,21 @@
 //! | module | what |
 //! | --- | --- |
 //! | `annotation` | the `@tags` of the comments |
+//! | `scan` | the lexer that finds declarations and their comments |
 //! | `sidecar` | the values saved to and read from `FILE.params.toml` |
+//! | `source` | the annotated `const`s and `override`s of the tracer's shader folder |
 //! | this file | the types, the controls, the values and their bytes |
 
 mod annotation;
+pub mod scan;
 mod sidecar;
+mod source;
 
 pub use annotation::{
     Annotation, AnnotationError, annotation_of_line, parse_annotation, parse_number,
 };
 pub use sidecar::sidecar_path;
+pub use source::SourceParams;
 
 /// The scalar type of a parameter's components.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]

@@ -2,7 +2,7 @@
 //! declaration (docs/sandbox.md, "Parameters").
 
 use super::Control;
-use crate::sandbox::scan::{Comment, Scan};
+use super::scan::{Comment, Scan};
 
 /// What a comment says about a parameter.
 #[derive(Debug, Clone, Default, PartialEq)]

@@ -14,8 +14,8 @@
 
 use std::ops::Range;
 
-use super::params::{self, ParamSet, ParamSpec, ParamType, Scalar};
 use super::scan::{Kind, Scan};
+use super::{ParamSet, ParamSpec, ParamType, Scalar, parse_annotation, parse_number};
 use crate::gpu::{ShaderError, ShaderSource};
 
 /// Where a parameter's value is written: the initializer of its declaration.
@@ -66,8 +66,8 @@ impl SourceParams {
                     source_line: scan.line_text(scan.line_of(offset)).to_string(),
                     label: String::new(),
                 };
-                let annotation = params::parse_annotation(&comments)
-                    .map_err(|(offset, message)| at(offset, message))?;
+                let annotation =
+                    parse_annotation(&comments).map_err(|(offset, message)| at(offset, message))?;
                 if annotation.control.is_none() && annotation.default.is_none() {
                     continue;
                 }
@@ -113,8 +113,7 @@ impl SourceParams {
                                 None
                             }
                             (Kind::Number, n) => {
-                                let v =
-                                    params::parse_number(n).map(|v| if *negative { -v } else { v });
+                                let v = parse_number(n).map(|v| if *negative { -v } else { v });
                                 *negative = false;
                                 v
                             }

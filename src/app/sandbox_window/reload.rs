@@ -1,0 +1,155 @@
+//! The sandbox window's reloads: the file read and compiled, the pipeline
+//! built on a thread and tried on the watchdog's device, the files watched.
+
+use super::{SandboxApp, SandboxEvent};
+use crate::app::watch;
+use crate::sandbox::render::{
+    BuildFailed, FRAME_LIMIT, PipelineBuilder, ShaderPipeline, build_too_slow,
+};
+use crate::sandbox::watchdog::Probe;
+use crate::sandbox::{Compiled, ReloadError};
+use std::sync::{Arc, Mutex, PoisonError};
+
+impl SandboxApp {
+    /// The first load and every change of the file: compile now (naga,
+    /// quick), build the pipeline on another thread while the window keeps
+    /// drawing (the last good shader, if any). The first load takes the same
+    /// path, so that a driver stuck on the first shader never freezes the
+    /// window either.
+    pub(super) fn load(&mut self, reloaded: bool) {
+        if self.gfx.is_none() {
+            return;
+        }
+        let compiled = self.session.compile();
+        self.watch_files();
+        let compiled = match compiled {
+            Ok(Some(c)) => c,
+            Ok(None) => return,
+            Err(e) => {
+                // A build still running is for older text: drop its result.
+                self.generation += 1;
+                self.building = false;
+                return self.failed(&e);
+            }
+        };
+        self.generation += 1;
+        let Some(gfx) = &self.gfx else { return };
+        let builder = gfx.builder.clone();
+        let size = gfx.canvas.size();
+        let probe = Arc::clone(&self.probe);
+        let proxy = self.proxy.clone();
+        let generation = self.generation;
+        self.building = true;
+        std::thread::spawn(move || {
+            let result = build_checked(&builder, &probe, &compiled, size);
+            let _ = proxy.send_event(SandboxEvent::Built {
+                generation,
+                compiled: Box::new(compiled),
+                result,
+                reloaded,
+            });
+        });
+    }
+
+    /// The warnings of the shader's source (uniforms nothing sets,
+    /// docs/sandbox.md): logged and announced once, when they change, and
+    /// shown at the top of the window while the shader runs.
+    pub(super) fn note_source_warnings(&mut self) {
+        let warnings: Vec<String> = self
+            .session
+            .compiled()
+            .map(|c| c.warnings.iter().map(ToString::to_string).collect())
+            .unwrap_or_default();
+        if warnings == self.source_warnings {
+            return;
+        }
+        for w in &warnings {
+            log::warn!("{w}");
+        }
+        if !warnings.is_empty() {
+            self.after_present
+                .push(format!("shader-warning {}", warnings.len()));
+        }
+        self.source_warnings = warnings;
+    }
+
+    /// Watches the shader file and the files it includes (docs/sandbox.md,
+    /// "Includes"): after a compile that changed the includes, the watch is
+    /// made again for the new set.
+    pub(super) fn watch_files(&mut self) {
+        let includes = self.session.includes();
+        if self.watch.is_some() && self.watched_includes == includes {
+            return;
+        }
+        self.watched_includes = includes.to_vec();
+        let proxy = self.proxy.clone();
+        let notify = move |_| {
+            let _ = proxy.send_event(SandboxEvent::FileChanged);
+        };
+        match watch::watch(None, Some(&self.options.file), includes, notify) {
+            Ok(w) => self.watch = Some(w),
+            Err(e) => self.panel.message = Some(e),
+        }
+    }
+
+    pub(super) fn built(
+        &mut self,
+        compiled: Compiled,
+        result: Result<ShaderPipeline, String>,
+        reloaded: bool,
+    ) {
+        match result {
+            Ok(pipeline) => {
+                let warnings = self.session.install(compiled, pipeline);
+                self.loaded(warnings, reloaded);
+            }
+            Err(e) => {
+                let e = ReloadError::Gpu(e);
+                self.session.fail(e.clone());
+                self.failed(&e);
+            }
+        }
+    }
+
+    pub(super) fn loaded(&mut self, warnings: Vec<String>, reloaded: bool) {
+        for w in &warnings {
+            log::warn!("{w}");
+        }
+        self.note_source_warnings();
+        self.panel.message = warnings.into_iter().next();
+        self.draw_next = true;
+        self.check_next = true;
+        self.warning = None;
+        if reloaded {
+            self.after_present.push("shader-reloaded".into());
+        }
+    }
+
+    pub(super) fn failed(&mut self, error: &ReloadError) {
+        log::error!("{error}");
+        self.after_present
+            .push(format!("shader-error {}", error.location()));
+    }
+}
+
+/// Builds the pipeline of a compiled shader within [`FRAME_LIMIT`] (a
+/// driver compiling for ever is reported, not waited for), then lets the
+/// watchdog draw a trial frame with it: a shader that would freeze the
+/// window at `size` is refused like a compile error.
+pub(super) fn build_checked(
+    builder: &PipelineBuilder,
+    probe: &Mutex<Probe>,
+    compiled: &Compiled,
+    size: (u32, u32),
+) -> Result<ShaderPipeline, String> {
+    let pipeline = match builder.build_within(compiled, FRAME_LIMIT) {
+        Ok(pipeline) => pipeline,
+        Err(BuildFailed::Refused(m)) => return Err(m),
+        Err(BuildFailed::TooSlow) => return Err(build_too_slow(&compiled.file)),
+    };
+    probe
+        .lock()
+        .unwrap_or_else(PoisonError::into_inner)
+        .check(compiled, size)?;
+    Ok(pipeline)
+}
