@@ -65,6 +65,12 @@ pub struct Viewport {
     jobs: JobPlanner,
     /// When the last job started, if the last frame ran one.
     last_job_start: Option<Instant>,
+    /// In the browser: the last job's time has not come back yet. No job
+    /// of refinement is submitted until it has, so that jobs never queue up
+    /// in the browser's GPU process, where each would wait for those before
+    /// it (its measured time growing with the queue, and input waiting
+    /// behind them all). Natively a job is waited for where it is submitted.
+    job_in_flight: bool,
     /// Whether the last sample was traced whole (a moving view), and its time.
     whole_frame: bool,
     whole_frame_time: Option<Duration>,
@@ -102,6 +108,7 @@ impl Viewport {
             job_time: Arc::default(),
             jobs: JobPlanner::new(JOB_BUDGET),
             last_job_start: None,
+            job_in_flight: false,
             whole_frame: false,
             whole_frame_time: None,
             timer: GpuTimer::new(gpu),
@@ -272,6 +279,8 @@ impl Viewport {
                 self.submit_timed(gpu, encoder);
                 self.whole_frame = true;
             }
+            // Shows what is done while the last job runs (the browser only).
+            Refine::NextRows if self.job_in_flight => {}
             Refine::NextRows => {
                 let now = Instant::now();
                 if let Some(last) = self.last_job_start.replace(now) {
@@ -368,6 +377,7 @@ impl Viewport {
             });
         }
         let _ = gpu.device.poll(wgpu::PollType::wait_indefinitely());
+        self.job_in_flight = cfg!(target_arch = "wasm32");
         if let Some(timer) = &self.timer {
             *self.job_time.lock().unwrap_or_else(PoisonError::into_inner) = timer.read(gpu);
         }
@@ -381,6 +391,9 @@ impl Viewport {
             .lock()
             .unwrap_or_else(PoisonError::into_inner)
             .take();
+        if time.is_some() {
+            self.job_in_flight = false;
+        }
         match time {
             Some(time) if self.whole_frame => self.whole_frame_time = Some(time),
             Some(time) => self.jobs.measured(time),
