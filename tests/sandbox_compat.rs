@@ -231,6 +231,36 @@ float half_of(const in float x, float unused) { return x * 0.5 + unused; }
 }
 
 #[test]
+fn a_function_that_can_end_without_a_return_returns_zero_and_is_warned_of() {
+    // `f` has no return for x <= 0.5 (GLSL leaves the value undefined);
+    // `sampler`, a type in Vulkan GLSL, names a parameter.
+    let text = "\
+uniform vec2 resolution;
+float f(float x) {
+    if (x > 0.5) { return 1.0; }
+}
+float halve(float sampler) { return sampler * 0.5; }
+void main() { gl_FragColor = vec4(f(gl_FragCoord.x / resolution.x), halve(1.0), 0.0, 1.0); }
+";
+    let compiled =
+        raysandbox::sandbox::compile("ends.frag", text).unwrap_or_else(|e| panic!("{e}"));
+    let warnings: Vec<String> = compiled.warnings.iter().map(|w| w.to_string()).collect();
+    assert_eq!(
+        warnings,
+        [
+            "ends.frag:2: warning: function `f` can end without returning a value: it returns 0 there"
+        ]
+    );
+    let Some(gpu) = common::gpu() else { return };
+    let image = render_text(&gpu, "ends.frag", text);
+    let (w, h) = image.dimensions();
+    let left = image::imageops::crop_imm(&image, 0, 0, w / 2 - 1, h).to_image();
+    let right = image::imageops::crop_imm(&image, w / 2 + 1, 0, w - w / 2 - 1, h).to_image();
+    assert_every_pixel(&left, [0, 128, 0], "f = 0 where it has no return");
+    assert_every_pixel(&right, [255, 128, 0], "f = 1");
+}
+
+#[test]
 fn a_function_may_call_one_defined_below_it_through_a_prototype() {
     // naga adds `a` where its prototype is, but its definition calls `c`,
     // defined later: the functions are reordered for the validator.

@@ -8,7 +8,8 @@ use std::path::{Path, PathBuf};
 
 use super::render::{BuildFailed, FRAME_LIMIT, build_too_slow};
 use super::{
-    CanvasStats, FrameUniforms, Offscreen, SandboxError, ShaderArgs, Warning, compile_file,
+    CanvasStats, FrameUniforms, Offscreen, SandboxError, ShaderArgs, Warning, WarningKind,
+    compile_file,
 };
 use crate::gpu::Gpu;
 
@@ -170,6 +171,7 @@ struct Totals {
     flat: usize,
     nan: usize,
     silent: usize,
+    no_return: usize,
 }
 
 impl Totals {
@@ -179,7 +181,9 @@ impl Totals {
             Some(Flat::Colour(_)) => self.flat += 1,
             Some(Flat::Nan) => self.nan += 1,
         }
-        self.silent += usize::from(!report.warnings.is_empty());
+        let has = |kind| report.warnings.iter().any(|w| w.kind == kind);
+        self.silent += usize::from(has(WarningKind::SilentZero));
+        self.no_return += usize::from(has(WarningKind::MissingReturn));
     }
 }
 
@@ -190,6 +194,14 @@ impl std::fmt::Display for Totals {
             "of those {} drew a picture, {} one flat colour, {} every pixel NaN; \
              {} with uniforms nothing sets (silent zeros)",
             self.picture, self.flat, self.nan, self.silent
-        )
+        )?;
+        if self.no_return > 0 {
+            write!(
+                f,
+                "; {} with a function that returns 0 where it ends without a return",
+                self.no_return
+            )?;
+        }
+        Ok(())
     }
 }

@@ -17,7 +17,7 @@
 //!   prelude adds for floats and float vectors;
 //! - a `sampler2D` parameter, which naga's Vulkan GLSL has no type for:
 //!   a `texture2D` parameter, each use of it in the function's body wrapped
-//!   as `sampler2D(NAME, rsb_sampler)` with the prelude's sampler;
+//!   as `sampler2D(NAME, rsb_linear_sampler)` with the prelude's sampler;
 //! - a precision qualifier (`highp vec2 p`), which naga rejects in a
 //!   parameter list: blanked everywhere, it means nothing in Vulkan GLSL;
 //! - a local `const int N = 4;` used as an array size (`float a[N];`),
@@ -68,9 +68,17 @@ pub struct Bridged {
 }
 
 /// Keywords of GLSL 4.50 (what naga reads) that WebGL GLSL shaders use as
-/// names.
-const NEW_KEYWORDS: [&str; 14] = [
+/// names (`sampler` is a type of Vulkan GLSL, where a `sampler2D` is made of
+/// a texture and a sampler).
+const NEW_KEYWORDS: [&str; 21] = [
     "sample",
+    "sampler",
+    "subroutine",
+    "coherent",
+    "volatile",
+    "restrict",
+    "readonly",
+    "writeonly",
     "smooth",
     "flat",
     "noperspective",
@@ -293,7 +301,7 @@ fn overwrite(text: &mut String, range: std::ops::Range<usize>, new: &str) {
 
 /// `sampler2D NAME` parameters become `texture2D NAME` (the same length),
 /// and in the function's body each `NAME` becomes
-/// `sampler2D(NAME, rsb_sampler)`, which naga's texture functions take.
+/// `sampler2D(NAME, rsb_linear_sampler)`, which naga's texture functions take.
 fn sampler_parameters(tokens: &[Token], text: &mut String, out: &mut Vec<(usize, String)>) {
     let (mut braces, mut parens) = (0i32, 0i32);
     let mut pending: Vec<&str> = Vec::new();
@@ -327,7 +335,7 @@ fn sampler_parameters(tokens: &[Token], text: &mut String, out: &mut Vec<(usize,
                 && !(i > 0 && tokens[i - 1].is(".")) =>
             {
                 out.push((t.start, "sampler2D(".to_string()));
-                out.push((t.end(), ", rsb_sampler)".to_string()));
+                out.push((t.end(), ", rsb_linear_sampler)".to_string()));
             }
             _ => {}
         }
@@ -473,6 +481,11 @@ mod tests {
             b.text,
             "float rsb_sample = 1.0; vec3 rsb_filter(vec3 rsb_input) { return rsb_input * rsb_sample; }"
         );
+        let (b, _) = bridged("float f(float sampler) { return sampler * 0.5; }");
+        assert_eq!(
+            b.text,
+            "float f(float rsb_sampler) { return rsb_sampler * 0.5; }"
+        );
     }
 
     #[test]
@@ -505,7 +518,7 @@ mod tests {
             [
                 "vec4 f(texture2D s, vec2 p);",
                 "vec4 f(in texture2D s, vec2 p) {",
-                "    return texture(sampler2D(s, rsb_sampler), p) + v.s;",
+                "    return texture(sampler2D(s, rsb_linear_sampler), p) + v.s;",
                 "}",
                 "vec4 g() { return texture(s, p); }",
             ]

@@ -42,7 +42,7 @@ use std::path::{Path, PathBuf};
 use std::time::Instant;
 
 pub use check::{Checked, Flat, Report, check_file};
-pub use compose::{Compiled, Style, Warning, compile, compile_file};
+pub use compose::{Compiled, Style, Warning, WarningKind, compile, compile_file};
 use render::{BuildFailed, FRAME_LIMIT, build_too_slow};
 pub use render::{CanvasStats, NanColor, Offscreen, render_once};
 pub use session::{ReloadError, Session};

@@ -7,6 +7,10 @@
 //! wgpu and naga's validator want every function after the ones it calls.
 //! The repair puts the functions in that order.
 //!
+//! **A function that can end without a return.** GLSL leaves the value
+//! undefined; naga rejects the function. It returns the zero of its type
+//! there, and the user gets a warning at the function's line.
+//!
 //! **Pointer arguments into a vector, array or struct.** GLSL passes `out`/`inout` arguments by reference, so naga's
 //! GLSL front end turns `f(p.x)` (with `void f(inout float x)`) into a call
 //! whose argument is a pointer to `p`'s first component. naga's SPIR-V writer
@@ -99,26 +103,67 @@ fn calls_in(block: &Block, found: &mut Vec<usize>) {
 }
 
 fn renumber_calls(block: &mut Block, renumber: &impl Fn(Handle<Function>) -> Handle<Function>) {
+    visit_mut(block, &mut |statement| {
+        if let Statement::Call { function, .. } = statement {
+            *function = renumber(*function);
+        }
+    });
+}
+
+/// Calls `f` on every statement of `block` and of the blocks nested in it.
+fn visit_mut(block: &mut Block, f: &mut impl FnMut(&mut Statement)) {
     for statement in block.iter_mut() {
+        f(statement);
         match statement {
-            Statement::Call { function, .. } => *function = renumber(*function),
-            Statement::Block(b) => renumber_calls(b, renumber),
+            Statement::Block(b) => visit_mut(b, f),
             Statement::If { accept, reject, .. } => {
-                renumber_calls(accept, renumber);
-                renumber_calls(reject, renumber);
+                visit_mut(accept, f);
+                visit_mut(reject, f);
             }
-            Statement::Switch { cases, .. } => cases
-                .iter_mut()
-                .for_each(|c| renumber_calls(&mut c.body, renumber)),
+            Statement::Switch { cases, .. } => {
+                cases.iter_mut().for_each(|c| visit_mut(&mut c.body, f))
+            }
             Statement::Loop {
                 body, continuing, ..
             } => {
-                renumber_calls(body, renumber);
-                renumber_calls(continuing, renumber);
+                visit_mut(body, f);
+                visit_mut(continuing, f);
             }
             _ => {}
         }
     }
+}
+
+/// Gives a function that can end without returning a value (GLSL leaves
+/// the value undefined; naga's front end ends the function with a `return`
+/// without one, which its validator rejects) the zero of its type there.
+/// Returns the span of each function changed, for a warning at its line.
+pub fn return_zero_at_end(module: &mut naga::Module) -> Vec<(String, Span)> {
+    let mut changed = Vec::new();
+    for (handle, function) in module.functions.iter_mut() {
+        let Some(result) = &function.result else {
+            continue;
+        };
+        let zero = Expression::ZeroValue(result.ty);
+        let expressions = &mut function.expressions;
+        let mut found = false;
+        visit_mut(&mut function.body, &mut |statement| {
+            if let Statement::Return {
+                value: value @ None,
+            } = statement
+            {
+                *value = Some(expressions.append(zero.clone(), Span::UNDEFINED));
+                found = true;
+            }
+        });
+        if found {
+            changed.push((handle, function.name.clone().unwrap_or_default()));
+        }
+    }
+    changed
+        .into_iter()
+        .map(|(handle, name)| (name, module.functions.get_span(handle)))
+        .collect()
 }
 
 /// For every function, the pointee type of each parameter passed by pointer.

@@ -8,11 +8,12 @@ use super::glsl_prelude::{
     GLSL_TEXTURES, glsl_frame_block, glsl_param_type, glsl_sandbox_surface, glsl_texture_names,
     is_matrix, old_shadertoy_names, shadertoy_channels, standard_uniforms,
 };
+use super::glslviewer;
 use super::param_block::{GLSL_BOOL_PREFIX, read_params};
+use super::silent_zeros::{self, Warning, WarningKind};
 use super::{
     Compiled, EPILOGUE_NAME, GLSL_ENTRY, PRELUDE_NAME, Style, at_end_of_file, error_at, find_pair,
 };
-use super::{glslviewer, silent_zeros};
 use crate::gpu::{ShaderError, ShaderSource};
 use crate::sandbox::{gaps, repair};
 use crate::shader_params::scan::{self, Kind, Scan, Token};
@@ -257,6 +258,17 @@ pub(super) fn compile_glsl(name: &str, scan: &Scan) -> Result<Compiled, ShaderEr
     let mut module = parse_glsl_fragment(&source, GLSL_DEFINES).map_err(at_users_column)?;
     repair::define_before_use(&mut module);
     repair::spill_pointer_arguments(&mut module);
+    for (function, span) in repair::return_zero_at_end(&mut module) {
+        let at = source.error_at(span, String::new());
+        warnings.push(Warning {
+            file: at.file,
+            line: at.line,
+            message: format!(
+                "function `{function}` can end without returning a value: it returns 0 there"
+            ),
+            kind: WarningKind::MissingReturn,
+        });
+    }
     let (module, info) = source.validate_module(module).map_err(at_users_column)?;
     source
         .check_translation(&module, &info)

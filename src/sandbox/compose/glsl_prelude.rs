@@ -132,7 +132,7 @@ layout(set = 0, binding = 2) uniform texture2D rsb_channel0;
 layout(set = 0, binding = 3) uniform texture2D rsb_channel1;
 layout(set = 0, binding = 4) uniform texture2D rsb_channel2;
 layout(set = 0, binding = 5) uniform texture2D rsb_channel3;
-layout(set = 0, binding = 6) uniform sampler rsb_sampler;
+layout(set = 0, binding = 6) uniform sampler rsb_linear_sampler;
 layout(set = 0, binding = 7) uniform texture2D rsb_backbuffer;
 ";
 
@@ -155,7 +155,7 @@ pub(super) fn glsl_texture_names(
     let mut taken: Vec<usize> = textures.iter().filter_map(|t| numbered(t)).collect();
     for texture in textures {
         if style == Style::GlslSandbox && *texture == "backbuffer" {
-            text.push_str("#define backbuffer sampler2D(rsb_backbuffer, rsb_sampler)\n");
+            text.push_str("#define backbuffer sampler2D(rsb_backbuffer, rsb_linear_sampler)\n");
             continue;
         }
         let free = (0..CHANNELS).find(|k| !taken.contains(k));
@@ -179,7 +179,7 @@ pub(super) fn glsl_texture_names(
         };
         let _ = writeln!(
             text,
-            "#define {renamed} sampler2D(rsb_channel{channel}, rsb_sampler)"
+            "#define {renamed} sampler2D(rsb_channel{channel}, rsb_linear_sampler)"
         );
         if numbered(texture).is_none() {
             taken.push(channel);
@@ -196,13 +196,16 @@ pub(super) fn shadertoy_channels(used: &dyn Fn(&str) -> bool) -> String {
         if used(&format!("iChannel{k}")) {
             let _ = writeln!(
                 text,
-                "#define iChannel{k} sampler2D(rsb_channel{k}, rsb_sampler)"
+                "#define iChannel{k} sampler2D(rsb_channel{k}, rsb_linear_sampler)"
             );
         }
     }
     if used("iChannelResolution") {
-        let size =
-            |k| format!("vec3(vec2(textureSize(sampler2D(rsb_channel{k}, rsb_sampler), 0)), 1.0)");
+        let size = |k| {
+            format!(
+                "vec3(vec2(textureSize(sampler2D(rsb_channel{k}, rsb_linear_sampler), 0)), 1.0)"
+            )
+        };
         let _ = write!(
             text,
             "vec3[4] rsb_channel_resolution() {{\n\

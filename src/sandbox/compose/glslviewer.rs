@@ -75,7 +75,7 @@ pub(super) fn prelude(declared: &[&str], resolution: &str) -> String {
         if declared.contains(&name.as_str()) {
             let _ = writeln!(
                 text,
-                "#define {name} vec2(textureSize(sampler2D(rsb_channel{k}, rsb_sampler), 0))"
+                "#define {name} vec2(textureSize(sampler2D(rsb_channel{k}, rsb_linear_sampler), 0))"
             );
         }
     }

@@ -36,7 +36,7 @@ use crate::gpu::{ShaderError, ShaderSource};
 use crate::shader_params::ParamSet;
 use crate::shader_params::scan::{Scan, Token};
 use glsl::{GLSL_DEFINES, compile_glsl};
-pub use silent_zeros::Warning;
+pub use silent_zeros::{Warning, WarningKind};
 use wgsl::compile_wgsl;
 
 /// Which kind of shader the file is.
@@ -97,7 +97,8 @@ pub struct Compiled {
     pub reads_backbuffer: bool,
     /// The files `#include`d, to reload when one changes.
     pub includes: Vec<PathBuf>,
-    /// Uniforms that stay 0 (docs/sandbox.md, "Uniforms nobody sets").
+    /// Uniforms that stay 0 (docs/sandbox.md, "Uniforms nobody sets"), and
+    /// functions that return 0 where they end without a value.
     pub warnings: Vec<Warning>,
 }
 

@@ -18,6 +18,16 @@ pub struct Warning {
     /// 1-based line of the declaration.
     pub line: u32,
     pub message: String,
+    pub kind: WarningKind,
+}
+
+/// What a [`Warning`] is about, for `--check-all`'s totals.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum WarningKind {
+    /// A uniform nothing sets: it stays 0.
+    SilentZero,
+    /// A function that can end without a return: it returns 0 there.
+    MissingReturn,
 }
 
 impl fmt::Display for Warning {
@@ -53,5 +63,6 @@ pub(super) fn warning(name: &str, scan: &Scan, decl: &UniformDecl, control: bool
             "uniform `{}` is not set by raysandbox: it stays 0; {advice}",
             decl.name
         ),
+        kind: WarningKind::SilentZero,
     }
 }
