@@ -46,6 +46,14 @@ fn assert_like_reference(name: &str, page: &RgbaImage, scene: &Scene) {
     );
 }
 
+/// A WGSL sandbox shader that draws red.
+const RED_SHADER: &str = "fn main_image(frag_coord: vec2<f32>) -> vec4<f32> {\n    \
+                          return vec4(1.0, 0.0, 0.0, 1.0);\n}\n";
+
+/// A Shadertoy-style GLSL shader that draws green.
+const GREEN_SHADER: &str = "void mainImage(out vec4 fragColor, in vec2 fragCoord) {\n    \
+                            fragColor = vec4(0.0, 1.0, 0.0, 1.0);\n}\n";
+
 fn whitted() -> (String, Scene) {
     let name = bundled::names()[0];
     assert_eq!(name, "whitted");
@@ -229,16 +237,14 @@ fn links_pasted_into_the_open_page_are_shown_and_the_address_follows_the_shader(
     page.wait_for("ready");
     assert_like_reference("pasted-link", &page.capture_picture(), &bundled_scene(text));
 
-    let red = "fn main_image(frag_coord: vec2<f32>) -> vec4<f32> {\n    \
-               return vec4(1.0, 0.0, 0.0, 1.0);\n}\n";
+    let red = RED_SHADER;
     let pasted = link::shader_hash(red);
     page.evaluate(&format!("location.hash = '{pasted}'"));
     page.wait_for("shader from-link");
     page.wait_for("shader ok");
     assert_eq!(page.evaluate("location.hash"), format!("#{pasted}"));
     page.key("Control+e");
-    let green = "void mainImage(out vec4 fragColor, in vec2 fragCoord) {\n    \
-                 fragColor = vec4(0.0, 1.0, 0.0, 1.0);\n}\n";
+    let green = GREEN_SHADER;
     replace_text(&mut page, "shader", green);
     page.wait_for("shader ok");
     wait_for_picture(&page, "green", |p| middle_is(p, [0, 255, 0]));
@@ -258,8 +264,7 @@ fn copy_link_over_a_shader_copies_a_link_to_it() {
     let Some(display) = common::xwindow::Display::start() else {
         return;
     };
-    let red = "fn main_image(frag_coord: vec2<f32>) -> vec4<f32> {\n    \
-               return vec4(1.0, 0.0, 0.0, 1.0);\n}\n";
+    let red = RED_SHADER;
     let url = browser::serve(browser::page_dir());
     let mut page = Browser::start(&display, browser::Options::default());
     page.call(
@@ -659,8 +664,7 @@ fn a_shader_typed_in_the_editor_draws_and_its_error_is_at_the_users_line() {
     let Some(display) = common::xwindow::Display::start() else {
         return;
     };
-    let red = "fn main_image(frag_coord: vec2<f32>) -> vec4<f32> {\n    \
-               return vec4(1.0, 0.0, 0.0, 1.0);\n}\n";
+    let red = RED_SHADER;
     let url = browser::serve(browser::page_dir());
     let address = format!("{url}?ui=0&editor#{}", link::shader_hash(red));
     let mut page = Browser::open(&display, &address);
@@ -668,8 +672,7 @@ fn a_shader_typed_in_the_editor_draws_and_its_error_is_at_the_users_line() {
     page.wait_for("shader ok");
     wait_for_picture(&page, "red", |p| middle_is(p, [255, 0, 0]));
 
-    let green = "void mainImage(out vec4 fragColor, in vec2 fragCoord) {\n    \
-                 fragColor = vec4(0.0, 1.0, 0.0, 1.0);\n}\n";
+    let green = GREEN_SHADER;
     replace_text(&mut page, "shader", green);
     page.wait_for("shader ok");
     let (status, _) = shown_problem(&mut page, "shader");
@@ -1085,13 +1088,22 @@ fn orbiting_with_the_mouse_changes_the_picture_and_the_address() {
 
 /// The part of the page's picture that the panel (330 logical pixels wide,
 /// on the left), the Edit button (top right) and the status line (at the
-/// bottom) leave visible.
-const BESIDE_PANEL: (u32, u32, u32, u32) = (340, 40, SIZE.0 - 340, SIZE.1 - 70);
+/// bottom; it wraps, so its top is the page's last layout's) leave visible.
+fn beside_panel(page: &mut Browser) -> (u32, u32, u32, u32) {
+    let status = page.part("status");
+    let bottom = (status.y - 10).max(80) as u32;
+    (340, 40, SIZE.0 - 340, bottom - 40)
+}
 
-/// As [`assert_like_reference`] for the picture beside the panel.
-fn assert_beside_panel_like_reference(name: &str, page: &RgbaImage, scene: &Scene) {
+/// As [`assert_like_reference`] for the picture beside the panel, in
+/// `area` ([`beside_panel`]).
+fn assert_beside_panel_like_reference(
+    name: &str,
+    (page, area): (&RgbaImage, (u32, u32, u32, u32)),
+    scene: &Scene,
+) {
     let expected = reference::render_rgba8(scene, SIZE.0, SIZE.1, 1);
-    let crop = |image: &RgbaImage| common::xwindow::crop(image, BESIDE_PANEL);
+    let crop = |image: &RgbaImage| common::xwindow::crop(image, area);
     let (page, expected) = (crop(page), crop(&expected));
     let d = diff_images(&page, &expected);
     eprintln!(
@@ -1143,7 +1155,8 @@ fn choosing_a_bundled_scene_in_the_menu_shows_it() {
         "the address has the scene"
     );
     let after = capture_change(&mut page, &before);
-    assert_beside_panel_like_reference("menu-cornell", &after, &scene);
+    let area = beside_panel(&mut page);
+    assert_beside_panel_like_reference("menu-cornell", (&after, area), &scene);
 }
 
 /// The "Scenes" menu lists the bundled mesh scenes after the others;
@@ -1220,7 +1233,8 @@ fn dragging_a_slider_in_the_panel_changes_the_picture() {
     unchanged.camera.fov = whitted.camera.fov;
     assert_eq!(unchanged, whitted, "nothing else changed");
     let after = capture_change(&mut page, &before);
-    assert_beside_panel_like_reference("slider-fov", &after, &scene);
+    let area = beside_panel(&mut page);
+    assert_beside_panel_like_reference("slider-fov", (&after, area), &scene);
 }
 
 /// Waits until the page's panel layout satisfies `holds`, failing with

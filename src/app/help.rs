@@ -6,28 +6,35 @@ use super::layout;
 
 /// What the help window lists.
 pub struct Help {
-    /// Keys or mouse input, and what they do.
-    pub keys: &'static [(&'static str, &'static str)],
+    /// Keys or mouse input, and what they do, in groups.
+    pub keys: &'static [&'static [(&'static str, &'static str)]],
     /// Sentences under the keys.
     pub notes: &'static [&'static str],
 }
 
+/// The mouse over the picture, the same in both programs.
+pub const MOUSE: &[(&str, &str)] = &[
+    ("Left drag", "orbit around the target"),
+    ("Right / middle drag", "pan"),
+    ("Wheel", "zoom (dolly towards the target)"),
+    ("Click / double-click", "select an object / orbit around it"),
+];
+
 /// The window program's help.
 pub const WINDOW: Help = Help {
     keys: &[
-        ("Left drag", "orbit around the target"),
-        ("Right / middle drag", "pan"),
-        ("Wheel", "zoom (dolly towards the target)"),
-        ("Click / double-click", "select an object / orbit around it"),
-        ("H", "show or hide the panel and status line"),
-        ("R / P", "reset camera / screenshot"),
-        ("Ctrl+S", "save the scene"),
-        (
-            "Ctrl+plus / minus / 0",
-            "UI scale: larger / smaller / as it was",
-        ),
-        ("F11 / Esc", "fullscreen / leave fullscreen"),
-        ("F1 / Ctrl+Q", "this help / quit"),
+        MOUSE,
+        &[
+            ("H", "show or hide the panel and status line"),
+            ("R / P", "reset camera / screenshot"),
+            ("Ctrl+S", "save the scene"),
+            (
+                "Ctrl+plus / minus / 0",
+                "UI scale: larger / smaller / as it was",
+            ),
+            ("F11 / Esc", "fullscreen / leave fullscreen"),
+            ("F1 / Ctrl+Q", "this help / quit"),
+        ],
     ],
     notes: &[
         "Edit the WGSL files in shaders/ (or --shaders DIR) in any editor: they reload on save.",
@@ -48,7 +55,7 @@ pub fn window(ctx: &egui::Context, open: &mut bool, help: &Help) {
         .collapsible(false)
         .show(ctx, |ui| {
             egui::Grid::new("shortcuts").striped(true).show(ui, |ui| {
-                for (keys, what) in help.keys {
+                for (keys, what) in help.keys.iter().copied().flatten() {
                     ui.strong(*keys);
                     ui.label(*what);
                     ui.end_row();

@@ -45,25 +45,24 @@ const MAX_SAMPLES: u32 = 64;
 /// dropped files instead.
 const PAGE_HELP: Help = Help {
     keys: &[
-        ("Left drag", "orbit around the target"),
-        ("Right / middle drag", "pan"),
-        ("Wheel", "zoom (dolly towards the target)"),
-        ("Click / double-click", "select an object / orbit around it"),
-        ("H", "show or hide the panel and status line"),
-        ("R", "reset the camera to the scene's"),
-        (
-            "Ctrl+E or Edit",
-            "the scene's text and a shader, in the editor beside the picture",
-        ),
-        (
-            "Copy link",
-            "a link to what is shown (the scene, camera included, or the shader)",
-        ),
-        (
-            "Ctrl+plus / minus / 0",
-            "UI scale of the panel, editor and status line",
-        ),
-        ("F1", "this help"),
+        help::MOUSE,
+        &[
+            ("H", "show or hide the panel and status line"),
+            ("R", "reset the camera to the scene's"),
+            (
+                "Ctrl+E or Edit",
+                "the scene's text and a shader, in the editor beside the picture",
+            ),
+            (
+                "Copy link",
+                "a link to what is shown (the scene, camera included, or the shader)",
+            ),
+            (
+                "Ctrl+plus / minus / 0",
+                "UI scale of the panel, editor and status line",
+            ),
+            ("F1", "this help"),
+        ],
     ],
     notes: &[
         "Scenes and Shaders (at the top of the panel) open the bundled examples.",
