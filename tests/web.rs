@@ -46,6 +46,14 @@ fn assert_like_reference(name: &str, page: &RgbaImage, scene: &Scene) {
     );
 }
 
+/// A WGSL sandbox shader that draws red.
+const RED_SHADER: &str = "fn main_image(frag_coord: vec2<f32>) -> vec4<f32> {\n    \
+                          return vec4(1.0, 0.0, 0.0, 1.0);\n}\n";
+
+/// A Shadertoy-style GLSL shader that draws green.
+const GREEN_SHADER: &str = "void mainImage(out vec4 fragColor, in vec2 fragCoord) {\n    \
+                            fragColor = vec4(0.0, 1.0, 0.0, 1.0);\n}\n";
+
 fn whitted() -> (String, Scene) {
     let name = bundled::names()[0];
     assert_eq!(name, "whitted");
@@ -166,7 +174,215 @@ fn a_damaged_link_is_reported_and_the_whitted_scene_shown() {
     let hash = link::scene_hash(&whitted().0);
     let cut = &hash[..hash.len() / 2];
     let error = whitted_instead_of(&display, "damaged-link", cut);
-    assert!(error.contains("the link is damaged"), "{error}");
+    assert!(error.starts_with(link::DAMAGED), "{error}");
+}
+
+/// Whether two parts of the page overlap.
+fn overlap(a: common::xwindow::Rect, b: common::xwindow::Rect) -> bool {
+    a.x < b.right() && b.x < a.right() && a.y < b.bottom() && b.y < a.bottom()
+}
+
+/// A damaged link pasted into the open page (the address's fragment
+/// changed, no reload) is reported in plain words, in a box beside the
+/// scene panel that covers none of it, and the box closes with its button;
+/// the picture shown stays.
+#[test]
+fn a_damaged_link_pasted_into_the_page_is_said_in_a_box_that_closes() {
+    let Some((_display, mut page)) = open_on_projector("?samples=1") else {
+        return;
+    };
+    assert_eq!(page.wait_for("scene"), "whitted");
+    // The panel drawn: the page has its GPU and handles the address.
+    wait_for_layout(&mut page, "the panel", |p| p.contains_key("panel"));
+    let hash = link::scene_hash(&whitted().0);
+    let cut = &hash[..hash.len() / 2];
+    page.evaluate(&format!("location.hash = '{cut}'"));
+    let error = error_shown_and_kept(&mut page);
+    assert!(error.starts_with(link::DAMAGED), "{error}");
+    let panel = page.part("panel");
+    let menu = page.part("menu:Scenes");
+    let shown = page.element("message").expect("the message box is shown");
+    assert!(
+        !overlap(shown, panel) && !overlap(shown, menu),
+        "the message {shown:?} covers the panel {panel:?} or its menu {menu:?}"
+    );
+    let close = page.element("message-close").expect("a close button");
+    page.click(page_point(close));
+    assert_eq!(page.message(), None, "the close button closes the message");
+    assert_eq!(page.exceptions(), Vec::<String>::new());
+}
+
+/// The error the page shows, left shown (see [`error_shown`]).
+fn error_shown_and_kept(page: &mut Browser) -> String {
+    let logged = page.wait_for("error");
+    assert_eq!(page.message().as_deref(), Some(logged.as_str()));
+    logged
+}
+
+/// A scene link pasted into the open page (the address's fragment set, as
+/// a user pasting it into the address bar does) is shown at once, without
+/// a reload; a shader link after it too, and the address then follows the
+/// shader typed in the editor, not the one before it.
+#[test]
+fn links_pasted_into_the_open_page_are_shown_and_the_address_follows_the_shader() {
+    let Some((_display, mut page)) = browser::open_page("?samples=1&ui=0") else {
+        return;
+    };
+    assert_eq!(page.wait_for("scene"), "whitted");
+    page.wait_for("ready");
+    page.evaluate("window.notReloaded = true");
+    let text = bundled::text("cornell").unwrap();
+    page.evaluate(&format!("location.hash = '{}'", link::scene_hash(text)));
+    assert_eq!(page.wait_for("scene"), "from-link");
+    page.wait_for("ready");
+    assert_like_reference("pasted-link", &page.capture_picture(), &bundled_scene(text));
+
+    let red = RED_SHADER;
+    let pasted = link::shader_hash(red);
+    page.evaluate(&format!("location.hash = '{pasted}'"));
+    page.wait_for("shader from-link");
+    page.wait_for("shader ok");
+    assert_eq!(page.evaluate("location.hash"), format!("#{pasted}"));
+    page.key("Control+e");
+    let green = GREEN_SHADER;
+    replace_text(&mut page, "shader", green);
+    page.wait_for("shader ok");
+    wait_for_picture(&page, "green", |p| middle_is(p, [0, 255, 0]));
+    assert_eq!(
+        page.evaluate("location.hash"),
+        format!("#{}", link::shader_hash(green)),
+        "the address holds the shader drawn"
+    );
+    assert_eq!(page.evaluate("window.notReloaded"), true, "no reload");
+    assert_eq!(page.exceptions(), Vec::<String>::new());
+}
+
+/// Over a shader, which has no scene panel, the page's own "Copy link"
+/// button puts the address, a link to the shader drawn, on the clipboard.
+#[test]
+fn copy_link_over_a_shader_copies_a_link_to_it() {
+    let Some(display) = common::xwindow::Display::start() else {
+        return;
+    };
+    let red = RED_SHADER;
+    let url = browser::serve(browser::page_dir());
+    let mut page = Browser::start(&display, browser::Options::default());
+    page.call(
+        "Browser.grantPermissions",
+        serde_json::json!({ "permissions": ["clipboardReadWrite", "clipboardSanitizedWrite"] }),
+    );
+    page.navigate(&format!("{url}#{}", link::shader_hash(red)));
+    page.wait_for("shader ok");
+    let button = page
+        .element("copy-link")
+        .expect("Copy link over the shader");
+    page.click(page_point(button));
+    assert_eq!(page.wait_for("link copied"), "");
+    let copied = page.evaluate("navigator.clipboard.readText()");
+    let address = format!("{url}#{}", link::shader_hash(red));
+    assert_eq!(copied, address.as_str());
+    assert_eq!(page.exceptions(), Vec::<String>::new());
+}
+
+/// The scripts tests run in the page before its own: every WebGPU device
+/// it makes is kept in `window.raysandboxDevices`, so that a test can lose
+/// one (`GPUDevice.destroy()`, as a driver reset or a crash of the
+/// browser's GPU process would).
+const KEEP_DEVICES: &str = "(() => { \
+    const request = GPUAdapter.prototype.requestDevice; \
+    window.raysandboxDevices = []; \
+    GPUAdapter.prototype.requestDevice = async function (...args) { \
+        const device = await request.apply(this, args); \
+        window.raysandboxDevices.push(device); \
+        return device; \
+    }; })()";
+
+/// Adds the page's lines to `lines` until one after the first `after`
+/// starts with `last`, failing the test after the browser module's timeout.
+fn lines_until(page: &mut Browser, lines: &mut Vec<String>, after: &str, last: &str) {
+    let deadline = Instant::now() + browser::TIMEOUT;
+    loop {
+        let from = lines.iter().position(|l| l.starts_with(after));
+        if from.is_some_and(|from| lines[from..].iter().any(|l| l.starts_with(last))) {
+            return;
+        }
+        assert!(
+            Instant::now() < deadline,
+            "no '{last}' after '{after}' from the page; it said {lines:?}"
+        );
+        lines.extend(page.events_within(Duration::from_millis(200)));
+    }
+}
+
+/// A lost GPU device (destroyed, as a driver reset or the browser's GPU
+/// process restarting loses it) is said over the picture and replaced: the
+/// page never says "ready" while it has no device, and comes back with the
+/// same picture of the same scene (a link's edited scene, not the default
+/// one).
+#[test]
+fn a_lost_device_is_said_and_the_same_picture_comes_back() {
+    let Some(display) = common::xwindow::Display::start() else {
+        return;
+    };
+    let (text, _) = whitted();
+    let edited = text.replace(
+        "background = [0.25, 0.55, 0.95]",
+        "background = [0.9, 0.5, 0.2]",
+    );
+    let scene = Scene::from_toml_str(&edited, None).unwrap();
+    let url = browser::serve(browser::page_dir());
+    let mut page = Browser::start(&display, browser::Options::default());
+    page.before_each_page(KEEP_DEVICES);
+    page.navigate(&format!(
+        "{url}?samples=1&ui=0#{}",
+        link::scene_hash(&edited)
+    ));
+    assert_eq!(page.wait_for("scene"), "from-link");
+    page.wait_for("ready");
+    let before = page.capture_picture();
+    assert_like_reference("before-loss", &before, &scene);
+
+    let lost_at = Instant::now();
+    page.evaluate("window.raysandboxDevices.forEach((d) => d.destroy())");
+    let mut lines = Vec::new();
+    lines_until(&mut page, &mut lines, "device-lost", "device-recovered");
+    let recovered_after = lost_at.elapsed();
+    lines_until(&mut page, &mut lines, "device-recovered", "ready");
+    let ready_after = lost_at.elapsed();
+    let lost = lines.iter().position(|l| l.starts_with("device-lost"));
+    let recovered = lines.iter().position(|l| l.starts_with("device-recovered"));
+    let (lost, recovered) = (lost.unwrap(), recovered.unwrap());
+    assert!(
+        lines[lost].contains("destroyed"),
+        "the reason: {}",
+        lines[lost]
+    );
+    assert!(
+        !lines[lost..recovered]
+            .iter()
+            .any(|l| l.starts_with("ready")),
+        "'ready' while the device was lost: {lines:?}"
+    );
+    assert!(
+        !lines.iter().any(|l| l.starts_with("error")),
+        "errors: {lines:?}"
+    );
+    let said = page.message().unwrap_or_default();
+    assert!(said.contains("The GPU was lost"), "the page says: {said:?}");
+    page.evaluate("document.getElementById('message').className = ''");
+    let after = page.capture_picture();
+    eprintln!(
+        "device lost and recovered: device-recovered {:.1} s after destroy(), ready {:.1} s",
+        recovered_after.as_secs_f64(),
+        ready_after.as_secs_f64()
+    );
+    assert_like_reference("after-loss", &after, &scene);
+    let d = diff_images(&after, &before);
+    assert!(
+        d.mean_abs <= 0.5 && d.frac_over_8 <= 0.005,
+        "the picture after recovery differs from the one before: {d:?}"
+    );
+    assert_eq!(page.exceptions(), Vec::<String>::new());
 }
 
 /// A link that decodes to a scene with a mistake (here a colour with two
@@ -269,7 +485,13 @@ fn without_webgpu_the_page_says_which_browsers_have_it() {
         return;
     };
     let url = browser::serve(browser::page_dir());
-    let mut page = Browser::start(&display, browser::Options { webgpu: false });
+    let mut page = Browser::start(
+        &display,
+        browser::Options {
+            webgpu: false,
+            ..Default::default()
+        },
+    );
     page.navigate(&format!("{url}?samples=1&ui=0"));
     let gpu = page.evaluate(
         "navigator.gpu ? navigator.gpu.requestAdapter().then(a => a ? 'adapter' : 'no adapter') \
@@ -442,8 +664,7 @@ fn a_shader_typed_in_the_editor_draws_and_its_error_is_at_the_users_line() {
     let Some(display) = common::xwindow::Display::start() else {
         return;
     };
-    let red = "fn main_image(frag_coord: vec2<f32>) -> vec4<f32> {\n    \
-               return vec4(1.0, 0.0, 0.0, 1.0);\n}\n";
+    let red = RED_SHADER;
     let url = browser::serve(browser::page_dir());
     let address = format!("{url}?ui=0&editor#{}", link::shader_hash(red));
     let mut page = Browser::open(&display, &address);
@@ -451,8 +672,7 @@ fn a_shader_typed_in_the_editor_draws_and_its_error_is_at_the_users_line() {
     page.wait_for("shader ok");
     wait_for_picture(&page, "red", |p| middle_is(p, [255, 0, 0]));
 
-    let green = "void mainImage(out vec4 fragColor, in vec2 fragCoord) {\n    \
-                 fragColor = vec4(0.0, 1.0, 0.0, 1.0);\n}\n";
+    let green = GREEN_SHADER;
     replace_text(&mut page, "shader", green);
     page.wait_for("shader ok");
     let (status, _) = shown_problem(&mut page, "shader");
@@ -798,6 +1018,13 @@ fn ctrl_e_opens_the_editor_and_tab_indents() {
     assert_eq!(page.evaluate(open), true, "Ctrl+E opened the panel");
     let focused = page.evaluate("document.activeElement.id");
     assert_eq!(focused.as_str(), Some("scene-text"));
+    let at_top = "(() => { const t = document.getElementById('scene-text'); \
+                  return [t.scrollTop, t.selectionStart, t.scrollHeight > t.clientHeight]; })()";
+    assert_eq!(
+        page.evaluate(at_top),
+        serde_json::json!([0, 0, true]),
+        "the editor opens at the top of a text longer than it"
+    );
     page.evaluate("document.getElementById('scene-text').setSelectionRange(0, 0)");
     page.key("Tab");
     let text = page.evaluate("document.getElementById('scene-text').value");
@@ -861,13 +1088,22 @@ fn orbiting_with_the_mouse_changes_the_picture_and_the_address() {
 
 /// The part of the page's picture that the panel (330 logical pixels wide,
 /// on the left), the Edit button (top right) and the status line (at the
-/// bottom) leave visible.
-const BESIDE_PANEL: (u32, u32, u32, u32) = (340, 40, SIZE.0 - 340, SIZE.1 - 70);
+/// bottom; it wraps, so its top is the page's last layout's) leave visible.
+fn beside_panel(page: &mut Browser) -> (u32, u32, u32, u32) {
+    let status = page.part("status");
+    let bottom = (status.y - 10).max(80) as u32;
+    (340, 40, SIZE.0 - 340, bottom - 40)
+}
 
-/// As [`assert_like_reference`] for the picture beside the panel.
-fn assert_beside_panel_like_reference(name: &str, page: &RgbaImage, scene: &Scene) {
+/// As [`assert_like_reference`] for the picture beside the panel, in
+/// `area` ([`beside_panel`]).
+fn assert_beside_panel_like_reference(
+    name: &str,
+    (page, area): (&RgbaImage, (u32, u32, u32, u32)),
+    scene: &Scene,
+) {
     let expected = reference::render_rgba8(scene, SIZE.0, SIZE.1, 1);
-    let crop = |image: &RgbaImage| common::xwindow::crop(image, BESIDE_PANEL);
+    let crop = |image: &RgbaImage| common::xwindow::crop(image, area);
     let (page, expected) = (crop(page), crop(&expected));
     let d = diff_images(&page, &expected);
     eprintln!(
@@ -919,7 +1155,8 @@ fn choosing_a_bundled_scene_in_the_menu_shows_it() {
         "the address has the scene"
     );
     let after = capture_change(&mut page, &before);
-    assert_beside_panel_like_reference("menu-cornell", &after, &scene);
+    let area = beside_panel(&mut page);
+    assert_beside_panel_like_reference("menu-cornell", (&after, area), &scene);
 }
 
 /// The "Scenes" menu lists the bundled mesh scenes after the others;
@@ -996,5 +1233,113 @@ fn dragging_a_slider_in_the_panel_changes_the_picture() {
     unchanged.camera.fov = whitted.camera.fov;
     assert_eq!(unchanged, whitted, "nothing else changed");
     let after = capture_change(&mut page, &before);
-    assert_beside_panel_like_reference("slider-fov", &after, &scene);
+    let area = beside_panel(&mut page);
+    assert_beside_panel_like_reference("slider-fov", (&after, area), &scene);
+}
+
+/// Waits until the page's panel layout satisfies `holds`, failing with
+/// `what` after the browser module's timeout.
+fn wait_for_layout(
+    page: &mut Browser,
+    what: &str,
+    holds: impl Fn(&std::collections::HashMap<String, common::xwindow::Rect>) -> bool,
+) {
+    let deadline = Instant::now() + browser::TIMEOUT;
+    loop {
+        let parts = page.parts();
+        if holds(&parts) {
+            return;
+        }
+        assert!(Instant::now() < deadline, "{what}: the layout is {parts:?}");
+        std::thread::sleep(Duration::from_millis(200));
+    }
+}
+
+/// Gives the canvas the keyboard, as a user clicking on the picture (keys
+/// go to the focused element).
+fn focus_canvas(page: &mut Browser) {
+    page.evaluate("document.getElementById('raysandbox').focus()");
+}
+
+/// A projector's screen, 1024 x 768 (the X screen's whole size), for the
+/// tests of the page's layout.
+const PROJECTOR: (u32, u32) = (1024, 768);
+
+/// The page at `query` in a browser window of [`PROJECTOR`]'s size.
+fn open_on_projector(query: &str) -> Option<(common::xwindow::Display, Browser)> {
+    let display = common::xwindow::Display::start()?;
+    let url = browser::serve(browser::page_dir());
+    let options = browser::Options {
+        size: PROJECTOR,
+        ..Default::default()
+    };
+    let mut page = Browser::start(&display, options);
+    page.navigate(&format!("{url}{query}"));
+    Some((display, page))
+}
+
+/// At 1024 x 768, the editor opens beside the picture and the scene panel
+/// makes way for it, coming back when it closes, so that the picture keeps
+/// a usable width; F1 shows the page's help.
+#[test]
+fn the_editor_leaves_a_usable_picture_at_1024_x_768_and_f1_shows_help() {
+    let Some((_display, mut page)) = open_on_projector("?samples=1") else {
+        return;
+    };
+    wait_for_layout(&mut page, "the panel", |p| p.contains_key("panel"));
+    focus_canvas(&mut page);
+    page.key("F1");
+    wait_for_layout(&mut page, "F1 shows the help", |p| p.contains_key("help"));
+    page.key("F1");
+    page.key("Control+e");
+    wait_for_layout(&mut page, "the panel makes way for the editor", |p| {
+        !p.contains_key("panel")
+    });
+    let canvas = page.element("raysandbox").expect("the canvas");
+    assert!(
+        canvas.w >= 500 && canvas.h >= 700,
+        "the picture beside the editor: {canvas:?}"
+    );
+    page.key("Control+e");
+    wait_for_layout(&mut page, "the panel comes back", |p| {
+        p.contains_key("panel")
+    });
+    assert_eq!(page.exceptions(), Vec::<String>::new());
+}
+
+/// Ctrl+plus scales the panel, the editor and the page's buttons together,
+/// and the browser keeps the scale for the next visit.
+#[test]
+fn ctrl_plus_scales_panel_and_editor_together_and_the_scale_is_kept() {
+    let Some((_display, mut page)) = open_on_projector("?samples=1") else {
+        return;
+    };
+    wait_for_layout(&mut page, "the panel", |p| p.contains_key("panel"));
+    let font = "parseFloat(getComputedStyle(document.getElementById('editor-toggle')).fontSize)";
+    assert_eq!(page.evaluate(font), 13.0);
+    let width = page.part("panel").w;
+    focus_canvas(&mut page);
+    page.key("Control+=");
+    let scale: f64 = page.wait_for("ui-scale").parse().unwrap();
+    assert!(scale > 1.05, "Ctrl+plus made the UI {scale} times as large");
+    let wider = |p: &std::collections::HashMap<String, common::xwindow::Rect>| {
+        p.get("panel")
+            .is_some_and(|r| f64::from(r.w) > f64::from(width) * 1.05)
+    };
+    wait_for_layout(&mut page, "the panel grows", wider);
+    let scaled = page.evaluate(font).as_f64().unwrap();
+    assert!(
+        (scaled - 13.0 * scale).abs() < 0.1,
+        "the buttons' font: {scaled} px"
+    );
+    let again = page.evaluate("location.origin + location.pathname + '?samples=1&again'");
+    page.navigate(again.as_str().unwrap());
+    page.wait_for("adapter");
+    wait_for_layout(&mut page, "the panel keeps its scale", wider);
+    let kept = page.evaluate(font).as_f64().unwrap();
+    assert!(
+        (kept - scaled).abs() < 0.01,
+        "the buttons' font next visit: {kept} px"
+    );
+    assert_eq!(page.exceptions(), Vec::<String>::new());
 }

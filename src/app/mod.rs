@@ -11,6 +11,7 @@
 
 mod controls;
 pub(crate) mod document;
+pub(crate) mod help;
 pub(crate) mod layout;
 mod mesh_files;
 mod orbit;
@@ -18,6 +19,7 @@ mod overlay;
 pub(crate) mod panel;
 pub(crate) mod pipelines;
 pub(crate) mod shell;
+mod status;
 pub(crate) mod ui;
 pub mod viewer;
 

@@ -2,13 +2,13 @@
 //! the mouse over the image. It edits the scene and reports what the app must
 //! do; it never touches the GPU, the window or files itself.
 
-use std::time::Duration;
-
 use egui::{Key, KeyboardShortcut, Modifiers, PointerButton, Sense};
 
 use super::document::Document;
+use super::help::Help;
 use super::panel::{self, PanelAction, PanelState, ViewSettings};
-use super::{controls, layout, overlay};
+use super::status::MessageAge;
+use super::{controls, help, layout, overlay, status};
 use crate::scene::Scene;
 use crate::shader_params::ParamSet;
 
@@ -31,8 +31,10 @@ pub struct Editor {
     pub pending_reload: Option<(Scene, String)>,
     /// The quit dialog is open (unsaved changes).
     pub confirm_quit: bool,
-    /// A short message for the status line ("Saved to ...").
+    /// A short message for the status line ("Saved to ..."), until it is
+    /// old.
     pub message: Option<String>,
+    message_age: MessageAge,
 }
 
 impl Default for Editor {
@@ -48,23 +50,12 @@ impl Default for Editor {
             pending_reload: None,
             confirm_quit: false,
             message: None,
+            message_age: MessageAge::default(),
         }
     }
 }
 
-/// Figures for the status line.
-pub struct Status {
-    pub frame_time: Option<Duration>,
-    /// How the frame time was measured, e.g. "GPU timestamps".
-    pub timing: &'static str,
-    pub samples: u32,
-    pub resolution: (u32, u32),
-    /// The traced fraction of the window resolution (below 1 while moving).
-    pub scale: f32,
-    pub adapter: String,
-    /// Pipelines for a new feature set or shader are being compiled.
-    pub compiling: bool,
-}
+pub use super::status::Status;
 
 /// What the app must do after this frame.
 #[derive(Debug)]
@@ -97,6 +88,8 @@ pub struct Host<'a> {
     pub menu: &'a [MenuItem],
     /// A "Copy link" button at the top of the panel.
     pub copy_link: bool,
+    /// What the help window (F1) says.
+    pub help: &'a Help,
 }
 
 /// One entry of the panel's menu: `label` under the menu `group`.
@@ -154,19 +147,6 @@ pub struct ViewInput {
     pub widget_dragging: bool,
 }
 
-/// The keyboard shortcuts, for the help window and the README.
-pub const SHORTCUTS: [(&str, &str); 9] = [
-    ("Left drag", "orbit around the target"),
-    ("Right / middle drag", "pan"),
-    ("Wheel", "zoom (dolly towards the target)"),
-    ("Click / double-click", "select an object / orbit around it"),
-    ("H", "show or hide the panel and status line"),
-    ("R / P", "reset camera / screenshot"),
-    ("Ctrl+S", "save the scene"),
-    ("F11 / Esc", "fullscreen / leave fullscreen"),
-    ("F1 / Ctrl+Q", "this help / quit"),
-];
-
 /// Builds the whole UI for one frame.
 pub fn draw(
     ui: &mut egui::Ui,
@@ -207,7 +187,11 @@ pub fn draw(
             });
         layout::note(ui.ctx(), "panel", panel.response.rect);
         // Hiding the panel (H) leaves the picture alone, for a projector.
-        let status = egui::Panel::bottom("status").show(ui, |ui| status_line(ui, status, editor));
+        editor.message_age.expire(ui.ctx(), &mut editor.message);
+        let message = editor.message.as_deref();
+        let max_samples = editor.view.max_samples;
+        let status = egui::Panel::bottom("status")
+            .show(ui, |ui| status::show(ui, status, max_samples, message));
         layout::note(ui.ctx(), "status", status.response.rect);
     }
     let view = egui::CentralPanel::no_frame().show(ui, view_input);
@@ -215,6 +199,7 @@ pub fn draw(
     let mut input = view.inner;
     input.widget_dragging = !input.dragging && ui.ctx().dragged_id().is_some();
     overlays(ui.ctx(), editor, &mut commands);
+    help::window(ui.ctx(), &mut editor.show_help, host.help);
     (commands, input)
 }
 
@@ -326,42 +311,6 @@ fn shortcuts(ui: &mut egui::Ui, editor: &mut Editor) -> Vec<Command> {
     commands
 }
 
-fn status_line(ui: &mut egui::Ui, status: &Status, editor: &Editor) {
-    ui.horizontal(|ui| {
-        let time = status.frame_time.map_or("-".to_string(), |t| {
-            format!("{:.1} ms", t.as_secs_f64() * 1e3)
-        });
-        ui.label(format!("frame {time} ({})", status.timing));
-        ui.separator();
-        ui.label(format!(
-            "{} / {} spp",
-            status.samples, editor.view.max_samples
-        ));
-        ui.separator();
-        let (w, h) = status.resolution;
-        if status.scale < 1.0 {
-            ui.label(format!("{w} x {h} (scale {:.2})", status.scale));
-        } else {
-            ui.label(format!("{w} x {h}"));
-        }
-        ui.separator();
-        ui.label(&status.adapter)
-            .on_hover_text("the GPU adapter in use");
-        if status.compiling {
-            ui.separator();
-            ui.spinner();
-            ui.label("compiling shaders");
-        }
-        if let Some(message) = &editor.message {
-            ui.separator();
-            ui.label(message);
-        }
-        ui.with_layout(egui::Layout::right_to_left(egui::Align::Center), |ui| {
-            ui.label("F1: help");
-        });
-    });
-}
-
 /// The mouse over the image: egui gives the panel and windows priority, so a
 /// drag that starts on a slider never reaches the camera.
 fn view_input(ui: &mut egui::Ui) -> ViewInput {
@@ -467,23 +416,5 @@ fn overlays(ctx: &egui::Context, editor: &mut Editor, commands: &mut Vec<Command
                 }
             });
         });
-    }
-    if editor.show_help {
-        egui::Window::new("Help")
-            .open(&mut editor.show_help)
-            .collapsible(false)
-            .show(ctx, |ui| {
-                egui::Grid::new("shortcuts").striped(true).show(ui, |ui| {
-                    for (keys, what) in SHORTCUTS {
-                        ui.strong(keys);
-                        ui.label(what);
-                        ui.end_row();
-                    }
-                });
-                ui.separator();
-                ui.label("Edit the WGSL files in shaders/ (or --shaders DIR) in any editor: they reload on save.");
-                ui.label("Edit the scene file in any editor: it reloads on save.");
-                ui.label("Annotated constants in the shader files get controls under \"Shader parameters\" (docs/sandbox.md).");
-            });
     }
 }

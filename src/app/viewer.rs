@@ -14,6 +14,7 @@ use super::document::Document;
 use super::layout::{self, Layout, LayoutReport};
 use super::pipelines::{self, PipelineCache};
 use super::shell::EguiLayer;
+use super::status::SampleClock;
 use super::ui::{self, Command, Editor, Host, Status, ViewInput};
 use super::{orbit, panel};
 use crate::gpu::{FrameStatus, Gpu, Pipelines, Refine, ShaderOptions, ShaderSource, Viewport};
@@ -96,6 +97,15 @@ pub struct Viewer {
     pub repaint_at: Option<Instant>,
     /// Tells where the panel and its parts are when that changes.
     layout: LayoutReport,
+    /// The wall time of a sample, for the status line.
+    sample_clock: SampleClock,
+    /// A scene whose pipelines are being built: it reaches the GPU with
+    /// them, and the last picture stays meanwhile (not the new scene drawn
+    /// by pipelines that lack its shape kinds).
+    deferred: Option<Scene>,
+    /// The feature set of the pipelines drawing now (a shader reload keeps
+    /// it: the old shader draws the scene until the new one is built).
+    drawing: Option<ShaderOptions>,
 }
 
 /// The state a frame starts from, to tell what the frame's UI changed.
@@ -133,6 +143,9 @@ impl Viewer {
             settled: false,
             repaint_at: None,
             layout: LayoutReport::default(),
+            sample_clock: SampleClock::default(),
+            deferred: None,
+            drawing: None,
         }
     }
 
@@ -158,7 +171,7 @@ impl Viewer {
         first: Pipelines,
     ) {
         let (source, options) = self.first_build();
-        let cache = PipelineCache::new(source, options, first.clone());
+        let cache = PipelineCache::new(source, options.clone(), first.clone());
         let size = window.inner_size();
         let shown = self.shown_scene();
         let viewport = Viewport::new(&gpu, surface, (size.width, size.height), first, &shown);
@@ -170,6 +183,8 @@ impl Viewer {
             pipelines: cache,
             egui,
         });
+        self.deferred = None;
+        self.drawing = Some(options);
         self.upload_scene(&shown);
     }
 
@@ -243,13 +258,27 @@ impl Viewer {
             });
         };
         if let Some(pipelines) = gfx.pipelines.get_or_build(wanted.clone(), spawn) {
+            // The scene that waited for them first, with the pipelines it
+            // was drawn with so far, as for any new scene.
+            if let Some(scene) = self.deferred.take() {
+                self.upload_scene(&scene);
+            }
+            let Some(gfx) = &mut self.gfx else { return };
             gfx.viewport.set_pipelines(&gfx.gpu, pipelines);
-            gfx.pipelines.current = Some(wanted);
+            gfx.pipelines.current = Some(wanted.clone());
+            self.drawing = Some(wanted);
             if std::mem::take(&mut self.reload_pending) {
                 self.editor.shader_error = None;
                 self.event("shaders-reloaded");
             }
         }
+    }
+
+    /// Whether pipelines for the scene's feature set are drawing (after
+    /// asking for them: they may be built already).
+    fn pipelines_ready(&mut self) -> bool {
+        self.ensure_pipelines();
+        self.drawing == Some(ShaderOptions::for_scene(&self.doc.scene))
     }
 
     /// A build started by the worker has finished.
@@ -263,9 +292,12 @@ impl Viewer {
             self.event("shader-error");
             // The scene may have moved on to another feature set meanwhile
             // (one build runs at a time): build that one, never the failed
-            // one again.
+            // one again. A scene whose own build failed is drawn as the
+            // pipelines drawing can (the error says why it looks wrong).
             if ShaderOptions::for_scene(&self.doc.scene) != options {
                 self.ensure_pipelines();
+            } else if let Some(scene) = self.deferred.take() {
+                self.upload_scene(&scene);
             }
             return;
         }
@@ -275,18 +307,23 @@ impl Viewer {
 
     /// Tells the viewport what changed: only the view (camera, render
     /// settings: the globals) or the shapes too (buffers and BVH rebuilt).
-    /// A new feature set gets its own pipelines.
+    /// A new feature set gets its own pipelines, and the scene waits for
+    /// them (the last picture stays, the status line says "compiling").
     pub fn scene_changed(&mut self, before: Option<&Scene>) {
         let shown = self.shown_scene();
+        if self.gfx.is_some() && !self.pipelines_ready() {
+            self.deferred = Some(shown);
+            return;
+        }
+        let waited = self.deferred.take().is_some();
         match before {
-            Some(old) if same_shapes(old, &self.doc.scene) => {
+            Some(old) if !waited && same_shapes(old, &self.doc.scene) => {
                 if let Some(gfx) = &mut self.gfx {
                     gfx.viewport.set_view(&shown);
                 }
             }
             _ => self.upload_scene(&shown),
         }
-        self.ensure_pipelines();
     }
 
     /// The scene as the viewer draws it: the file's, with `min_weight`
@@ -328,7 +365,8 @@ impl Viewer {
         let gfx = self.gfx.as_mut().expect("drawing needs graphics");
         let status = Status {
             frame_time: gfx.viewport.last_frame_time(),
-            timing: gfx.viewport.timing().describe(),
+            timing: gfx.viewport.timing(),
+            sample_wall: self.sample_clock.every(),
             samples: gfx.viewport.samples(),
             resolution: gfx.viewport.traced_resolution(),
             scale: gfx.viewport.scale(),
@@ -489,7 +527,10 @@ impl Viewer {
         if new_samples > 0 {
             self.settled = false;
         }
-        let ready = !self.settled && samples >= max_samples && !dragging;
+        self.sample_clock.update(samples, Instant::now());
+        // Not while a scene waits for its pipelines: the picture is the
+        // last scene's.
+        let ready = !self.settled && samples >= max_samples && !dragging && self.deferred.is_none();
         let jobs = ready.then(|| gfx.viewport.take_longest_job());
         if status == FrameStatus::Presented && samples > 0 && !self.presented {
             self.presented = true;

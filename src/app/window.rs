@@ -553,6 +553,7 @@ impl App {
             files: Some(&names),
             menu: &[],
             copy_link: false,
+            help: &super::help::WINDOW,
         };
         let (start, mut ui) = self.viewer.begin_frame(&host);
         for command in std::mem::take(&mut ui.commands) {

@@ -15,7 +15,12 @@ pub struct Gpu {
     /// Why the device was lost, once it is (set by wgpu's device-lost
     /// callback: a driver reset, `Device::destroy`, ...).
     lost: Arc<Mutex<Option<String>>>,
+    /// Called once the device is lost (see [`Gpu::wake_on_loss`]).
+    wake: Arc<Mutex<Option<Waker>>>,
 }
+
+/// What wakes a program's event loop when its device is lost.
+type Waker = Box<dyn Fn() + Send>;
 
 /// The optional features the device is asked for when the adapter has
 /// them: timestamp queries, so that the frame timer (`GpuTimer`) can use
@@ -176,12 +181,19 @@ impl Gpu {
                 reason: e.to_string(),
             })?;
         let lost = Arc::new(Mutex::new(None));
-        let lost_in_callback = lost.clone();
+        let wake: Arc<Mutex<Option<Waker>>> = Arc::new(Mutex::new(None));
+        let (lost_in_callback, wake_in_callback) = (lost.clone(), wake.clone());
         device.set_device_lost_callback(move |reason, message| {
             log::error!("the GPU device was lost ({reason:?}): {message}");
             *lost_in_callback
                 .lock()
                 .unwrap_or_else(PoisonError::into_inner) = Some(lost_message(reason, &message));
+            if let Some(wake) = &*wake_in_callback
+                .lock()
+                .unwrap_or_else(PoisonError::into_inner)
+            {
+                wake();
+            }
         });
         // wgpu's default handler panics. What reaches it is either a bug of
         // this program or the fallout of a lost device, which the viewer
@@ -193,7 +205,19 @@ impl Gpu {
             device,
             queue,
             lost,
+            wake,
         })
+    }
+
+    /// Calls `wake` when the device is lost (at once if it already is): a
+    /// program that draws only when something changes (the web page at
+    /// rest) learns of the loss without drawing first (docs/web.md, "A lost
+    /// GPU device").
+    pub fn wake_on_loss(&self, wake: impl Fn() + Send + 'static) {
+        if self.lost().is_some() {
+            wake();
+        }
+        *self.wake.lock().unwrap_or_else(PoisonError::into_inner) = Some(Box::new(wake));
     }
 
     /// Why the device was lost, if it was: everything made from it is

@@ -26,6 +26,7 @@ use super::meshes::{self, PageMeshes};
 use super::workbench::{Outcome, WorkEvent, Workbench};
 use super::{drop, link, page};
 use crate::app::document::Document;
+use crate::app::help::{self, Help};
 use crate::app::panel;
 use crate::app::pipelines::Built;
 use crate::app::shell;
@@ -40,9 +41,44 @@ use crate::shader_params::SourceParams;
 /// sets another limit.
 const MAX_SAMPLES: u32 = 64;
 
+/// The page's help (F1): no files, no quitting; the editors, links and
+/// dropped files instead.
+const PAGE_HELP: Help = Help {
+    keys: &[
+        help::MOUSE,
+        &[
+            ("H", "show or hide the panel and status line"),
+            ("R", "reset the camera to the scene's"),
+            (
+                "Ctrl+E or Edit",
+                "the scene's text and a shader, in the editor beside the picture",
+            ),
+            (
+                "Copy link",
+                "a link to what is shown (the scene, camera included, or the shader)",
+            ),
+            (
+                "Ctrl+plus / minus / 0",
+                "UI scale of the panel, editor and status line",
+            ),
+            ("F1", "this help"),
+        ],
+    ],
+    notes: &[
+        "Scenes and Shaders (at the top of the panel) open the bundled examples.",
+        "The address always holds a link to what is shown; paste a link into the \
+         address bar to open it.",
+        "Drop a scene (.toml), a model (.obj, .ply) or a shader (.wgsl, .glsl, .frag) \
+         on the picture to open it.",
+    ],
+};
+
 /// How long the scene must stay unchanged before the address follows it
 /// (an orbit changes it every frame).
 const ADDRESS_DELAY: Duration = Duration::from_millis(500);
+
+/// Where the browser keeps the UI scale (local storage) between visits.
+const UI_SCALE_KEY: &str = "raysandbox.ui-scale";
 
 /// What arrives asynchronously, handed to the event loop.
 pub enum PageEvent {
@@ -53,6 +89,13 @@ pub enum PageEvent {
     PipelinesBuilt(Box<Built>),
     /// "Copy link" finished.
     LinkCopied(Result<(), String>),
+    /// The page's own "Copy link" button (over the shader) was clicked.
+    CopyLink,
+    /// The address's fragment changed (a link pasted into the open tab,
+    /// the browser's back button): the page shows what it holds.
+    AddressChanged,
+    /// Ctrl+plus, minus or 0.
+    Scale(page::ScaleKey),
     /// An edit in the text editors, or a sandbox pipeline built.
     Work(WorkEvent),
     /// A file dropped on the canvas, read.
@@ -140,6 +183,18 @@ pub fn start() {
             page::show_error(&e);
         }
     }
+    let to_page = proxy.clone();
+    page::listen(None, "hashchange", move || {
+        let _ = to_page.send_event(PageEvent::AddressChanged);
+    });
+    let to_page = proxy.clone();
+    page::listen(Some("copy-link"), "click", move || {
+        let _ = to_page.send_event(PageEvent::CopyLink);
+    });
+    let to_page = proxy.clone();
+    page::listen_scale_keys(move |key| {
+        let _ = to_page.send_event(PageEvent::Scale(key));
+    });
     let mut viewer = Viewer::new(doc, shaders, params, platform(proxy.clone()));
     viewer.editor.view.max_samples = page::query("samples")
         .and_then(|n| n.parse::<u32>().ok())
@@ -157,7 +212,12 @@ pub fn start() {
         meshes: mesh_files,
         waiting: None,
         graphics_started: false,
+        recovering: None,
+        ui_scale: stored_ui_scale(),
+        editor_open: false,
+        panel_before_editor: None,
     };
+    page::set_ui_scale(page.ui_scale);
     if let Some(text) = link_waits {
         page.open(Opening::Link(text));
     }
@@ -205,7 +265,7 @@ fn initial_document(meshes: &PageMeshes) -> Result<(String, Document, Option<Str
             }
             Err(e) => link_error(&e),
         },
-        Some(Err(e)) => link_error(&e),
+        Some(Err(e)) => page::show_error(&e),
         None => {}
     }
     let name = bundled::names()[0];
@@ -238,6 +298,24 @@ struct Page {
     waiting: Option<Waiting>,
     /// Whether the GPU objects are being made (or made).
     graphics_started: bool,
+    /// The device was lost and a new one is being made.
+    recovering: Option<Recovering>,
+    /// The UI scale: egui's zoom factor, and the page's controls' size.
+    ui_scale: f32,
+    /// Whether the editor was open at the last frame.
+    editor_open: bool,
+    /// Whether the panel was shown before the editor opened (it is hidden
+    /// while the editor is open, so that the picture keeps a usable width).
+    panel_before_editor: Option<bool>,
+}
+
+/// A lost device being replaced (docs/web.md, "A lost GPU device").
+struct Recovering {
+    /// Why it was lost, as the browser said.
+    reason: String,
+    /// The lost pipeline cache's generation: builds of it that finish
+    /// later are dropped.
+    generation: u64,
 }
 
 impl ApplicationHandler<PageEvent> for Page {
@@ -268,6 +346,10 @@ impl ApplicationHandler<PageEvent> for Page {
                 page::event(&format!("adapter {}", gfx.gpu.describe()));
                 page::timing("gpu");
                 let size = window.inner_size();
+                // At rest the page draws nothing, so nothing would notice
+                // a loss: the device's own callback wakes the loop.
+                let waking = window.clone();
+                gfx.gpu.wake_on_loss(move || waking.request_redraw());
                 self.viewer
                     .attach(window, gfx.gpu, gfx.surface, gfx.pipelines);
                 if let Some(gfx) = &self.viewer.gfx {
@@ -275,9 +357,22 @@ impl ApplicationHandler<PageEvent> for Page {
                     self.work
                         .gpu_ready(&gfx.gpu, format, (size.width, size.height));
                 }
+                if let Some(gfx) = &self.viewer.gfx {
+                    // The page's own keys scale it (see `Page::scale`).
+                    gfx.egui.ctx.options_mut(|o| o.zoom_with_keyboard = false);
+                    gfx.egui.ctx.set_zoom_factor(self.ui_scale);
+                }
+                self.recovered();
                 self.open_when_fetched();
             }
-            PageEvent::Ready(Err(e)) => page::show_error(&e),
+            PageEvent::Ready(Err(e)) => match self.recovering.take() {
+                Some(lost) => page::show_error(&format!(
+                    "the GPU was lost ({}) and no new one could be made: {e}. \
+                     Reload the page (F5) to start again; the address holds the scene or shader.",
+                    lost.reason
+                )),
+                None => page::show_error(&e),
+            },
             PageEvent::PipelinesBuilt(built) => self.viewer.pipelines_built(*built),
             PageEvent::LinkCopied(result) => {
                 let message = match result {
@@ -287,6 +382,9 @@ impl ApplicationHandler<PageEvent> for Page {
                 page::event(&message);
                 self.viewer.editor.message = Some(message);
             }
+            PageEvent::CopyLink => self.copy_link(),
+            PageEvent::AddressChanged => self.address_changed(),
+            PageEvent::Scale(key) => self.scale(key),
             PageEvent::Work(WorkEvent::Editor(EditorEvent::Changed(Doc::Scene, text))) => {
                 self.open(Opening::Typed(text));
             }
@@ -335,14 +433,20 @@ impl Page {
     /// Draws the scene with the panel over it; or, while the shader is
     /// shown, the shader's next frame, frame after frame.
     fn redraw(&mut self) {
+        if let Some(reason) = self.viewer.gfx.as_ref().and_then(|gfx| gfx.gpu.lost()) {
+            self.recover(reason);
+            return;
+        }
         if self.work.shows_shader() {
             self.draw_shader();
             return;
         }
+        self.follow_editor();
         let host = Host {
             files: None,
             menu: &self.menu,
             copy_link: true,
+            help: &PAGE_HELP,
         };
         let (start, mut ui) = self.viewer.begin_frame(&host);
         for command in std::mem::take(&mut ui.commands) {
@@ -353,6 +457,51 @@ impl Page {
         }
         self.work.follow_scene(&self.viewer.doc.scene);
         self.follow_address();
+        self.follow_ui_scale();
+    }
+
+    /// The editor opened or closed (Ctrl+E, Edit): the scene panel hides
+    /// while it is open and comes back as it was when it closes, so that
+    /// the picture between them stays usable on a small screen or a
+    /// projector (H shows the panel all the same).
+    fn follow_editor(&mut self) {
+        let open = page::editing();
+        if open == self.editor_open {
+            return;
+        }
+        self.editor_open = open;
+        let shown = &mut self.viewer.editor.show_panel;
+        if open {
+            self.panel_before_editor = Some(std::mem::replace(shown, false));
+        } else if let Some(before) = self.panel_before_editor.take() {
+            *shown = before;
+        }
+    }
+
+    /// Ctrl+plus, minus or 0: egui's zoom, in the steps egui's own keys
+    /// take, within [`help::SCALES`].
+    fn scale(&mut self, key: page::ScaleKey) {
+        let Some(gfx) = &self.viewer.gfx else { return };
+        let zoom = match key {
+            page::ScaleKey::Larger => self.ui_scale * 1.1,
+            page::ScaleKey::Smaller => self.ui_scale / 1.1,
+            page::ScaleKey::Reset => 1.0,
+        };
+        let zoom = zoom.clamp(*help::SCALES.start(), *help::SCALES.end());
+        gfx.egui.ctx.set_zoom_factor((zoom * 100.0).round() / 100.0);
+    }
+
+    /// Egui's zoom changed (Ctrl+plus or minus, the help's slider): the
+    /// page's own controls follow, and the browser keeps it for next time.
+    fn follow_ui_scale(&mut self) {
+        let Some(gfx) = &self.viewer.gfx else { return };
+        let zoom = gfx.egui.ctx.zoom_factor();
+        if zoom != self.ui_scale {
+            self.ui_scale = zoom;
+            page::set_ui_scale(zoom);
+            page::store(UI_SCALE_KEY, &zoom.to_string());
+            page::event(&format!("ui-scale {zoom}"));
+        }
     }
 
     fn draw_shader(&mut self) {
@@ -473,6 +622,43 @@ impl Page {
             let gfx = create_graphics(window, &source, &options).await;
             let _ = proxy.send_event(PageEvent::Ready(gfx.map(Box::new)));
         });
+    }
+
+    /// The GPU device was lost (the browser's GPU process restarted, a
+    /// driver reset, `GPUDevice.destroy()`): everything made from it is
+    /// dropped and made again on a new device, for the same canvas. The
+    /// scene, the editors' texts and the panel's state are not the GPU's
+    /// and stay. The page says so over the canvas meanwhile, never showing a
+    /// stale "ready" (docs/web.md, "A lost GPU device").
+    fn recover(&mut self, reason: String) {
+        let Some(lost) = self.viewer.gfx.take() else {
+            return;
+        };
+        let generation = lost.pipelines.generation();
+        drop(lost);
+        self.work.gpu_lost();
+        page::event(&format!("device-lost {reason}"));
+        page::show_notice(&format!("The GPU was lost: {reason}. Recovering…"));
+        self.recovering = Some(Recovering { reason, generation });
+        self.graphics_started = false;
+        self.start_graphics();
+    }
+
+    /// A new device replaced a lost one: builds for the lost one are
+    /// dropped, and the page says what happened until the user closes the
+    /// message (a picture that froze or flickered has its explanation).
+    fn recovered(&mut self) {
+        let Some(lost) = self.recovering.take() else {
+            return;
+        };
+        self.viewer.follow_generation(lost.generation);
+        let message = format!(
+            "The GPU was lost ({}). A new one was made: the scene and the edits are kept.",
+            lost.reason
+        );
+        page::show_notice(&message);
+        self.viewer.editor.message = Some(message);
+        page::event("device-recovered");
     }
 
     /// Opens a scene (docs/web.md, "Scenes with mesh files"): at once if
@@ -636,10 +822,44 @@ impl Page {
         }
     }
 
-    /// Puts a link to the scene, camera included, on the clipboard (and in
-    /// the address at once).
+    /// The address's fragment changed other than by the page (which writes
+    /// it with `history.replaceState`, which fires no `hashchange`): a
+    /// scene or shader link is shown as if the page had been opened with
+    /// it, without a reload; a damaged one is reported and what is shown
+    /// stays (docs/web.md, "Sharing a scene or a shader").
+    fn address_changed(&mut self) {
+        let Some(hash) = page::hash() else { return };
+        if let Some(scene) = link::scene_in_hash(&hash) {
+            match scene {
+                Ok(text) => {
+                    page::hide_message();
+                    self.work.show_scene();
+                    self.open(Opening::Link(text));
+                    // Showing the scene document wrote its last text.
+                    page::replace_hash(&hash);
+                }
+                Err(e) => page::show_error(&e),
+            }
+        } else if let Some(shader) = link::shader_in_hash(&hash) {
+            match shader {
+                Ok(text) => {
+                    page::hide_message();
+                    page::event("shader from-link");
+                    let outcome = self.work.open(Doc::Shader, &text);
+                    self.follow(outcome);
+                }
+                Err(e) => page::show_error(&e),
+            }
+        }
+    }
+
+    /// Puts a link to what is shown (the scene, camera included, or the
+    /// shader) on the clipboard, and in the address at once.
     fn copy_link(&mut self) {
-        let fragment = self.scene_fragment();
+        let fragment = match self.work.shader_fragment() {
+            Some(shader) => shader,
+            None => self.scene_fragment(),
+        };
         self.address_due = None;
         page::replace_hash(&fragment);
         let address = match page::address_with(&fragment) {
@@ -693,6 +913,14 @@ async fn create_graphics(
         surface,
         pipelines,
     })
+}
+
+/// The UI scale the browser kept, within [`help::SCALES`]; 1 without one.
+fn stored_ui_scale() -> f32 {
+    page::stored(UI_SCALE_KEY)
+        .and_then(|v| v.parse::<f32>().ok())
+        .filter(|s| help::SCALES.contains(s))
+        .unwrap_or(1.0)
 }
 
 /// Reports a link whose scene cannot be shown (the picture shown stays).

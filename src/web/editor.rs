@@ -121,7 +121,7 @@ impl Editor {
             let area: HtmlTextAreaElement = element(&document, &format!("{}-text", doc.id()))?
                 .dyn_into()
                 .map_err(|_| format!("#{}-text is not a textarea", doc.id()))?;
-            area.set_value(text);
+            set_text_at_top(&area, text);
             Ok(DocView {
                 text: area,
                 gutter: element(&document, &format!("{}-gutter", doc.id()))?,
@@ -198,7 +198,7 @@ impl Editor {
         }
         let mut state = self.0.borrow_mut();
         let view = &mut state.docs[doc.index()];
-        view.text.set_value(text);
+        set_text_in_place(&view.text, text);
         view.applied = text.to_string();
         view.lines = 0;
         drop(state);
@@ -211,7 +211,7 @@ impl Editor {
     pub fn load_text(&self, doc: Doc, text: &str) {
         {
             let state = self.0.borrow();
-            state.docs[doc.index()].text.set_value(text);
+            set_text_at_top(&state.docs[doc.index()].text, text);
         }
         self.number_lines(doc);
         self.send_now(doc);
@@ -401,6 +401,26 @@ impl Editor {
             }
         })
     }
+}
+
+/// Replaces a textarea's text, the caret and the view at its start: a new
+/// text is read from its top (the browser would put the caret at its end,
+/// and focusing the textarea would scroll there).
+fn set_text_at_top(area: &HtmlTextAreaElement, text: &str) {
+    area.set_value(text);
+    let _ = area.set_selection_range(0, 0);
+    area.set_scroll_top(0);
+}
+
+/// Replaces a textarea's text (rewritten from the scene) where the user was
+/// reading it: the caret and the scroll position stay.
+fn set_text_in_place(area: &HtmlTextAreaElement, text: &str) {
+    let top = area.scroll_top();
+    let caret = area.selection_start().ok().flatten().unwrap_or(0);
+    area.set_value(text);
+    let caret = caret.min(text.encode_utf16().count() as u32);
+    let _ = area.set_selection_range(caret, caret);
+    area.set_scroll_top(top);
 }
 
 /// Opens or closes the editor panel: the page's `editing` class lays the

@@ -19,6 +19,10 @@ const SHADER_KEY: &str = "shader=";
 /// (docs/reliability.md, "Fuzzing").
 pub const MAX_TEXT: usize = 4 << 20;
 
+/// What a damaged link is, in words for its reader (who did not damage it
+/// on purpose); what the decoder found follows in brackets.
+pub const DAMAGED: &str = "this link is damaged: it was cut short or changed";
+
 /// Deflate level: the best compression; scenes and shaders are a few kilobytes.
 const LEVEL: u8 = 10;
 
@@ -58,16 +62,16 @@ fn decode_after(key: &str, hash: &str) -> Option<Result<String, String>> {
 fn decode(encoded: &str) -> Result<String, String> {
     let deflated = URL_SAFE_NO_PAD
         .decode(encoded.trim())
-        .map_err(|e| format!("the link is damaged (not base64: {e})"))?;
+        .map_err(|e| format!("{DAMAGED} (not base64: {e})"))?;
     let bytes = miniz_oxide::inflate::decompress_to_vec_with_limit(&deflated, MAX_TEXT).map_err(
         |e| match e.status {
             TINFLStatus::HasMoreOutput => {
                 format!("the link's text is longer than {} MiB", MAX_TEXT >> 20)
             }
-            status => format!("the link is damaged or cut short ({status:?})"),
+            status => format!("{DAMAGED} (deflate: {status:?})"),
         },
     )?;
-    String::from_utf8(bytes).map_err(|_| "the link's text is not UTF-8".to_string())
+    String::from_utf8(bytes).map_err(|_| format!("{DAMAGED} (not UTF-8 text)"))
 }
 
 #[cfg(test)]
@@ -110,7 +114,12 @@ mod tests {
     fn a_damaged_link_is_an_error_and_no_link_is_none() {
         let hash = scene_hash(bundled::text("whitted").unwrap());
         let cut = &hash[..hash.len() / 2];
-        assert!(scene_in_hash(cut).unwrap().unwrap_err().contains("damaged"));
+        assert!(
+            scene_in_hash(cut)
+                .unwrap()
+                .unwrap_err()
+                .starts_with(DAMAGED)
+        );
         assert!(scene_in_hash("scene=%%%").unwrap().is_err());
         assert_eq!(scene_in_hash(""), None);
         assert_eq!(scene_in_hash("other=1"), None);

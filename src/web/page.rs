@@ -6,8 +6,11 @@ use wasm_bindgen::prelude::*;
 
 /// Id of the canvas the tracer draws into.
 const CANVAS_ID: &str = "raysandbox";
-/// Id of the box that shows errors over the canvas.
+/// Id of the box that shows errors and notices over the canvas (with its
+/// close button, `web/index.html`).
 const MESSAGE_ID: &str = "message";
+/// Id of the text in that box.
+const MESSAGE_TEXT_ID: &str = "message-text";
 
 fn document() -> Option<web_sys::Document> {
     web_sys::window()?.document()
@@ -50,6 +53,98 @@ pub fn hide_controls() {
     }
 }
 
+/// Calls `handler` at each `event` of the page's element `id`, or of the
+/// browser window for `None` (`hashchange`); the listener lives as long as
+/// the page.
+pub fn listen(id: Option<&str>, event: &str, handler: impl FnMut() + 'static) {
+    let window = web_sys::window();
+    let target: Option<web_sys::EventTarget> = match id {
+        Some(id) => document()
+            .and_then(|d| d.get_element_by_id(id))
+            .map(Into::into),
+        None => window.map(Into::into),
+    };
+    let Some(target) = target else { return };
+    let closure = Closure::<dyn FnMut()>::new(handler);
+    let _ = target.add_event_listener_with_callback(event, closure.as_ref().unchecked_ref());
+    closure.forget();
+}
+
+/// A change of the UI scale asked for with the keyboard.
+#[derive(Debug, Clone, Copy)]
+pub enum ScaleKey {
+    /// Ctrl+plus (or Ctrl+=).
+    Larger,
+    /// Ctrl+minus.
+    Smaller,
+    /// Ctrl+0.
+    Reset,
+}
+
+/// Calls `scale` for Ctrl+plus, minus and 0 anywhere in the page (over the
+/// picture or in the editor), instead of the browser's own zoom: the page
+/// scales its panel, editor and status line together.
+pub fn listen_scale_keys(scale: impl Fn(ScaleKey) + 'static) {
+    let Some(document) = document() else { return };
+    let closure =
+        Closure::<dyn FnMut(web_sys::KeyboardEvent)>::new(move |event: web_sys::KeyboardEvent| {
+            if !(event.ctrl_key() || event.meta_key()) {
+                return;
+            }
+            let key = match event.key().as_str() {
+                "+" | "=" => ScaleKey::Larger,
+                "-" => ScaleKey::Smaller,
+                "0" => ScaleKey::Reset,
+                _ => return,
+            };
+            event.prevent_default();
+            scale(key);
+        });
+    let _ = document.add_event_listener_with_callback("keydown", closure.as_ref().unchecked_ref());
+    closure.forget();
+}
+
+/// Sets or clears the class `name` of the page's body, which the style
+/// sheet follows (`showing-shader`: the shader's controls are shown).
+pub fn set_body_class(name: &str, on: bool) {
+    if let Some(body) = document().and_then(|d| d.body()) {
+        let _ = body.class_list().toggle_with_force(name, on);
+    }
+}
+
+/// The value the browser keeps for this site under `key` (local storage:
+/// it outlives the page), if any.
+pub fn stored(key: &str) -> Option<String> {
+    let storage = web_sys::window()?.local_storage().ok()??;
+    storage.get_item(key).ok()?
+}
+
+/// Keeps `value` under `key` in the browser's local storage; a browser
+/// that refuses (private mode, storage full) only forgets it.
+pub fn store(key: &str, value: &str) {
+    if let Some(Ok(Some(storage))) = web_sys::window().map(|w| w.local_storage()) {
+        let _ = storage.set_item(key, value);
+    }
+}
+
+/// Scales the page's own controls (the editor, its buttons, the message
+/// box: `--ui-scale` in web/editor.css) as egui's zoom scales the panel.
+pub fn set_ui_scale(scale: f32) {
+    let root = document()
+        .and_then(|d| d.document_element())
+        .and_then(|e| e.dyn_into::<web_sys::HtmlElement>().ok());
+    if let Some(root) = root {
+        let _ = root.style().set_property("--ui-scale", &scale.to_string());
+    }
+}
+
+/// Whether the editor beside the picture is open.
+pub fn editing() -> bool {
+    document()
+        .and_then(|d| d.body())
+        .is_some_and(|body| body.class_list().contains("editing"))
+}
+
 /// Replaces the address's fragment (`#` and `hash`) without adding a step
 /// to the browser's history or reloading.
 pub fn replace_hash(hash: &str) {
@@ -77,12 +172,33 @@ pub fn timing(what: &str) {
     event(&format!("timing {what} {:.0}", now.unwrap_or(f64::NAN)));
 }
 
-/// Shows `message` where the user looks (over the canvas) and logs it.
+/// Shows `message` where the user looks (over the canvas, beside the
+/// panel, until closed) and logs it.
 pub fn show_error(message: &str) {
     web_sys::console::error_1(&format!("raysandbox: error {message}").into());
+    show_message(message, "shown error");
+}
+
+/// Shows `message` over the canvas as news, not as an error (the page
+/// recovering from a lost GPU).
+pub fn show_notice(message: &str) {
+    show_message(message, "shown");
+}
+
+fn show_message(message: &str, class: &str) {
+    let Some(document) = document() else { return };
+    if let Some(text) = document.get_element_by_id(MESSAGE_TEXT_ID) {
+        text.set_text_content(Some(message));
+    }
+    if let Some(element) = document.get_element_by_id(MESSAGE_ID) {
+        let _ = element.set_attribute("class", class);
+    }
+}
+
+/// Hides the message box (its news is over).
+pub fn hide_message() {
     if let Some(element) = document().and_then(|d| d.get_element_by_id(MESSAGE_ID)) {
-        element.set_text_content(Some(message));
-        let _ = element.set_attribute("class", "shown");
+        let _ = element.set_attribute("class", "");
     }
 }
 

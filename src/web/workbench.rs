@@ -79,6 +79,7 @@ impl Workbench {
         if page::bare() {
             page::hide_controls();
         }
+        page::set_body_class("showing-shader", shown == Doc::Shader);
         Workbench {
             editor,
             send,
@@ -101,6 +102,16 @@ impl Workbench {
         self.shader = Some(ShaderView::new(gpu, format, size));
         if self.shows_shader() {
             self.compile_pending_shader();
+        }
+    }
+
+    /// The GPU device was lost: the sandbox's passes go with it, and the
+    /// shader is compiled again on the next device (see
+    /// [`Workbench::gpu_ready`]): the last good text, unless newer text
+    /// waits.
+    pub fn gpu_lost(&mut self) {
+        if self.shader.take().is_some() && self.pending_shader.is_none() {
+            self.pending_shader = self.editor.as_ref().map(|e| e.applied(Doc::Shader));
         }
     }
 
@@ -137,11 +148,14 @@ impl Workbench {
                         Ok(_) => page::event(&format!("shader ok {times}")),
                         Err(problem) => report("shader", problem),
                     }
-                    if result.is_ok() && self.shows_shader() {
-                        self.write_link();
-                    }
+                    let good = result.is_ok();
                     if let Some(editor) = &self.editor {
                         editor.show_result(Doc::Shader, &text, result);
+                    }
+                    // After show_result, which records the text as applied:
+                    // the address holds the shader now drawn.
+                    if good && self.shows_shader() {
+                        self.write_link();
                     }
                 }
                 Outcome::Redraw
@@ -165,6 +179,7 @@ impl Workbench {
     /// Makes the canvas show `doc`.
     fn show(&mut self, doc: Doc) -> Outcome {
         self.shown = doc;
+        page::set_body_class("showing-shader", doc == Doc::Shader);
         page::event(&format!("showing {}", doc_name(doc)));
         if doc == Doc::Shader && self.shader.is_some() {
             self.compile_pending_shader();
@@ -288,13 +303,35 @@ impl Workbench {
     fn write_link(&self) {
         let Some(editor) = &self.editor else { return };
         let hash = match self.shown {
-            Doc::Shader if self.shader.as_ref().is_some_and(ShaderView::has_shader) => {
-                link::shader_hash(&editor.applied(Doc::Shader))
-            }
-            Doc::Shader => return,
+            Doc::Shader => match self.shader_fragment() {
+                Some(hash) => hash,
+                None => return,
+            },
             Doc::Scene => link::scene_hash(&editor.applied(Doc::Scene)),
         };
         page::replace_hash(&hash);
+    }
+
+    /// The fragment of a link to the shader drawn, while the canvas shows
+    /// one; `None` while it shows the scene (or no shader compiled yet).
+    pub fn shader_fragment(&self) -> Option<String> {
+        let drawn = self.shader.as_ref().is_some_and(ShaderView::has_shader);
+        let editor = self
+            .editor
+            .as_ref()
+            .filter(|_| self.shows_shader() && drawn)?;
+        Some(link::shader_hash(&editor.applied(Doc::Shader)))
+    }
+
+    /// Makes the canvas show the scene (a scene link opened over the shader).
+    pub fn show_scene(&mut self) {
+        if !self.shows_shader() {
+            return;
+        }
+        if let Some(editor) = &self.editor {
+            editor.show_doc(Doc::Scene);
+        }
+        self.show(Doc::Scene);
     }
 }
 

@@ -178,11 +178,16 @@ pub struct Options {
     /// WebGPU on SwiftShader ([`WEBGPU_FLAGS`]); without them Chromium on
     /// Linux has no WebGPU, as a browser where it is missing.
     pub webgpu: bool,
+    /// The window's size; the X screen is 1024 x 768.
+    pub size: (u32, u32),
 }
 
 impl Default for Options {
     fn default() -> Options {
-        Options { webgpu: true }
+        Options {
+            webgpu: true,
+            size: SIZE,
+        }
     }
 }
 
@@ -237,7 +242,7 @@ impl Browser {
                 // A CSS pixel is a screen pixel: the page's layout lines
                 // (in device pixels) are where the tests click.
                 "--force-device-scale-factor=1",
-                &format!("--window-size={},{}", SIZE.0, SIZE.1),
+                &format!("--window-size={},{}", options.size.0, options.size.1),
                 &format!("--user-data-dir={}", profile.0.display()),
                 // `--app=about:blank` opens a normal window with a toolbar.
                 "--app=data:text/html,",
@@ -285,9 +290,11 @@ impl Browser {
         self.child.id()
     }
 
-    /// Opens `url` in the window; forgets the previous page's lines.
+    /// Opens `url` in the window; forgets the previous page's lines and
+    /// layout.
     pub fn navigate(&mut self, url: &str) {
         self.lines.clear();
+        self.layout.clear();
         let result = self.call("Page.navigate", json!({ "url": url }));
         if let Some(error) = result.get("errorText") {
             panic!("cannot open {url}: {error}");
@@ -404,9 +411,48 @@ impl Browser {
     pub fn message(&mut self) -> Option<String> {
         let value = self.evaluate(
             "(() => { const m = document.getElementById('message'); \
-             return m && m.classList.contains('shown') ? m.textContent : null; })()",
+             return m && m.classList.contains('shown') ? \
+             document.getElementById('message-text').textContent : null; })()",
         );
         value.as_str().map(str::to_string)
+    }
+
+    /// Where the page's element `id` is, in page pixels (`None` when it
+    /// is not displayed).
+    pub fn element(&mut self, id: &str) -> Option<Rect> {
+        let value = self.evaluate(&format!(
+            "(() => {{ const e = document.getElementById('{id}'); \
+             if (!e) return null; const r = e.getBoundingClientRect(); \
+             return r.width > 0 && r.height > 0 ? \
+             [r.x, r.y, r.width, r.height].map(Math.round) : null; }})()"
+        ));
+        let v = value.as_array()?;
+        let at = |k: usize| v[k].as_i64().unwrap_or_default() as i32;
+        Some(Rect {
+            x: at(0),
+            y: at(1),
+            w: at(2),
+            h: at(3),
+        })
+    }
+
+    /// The parts of the page's panel in its last layout (see
+    /// [`Browser::part`]), after the lines already sent.
+    pub fn parts(&mut self) -> HashMap<String, Rect> {
+        let pending = Instant::now() + Duration::from_millis(100);
+        while let Some(message) = self.receive(pending) {
+            self.keep_event(&message);
+        }
+        self.layout.clone()
+    }
+
+    /// Runs `js` in every page this browser opens from now on, before the
+    /// page's own scripts (tests reach the page's WebGPU device this way).
+    pub fn before_each_page(&mut self, js: &str) {
+        self.call(
+            "Page.addScriptToEvaluateOnNewDocument",
+            json!({ "source": js }),
+        );
     }
 
     /// The top-left [`SIZE`] of the X screen, where the page is.
@@ -746,6 +792,9 @@ fn key_codes(key: &str, shift: bool) -> (String, u32, Option<String>) {
         "Tab" => Some(("Tab", 9, None)),
         "Backspace" => Some(("Backspace", 8, None)),
         "Escape" => Some(("Escape", 27, None)),
+        "F1" => Some(("F1", 112, None)),
+        "=" => Some(("Equal", 187, Some("="))),
+        "-" => Some(("Minus", 189, Some("-"))),
         "Delete" => Some(("Delete", 46, None)),
         "Home" => Some(("Home", 36, None)),
         "End" => Some(("End", 35, None)),
