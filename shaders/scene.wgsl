@@ -31,6 +31,8 @@ struct Globals {
     light_count: u32,
     bvh_node_count: u32,     // 0: no bounded shapes (every kind but planes)
     output_size: vec2<u32>,  // size of the display target (may exceed `resolution`)
+    view_range: vec2<f32>,   // a scalar view's colour bar: quantity at blue, at red (views.wgsl)
+    _view_pad: vec2<u32>,
 }
 
 struct Material {

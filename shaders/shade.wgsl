@@ -135,6 +135,7 @@ fn shade_local(hit: Hit, ns: vec3<f32>, d: vec3<f32>, m: Material, albedo: vec3<
             continue;
         }
         count_ray(1u);
+        count_shadow_ray();
         if occluded(Ray(shadow_origin, to_light / dist, 0.0), dist) {
             continue;
         }
@@ -198,6 +199,7 @@ fn trace(primary: Ray) -> vec3<f32> {
         top -= 1u;
         let job = stack[top];
         let ray = job.ray;
+        count_depth(job.depth);
         let hit = hit_scene(ray, T_FAR);
         if hit.kind == KIND_NONE {
             radiance += job.throughput * globals.background;

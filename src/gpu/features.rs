@@ -4,6 +4,7 @@
 //! compiler removes, so a spheres-only scene runs no plane, box, refraction
 //! or checker code at all.
 
+use super::view::View;
 use crate::scene::{Scene, ShapeKind, TorusMethod, TriangleTest};
 
 /// What a scene needs from the shader. Every flag that is true for a scene
@@ -119,6 +120,9 @@ pub struct ShaderOptions {
     /// (docs/performance.md, "Rays per second"). Off in every pipeline
     /// that draws.
     pub count_rays: bool,
+    /// What the trace and display passes show (`VIEW`): the shaded
+    /// picture, or a view inside the tracer (docs/views.md).
+    pub view: View,
 }
 
 impl Default for ShaderOptions {
@@ -132,6 +136,7 @@ impl Default for ShaderOptions {
             torus: TorusMethod::default(),
             functions: Vec::new(),
             count_rays: false,
+            view: View::Shaded,
         }
     }
 }
@@ -157,6 +162,7 @@ impl ShaderOptions {
             torus: TorusMethod::default(),
             functions: crate::scene::implicit::functions(scene),
             count_rays: false,
+            view: View::Shaded,
         }
     }
 }

@@ -18,6 +18,7 @@ pub mod shapes;
 mod texture;
 mod timer;
 mod tracer;
+mod view;
 mod viewport;
 
 pub use context::{Gpu, GpuError, GpuWaitError, SizeError, TIMER_FEATURES, WAIT_LIMIT};
@@ -35,4 +36,5 @@ pub use tracer::{
     Accumulator, DEFAULT_MAX_SAMPLES, DEFAULT_MIN_WEIGHT, DEFAULT_RENDER_SAMPLES, FrameTarget,
     PipelineError, Pipelines, SceneBuffers, encode_frame,
 };
+pub use view::{ColourBar, View, colour_bar};
 pub use viewport::{EXPORT_FORMAT, FrameStatus, Refine, Viewport};

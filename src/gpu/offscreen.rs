@@ -12,6 +12,7 @@ use super::timer::{GpuTimer, Timing};
 use super::tracer::{
     Accumulator, FrameTarget, PipelineError, Pipelines, SceneBuffers, encode_frame,
 };
+use super::view::{ColourBar, View, colour_bar};
 use crate::scene::Scene;
 
 /// The offscreen target: 8-bit, and `fs_display` encodes sRGB itself so the
@@ -53,6 +54,7 @@ pub struct OffscreenRenderer {
     accum: Accumulator,
     target: wgpu::Texture,
     timer: Option<GpuTimer>,
+    view: View,
 }
 
 impl OffscreenRenderer {
@@ -86,6 +88,7 @@ impl OffscreenRenderer {
             accum,
             target,
             timer: GpuTimer::new(gpu),
+            view: options.view,
         })
     }
 
@@ -155,10 +158,44 @@ impl OffscreenRenderer {
         self.accum.samples()
     }
 
+    /// For a scalar view (`View::scalar`), after a render: reads the
+    /// quantities back, fits the colour bar to them and displays the image
+    /// again with it; returns the bar (`None` for the other views, and
+    /// where no pixel has a quantity).
+    pub fn fit_colour_bar(&mut self, gpu: &Gpu) -> Result<Option<ColourBar>, GpuWaitError> {
+        if !self.view.scalar() {
+            return Ok(None);
+        }
+        let Some(fitted) = colour_bar(&self.read_sums(gpu)?) else {
+            return Ok(None);
+        };
+        self.scene.set_view_range(fitted.range);
+        let view = self.target.create_view(&Default::default());
+        let target = FrameTarget {
+            view: &view,
+            format: OUTPUT_FORMAT,
+            size: self.accum.size(),
+        };
+        let mut encoder = gpu.device.create_command_encoder(&Default::default());
+        encode_frame(
+            &gpu.queue,
+            &mut encoder,
+            &self.pipelines,
+            &self.scene,
+            &mut self.accum,
+            0,
+            &target,
+        );
+        gpu.queue.submit([encoder.finish()]);
+        gpu.wait()?;
+        Ok(Some(fitted))
+    }
+
     /// The per-pixel sums of the passes since the last [`Self::render`],
     /// four floats per pixel, row by row: the radiance (and 1 per pass), or
     /// in the ray-counting variant (`ShaderOptions::count_rays`) the rays
-    /// traced by kind.
+    /// traced by kind; in a view (`ShaderOptions::view`) its quantity at
+    /// the pixel centre (`view_quantity` in `shaders/views.wgsl`).
     pub fn read_sums(&self, gpu: &Gpu) -> Result<Vec<f32>, GpuWaitError> {
         let bytes = read_texels(gpu, self.accum.sum())?;
         Ok(bytemuck::pod_collect_to_vec(&bytes))

@@ -297,6 +297,7 @@ impl ShaderOptions {
             .chain(present)
             .map(|(name, on)| (name, f64::from(u8::from(on))))
             .chain(methods)
+            .chain([("VIEW".to_string(), f64::from(self.view.number()))])
             .collect()
     }
 }
