@@ -13,7 +13,8 @@
 //! - `shapes/`: one file per shape kind, its f64 hit test;
 //! - `intersect.rs`: the nearest hit and shadow hits over the scene;
 //! - `shade.rs`: Whitted's recursive shading;
-//! - `output.rs`: exposure, sRGB and 8 bits.
+//! - `output.rs`: exposure, sRGB and 8 bits;
+//! - `views.rs`: what the views inside the tracer show of a first hit.
 //!
 //! Here: the scene prepared for tracing, and the renderers over it.
 
@@ -25,6 +26,7 @@ pub mod ray;
 mod sampling;
 mod shade;
 pub mod shapes;
+mod views;
 
 use glam::{DVec2, DVec3};
 use rayon::prelude::*;
@@ -36,6 +38,7 @@ pub use camera::{Camera, camera_ray};
 pub use intersect::ShapeId;
 pub use output::{encode_srgb8, to_rgba8};
 pub use sampling::{r4, r4_rotated};
+pub use views::{ViewHit, sphere_uv, view_hit};
 
 use intersect::nearest_hit;
 use sampling::concentric_disk;
