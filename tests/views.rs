@@ -1,6 +1,7 @@
 //! The views inside the tracer (docs/views.md) on the GPU: the first-hit
 //! views against the f64 reference at pixel centres, the counters against
-//! the work they count, and `render --view` on the command line.
+//! the work they count, `render --view` on the command line, and the
+//! viewer's `V` key in a window under Xvfb.
 
 mod common;
 
@@ -23,19 +24,35 @@ fn quantities(
     view: View,
     change: impl FnOnce(&mut ShaderOptions),
 ) -> Vec<[f32; 4]> {
+    let renderer = rendered(gpu, scene, view, change, (WIDTH, HEIGHT));
+    let sums = renderer.read_sums(gpu).unwrap_or_else(|e| panic!("{e}"));
+    sums.chunks_exact(4)
+        .map(|q| [q[0], q[1], q[2], q[3]])
+        .collect()
+}
+
+/// `view` of `scene` rendered at `size` by its specialised pipeline
+/// changed by `change`, its colour bar fitted.
+fn rendered(
+    gpu: &Gpu,
+    scene: &Scene,
+    view: View,
+    change: impl FnOnce(&mut ShaderOptions),
+    (width, height): (u32, u32),
+) -> OffscreenRenderer {
     let mut options = ShaderOptions {
         view,
         ..ShaderOptions::for_scene(scene)
     };
     change(&mut options);
     let source = ShaderSource::embedded();
-    let mut renderer = OffscreenRenderer::new(gpu, &source, &options, scene, WIDTH, HEIGHT)
+    let mut renderer = OffscreenRenderer::new(gpu, &source, &options, scene, width, height)
         .unwrap_or_else(|e| panic!("{e}"));
     renderer.render(gpu, 1).unwrap_or_else(|e| panic!("{e}"));
-    let sums = renderer.read_sums(gpu).unwrap_or_else(|e| panic!("{e}"));
-    sums.chunks_exact(4)
-        .map(|q| [q[0], q[1], q[2], q[3]])
-        .collect()
+    renderer
+        .fit_colour_bar(gpu)
+        .unwrap_or_else(|e| panic!("{e}"));
+    renderer
 }
 
 /// The reference's first hit at every pixel centre, row by row.
@@ -331,4 +348,42 @@ fn render_view_on_the_command_line() {
         "{stderr}"
     );
     std::fs::remove_dir_all(&dir).unwrap();
+}
+
+/// `V` in the viewer cycles from the shaded picture through the views, and
+/// each shows in the window what `render --view` renders headless: the
+/// normals, the geometric normals, and the depth with its colour bar
+/// fitted to the window's image.
+#[test]
+fn the_v_key_cycles_the_views_in_the_window() {
+    use common::xwindow::{Display, Window, crop};
+    let Some(display) = Display::start() else {
+        return;
+    };
+    let size = (800, 450);
+    let path = common::scenes_dir().join("whitted.toml");
+    let path = path.to_str().unwrap();
+    let mut viewer = Window::open(&display, &["view", path, "--max-samples", "1"], size);
+    let gpu = common::gpu().unwrap();
+    let scene = scene("whitted.toml");
+    // The image right of the panel and above the status line.
+    let (panel, status) = (viewer.part("panel"), viewer.part("status"));
+    let x = (panel.right() + 16) as u32;
+    let area = (x, 0, size.0 - x, status.y as u32);
+    for view in [View::Normals, View::Geometric, View::Depth] {
+        viewer.key("v");
+        assert_eq!(viewer.wait_for("view-shown"), view.name());
+        viewer.wait_for("ready");
+        let window = viewer.capture();
+        let headless = rendered(&gpu, &scene, view, |_| {}, size)
+            .read_image(&gpu)
+            .unwrap_or_else(|e| panic!("{e}"));
+        let d = raysandbox::compare::diff_images(&crop(&window, area), &crop(&headless, area));
+        println!("{}: mean {:.4}, max {}", view.name(), d.mean_abs, d.max_abs);
+        assert!(
+            d.mean_abs <= 0.5 && d.frac_over_8 <= 0.001,
+            "{}: {d:?}",
+            view.name()
+        );
+    }
 }

@@ -13,12 +13,13 @@
 
 mod edit;
 mod shapes;
+mod view_menu;
 mod widgets;
 
 use std::path::PathBuf;
 
 use super::layout;
-use crate::gpu::{DEFAULT_MAX_SAMPLES, DEFAULT_MIN_WEIGHT, MIN_SCALE};
+use crate::gpu::{ColourBar, DEFAULT_MAX_SAMPLES, DEFAULT_MIN_WEIGHT, MIN_SCALE, View};
 use crate::scene::{Camera, Light, Material, Mesh, RenderSettings, Scene, ShapeId, ShapeKind};
 use egui::{
     Button, CollapsingHeader, ComboBox, Grid, Key, RichText, Slider, SliderClamping, TextEdit, Ui,
@@ -47,6 +48,11 @@ pub struct ViewSettings {
     /// the file's `min_weight` is lower (the file keeps its value). The
     /// default leaves no visible difference: docs/performance.md.
     pub min_weight: f64,
+    /// What the picture shows (docs/views.md): the View menu, `V`.
+    pub shown: View,
+    /// The colour bar of a scalar view, fitted to the traced image (shown,
+    /// not edited).
+    pub colour_bar: Option<ColourBar>,
 }
 
 /// The frame budget while the view moves: 100 ms, ten frames a second,
@@ -72,6 +78,8 @@ impl Default for ViewSettings {
             frame_budget_ms: DEFAULT_FRAME_BUDGET_MS,
             moving_frame: None,
             min_weight: DEFAULT_MIN_WEIGHT,
+            shown: View::Shaded,
+            colour_bar: None,
         }
     }
 }
@@ -403,6 +411,7 @@ fn render_section(ui: &mut Ui, render: &mut RenderSettings, view: &mut ViewSetti
     ui.separator();
     ui.label("Viewer (not saved in the file)");
     Grid::new("view").num_columns(2).show(ui, |ui| {
+        view_menu::view_row(ui, &mut view.shown);
         field(
             ui,
             "samples",

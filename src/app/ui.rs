@@ -9,6 +9,7 @@ use egui::{Key, KeyboardShortcut, Modifiers, PointerButton, Sense};
 use super::document::Document;
 use super::panel::{self, PanelAction, PanelState, ViewSettings};
 use super::{controls, layout, overlay};
+use crate::gpu::View;
 use crate::sandbox::ParamSet;
 use crate::scene::Scene;
 
@@ -155,13 +156,17 @@ pub struct ViewInput {
 }
 
 /// The keyboard shortcuts, for the help window and the README.
-pub const SHORTCUTS: [(&str, &str); 9] = [
+pub const SHORTCUTS: [(&str, &str); 10] = [
     ("Left drag", "orbit around the target"),
     ("Right / middle drag", "pan"),
     ("Wheel", "zoom (dolly towards the target)"),
     ("Click / double-click", "select an object / orbit around it"),
     ("H", "show or hide the panel and status line"),
     ("R / P", "reset camera / screenshot"),
+    (
+        "V",
+        "next view: shaded, normals, depth, id, cost, steps, bounces...",
+    ),
     ("Ctrl+S", "save the scene"),
     ("F11 / Esc", "fullscreen / leave fullscreen"),
     ("F1 / Ctrl+Q", "this help / quit"),
@@ -316,6 +321,9 @@ fn shortcuts(ui: &mut egui::Ui, editor: &mut Editor) -> Vec<Command> {
         if plain(i, Key::P) {
             commands.push(Command::Panel(PanelAction::Screenshot));
         }
+        if plain(i, Key::V) {
+            editor.view.shown = editor.view.shown.next();
+        }
         if plain(i, Key::F11) {
             commands.push(Command::ToggleFullscreen);
         }
@@ -351,6 +359,10 @@ fn status_line(ui: &mut egui::Ui, status: &Status, editor: &Editor) {
             ui.separator();
             ui.spinner();
             ui.label("compiling shaders");
+        }
+        if editor.view.shown != View::Shaded {
+            ui.separator();
+            ui.label(editor.view.shown.legend(editor.view.colour_bar));
         }
         if let Some(message) = &editor.message {
             ui.separator();

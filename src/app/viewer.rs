@@ -16,10 +16,12 @@ use super::pipelines::{self, PipelineCache};
 use super::shell::EguiLayer;
 use super::ui::{self, Command, Editor, Host, Status, ViewInput};
 use super::{orbit, panel};
-use crate::gpu::{FrameStatus, Gpu, Pipelines, Refine, ShaderOptions, ShaderSource, Viewport};
+use crate::gpu::{
+    FrameStatus, Gpu, Pipelines, Refine, ShaderOptions, ShaderSource, View, Viewport,
+};
 use crate::reference;
 use crate::sandbox::SourceParams;
-use crate::scene::{Scene, SceneError};
+use crate::scene::{NamedOption, Scene, SceneError};
 
 /// Width of the selection outline in logical pixels (scaled by the window's
 /// DPI factor).
@@ -102,6 +104,7 @@ pub struct Viewer {
 pub struct FrameStart {
     scene: Scene,
     min_weight: f64,
+    shown: View,
     /// When the frame began, for a moving frame's time in all.
     at: Instant,
 }
@@ -144,8 +147,17 @@ impl Viewer {
     pub fn first_build(&self) -> (ShaderSource, ShaderOptions) {
         (
             self.shader_params.apply(&self.shaders),
-            ShaderOptions::for_scene(&self.doc.scene),
+            self.wanted_options(),
         )
+    }
+
+    /// The pipelines the scene and the view need: the scene's specialised
+    /// ones, for the view shown (docs/views.md).
+    fn wanted_options(&self) -> ShaderOptions {
+        ShaderOptions {
+            view: self.editor.view.shown,
+            ..ShaderOptions::for_scene(&self.doc.scene)
+        }
     }
 
     /// Starts drawing into `window` with the pipelines of
@@ -225,8 +237,8 @@ impl Viewer {
     /// Draws with the pipelines for the scene's feature set (and the current
     /// shader source) once they are built; starts building them otherwise.
     fn ensure_pipelines(&mut self) {
+        let wanted = self.wanted_options();
         let Some(gfx) = &mut self.gfx else { return };
-        let wanted = ShaderOptions::for_scene(&self.doc.scene);
         if gfx.pipelines.current.as_ref() == Some(&wanted) {
             return;
         }
@@ -264,7 +276,7 @@ impl Viewer {
             // The scene may have moved on to another feature set meanwhile
             // (one build runs at a time): build that one, never the failed
             // one again.
-            if ShaderOptions::for_scene(&self.doc.scene) != options {
+            if self.wanted_options() != options {
                 self.ensure_pipelines();
             }
             return;
@@ -323,6 +335,7 @@ impl Viewer {
         let start = FrameStart {
             scene: self.doc.scene.clone(),
             min_weight: self.editor.view.min_weight,
+            shown: self.editor.view.shown,
             at: Instant::now(),
         };
         let gfx = self.gfx.as_mut().expect("drawing needs graphics");
@@ -370,6 +383,11 @@ impl Viewer {
         let changed = self.doc.scene != start.scene;
         if changed || self.editor.view.min_weight != start.min_weight {
             self.scene_changed(Some(&start.scene));
+        }
+        if self.editor.view.shown != start.shown {
+            self.editor.view.colour_bar = None;
+            self.event(&format!("view-shown {}", self.editor.view.shown.name()));
+            self.ensure_pipelines();
         }
         let moving = ui.input.dragging || ui.input.widget_dragging;
         self.paint(ui.output, moving, start.at);
@@ -443,7 +461,9 @@ impl Viewer {
         let outline_width = (OUTLINE_WIDTH * gfx.window.scale_factor()).round() as u32;
         gfx.viewport
             .set_selection(&gfx.gpu, outlined, outline_width);
-        let max_samples = if dragging {
+        // A view looks at the ray through each pixel centre: one sample.
+        let shown = self.editor.view.shown;
+        let max_samples = if dragging || shown != View::Shaded {
             1
         } else {
             self.editor.view.max_samples
@@ -489,7 +509,16 @@ impl Viewer {
         if new_samples > 0 {
             self.settled = false;
         }
-        let ready = !self.settled && samples >= max_samples && !dragging;
+        let fitted = shown.scalar() && traced && !dragging && samples > 0;
+        if fitted {
+            // The colour bar of the image just traced, shown by the next frame.
+            match gfx.viewport.fit_colour_bar(&gfx.gpu) {
+                Ok(bar) => self.editor.view.colour_bar = bar,
+                Err(e) => log::error!("{e}"),
+            }
+            gfx.window.request_redraw();
+        }
+        let ready = !self.settled && samples >= max_samples && !dragging && !fitted;
         let jobs = ready.then(|| gfx.viewport.take_longest_job());
         if status == FrameStatus::Presented && samples > 0 && !self.presented {
             self.presented = true;

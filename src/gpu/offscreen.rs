@@ -166,29 +166,13 @@ impl OffscreenRenderer {
         if !self.view.scalar() {
             return Ok(None);
         }
-        let Some(fitted) = colour_bar(&self.read_sums(gpu)?) else {
-            return Ok(None);
-        };
-        self.scene.set_view_range(fitted.range);
-        let view = self.target.create_view(&Default::default());
-        let target = FrameTarget {
-            view: &view,
-            format: OUTPUT_FORMAT,
-            size: self.accum.size(),
-        };
-        let mut encoder = gpu.device.create_command_encoder(&Default::default());
-        encode_frame(
-            &gpu.queue,
-            &mut encoder,
-            &self.pipelines,
-            &self.scene,
-            &mut self.accum,
-            0,
-            &target,
-        );
-        gpu.queue.submit([encoder.finish()]);
-        gpu.wait()?;
-        Ok(Some(fitted))
+        let fitted = fit_colour_bar(gpu, &mut self.scene, &self.accum)?;
+        if fitted.is_some() {
+            // A view's later samples copy the first (`view_trace`): this
+            // one only displays the image again, with the bar.
+            self.accumulate(gpu, 1)?;
+        }
+        Ok(fitted)
     }
 
     /// The per-pixel sums of the passes since the last [`Self::render`],
@@ -205,6 +189,22 @@ impl OffscreenRenderer {
     pub fn read_image(&self, gpu: &Gpu) -> Result<image::RgbaImage, GpuWaitError> {
         read_texture(gpu, &self.target)
     }
+}
+
+/// Reads a view's quantities back from `accum` (waiting for the GPU) and
+/// sets `scene`'s colour bar to fit them ([`colour_bar`]); the next pass
+/// encoded shows it. `None`, and nothing set, where no pixel has one.
+pub(super) fn fit_colour_bar(
+    gpu: &Gpu,
+    scene: &mut SceneBuffers,
+    accum: &Accumulator,
+) -> Result<Option<ColourBar>, GpuWaitError> {
+    let quantities: Vec<f32> = bytemuck::pod_collect_to_vec(&read_texels(gpu, accum.sum())?);
+    let fitted = colour_bar(&quantities);
+    if let Some(bar) = fitted {
+        scene.set_view_range(bar.range);
+    }
+    Ok(fitted)
 }
 
 /// Copies an `Rgba8Unorm` texture back to the CPU and waits for it.
