@@ -32,7 +32,19 @@ struct Globals {
     bvh_node_count: u32,     // 0: no bounded shapes (every kind but planes)
     output_size: vec2<u32>,  // size of the display target (may exceed `resolution`)
     view_range: vec2<f32>,   // a scalar view's colour bar: quantity at blue, at red (views.wgsl)
-    _view_pad: vec2<u32>,
+    switches: u32,           // the lecture switches that are on, SWITCH_* bits
+    _pad: u32,
+}
+
+// The lecture switches of `[render]` (docs/rendering-model.md, "Lecture
+// switches"): uniform values read at run time, so that a switch flipped in
+// the panel shows at once, without a new pipeline.
+const SWITCH_SHADOWS: u32 = 1u;
+const SWITCH_REFLECTION: u32 = 2u;
+const SWITCH_REFRACTION: u32 = 4u;
+
+fn switched_on(bit: u32) -> bool {
+    return (globals.switches & bit) != 0u;
 }
 
 struct Material {

@@ -387,3 +387,50 @@ fn the_v_key_cycles_the_views_in_the_window() {
         );
     }
 }
+
+/// The lecture switches (docs/rendering-model.md, "Lecture switches"):
+/// with shadows, reflection or refraction off, the GPU image still agrees
+/// with the reference's (the budget of tests/gpu_vs_reference.rs), and
+/// differs from the picture with everything on; without shadows no shadow
+/// ray is cast.
+#[test]
+fn lecture_switches_agree_with_the_reference() {
+    let Some(gpu) = common::gpu() else { return };
+    let whitted = scene("whitted.toml");
+    let picture = |scene: &Scene| {
+        let gpu_image = rendered(&gpu, scene, View::Shaded, |_| {}, (WIDTH, HEIGHT))
+            .read_image(&gpu)
+            .unwrap_or_else(|e| panic!("{e}"));
+        let reference = reference::render_rgba8(scene, WIDTH, HEIGHT, 1);
+        (gpu_image, reference)
+    };
+    let (all_on, _) = picture(&whitted);
+    type Switch = fn(&mut Scene);
+    let switches: [(&str, Switch); 3] = [
+        ("shadows", |s| s.render.shadows = false),
+        ("reflection", |s| s.render.reflection = false),
+        ("refraction", |s| s.render.refraction = false),
+    ];
+    for (name, off) in switches {
+        let mut scene = whitted.clone();
+        off(&mut scene);
+        let (gpu_image, reference) = picture(&scene);
+        let d = raysandbox::compare::diff_images(&gpu_image, &reference);
+        let changed = raysandbox::compare::diff_images(&gpu_image, &all_on);
+        println!(
+            "{name} off: against the reference mean {:.4}, {:.3}% over 8; against all on mean {:.2}",
+            d.mean_abs,
+            d.frac_over_8 * 100.0,
+            changed.mean_abs
+        );
+        assert!(d.mean_abs <= 0.5 && d.frac_over_8 <= 0.005, "{name}: {d:?}");
+        assert!(
+            changed.mean_abs > 1.0,
+            "{name} off changes nothing: {changed:?}"
+        );
+    }
+    let mut no_shadows = whitted.clone();
+    no_shadows.render.shadows = false;
+    let shadow_rays = quantities(&gpu, &no_shadows, View::ShadowRays, |_| {});
+    assert_eq!(total(&shadow_rays), 0.0);
+}

@@ -366,6 +366,7 @@ fn focus_row(ui: &mut Ui, camera: &mut Camera, speed: f64) {
 
 fn render_section(ui: &mut Ui, render: &mut RenderSettings, view: &mut ViewSettings) {
     Grid::new("render").num_columns(2).show(ui, |ui| {
+        view_menu::lecture_switches(ui, render);
         field(
             ui,
             "max depth",

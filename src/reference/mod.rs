@@ -77,6 +77,10 @@ pub struct PreparedScene {
     ambient: DVec3,
     max_depth: u32,
     min_weight: f64,
+    /// The lecture switches: shadow, reflected and refracted rays traced.
+    shadows: bool,
+    reflection: bool,
+    refraction: bool,
     exposure: f64,
     /// The robust routines or the textbook ones, the triangle test and the
     /// pixel angle.
@@ -149,6 +153,9 @@ impl PreparedScene {
             ambient: scene.render.ambient,
             max_depth: scene.render.max_depth,
             min_weight: scene.render.min_weight,
+            shadows: scene.render.shadows,
+            reflection: scene.render.reflection,
+            refraction: scene.render.refraction,
             exposure: scene.render.exposure,
             options: *options,
             uses_footprint: scene.julias.iter().any(|j| j.footprint),
