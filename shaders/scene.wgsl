@@ -32,19 +32,7 @@ struct Globals {
     bvh_node_count: u32,     // 0: no bounded shapes (every kind but planes)
     output_size: vec2<u32>,  // size of the display target (may exceed `resolution`)
     view_range: vec2<f32>,   // a scalar view's colour bar: quantity at blue, at red (views.wgsl)
-    switches: u32,           // the lecture switches that are on, SWITCH_* bits
-    _pad: u32,
-}
-
-// The lecture switches of `[render]` (docs/rendering-model.md, "Lecture
-// switches"): uniform values read at run time, so that a switch flipped in
-// the panel shows at once, without a new pipeline.
-const SWITCH_SHADOWS: u32 = 1u;
-const SWITCH_REFLECTION: u32 = 2u;
-const SWITCH_REFRACTION: u32 = 4u;
-
-fn switched_on(bit: u32) -> bool {
-    return (globals.switches & bit) != 0u;
+    _view_pad: vec2<u32>,
 }
 
 struct Material {
@@ -108,3 +96,9 @@ override HAS_TRANSPARENCY: bool = true;  // materials with transparency > 0
 override HAS_CHECKER: bool = true;
 override HAS_LENS: bool = true;          // aperture > 0
 override USE_BVH: bool = true;           // bounded shapes through the BVH
+// The lecture switches of `[render]` (docs/rendering-model.md, "Lecture
+// switches"), compiled in as the features are: off, the rays they trace
+// cost nothing; flipped in the viewer, a new pipeline is built.
+override SHADOWS: bool = true;           // shadow rays
+override REFLECTION: bool = true;        // reflected rays
+override REFRACTION: bool = true;        // refracted rays

@@ -134,7 +134,7 @@ fn shade_local(hit: Hit, ns: vec3<f32>, d: vec3<f32>, m: Material, albedo: vec3<
         if dist <= 0.0 {
             continue;
         }
-        if switched_on(SWITCH_SHADOWS) {
+        if SHADOWS {
             count_ray(1u);
             count_shadow_ray();
             if occluded(Ray(shadow_origin, to_light / dist, 0.0), dist) {
@@ -237,7 +237,7 @@ fn trace(primary: Ray) -> vec3<f32> {
         let child_depth = job.depth + 1u;
 
         let refracted_weight = job.weight * wt * max(albedo.r, max(albedo.g, albedo.b));
-        let refracts = HAS_TRANSPARENCY && switched_on(SWITCH_REFRACTION);
+        let refracts = HAS_TRANSPARENCY && REFRACTION;
         if refracts && worth_tracing(child_depth, refracted_weight) && top < STACK_SIZE {
             var dir = ray.dir;             // thin planes pass the ray on unbent
             if !is_thin(hit.kind) {
@@ -249,7 +249,7 @@ fn trace(primary: Ray) -> vec3<f32> {
             count_ray(3u);
         }
         let reflected_weight = job.weight * wr;
-        let reflects = (HAS_MIRRORS || HAS_TRANSPARENCY) && switched_on(SWITCH_REFLECTION);
+        let reflects = (HAS_MIRRORS || HAS_TRANSPARENCY) && REFLECTION;
         if reflects && worth_tracing(child_depth, reflected_weight) && top < STACK_SIZE {
             let origin = offset_ray(hit.point, ng, hit.error_scale);
             stack[top] = PendingRay(Ray(origin, reflect_dir(ray.dir, ns), 0.0), child_depth, reflected_weight, job.throughput * wr);

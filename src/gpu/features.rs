@@ -123,6 +123,40 @@ pub struct ShaderOptions {
     /// What the trace and display passes show (`VIEW`): the shaded
     /// picture, or a view inside the tracer (docs/views.md).
     pub view: View,
+    /// The scene's lecture switches (`SHADOWS`, `REFLECTION`,
+    /// `REFRACTION`; docs/rendering-model.md, "Lecture switches"): shadow,
+    /// reflected and refracted rays traced. Compiled in rather than read
+    /// at run time, which cost a few per cent of the frame time
+    /// (docs/views.md, "The shaded picture's frame time").
+    pub rays: Rays,
+}
+
+/// Which kinds of secondary rays are traced: the lecture switches of
+/// `[render]`.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
+pub struct Rays {
+    pub shadows: bool,
+    pub reflection: bool,
+    pub refraction: bool,
+}
+
+impl Rays {
+    /// Every kind traced: the rendering model without switches.
+    pub const ALL: Rays = Rays {
+        shadows: true,
+        reflection: true,
+        refraction: true,
+    };
+
+    /// What `scene`'s switches trace.
+    pub fn of(scene: &Scene) -> Rays {
+        let r = &scene.render;
+        Rays {
+            shadows: r.shadows,
+            reflection: r.reflection,
+            refraction: r.refraction,
+        }
+    }
 }
 
 impl Default for ShaderOptions {
@@ -137,6 +171,7 @@ impl Default for ShaderOptions {
             functions: Vec::new(),
             count_rays: false,
             view: View::Shaded,
+            rays: Rays::ALL,
         }
     }
 }
@@ -147,6 +182,7 @@ impl ShaderOptions {
     pub fn generic(scene: &Scene) -> Self {
         ShaderOptions {
             functions: crate::scene::implicit::functions(scene),
+            rays: Rays::of(scene),
             ..ShaderOptions::default()
         }
     }
@@ -163,6 +199,7 @@ impl ShaderOptions {
             functions: crate::scene::implicit::functions(scene),
             count_rays: false,
             view: View::Shaded,
+            rays: Rays::of(scene),
         }
     }
 }

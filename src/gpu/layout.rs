@@ -39,17 +39,7 @@ pub struct Globals {
     /// A scalar view's colour bar: the quantity shown blue, and red
     /// (`shaders/views.wgsl`; 0 for the shaded picture).
     pub view_range: [f32; 2],
-    /// The lecture switches that are on: `SWITCH_*` bits of
-    /// `shaders/scene.wgsl`.
-    pub switches: u32,
-    pub _pad: u32,
-}
-
-/// The `switches` bits (`SWITCH_SHADOWS`, ... in `shaders/scene.wgsl`).
-fn switch_bits(render: &scene::RenderSettings) -> u32 {
-    u32::from(render.shadows)
-        | u32::from(render.reflection) << 1
-        | u32::from(render.refraction) << 2
+    pub _view_pad: [u32; 2],
 }
 
 /// The viewer's selection outline (`shaders/outline.wgsl`): the shape whose
@@ -285,7 +275,6 @@ impl Globals {
         self.ambient = f32x3(render.ambient);
         self.exposure = render.exposure as f32;
         self.max_depth = render.max_depth;
-        self.switches = switch_bits(render);
     }
 }
 
@@ -395,8 +384,7 @@ mod tests {
                 bvh_node_count,
                 output_size,
                 view_range,
-                switches,
-                _pad
+                _view_pad
             }),
             rust_layout!(Material {
                 color,

@@ -22,7 +22,7 @@ mod view;
 mod viewport;
 
 pub use context::{Gpu, GpuError, GpuWaitError, SizeError, TIMER_FEATURES, WAIT_LIMIT};
-pub use features::{Features, ShaderOptions};
+pub use features::{Features, Rays, ShaderOptions};
 pub use id_pass::{FirstHit, IdRenderer};
 pub use interaction::MIN_SCALE;
 pub use jobs::JOB_BUDGET;

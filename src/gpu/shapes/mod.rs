@@ -285,6 +285,9 @@ impl ShaderOptions {
             ("HAS_LENS", f.lens),
             ("USE_BVH", f.bvh),
             ("COUNT_RAYS", self.count_rays),
+            ("SHADOWS", self.rays.shadows),
+            ("REFLECTION", self.rays.reflection),
+            ("REFRACTION", self.rays.refraction),
         ]
         .map(|(name, on)| (name.to_string(), on));
         let present = ShapeKind::ALL.iter().map(|&k| (has_flag(k), f.has(k)));
