@@ -16,6 +16,9 @@ fn vs_fullscreen(@builtin(vertex_index) i: u32) -> @builtin(position) vec4<f32> 
 
 @fragment
 fn fs_trace(@builtin(position) frag: vec4<f32>) -> @location(0) vec4<f32> {
+    if VIEW != VIEW_SHADED {
+        return view_trace(frag.xy);
+    }
     let pixel = vec2<f32>(floor(frag.xy));
     var sum = vec3(0.0);
     // The end is tested after each sample, not before: on llvmpipe the
@@ -70,6 +73,12 @@ fn fs_display(@builtin(position) frag: vec4<f32>) -> @location(0) vec4<f32> {
     // (resolution scale): each output pixel shows the traced pixel under it.
     let scale = vec2<f32>(globals.resolution) / vec2<f32>(globals.output_size);
     let texel = min(vec2<u32>(frag.xy * scale), globals.resolution - 1u);
+    if VIEW != VIEW_SHADED {
+        // A view's colours are display values: the sRGB target's own
+        // encoding is undone in advance.
+        let c = view_colour(textureLoad(accumulated, texel, 0));
+        return vec4(select(srgb_decode(c), c, ENCODE_SRGB), 1.0);
+    }
     let total = f32(max(globals.sample_start + globals.sample_count, 1u));
     let radiance = textureLoad(accumulated, texel, 0).rgb / total;
     // WGSL gives no guarantee for inf and NaN (clamp may pass them through),

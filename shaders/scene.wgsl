@@ -31,6 +31,8 @@ struct Globals {
     light_count: u32,
     bvh_node_count: u32,     // 0: no bounded shapes (every kind but planes)
     output_size: vec2<u32>,  // size of the display target (may exceed `resolution`)
+    view_range: vec2<f32>,   // a scalar view's colour bar: quantity at blue, at red (views.wgsl)
+    _view_pad: vec2<u32>,
 }
 
 struct Material {
@@ -94,3 +96,9 @@ override HAS_TRANSPARENCY: bool = true;  // materials with transparency > 0
 override HAS_CHECKER: bool = true;
 override HAS_LENS: bool = true;          // aperture > 0
 override USE_BVH: bool = true;           // bounded shapes through the BVH
+// The lecture switches of `[render]` (docs/rendering-model.md, "Lecture
+// switches"), compiled in as the features are: off, the rays they trace
+// cost nothing; flipped in the viewer, a new pipeline is built.
+override SHADOWS: bool = true;           // shadow rays
+override REFLECTION: bool = true;        // reflected rays
+override REFRACTION: bool = true;        // refracted rays

@@ -134,9 +134,12 @@ fn shade_local(hit: Hit, ns: vec3<f32>, d: vec3<f32>, m: Material, albedo: vec3<
         if dist <= 0.0 {
             continue;
         }
-        count_ray(1u);
-        if occluded(Ray(shadow_origin, to_light / dist, 0.0), dist) {
-            continue;
+        if SHADOWS {
+            count_ray(1u);
+            count_shadow_ray();
+            if occluded(Ray(shadow_origin, to_light / dist, 0.0), dist) {
+                continue;
+            }
         }
         var highlight = 0.0;
         let n_dot_h = dot(ns, normalize(l - d));
@@ -198,6 +201,7 @@ fn trace(primary: Ray) -> vec3<f32> {
         top -= 1u;
         let job = stack[top];
         let ray = job.ray;
+        count_depth(job.depth);
         let hit = hit_scene(ray, T_FAR);
         if hit.kind == KIND_NONE {
             radiance += job.throughput * globals.background;
@@ -233,7 +237,8 @@ fn trace(primary: Ray) -> vec3<f32> {
         let child_depth = job.depth + 1u;
 
         let refracted_weight = job.weight * wt * max(albedo.r, max(albedo.g, albedo.b));
-        if HAS_TRANSPARENCY && worth_tracing(child_depth, refracted_weight) && top < STACK_SIZE {
+        let refracts = HAS_TRANSPARENCY && REFRACTION;
+        if refracts && worth_tracing(child_depth, refracted_weight) && top < STACK_SIZE {
             var dir = ray.dir;             // thin planes pass the ray on unbent
             if !is_thin(hit.kind) {
                 dir = refract_dir(ray.dir, ns, eta);
@@ -244,7 +249,7 @@ fn trace(primary: Ray) -> vec3<f32> {
             count_ray(3u);
         }
         let reflected_weight = job.weight * wr;
-        let reflects = HAS_MIRRORS || HAS_TRANSPARENCY;
+        let reflects = (HAS_MIRRORS || HAS_TRANSPARENCY) && REFLECTION;
         if reflects && worth_tracing(child_depth, reflected_weight) && top < STACK_SIZE {
             let origin = offset_ray(hit.point, ng, hit.error_scale);
             stack[top] = PendingRay(Ray(origin, reflect_dir(ray.dir, ns), 0.0), child_depth, reflected_weight, job.throughput * wr);

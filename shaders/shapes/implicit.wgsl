@@ -30,6 +30,7 @@ fn implicit_bisect(s: Implicit, l: LocalRay, a_in: f32, b_in: f32, a_negative: b
     var a = a_in;
     var b = b_in;
     for (var i = 0; i < 64; i++) {
+        count_step();
         let mid = 0.5 * (a + b);
         if b - a <= tolerance || mid <= a || mid >= b {
             break;
@@ -74,6 +75,7 @@ fn hit_implicit(ray: Ray, s: Implicit, index: u32, best: Hit) -> Hit {
     var ga = implicit_value(s.function, l.q + a * l.d);
     var u = T_FAR;
     for (var i = 1u; i <= s.steps; i++) {
+        count_step();
         let b = select(near + f32(i) * step, far, i == s.steps);
         let gb = implicit_value(s.function, l.q + b * l.d);
         if gb == 0.0 && ga != 0.0 {

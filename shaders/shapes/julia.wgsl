@@ -76,6 +76,7 @@ fn hit_julia(ray: Ray, s: Julia, index: u32, best: Hit) -> Hit {
         if u > end {
             return best;
         }
+        count_step();
         let p = l.q + u * l.d;
         let de = julia_distance(s, p);
         let epsilon = julia_epsilon(ray, s, l, u);

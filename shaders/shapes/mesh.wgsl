@@ -164,6 +164,7 @@ fn hit_mesh(ray: Ray, m: Mesh, index: u32, best: Hit) -> Hit {
         let at = m.node_start + 2u * stack[top];
         let lo = mesh_data_at(at);
         let hi = mesh_data_at(at + 1u);
+        count_node();
         if !hit_box(bitcast<vec3<f32>>(lo.xyz), bitcast<vec3<f32>>(hi.xyz), local, inv_d, t_best) {
             continue;
         }
@@ -185,6 +186,7 @@ fn hit_mesh(ray: Ray, m: Mesh, index: u32, best: Hit) -> Hit {
         }
         for (var k = first; k < first + count; k++) {
             let v = m.tri_start + 3u * k;
+            count_test();
             let h = hit_triangle(local, data_vec3(v), data_vec3(v + 1u), data_vec3(v + 2u), t_best);
             if h.hit {
                 t_best = h.t;
@@ -197,6 +199,7 @@ fn hit_mesh(ray: Ray, m: Mesh, index: u32, best: Hit) -> Hit {
     if !found {
         return best;
     }
+    note_barycentric(weights);
     let v = m.tri_start + 3u * tri;
     let p0 = data_vec3(v);
     let n = normalize(m.normal_to_world * cross(data_vec3(v + 1u) - p0, data_vec3(v + 2u) - p0));

@@ -66,6 +66,7 @@ fn quartic_bracketed(k: Quartic, slope: bool, a_in: f32, b_in: f32) -> f32 {
     }
     let a_negative = ga < 0.0;
     for (var i = 0; i < 32; i++) {
+        count_step();
         let mid = 0.5 * (a + b);
         if mid <= a || mid >= b {
             break;
@@ -308,6 +309,7 @@ fn quartic_newton(k: Quartic, piece: Piece) -> f32 {
     let tolerance = 1e-6 * (b - a);
     var x = 0.5 * (a + b);
     for (var i = 0; i < 24; i++) {
+        count_step();
         let g = quartic_at(k, false, x);
         if g == 0.0 {
             return x;

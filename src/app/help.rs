@@ -27,6 +27,10 @@ pub const WINDOW: Help = Help {
         &[
             ("H", "show or hide the panel and status line"),
             ("R / P", "reset camera / screenshot"),
+            (
+                "V",
+                "next view: shaded, normals, depth, id, cost, steps, bounces...",
+            ),
             ("Ctrl+S", "save the scene"),
             (
                 "Ctrl+plus / minus / 0",

@@ -19,12 +19,13 @@ mod materials;
 mod render;
 mod shape_list;
 mod shapes;
+mod view_menu;
 mod widgets;
 
 use std::path::PathBuf;
 
 use super::layout;
-use crate::gpu::{DEFAULT_MAX_SAMPLES, DEFAULT_MIN_WEIGHT};
+use crate::gpu::{ColourBar, DEFAULT_MAX_SAMPLES, DEFAULT_MIN_WEIGHT, View};
 use crate::scene::{Mesh, Scene, ShapeId};
 use egui::{CollapsingHeader, RichText, Ui};
 
@@ -56,6 +57,11 @@ pub struct ViewSettings {
     /// the file's `min_weight` is lower (the file keeps its value). The
     /// default leaves no visible difference: docs/performance.md.
     pub min_weight: f64,
+    /// What the picture shows (docs/views.md): the View menu, `V`.
+    pub shown: View,
+    /// The colour bar of a scalar view, fitted to the traced image (shown,
+    /// not edited).
+    pub colour_bar: Option<ColourBar>,
 }
 
 /// The frame budget while the view moves: 100 ms, ten frames a second,
@@ -81,6 +87,8 @@ impl Default for ViewSettings {
             frame_budget_ms: DEFAULT_FRAME_BUDGET_MS,
             moving_frame: None,
             min_weight: DEFAULT_MIN_WEIGHT,
+            shown: View::Shaded,
+            colour_bar: None,
         }
     }
 }

@@ -129,8 +129,15 @@ fn timing_label(status: &Status) -> (String, &'static str) {
 }
 
 /// The status line: "F1: help" first, so that it is never pushed off; the
-/// figures wrap; the message on a row of its own, wrapped.
-pub fn show(ui: &mut egui::Ui, status: &Status, max_samples: u32, message: Option<&str>) {
+/// figures wrap, then what a view's colours mean (`legend`); the message on
+/// a row of its own, wrapped.
+pub fn show(
+    ui: &mut egui::Ui,
+    status: &Status,
+    max_samples: u32,
+    legend: Option<&str>,
+    message: Option<&str>,
+) {
     ui.horizontal_wrapped(|ui| {
         ui.label("F1: help");
         ui.separator();
@@ -154,6 +161,10 @@ pub fn show(ui: &mut egui::Ui, status: &Status, max_samples: u32, message: Optio
             ui.spinner();
             ui.label("compiling…")
                 .on_hover_text("the last picture stays until the new shaders are built");
+        }
+        if let Some(legend) = legend {
+            ui.separator();
+            ui.label(legend);
         }
     });
     if let Some(message) = message {

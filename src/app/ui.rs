@@ -9,6 +9,7 @@ use super::help::Help;
 use super::panel::{self, PanelAction, PanelState, ViewSettings};
 use super::status::MessageAge;
 use super::{controls, help, layout, overlay, status};
+use crate::gpu::View;
 use crate::scene::Scene;
 use crate::shader_params::ParamSet;
 
@@ -190,8 +191,12 @@ pub fn draw(
         editor.message_age.expire(ui.ctx(), &mut editor.message);
         let message = editor.message.as_deref();
         let max_samples = editor.view.max_samples;
-        let status = egui::Panel::bottom("status")
-            .show(ui, |ui| status::show(ui, status, max_samples, message));
+        // What a colour means in a view inside the tracer (docs/views.md).
+        let legend = (editor.view.shown != View::Shaded)
+            .then(|| editor.view.shown.legend(editor.view.colour_bar));
+        let status = egui::Panel::bottom("status").show(ui, |ui| {
+            status::show(ui, status, max_samples, legend.as_deref(), message)
+        });
         layout::note(ui.ctx(), "status", status.response.rect);
     }
     let view = egui::CentralPanel::no_frame().show(ui, view_input);
@@ -300,6 +305,9 @@ fn shortcuts(ui: &mut egui::Ui, editor: &mut Editor) -> Vec<Command> {
         }
         if plain(i, Key::P) {
             commands.push(Command::Panel(PanelAction::Screenshot));
+        }
+        if plain(i, Key::V) {
+            editor.view.shown = editor.view.shown.next();
         }
         if plain(i, Key::F11) {
             commands.push(Command::ToggleFullscreen);

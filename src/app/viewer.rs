@@ -17,9 +17,11 @@ use super::shell::EguiLayer;
 use super::status::SampleClock;
 use super::ui::{self, Command, Editor, Host, Status, ViewInput};
 use super::{orbit, panel};
-use crate::gpu::{FrameStatus, Gpu, Pipelines, Refine, ShaderOptions, ShaderSource, Viewport};
+use crate::gpu::{
+    FrameStatus, Gpu, Pipelines, Refine, ShaderOptions, ShaderSource, View, Viewport,
+};
 use crate::reference;
-use crate::scene::{Scene, SceneError};
+use crate::scene::{NamedOption, Scene, SceneError};
 use crate::shader_params::SourceParams;
 
 /// Width of the selection outline in logical pixels (scaled by the window's
@@ -112,6 +114,7 @@ pub struct Viewer {
 pub struct FrameStart {
     scene: Scene,
     min_weight: f64,
+    shown: View,
     /// When the frame began, for a moving frame's time in all.
     at: Instant,
 }
@@ -157,8 +160,17 @@ impl Viewer {
     pub fn first_build(&self) -> (ShaderSource, ShaderOptions) {
         (
             self.shader_params.apply(&self.shaders),
-            ShaderOptions::for_scene(&self.doc.scene),
+            self.wanted_options(),
         )
+    }
+
+    /// The pipelines the scene and the view need: the scene's specialised
+    /// ones, for the view shown (docs/views.md).
+    fn wanted_options(&self) -> ShaderOptions {
+        ShaderOptions {
+            view: self.editor.view.shown,
+            ..ShaderOptions::for_scene(&self.doc.scene)
+        }
     }
 
     /// Starts drawing into `window` with the pipelines of
@@ -240,8 +252,8 @@ impl Viewer {
     /// Draws with the pipelines for the scene's feature set (and the current
     /// shader source) once they are built; starts building them otherwise.
     fn ensure_pipelines(&mut self) {
+        let wanted = self.wanted_options();
         let Some(gfx) = &mut self.gfx else { return };
-        let wanted = ShaderOptions::for_scene(&self.doc.scene);
         if gfx.pipelines.current.as_ref() == Some(&wanted) {
             return;
         }
@@ -278,7 +290,7 @@ impl Viewer {
     /// asking for them: they may be built already).
     fn pipelines_ready(&mut self) -> bool {
         self.ensure_pipelines();
-        self.drawing == Some(ShaderOptions::for_scene(&self.doc.scene))
+        self.drawing == Some(self.wanted_options())
     }
 
     /// A build started by the worker has finished.
@@ -294,7 +306,7 @@ impl Viewer {
             // (one build runs at a time): build that one, never the failed
             // one again. A scene whose own build failed is drawn as the
             // pipelines drawing can (the error says why it looks wrong).
-            if ShaderOptions::for_scene(&self.doc.scene) != options {
+            if self.wanted_options() != options {
                 self.ensure_pipelines();
             } else if let Some(scene) = self.deferred.take() {
                 self.upload_scene(&scene);
@@ -360,6 +372,7 @@ impl Viewer {
         let start = FrameStart {
             scene: self.doc.scene.clone(),
             min_weight: self.editor.view.min_weight,
+            shown: self.editor.view.shown,
             at: Instant::now(),
         };
         let gfx = self.gfx.as_mut().expect("drawing needs graphics");
@@ -408,6 +421,11 @@ impl Viewer {
         let changed = self.doc.scene != start.scene;
         if changed || self.editor.view.min_weight != start.min_weight {
             self.scene_changed(Some(&start.scene));
+        }
+        if self.editor.view.shown != start.shown {
+            self.editor.view.colour_bar = None;
+            self.event(&format!("view-shown {}", self.editor.view.shown.name()));
+            self.ensure_pipelines();
         }
         let moving = ui.input.dragging || ui.input.widget_dragging;
         self.paint(ui.output, moving, start.at);
@@ -481,7 +499,9 @@ impl Viewer {
         let outline_width = (OUTLINE_WIDTH * gfx.window.scale_factor()).round() as u32;
         gfx.viewport
             .set_selection(&gfx.gpu, outlined, outline_width);
-        let max_samples = if dragging {
+        // A view looks at the ray through each pixel centre: one sample.
+        let shown = self.editor.view.shown;
+        let max_samples = if dragging || shown != View::Shaded {
             1
         } else {
             self.editor.view.max_samples
@@ -528,9 +548,22 @@ impl Viewer {
             self.settled = false;
         }
         self.sample_clock.update(samples, Instant::now());
-        // Not while a scene waits for its pipelines: the picture is the
-        // last scene's.
-        let ready = !self.settled && samples >= max_samples && !dragging && self.deferred.is_none();
+        let fitted = shown.scalar() && traced && !dragging && samples > 0;
+        if fitted {
+            // The colour bar of the image just traced, shown by the next frame.
+            match gfx.viewport.fit_colour_bar(&gfx.gpu) {
+                Ok(bar) => self.editor.view.colour_bar = bar,
+                Err(e) => log::error!("{e}"),
+            }
+            gfx.window.request_redraw();
+        }
+        // Not while a scene waits for its pipelines (the picture is the
+        // last scene's), nor before the colour bar is fitted.
+        let ready = !self.settled
+            && samples >= max_samples
+            && !dragging
+            && !fitted
+            && self.deferred.is_none();
         let jobs = ready.then(|| gfx.viewport.take_longest_job());
         if status == FrameStatus::Presented && samples > 0 && !self.presented {
             self.presented = true;

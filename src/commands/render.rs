@@ -5,7 +5,9 @@ use std::path::PathBuf;
 use std::time::{Duration, Instant};
 
 use super::{Failure, load_scene};
-use crate::gpu::{Gpu, GpuWaitError, OffscreenRenderer, RenderError, ShaderOptions, ShaderSource};
+use crate::gpu::{
+    Gpu, GpuWaitError, OffscreenRenderer, RenderError, ShaderOptions, ShaderSource, View,
+};
 use crate::reference;
 use crate::scene::{NamedOption, TorusMethod, TriangleTest};
 
@@ -54,6 +56,12 @@ pub struct Args {
     /// the median, fastest and slowest GPU time.
     #[arg(long, default_value_t = 1, value_parser = clap::value_parser!(u32).range(1..=10000))]
     frames: u32,
+    /// What the picture shows: shaded (the Whitted picture), or a view
+    /// inside the tracer, of the ray through each pixel's centre
+    /// (docs/views.md): normals, geometric, depth, id, barycentric, nodes,
+    /// tests, nodes-all, tests-all, steps, bounces, shadow-rays.
+    #[arg(long, default_value = "shaded", value_parser = View::from_name)]
+    view: View,
 }
 
 #[derive(Clone, Copy, PartialEq, Eq, clap::ValueEnum)]
@@ -86,6 +94,17 @@ fn gpu_failure(e: GpuWaitError) -> Failure {
 pub fn run(args: &Args) -> Result<(), Failure> {
     let scene = load_scene(&args.scene)?;
     let start = Instant::now();
+    if args.reference && args.view != View::Shaded {
+        return Err(Failure::Input(
+            "--view: the reference renders the shaded picture only (docs/views.md)".into(),
+        ));
+    }
+    // A view looks at the ray through the pixel centre: one sample is all.
+    let spp = if args.view == View::Shaded {
+        args.spp
+    } else {
+        1
+    };
     let image = if args.reference {
         println!(
             "renderer: f64 CPU reference, {} threads",
@@ -96,7 +115,7 @@ pub fn run(args: &Args) -> Result<(), Failure> {
             ..Default::default()
         };
         let prepared = reference::PreparedScene::with_options(&scene, &options);
-        reference::render_prepared_rgba8(&prepared, args.width, args.height, args.spp)
+        reference::render_prepared_rgba8(&prepared, args.width, args.height, spp)
     } else {
         let source = ShaderSource::checked(args.shaders.as_deref())
             .map_err(|e| Failure::Input(e.to_string()))?;
@@ -111,11 +130,12 @@ pub fn run(args: &Args) -> Result<(), Failure> {
         }
         options.triangles = args.triangles;
         options.torus = args.torus;
+        options.view = args.view;
         let mut renderer =
             OffscreenRenderer::new(&gpu, &source, &options, &scene, args.width, args.height)
                 .map_err(render_failure)?;
         let ms = |d: Duration| d.as_secs_f64() * 1e3;
-        let first = renderer.render(&gpu, args.spp).map_err(gpu_failure)?;
+        let first = renderer.render(&gpu, spp).map_err(gpu_failure)?;
         println!(
             "GPU time ({}): {:.1} ms",
             renderer.timing().describe(),
@@ -126,7 +146,7 @@ pub fn run(args: &Args) -> Result<(), Failure> {
             let mut cpu_times = Vec::new();
             for _ in 0..args.frames {
                 let before = crate::bench::process_cpu_time();
-                times.push(renderer.render(&gpu, args.spp).map_err(gpu_failure)?);
+                times.push(renderer.render(&gpu, spp).map_err(gpu_failure)?);
                 if let (Some(a), Some(b)) = (before, crate::bench::process_cpu_time()) {
                     cpu_times.push(b.saturating_sub(a));
                 }
@@ -149,13 +169,17 @@ pub fn run(args: &Args) -> Result<(), Failure> {
                 );
             }
         }
+        if args.view != View::Shaded {
+            let bar = renderer.fit_colour_bar(&gpu).map_err(gpu_failure)?;
+            println!("view {}", args.view.legend(bar));
+        }
         renderer.read_image(&gpu).map_err(gpu_failure)?
     };
     println!(
         "rendered {}x{} at {} spp in {:.1} ms",
         args.width,
         args.height,
-        args.spp,
+        spp,
         start.elapsed().as_secs_f64() * 1e3
     );
     image

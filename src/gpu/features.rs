@@ -4,6 +4,7 @@
 //! compiler removes, so a spheres-only scene runs no plane, box, refraction
 //! or checker code at all.
 
+use super::view::View;
 use crate::scene::{Scene, ShapeKind, TorusMethod, TriangleTest};
 
 /// What a scene needs from the shader. Every flag that is true for a scene
@@ -119,6 +120,43 @@ pub struct ShaderOptions {
     /// (docs/performance.md, "Rays per second"). Off in every pipeline
     /// that draws.
     pub count_rays: bool,
+    /// What the trace and display passes show (`VIEW`): the shaded
+    /// picture, or a view inside the tracer (docs/views.md).
+    pub view: View,
+    /// The scene's lecture switches (`SHADOWS`, `REFLECTION`,
+    /// `REFRACTION`; docs/rendering-model.md, "Lecture switches"): shadow,
+    /// reflected and refracted rays traced. Compiled in rather than read
+    /// at run time, which cost a few per cent of the frame time
+    /// (docs/views.md, "The shaded picture's frame time").
+    pub rays: Rays,
+}
+
+/// Which kinds of secondary rays are traced: the lecture switches of
+/// `[render]`.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
+pub struct Rays {
+    pub shadows: bool,
+    pub reflection: bool,
+    pub refraction: bool,
+}
+
+impl Rays {
+    /// Every kind traced: the rendering model without switches.
+    pub const ALL: Rays = Rays {
+        shadows: true,
+        reflection: true,
+        refraction: true,
+    };
+
+    /// What `scene`'s switches trace.
+    pub fn of(scene: &Scene) -> Rays {
+        let r = &scene.render;
+        Rays {
+            shadows: r.shadows,
+            reflection: r.reflection,
+            refraction: r.refraction,
+        }
+    }
 }
 
 impl Default for ShaderOptions {
@@ -132,6 +170,8 @@ impl Default for ShaderOptions {
             torus: TorusMethod::default(),
             functions: Vec::new(),
             count_rays: false,
+            view: View::Shaded,
+            rays: Rays::ALL,
         }
     }
 }
@@ -142,6 +182,7 @@ impl ShaderOptions {
     pub fn generic(scene: &Scene) -> Self {
         ShaderOptions {
             functions: crate::scene::implicit::functions(scene),
+            rays: Rays::of(scene),
             ..ShaderOptions::default()
         }
     }
@@ -157,6 +198,8 @@ impl ShaderOptions {
             torus: TorusMethod::default(),
             functions: crate::scene::implicit::functions(scene),
             count_rays: false,
+            view: View::Shaded,
+            rays: Rays::of(scene),
         }
     }
 }

@@ -36,6 +36,10 @@ pub struct Globals {
     pub light_count: u32,
     pub bvh_node_count: u32,
     pub output_size: [u32; 2],
+    /// A scalar view's colour bar: the quantity shown blue, and red
+    /// (`shaders/views.wgsl`; 0 for the shaded picture).
+    pub view_range: [f32; 2],
+    pub _view_pad: [u32; 2],
 }
 
 /// The viewer's selection outline (`shaders/outline.wgsl`): the shape whose
@@ -378,7 +382,9 @@ mod tests {
                 sample_count,
                 light_count,
                 bvh_node_count,
-                output_size
+                output_size,
+                view_range,
+                _view_pad
             }),
             rust_layout!(Material {
                 color,

@@ -20,10 +20,11 @@ mod timer;
 #[cfg(test)]
 mod toy_kind;
 mod tracer;
+mod view;
 mod viewport;
 
 pub use context::{Gpu, GpuError, GpuWaitError, SizeError, TIMER_FEATURES, WAIT_LIMIT};
-pub use features::{Features, ShaderOptions};
+pub use features::{Features, Rays, ShaderOptions};
 pub use id_pass::{FirstHit, IdRenderer};
 pub use interaction::MIN_SCALE;
 pub use jobs::JOB_BUDGET;
@@ -37,4 +38,5 @@ pub use tracer::{
     Accumulator, DEFAULT_MAX_SAMPLES, DEFAULT_MIN_WEIGHT, DEFAULT_RENDER_SAMPLES, FrameTarget,
     PipelineError, Pipelines, SceneBuffers, encode_frame,
 };
+pub use view::{ColourBar, View, colour_bar};
 pub use viewport::{EXPORT_FORMAT, FrameStatus, Refine, Viewport};

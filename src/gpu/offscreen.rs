@@ -12,6 +12,7 @@ use super::timer::{GpuTimer, Timing};
 use super::tracer::{
     Accumulator, FrameTarget, PipelineError, Pipelines, SceneBuffers, encode_frame,
 };
+use super::view::{ColourBar, View, colour_bar};
 use crate::scene::Scene;
 
 /// The offscreen target: 8-bit, and `fs_display` encodes sRGB itself so the
@@ -53,6 +54,7 @@ pub struct OffscreenRenderer {
     accum: Accumulator,
     target: wgpu::Texture,
     timer: Option<GpuTimer>,
+    view: View,
 }
 
 impl OffscreenRenderer {
@@ -86,6 +88,7 @@ impl OffscreenRenderer {
             accum,
             target,
             timer: GpuTimer::new(gpu),
+            view: options.view,
         })
     }
 
@@ -155,10 +158,28 @@ impl OffscreenRenderer {
         self.accum.samples()
     }
 
+    /// For a scalar view (`View::scalar`), after a render: reads the
+    /// quantities back, fits the colour bar to them and displays the image
+    /// again with it; returns the bar (`None` for the other views, and
+    /// where no pixel has a quantity).
+    pub fn fit_colour_bar(&mut self, gpu: &Gpu) -> Result<Option<ColourBar>, GpuWaitError> {
+        if !self.view.scalar() {
+            return Ok(None);
+        }
+        let fitted = fit_colour_bar(gpu, &mut self.scene, &self.accum)?;
+        if fitted.is_some() {
+            // A view's later samples copy the first (`view_trace`): this
+            // one only displays the image again, with the bar.
+            self.accumulate(gpu, 1)?;
+        }
+        Ok(fitted)
+    }
+
     /// The per-pixel sums of the passes since the last [`Self::render`],
     /// four floats per pixel, row by row: the radiance (and 1 per pass), or
     /// in the ray-counting variant (`ShaderOptions::count_rays`) the rays
-    /// traced by kind.
+    /// traced by kind; in a view (`ShaderOptions::view`) its quantity at
+    /// the pixel centre (`view_quantity` in `shaders/views.wgsl`).
     pub fn read_sums(&self, gpu: &Gpu) -> Result<Vec<f32>, GpuWaitError> {
         let bytes = read_texels(gpu, self.accum.sum())?;
         Ok(bytemuck::pod_collect_to_vec(&bytes))
@@ -168,6 +189,22 @@ impl OffscreenRenderer {
     pub fn read_image(&self, gpu: &Gpu) -> Result<image::RgbaImage, GpuWaitError> {
         read_texture(gpu, &self.target)
     }
+}
+
+/// Reads a view's quantities back from `accum` (waiting for the GPU) and
+/// sets `scene`'s colour bar to fit them ([`colour_bar`]); the next pass
+/// encoded shows it. `None`, and nothing set, where no pixel has one.
+pub(super) fn fit_colour_bar(
+    gpu: &Gpu,
+    scene: &mut SceneBuffers,
+    accum: &Accumulator,
+) -> Result<Option<ColourBar>, GpuWaitError> {
+    let quantities: Vec<f32> = bytemuck::pod_collect_to_vec(&read_texels(gpu, accum.sum())?);
+    let fitted = colour_bar(&quantities);
+    if let Some(bar) = fitted {
+        scene.set_view_range(bar.range);
+    }
+    Ok(fitted)
 }
 
 /// Copies an `Rgba8Unorm` texture back to the CPU and waits for it.

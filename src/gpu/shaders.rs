@@ -15,22 +15,24 @@ use super::shapes::{KindInfo, implicit, kinds};
 /// The shader files in the order they are joined, before the shape kinds'
 /// `shapes/<kind>.wgsl` (see `gpu::shapes`). WGSL resolves names at module
 /// scope in any order, so the order only decides line numbering.
-pub const SHADER_FILES: [&str; 6] = [
+pub const SHADER_FILES: [&str; 7] = [
     "scene.wgsl",
     "camera.wgsl",
     "intersect.wgsl",
     "shade.wgsl",
     "main.wgsl",
     "outline.wgsl",
+    "views.wgsl",
 ];
 
-const EMBEDDED: [&str; 6] = [
+const EMBEDDED: [&str; 7] = [
     include_str!("../../shaders/scene.wgsl"),
     include_str!("../../shaders/camera.wgsl"),
     include_str!("../../shaders/intersect.wgsl"),
     include_str!("../../shaders/shade.wgsl"),
     include_str!("../../shaders/main.wgsl"),
     include_str!("../../shaders/outline.wgsl"),
+    include_str!("../../shaders/views.wgsl"),
 ];
 
 /// One named piece of WGSL: a file of the shader folder.

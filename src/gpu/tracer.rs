@@ -141,7 +141,14 @@ impl Pipelines {
             .map(|&format| {
                 (
                     format,
-                    pass("fs_display", format, &[fullscreen::encode_srgb(format)]),
+                    pass(
+                        "fs_display",
+                        format,
+                        &[
+                            fullscreen::encode_srgb(format),
+                            ("VIEW", f64::from(options.view.number())),
+                        ],
+                    ),
                 )
             })
             .collect();
@@ -396,6 +403,13 @@ impl SceneBuffers {
     /// Takes a new camera and render settings; the shapes stay as they are.
     pub fn set_view(&mut self, scene: &crate::scene::Scene) {
         self.packed.set_view(&scene.camera, &scene.render);
+    }
+
+    /// Sets the colour bar of a scalar view (`shaders/views.wgsl`): the
+    /// quantities shown blue and red, from [`super::colour_bar`]. Takes
+    /// effect at the next pass encoded.
+    pub fn set_view_range(&mut self, range: [f32; 2]) {
+        self.packed.globals.view_range = range;
     }
 }
 

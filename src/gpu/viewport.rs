@@ -19,6 +19,7 @@ use super::timer::{GpuTimer, Timing};
 use super::tracer::{
     Accumulator, FrameTarget, Pipelines, SceneBuffers, encode_display, encode_frame, encode_rows,
 };
+use super::view::ColourBar;
 use crate::scene::{Scene, ShapeId};
 
 /// Format of screenshots: 8-bit RGBA with the exact sRGB formula of the rendering model.
@@ -411,6 +412,13 @@ impl Viewport {
     /// call: what the viewer reports once the image is refined.
     pub fn take_longest_job(&mut self) -> (u32, Duration) {
         self.jobs.take_longest()
+    }
+
+    /// For a scalar view, once a sample is traced: reads the quantities
+    /// back (a copy of the traced image, waited for) and fits the colour
+    /// bar to them; the next frame shows it (docs/views.md).
+    pub fn fit_colour_bar(&mut self, gpu: &Gpu) -> Result<Option<ColourBar>, GpuWaitError> {
+        super::offscreen::fit_colour_bar(gpu, &mut self.scene, &self.accum)
     }
 
     /// The current image at the traced resolution, without anything drawn

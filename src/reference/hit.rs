@@ -27,6 +27,9 @@ pub struct Hit {
     /// that test, is a few eps times the larger of this and `|p|`. It sizes
     /// the offset of secondary rays (`offset_ray`).
     pub error_scale: f64,
+    /// For a triangle of a mesh, the barycentric weights of its three
+    /// vertices at `p` (the barycentric view, docs/views.md).
+    pub barycentric: Option<[f64; 3]>,
 }
 
 impl Hit {
@@ -38,6 +41,7 @@ impl Hit {
             n,
             shading: n,
             error_scale,
+            barycentric: None,
         }
     }
 }

@@ -13,7 +13,8 @@
 //! - `shapes/`: one file per shape kind, its f64 hit test;
 //! - `intersect.rs`: the nearest hit and shadow hits over the scene;
 //! - `shade.rs`: Whitted's recursive shading;
-//! - `output.rs`: exposure, sRGB and 8 bits.
+//! - `output.rs`: exposure, sRGB and 8 bits;
+//! - `views.rs`: what the views inside the tracer show of a first hit.
 //!
 //! Here: the scene prepared for tracing, and the renderers over it.
 
@@ -25,6 +26,7 @@ pub mod ray;
 mod sampling;
 mod shade;
 pub mod shapes;
+mod views;
 
 use glam::{DVec2, DVec3};
 use rayon::prelude::*;
@@ -36,6 +38,7 @@ pub use camera::{Camera, camera_ray};
 pub use intersect::ShapeId;
 pub use output::{encode_srgb8, to_rgba8};
 pub use sampling::{r4, r4_rotated};
+pub use views::{ViewHit, sphere_uv, view_hit};
 
 use intersect::nearest_hit;
 use sampling::concentric_disk;
@@ -74,6 +77,10 @@ pub struct PreparedScene {
     ambient: DVec3,
     max_depth: u32,
     min_weight: f64,
+    /// The lecture switches: shadow, reflected and refracted rays traced.
+    shadows: bool,
+    reflection: bool,
+    refraction: bool,
     exposure: f64,
     /// The robust routines or the textbook ones, the triangle test and the
     /// pixel angle.
@@ -146,6 +153,9 @@ impl PreparedScene {
             ambient: scene.render.ambient,
             max_depth: scene.render.max_depth,
             min_weight: scene.render.min_weight,
+            shadows: scene.render.shadows,
+            reflection: scene.render.reflection,
+            refraction: scene.render.refraction,
             exposure: scene.render.exposure,
             options: *options,
             uses_footprint: scene.julias.iter().any(|j| j.footprint),

@@ -68,11 +68,11 @@ fn shade(
     let traced = |child_weight: f64| child_weight > 0.0 && child_weight >= scene.min_weight;
 
     let reflected_weight = weight * split.wr;
-    if traced(reflected_weight) {
+    if scene.reflection && traced(reflected_weight) {
         let child = Ray::new(offset(scene, hit, ng), reflect(d, ns));
         radiance += split.wr * trace(scene, &child, depth + 1, reflected_weight);
     }
-    if let Some(dir) = split.transmitted {
+    if let Some(dir) = split.transmitted.filter(|_| scene.refraction) {
         let refracted_weight = weight * split.wt * albedo.max_element();
         if traced(refracted_weight) {
             let child = Ray::new(offset(scene, hit, -ng), dir);
@@ -123,8 +123,12 @@ fn local(
 /// Whether a shape lies between the hit point and the light: the shadow ray
 /// starts at `p` offset to the lit side `ns` (along the geometric normal on
 /// that side) and is blocked by any hit with `0 < t < |L - o|` (classic
-/// Whitted shadows: glass blocks fully too).
+/// Whitted shadows: glass blocks fully too). With the lecture switch
+/// `shadows` off, no shadow ray is cast and nothing is in shadow.
 fn in_shadow(scene: &PreparedScene, hit: &Hit, ns: DVec3, light: DVec3) -> bool {
+    if !scene.shadows {
+        return false;
+    }
     let ng = if hit.n.dot(ns) >= 0.0 { hit.n } else { -hit.n };
     let origin = offset(scene, hit, ng);
     let distance = (light - origin).length();

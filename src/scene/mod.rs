@@ -285,6 +285,20 @@ pub struct RenderSettings {
     pub background: DVec3,
     pub ambient: DVec3,
     pub exposure: f64,
+    /// The lecture's switches (docs/rendering-model.md, "Lecture
+    /// switches"): shadow rays, reflected rays and refracted rays, each on
+    /// unless the scene turns it off. Written to a file only when off.
+    #[serde(skip_serializing_if = "is_on")]
+    pub shadows: bool,
+    #[serde(skip_serializing_if = "is_on")]
+    pub reflection: bool,
+    #[serde(skip_serializing_if = "is_on")]
+    pub refraction: bool,
+}
+
+/// A lecture switch left at its default, on: not written to the file.
+fn is_on(switch: &bool) -> bool {
+    *switch
 }
 
 impl Default for RenderSettings {
@@ -295,6 +309,9 @@ impl Default for RenderSettings {
             background: DVec3::ZERO,
             ambient: DVec3::splat(0.1),
             exposure: 1.0,
+            shadows: true,
+            reflection: true,
+            refraction: true,
         }
     }
 }

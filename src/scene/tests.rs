@@ -825,9 +825,26 @@ fn render_defaults_follow_the_spec() {
             background: DVec3::ZERO,
             ambient: DVec3::splat(0.1),
             exposure: 1.0,
+            shadows: true,
+            reflection: true,
+            refraction: true,
         }
     );
     assert_eq!(loads("[render]\nexposure = 2\n").render.max_depth, 5);
+}
+
+#[test]
+fn lecture_switches_load_and_only_an_off_one_is_written() {
+    let scene = loads("[render]\nshadows = false\nrefraction = false\n");
+    let r = &scene.render;
+    assert_eq!(
+        (r.shadows, r.reflection, r.refraction),
+        (false, true, false)
+    );
+    let written = scene.to_toml_string();
+    assert!(written.contains("shadows = false") && written.contains("refraction = false"));
+    assert!(!written.contains("reflection"), "{written}");
+    assert_eq!(loads(&written).render, scene.render);
 }
 
 #[test]
@@ -1106,8 +1123,18 @@ mod properties {
             background in vec3(non_negative()),
             ambient in vec3(non_negative()),
             exposure in positive(),
+            switches in 0..8u32,
         ) -> RenderSettings {
-            RenderSettings { max_depth, min_weight, background, ambient, exposure }
+            RenderSettings {
+                max_depth,
+                min_weight,
+                background,
+                ambient,
+                exposure,
+                shadows: switches & 1 != 0,
+                reflection: switches & 2 != 0,
+                refraction: switches & 4 != 0,
+            }
         }
     }
 

@@ -9,6 +9,7 @@ use egui::{Grid, Slider, Ui};
 
 pub(super) fn render_section(ui: &mut Ui, render: &mut RenderSettings, view: &mut ViewSettings) {
     Grid::new("render").num_columns(2).show(ui, |ui| {
+        super::view_menu::lecture_switches(ui, render);
         field(
             ui,
             "max depth",
@@ -54,6 +55,7 @@ pub(super) fn render_section(ui: &mut Ui, render: &mut RenderSettings, view: &mu
     ui.separator();
     ui.label("Viewer (not saved in the file)");
     Grid::new("view").num_columns(2).show(ui, |ui| {
+        super::view_menu::view_row(ui, &mut view.shown);
         field(
             ui,
             "samples",

@@ -189,6 +189,7 @@ fn kind_loops(kinds: &[&KindInfo]) -> String {
                 "    if {flag} && shape_counts[{kind}] > 0u {{\n\
                  \x20       var i = 0u;\n\
                  \x20       loop {{\n\
+                 \x20           count_test();\n\
                  \x20           best = {visit};\n\
                  \x20           if any && best.kind != KIND_NONE {{\n\
                  \x20               return best;\n\

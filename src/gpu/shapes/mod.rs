@@ -286,6 +286,9 @@ impl ShaderOptions {
             ("HAS_LENS", f.lens),
             ("USE_BVH", f.bvh),
             ("COUNT_RAYS", self.count_rays),
+            ("SHADOWS", self.rays.shadows),
+            ("REFLECTION", self.rays.reflection),
+            ("REFRACTION", self.rays.refraction),
         ]
         .map(|(name, on)| (name.to_string(), on));
         let present = ShapeKind::ALL.iter().map(|&k| (has_flag(k), f.has(k)));
@@ -298,6 +301,7 @@ impl ShaderOptions {
             .chain(present)
             .map(|(name, on)| (name, f64::from(u8::from(on))))
             .chain(methods)
+            .chain([("VIEW".to_string(), f64::from(self.view.number()))])
             .collect()
     }
 }

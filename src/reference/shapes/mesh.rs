@@ -103,6 +103,7 @@ impl Mesh {
             n,
             shading,
             error_scale: self.error_scale,
+            barycentric: Some(h.b),
         }
     }
 }
