@@ -261,6 +261,19 @@ void main() { gl_FragColor = vec4(f(gl_FragCoord.x / resolution.x), halve(1.0), 
 }
 
 #[test]
+fn mix_in_a_global_const_draws_its_value() {
+    // naga cannot evaluate mix() as a constant: it becomes its definition.
+    let text = "\
+const vec3 A = vec3(1.0, 0.0, 0.0);
+const vec3 C = mix(A, vec3(0.0, 0.0, 1.0), 0.25);
+void main() { gl_FragColor = vec4(C, 1.0); }
+";
+    let Some(gpu) = common::gpu() else { return };
+    let image = render_text(&gpu, "mix.frag", text);
+    assert_every_pixel(&image, [191, 0, 64], "mix(red, blue, 0.25)");
+}
+
+#[test]
 fn a_function_may_call_one_defined_below_it_through_a_prototype() {
     // naga adds `a` where its prototype is, but its definition calls `c`,
     // defined later: the functions are reordered for the validator.

@@ -23,6 +23,10 @@
 //! - a local `const int N = 4;` used as an array size (`float a[N];`),
 //!   which naga does not know as a constant: `[N]` becomes `[4]`.
 //!
+//! - `mix(x, y, a)` in the declaration of a global `const`, which naga
+//!   cannot evaluate as a constant: its definition in GLSL,
+//!   `((x) * (1.0 - (a)) + (y) * (a))`.
+//!
 //! The rewrites of names and calls (not `dot`) also apply inside the body
 //! of a `#define`, so that a macro expands to what naga takes. `dot(` in
 //! the declaration of a global `const` (a constant expression, where naga
@@ -141,6 +145,7 @@ pub fn bridge(scan: &Scan, mut text: String) -> Bridged {
                 uses_mat2 |= define_body_rewrites(t, &mut text, &mut insertions);
             }
             "dot" if global_const => {}
+            "mix" if global_const => mix_in_constant(tokens, i, &mut text, &mut insertions),
             _ => {
                 let used = rewrite_token(tokens, i, &mut text, &mut insertions);
                 uses_mat2 |= used == Some("mat2");
@@ -344,24 +349,58 @@ fn sampler_parameters(tokens: &[Token], text: &mut String, out: &mut Vec<(usize,
 
 /// `(` at `open` starts a call with exactly one argument.
 fn single_argument(tokens: &[Token], open: usize) -> bool {
+    arguments(tokens, open).is_some_and(|(commas, _)| commas.is_empty())
+}
+
+/// For the call whose `(` is the token at `open`: the tokens of the commas
+/// between its arguments and of its closing `)`.
+fn arguments(tokens: &[Token], open: usize) -> Option<(Vec<usize>, usize)> {
     if !tokens.get(open).is_some_and(|t| t.is("(")) {
-        return false;
+        return None;
     }
     let mut depth = 0;
-    for t in &tokens[open..] {
+    let mut commas = Vec::new();
+    for (i, t) in tokens.iter().enumerate().skip(open) {
         match t.text {
             "(" | "[" => depth += 1,
             ")" | "]" => {
                 depth -= 1;
                 if depth == 0 {
-                    return true;
+                    return Some((commas, i));
                 }
             }
-            "," if depth == 1 => return false,
+            "," if depth == 1 => commas.push(i),
             _ => {}
         }
     }
-    false
+    None
+}
+
+/// `mix(x, y, a)` in a constant expression, which naga cannot evaluate,
+/// becomes GLSL's definition of it, `((x) * (1.0 - (a)) + (y) * (a))`
+/// (the commas overwritten, the rest inserted, `a`'s text written twice).
+fn mix_in_constant(
+    tokens: &[Token],
+    name: usize,
+    text: &mut String,
+    out: &mut Vec<(usize, String)>,
+) {
+    let Some((commas, close)) = arguments(tokens, name + 1) else {
+        return;
+    };
+    let &[first, second] = commas.as_slice() else {
+        return;
+    };
+    let a = text[tokens[second].end()..tokens[close].start]
+        .trim()
+        .to_string();
+    scan::blank(text, tokens[name].start..tokens[name].end());
+    out.push((tokens[name + 1].end(), "(".to_string()));
+    overwrite(text, tokens[first].start..tokens[first].end(), ")");
+    out.push((tokens[first].end(), format!(" * (1.0 - ({a})) + (")));
+    overwrite(text, tokens[second].start..tokens[second].end(), ")");
+    out.push((tokens[second].end(), " * (".to_string()));
+    out.push((tokens[close].start, ")".to_string()));
 }
 
 /// If the identifier at `name` starts a prototype `NAME(...);` (at the top
@@ -570,6 +609,21 @@ mod tests {
             ]
         );
         assert!(b.uses_mat2 && b.uses_dot);
+    }
+
+    #[test]
+    fn mix_in_a_global_constant_becomes_its_definition() {
+        let (b, _) = bridged(
+            "const vec3 c = mix(a, vec3(1.0, 2.0, 3.0), 0.25);\n\
+             void f() { vec3 d = mix(a, b, t); }",
+        );
+        assert_eq!(
+            b.text.lines().collect::<Vec<_>>(),
+            [
+                "const vec3 c =    ((a) * (1.0 - (0.25)) + ( vec3(1.0, 2.0, 3.0)) * ( 0.25));",
+                "void f() { vec3 d = mix(a, b, t); }",
+            ]
+        );
     }
 
     #[test]
