@@ -310,5 +310,9 @@ fn both_storage_layouts_find_identical_hits() {
         .iter()
         .find(|h| h[1] == u32::MAX)
         .expect("rays past the sphere");
-    assert_eq!(f32::from_bits(missed[0]), 1e30, "a miss keeps t = T_FAR");
+    assert_eq!(
+        f32::from_bits(missed[0]),
+        raysandbox::stress::f32_intersect::T_FAR,
+        "a miss keeps t = T_FAR"
+    );
 }
