@@ -157,7 +157,7 @@ fn heat(x: f32) -> vec3<f32> {
 
 /// A stable false colour for a shape: a hash of its kind and index.
 fn id_colour(kind: u32, index: u32) -> vec3<f32> {
-    var h = kind * 0x9e3779b9u ^ (index + 1u) * 0x85ebca6bu;
+    var h = (kind * 0x9e3779b9u) ^ ((index + 1u) * 0x85ebca6bu);
     h ^= h >> 15u;
     h *= 0x2c1b3c6du;
     h ^= h >> 12u;
