@@ -366,14 +366,15 @@ fn the_v_key_cycles_the_views_in_the_window() {
     let mut viewer = Window::open(&display, &["view", path, "--max-samples", "1"], size);
     let gpu = common::gpu().unwrap();
     let scene = scene("whitted.toml");
-    // The image right of the panel and above the status line.
-    let (panel, status) = (viewer.part("panel"), viewer.part("status"));
-    let x = (panel.right() + 16) as u32;
-    let area = (x, 0, size.0 - x, status.y as u32);
     for view in [View::Normals, View::Geometric, View::Depth] {
         viewer.key("v");
         assert_eq!(viewer.wait_for("view-shown"), view.name());
         viewer.wait_for("ready");
+        // The image right of the panel and above the status line, which
+        // grows a row when the view's legend does not fit beside the rest.
+        let (panel, status) = (viewer.part("panel"), viewer.part("status"));
+        let x = (panel.right() + 16) as u32;
+        let area = (x, 0, size.0 - x, status.y as u32);
         let window = viewer.capture();
         let headless = rendered(&gpu, &scene, view, |_| {}, size)
             .read_image(&gpu)
