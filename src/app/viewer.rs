@@ -512,7 +512,7 @@ impl Viewer {
         let refine = match (new_samples, dragging) {
             (0, _) => Refine::Show,
             (_, true) => Refine::WholeSample,
-            (_, false) => Refine::NextRows,
+            (_, false) => Refine::NextJob,
         };
 
         let painting = gfx.egui.prepare(&gfx.gpu, &gfx.window, output);

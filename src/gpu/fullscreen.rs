@@ -64,19 +64,19 @@ pub fn pass(
         bind_groups,
         target,
         wgpu::LoadOp::Clear(wgpu::Color::BLACK),
-        None,
+        &[],
     );
 }
 
-/// Like [`pass`], limited to the rows `rows` of a target `width` pixels
-/// wide: the other rows keep what the target holds, unless `clear` (then
-/// they are black).
-pub fn pass_rows(
+/// Like [`pass`], limited to the scissor rectangles `rects` (`[x, y,
+/// width, height]`, disjoint): the other pixels keep what the target holds,
+/// unless `clear` (then they are black).
+pub fn pass_rects(
     encoder: &mut wgpu::CommandEncoder,
     pipeline: &wgpu::RenderPipeline,
     bind_groups: &[&wgpu::BindGroup],
     target: &wgpu::TextureView,
-    (rows, width): (std::ops::Range<u32>, u32),
+    rects: &[[u32; 4]],
     clear: bool,
 ) {
     let load = if clear {
@@ -84,8 +84,7 @@ pub fn pass_rows(
     } else {
         wgpu::LoadOp::Load
     };
-    let scissor = [0, rows.start, width, rows.len() as u32];
-    encode(encoder, pipeline, bind_groups, target, load, Some(scissor));
+    encode(encoder, pipeline, bind_groups, target, load, rects);
 }
 
 /// Like [`pass`], but drawing over what `target` holds: the pixels the
@@ -103,7 +102,7 @@ pub fn pass_over(
         bind_groups,
         target,
         wgpu::LoadOp::Load,
-        None,
+        &[],
     );
 }
 
@@ -113,7 +112,7 @@ fn encode(
     bind_groups: &[&wgpu::BindGroup],
     target: &wgpu::TextureView,
     load: wgpu::LoadOp<wgpu::Color>,
-    scissor: Option<[u32; 4]>,
+    scissors: &[[u32; 4]],
 ) {
     let mut pass = encoder.begin_render_pass(&wgpu::RenderPassDescriptor {
         label: None,
@@ -132,13 +131,16 @@ fn encode(
         multiview_mask: None,
     });
     pass.set_pipeline(pipeline);
-    if let Some([x, y, w, h]) = scissor {
-        pass.set_scissor_rect(x, y, w, h);
-    }
     for (group, bind_group) in bind_groups.iter().enumerate() {
         pass.set_bind_group(group as u32, *bind_group, &[]);
     }
-    pass.draw(0..3, 0..1);
+    if scissors.is_empty() {
+        pass.draw(0..3, 0..1);
+    }
+    for &[x, y, w, h] in scissors {
+        pass.set_scissor_rect(x, y, w, h);
+        pass.draw(0..3, 0..1);
+    }
 }
 
 /// A bind group layout of one texture read with `textureLoad` in the

@@ -1,10 +1,11 @@
 //! Short GPU jobs: while the viewer refines, each sample of the image is
-//! traced in bands of rows, one band per submission, each band sized from
+//! traced in spans of pixels (whole rows, or a part of a row where one row
+//! costs more than a job may), one span per submission, each sized from
 //! measured times so that a submission keeps the GPU busy for about
 //! [`JOB_BUDGET`] (docs/performance.md, "Short GPU jobs"). Between two
 //! jobs the window handles input and draws its UI, and neither a browser's
 //! GPU watchdog nor a desktop driver's timeout sees a long submission, however slow
-//! a whole sample of the scene is.
+//! a whole sample, or a single row, of the scene is.
 
 use std::ops::Range;
 
@@ -28,25 +29,36 @@ const MAX_BUDGET: Duration = Duration::from_millis(200);
 /// How finely the costs along the image's height are remembered.
 const BINS: usize = 64;
 
-/// Rows of the first job on an image whose costs are unknown.
-const FIRST_ROWS: u32 = 8;
+/// Pixels of the first job on an image whose costs are unknown: few,
+/// since a pixel of the glass bunny takes about 2 ms in a browser on a CPU
+/// rasteriser (docs/performance.md, "Short GPU jobs"); the jobs double
+/// from there, so a cheap scene reaches the budget within a few jobs.
+const FIRST_PIXELS: u32 = 64;
 
-/// Over rows whose cost is unknown, a job takes at most this many times
-/// the rows of the last measured one.
+/// Over pixels whose cost is unknown, a job takes at most this many times
+/// the pixels of the last measured one.
 const GROWTH: u32 = 2;
 
-/// Plans the rows of each job from the times the last ones took.
+/// The fewest pixels of a job: a CPU rasteriser shades pixels in groups
+/// (llvmpipe: 4 x 4 blocks, 8 lanes at once), so a thinner piece of a row
+/// would cost nearly as much as this many pixels.
+const MIN_PIXELS: u32 = 16;
+
+/// Plans the pixels of each job from the times the last ones took. A job
+/// is a range of pixel indices in row-major order (`y * width + x`) of the
+/// sample in progress; [`span_rects`] turns it into scissor rectangles.
 #[derive(Debug, Clone)]
 pub struct JobPlanner {
     budget: Duration,
     /// Seconds per pixel, by band of the image's height (fractions of it,
     /// so that a new resolution keeps what was learnt); 0: not measured.
     cost: [f64; BINS],
-    /// The job planned last and not measured yet: its rows, in an image
+    /// The job planned last and not measured yet: its pixels, in an image
     /// of that width and height.
     pending: Option<(Range<u32>, (u32, u32))>,
-    /// Rows of the last measured job, and its seconds per pixel.
-    last: (u32, f64),
+    /// Pixels of the last measured job, and its seconds per pixel; none
+    /// before the first.
+    last: Option<(u32, f64)>,
     /// The GPU time of the sample in progress so far, and of the last
     /// whole sample.
     sample_time: Duration,
@@ -66,7 +78,7 @@ impl JobPlanner {
             budget,
             cost: [0.0; BINS],
             pending: None,
-            last: (FIRST_ROWS / GROWTH, 0.0),
+            last: None,
             sample_time: Duration::ZERO,
             last_sample_time: None,
             longest: Duration::ZERO,
@@ -93,66 +105,79 @@ impl JobPlanner {
         self.budget.max(overhead.min(MAX_BUDGET))
     }
 
-    /// The rows of the next job, from row `start` of an image of `size`
-    /// pixels: as many as the remembered costs say fit in the budget (at
-    /// least one), growing at most [`GROWTH`] times over rows never
-    /// measured.
+    /// The pixels of the next job, from pixel `start` of an image of
+    /// `size` pixels: as many as the remembered costs say fit in the budget
+    /// (at least [`MIN_PIXELS`], or what is left), growing at most
+    /// [`GROWTH`] times over pixels never measured. A job ends inside a
+    /// row only where the budget ends there.
     pub fn next(&mut self, start: u32, (width, height): (u32, u32)) -> Range<u32> {
+        let width = width.max(1);
+        let total = width * height;
+        debug_assert!(start < total, "no pixels left from {start} of {total}");
         let budget = self.budget().as_secs_f64();
-        let unknown_limit = start.saturating_add(self.last.0.max(1) * GROWTH);
+        let (last_pixels, last_cost) = self.last.unwrap_or((FIRST_PIXELS / GROWTH, 0.0));
+        let unknown_limit = start.saturating_add(last_pixels.max(1).saturating_mul(GROWTH));
         let mut spent = 0.0;
         let mut end = start;
-        while end < height {
-            let known = self.cost[bin(end, height)];
-            if known == 0.0 && end >= unknown_limit {
+        while end < total {
+            let row = end / width;
+            let known = self.cost[bin(row, height)];
+            let (limit, per_pixel) = if known > 0.0 {
+                ((row + 1) * width, known)
+            } else if end < unknown_limit {
+                (((row + 1) * width).min(unknown_limit), last_cost)
+            } else {
+                break;
+            };
+            let fit = if per_pixel > 0.0 {
+                ((budget - spent) / per_pixel).max(0.0)
+            } else {
+                f64::INFINITY
+            };
+            let take = fit.min(f64::from(limit - end)) as u32;
+            spent += f64::from(take) * per_pixel;
+            end += take;
+            if end < limit {
                 break;
             }
-            let row = f64::from(width) * if known > 0.0 { known } else { self.last.1 };
-            if end > start && spent + row > budget {
-                break;
-            }
-            spent += row;
-            end += 1;
         }
-        debug_assert!(start < height, "no rows left from {start} of {height}");
-        let rows = start..end.max(start + 1);
-        self.pending = Some((rows.clone(), (width, height)));
-        rows
+        let span = start..end.max(start + MIN_PIXELS).min(total);
+        self.pending = Some((span.clone(), (width, height)));
+        span
     }
 
-    /// The GPU time the job last planned took. Where the costs of its rows
+    /// The GPU time the job last planned took. Where the costs of its bands
     /// were known, they are scaled together to the measured time, which
     /// keeps what finer jobs learnt about their differences (the edge of an
-    /// object inside a job); where not, each row gets the job's average.
+    /// object inside a job); where not, each band gets the job's average.
     pub fn measured(&mut self, time: Duration) {
-        let Some((rows, (width, height))) = self.pending.take() else {
+        let Some((span, (width, height))) = self.pending.take() else {
             return;
         };
-        let pixels = f64::from(rows.len() as u32 * width.max(1));
-        let per_pixel = time.as_secs_f64() / pixels;
-        let bins: Vec<usize> = {
-            let mut bins: Vec<usize> = rows.clone().map(|row| bin(row, height)).collect();
-            bins.dedup();
-            bins
-        };
-        let known = bins.iter().all(|&b| self.cost[b] > 0.0);
-        let predicted: f64 = rows.clone().map(|row| self.cost[bin(row, height)]).sum();
+        let pixels = span.len() as u32;
+        let per_pixel = time.as_secs_f64() / f64::from(pixels.max(1));
+        let bands = pixels_by_band(&span, (width, height));
+        let known = bands.iter().all(|&(b, _)| self.cost[b] > 0.0);
+        let predicted: f64 = bands
+            .iter()
+            .map(|&(b, n)| f64::from(n) * self.cost[b])
+            .sum();
         if known && predicted > 0.0 {
-            let factor = per_pixel * rows.len() as f64 / predicted;
-            for b in bins {
+            let factor = time.as_secs_f64() / predicted;
+            for (b, _) in bands {
                 self.cost[b] *= factor;
             }
         } else {
-            for b in bins {
+            for (b, _) in bands {
                 self.cost[b] = per_pixel;
             }
         }
-        self.last = (rows.len() as u32, per_pixel);
+        self.last = Some((pixels, per_pixel));
         self.last_time = time;
         self.longest = self.longest.max(time);
         self.jobs += 1;
         self.sample_time += time;
-        if rows.end >= height {
+        if span.end >= width * height {
             self.last_sample_time = Some(std::mem::take(&mut self.sample_time));
         }
     }
@@ -179,6 +204,50 @@ impl JobPlanner {
     }
 }
 
+/// The scissor rectangles `[x, y, width, height]` that cover exactly the
+/// pixels `span` (row-major indices) of an image `width` pixels wide: the
+/// rest of a first row begun, the whole rows, the start of a last row.
+pub fn span_rects(span: &Range<u32>, width: u32) -> Vec<[u32; 4]> {
+    let width = width.max(1);
+    let (first_row, first_x) = (span.start / width, span.start % width);
+    let (last_row, last_x) = (span.end / width, span.end % width);
+    if span.is_empty() {
+        return Vec::new();
+    }
+    if first_row == last_row {
+        return vec![[first_x, first_row, last_x - first_x, 1]];
+    }
+    let mut rects = Vec::with_capacity(3);
+    let mut whole_from = first_row;
+    if first_x > 0 {
+        rects.push([first_x, first_row, width - first_x, 1]);
+        whole_from += 1;
+    }
+    if last_row > whole_from {
+        rects.push([0, whole_from, width, last_row - whole_from]);
+    }
+    if last_x > 0 {
+        rects.push([0, last_row, last_x, 1]);
+    }
+    rects
+}
+
+/// How many pixels of `span` fall in each band of the image's height.
+fn pixels_by_band(span: &Range<u32>, (width, height): (u32, u32)) -> Vec<(usize, u32)> {
+    let width = width.max(1);
+    let mut bands: Vec<(usize, u32)> = Vec::new();
+    for [_, y, w, h] in span_rects(span, width) {
+        for row in y..y + h {
+            let b = bin(row, height);
+            match bands.last_mut() {
+                Some((last, n)) if *last == b => *n += w,
+                _ => bands.push((b, w)),
+            }
+        }
+    }
+    bands
+}
+
 /// The band of row `row` in an image `height` rows high.
 fn bin(row: u32, height: u32) -> usize {
     (row as usize * BINS / height.max(1) as usize).min(BINS - 1)
@@ -188,40 +257,50 @@ fn bin(row: u32, height: u32) -> usize {
 mod tests {
     use super::*;
 
-    /// A GPU whose rows cost `cost(row)` milliseconds each at width 100.
+    const WIDTH: u32 = 100;
+
+    /// A GPU whose rows cost `cost(row)` milliseconds each at width 100:
+    /// every job of one sample, as (pixels, milliseconds).
     fn run(planner: &mut JobPlanner, cost: impl Fn(u32) -> f64, height: u32) -> Vec<(u32, f64)> {
+        let total = WIDTH * height;
         let mut jobs = Vec::new();
         let mut start = 0;
-        while start < height {
-            let rows = planner.next(start, (100, height));
-            assert!(rows.start == start && rows.end > start && rows.end <= height);
-            let ms: f64 = rows.clone().map(&cost).sum();
+        while start < total {
+            let span = planner.next(start, (WIDTH, height));
+            assert!(span.start == start && span.end > start && span.end <= total);
+            let ms: f64 = span
+                .clone()
+                .map(|p| cost(p / WIDTH) / f64::from(WIDTH))
+                .sum();
             planner.measured(Duration::from_secs_f64(ms / 1000.0));
-            jobs.push((rows.len() as u32, ms));
-            start = rows.end;
+            jobs.push((span.len() as u32, ms));
+            start = span.end;
         }
         jobs
     }
 
     #[test]
-    fn jobs_grow_from_a_few_rows_to_the_budget_and_cover_the_image() {
+    fn jobs_grow_from_a_few_pixels_to_the_budget_and_cover_the_image() {
         let mut planner = JobPlanner::new(Duration::from_millis(30));
         let jobs = run(&mut planner, |_| 1.0, 600);
-        assert_eq!(jobs.iter().map(|j| j.0).sum::<u32>(), 600);
-        assert_eq!(jobs[0].0, FIRST_ROWS);
+        assert_eq!(jobs.iter().map(|j| j.0).sum::<u32>(), 600 * WIDTH);
+        assert_eq!(jobs[0].0, FIRST_PIXELS);
         assert!(jobs.iter().all(|&(_, ms)| ms <= 30.0 + 1e-9), "{jobs:?}");
         // 30 rows of 1 ms, but for the rounding of the measured times.
         let mut last = jobs.iter().rev().skip(1).take(5);
-        assert!(last.all(|&(rows, _)| (29..=30).contains(&rows)), "{jobs:?}");
+        assert!(
+            last.all(|&(pixels, _)| (2990..=3000).contains(&pixels)),
+            "{jobs:?}"
+        );
         let sample = planner.last_sample_time().unwrap().as_secs_f64();
         assert!((sample - 0.6).abs() < 1e-6, "{sample}");
     }
 
     /// Later samples know the costs of each band: a band ten times dearer
-    /// (a glass object) gets jobs of a tenth of the rows. A job that mixed
-    /// cheap and dear rows smears their costs over its bands, so the edges
-    /// of the band are learnt over a few samples; by the third, no job passes
-    /// the budget by more than one dear row.
+    /// (a glass object) gets jobs of a tenth of the pixels. A job that
+    /// mixed cheap and dear rows smears their costs over its bands, so the
+    /// edges of the band are learnt over a few samples; by the third, no job
+    /// passes the budget by more than one dear row.
     #[test]
     fn a_known_costly_band_gets_shorter_jobs() {
         let cost = |row: u32| if (200..300).contains(&row) { 10.0 } else { 1.0 };
@@ -231,14 +310,58 @@ mod tests {
         let third = run(&mut planner, cost, 640);
         let longest = third.iter().map(|j| j.1).fold(0.0, f64::max);
         assert!(longest <= 30.0 + 10.0, "{third:?}");
-        assert!(third.iter().any(|&(rows, _)| rows <= 3), "{third:?}");
+        assert!(
+            third.iter().any(|&(pixels, _)| pixels <= 3 * WIDTH),
+            "{third:?}"
+        );
     }
 
+    /// A row that alone costs more than the budget (the glass bunny in a
+    /// browser on a CPU rasteriser) is cut into pieces of a row: once the
+    /// first job has measured the cost, no job passes the budget by more
+    /// than a pixel's cost, and none but the image's last is thinner than
+    /// [`MIN_PIXELS`].
     #[test]
-    fn a_job_is_never_empty_even_when_one_row_is_over_the_budget() {
+    fn a_row_over_the_budget_is_cut_into_pieces_within_the_budget() {
         let mut planner = JobPlanner::new(Duration::from_millis(30));
         let jobs = run(&mut planner, |_| 100.0, 20);
-        assert!(jobs.iter().all(|&(rows, _)| rows >= 1));
-        assert_eq!(jobs.iter().map(|j| j.0).sum::<u32>(), 20);
+        assert_eq!(jobs.iter().map(|j| j.0).sum::<u32>(), 20 * WIDTH);
+        assert!(
+            jobs[1..].iter().all(|&(_, ms)| ms <= 30.0 + 1.0),
+            "{jobs:?}"
+        );
+        let (_, all_but_last) = jobs.split_last().unwrap();
+        assert!(
+            all_but_last.iter().all(|&(pixels, _)| pixels >= MIN_PIXELS),
+            "{jobs:?}"
+        );
+        assert!(
+            jobs[1..].iter().all(|&(pixels, _)| pixels < WIDTH),
+            "{jobs:?}"
+        );
+    }
+
+    /// However a span starts and ends, its rectangles cover each of its
+    /// pixels once and nothing else.
+    #[test]
+    fn span_rects_cover_exactly_the_span() {
+        let (width, height) = (7, 5);
+        for start in 0..width * height {
+            for end in start..=width * height {
+                let mut covered = vec![0; (width * height) as usize];
+                for [x, y, w, h] in span_rects(&(start..end), width) {
+                    assert!(w > 0 && h > 0 && x + w <= width && y + h <= height);
+                    for row in y..y + h {
+                        for col in x..x + w {
+                            covered[(row * width + col) as usize] += 1;
+                        }
+                    }
+                }
+                for (p, &n) in covered.iter().enumerate() {
+                    let inside = (start..end).contains(&(p as u32));
+                    assert_eq!(n, u32::from(inside), "pixel {p} of {start}..{end}");
+                }
+            }
+        }
     }
 }

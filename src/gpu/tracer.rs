@@ -11,6 +11,7 @@ use std::sync::Arc;
 use super::buffer;
 use super::features::{ShaderOptions, borrowed};
 use super::fullscreen;
+use super::jobs::span_rects;
 use super::layout::PackedScene;
 use super::limits::{BufferLimitError, check_buffers};
 use super::outline::OutlinePipelines;
@@ -437,9 +438,9 @@ pub struct Accumulator {
     /// Index of the texture that holds the current sum.
     front: usize,
     samples: u32,
-    /// Rows of the next sample already traced into the other texture
-    /// ([`encode_rows`]); 0 when no sample is in progress.
-    rows_done: u32,
+    /// Pixels of the next sample already traced into the other texture,
+    /// in row-major order ([`encode_job`]); 0 when no sample is in progress.
+    pixels_done: u32,
     size: (u32, u32),
 }
 
@@ -474,7 +475,7 @@ impl Accumulator {
             bind_groups,
             front: 0,
             samples: 0,
-            rows_done: 0,
+            pixels_done: 0,
             size: (width, height),
         }
     }
@@ -489,9 +490,10 @@ impl Accumulator {
         self.size
     }
 
-    /// Rows of the next sample traced so far by [`encode_rows`].
-    pub fn rows_done(&self) -> u32 {
-        self.rows_done
+    /// Pixels of the next sample traced so far by [`encode_job`], in
+    /// row-major order.
+    pub fn pixels_done(&self) -> u32 {
+        self.pixels_done
     }
 
     /// The texture that holds the current sum.
@@ -503,7 +505,7 @@ impl Accumulator {
     /// scene or view changed).
     pub fn reset(&mut self) {
         self.samples = 0;
-        self.rows_done = 0;
+        self.pixels_done = 0;
     }
 }
 
@@ -544,7 +546,7 @@ pub fn encode_frame(
         );
         accum.front = back;
         accum.samples += new_samples;
-        accum.rows_done = 0;
+        accum.pixels_done = 0;
     }
     fullscreen::pass(
         encoder,
@@ -554,20 +556,21 @@ pub fn encode_frame(
     );
 }
 
-/// Encodes the trace of the rows `rows` of the next sample (one sample per
-/// pixel), continuing where the last call stopped: a sample cut into
-/// short GPU jobs (docs/performance.md, "Short GPU jobs"). The sample counts
-/// once its last row is traced. The globals are written through `queue`
-/// for this pass alone: submit before [`encode_display`].
-pub fn encode_rows(
+/// Encodes the trace of the pixels `span` (row-major indices) of the next
+/// sample (one sample per pixel), continuing where the last call stopped: a
+/// sample cut into short GPU jobs (docs/performance.md, "Short GPU jobs").
+/// The sample counts once its last pixel is traced. The globals are written
+/// through `queue`: submit before encoding anything else.
+pub fn encode_job(
     queue: &wgpu::Queue,
     encoder: &mut wgpu::CommandEncoder,
     (pipelines, scene): (&Pipelines, &SceneBuffers),
     accum: &mut Accumulator,
-    rows: std::ops::Range<u32>,
+    span: std::ops::Range<u32>,
 ) {
     let (width, height) = accum.size;
-    let rows = rows.start.min(height)..rows.end.min(height);
+    let total = width * height;
+    let span = span.start.min(total)..span.end.min(total);
     let mut globals = scene.packed.globals;
     globals.resolution = [width, height];
     globals.output_size = [width, height];
@@ -575,26 +578,26 @@ pub fn encode_rows(
     globals.sample_count = 1;
     queue.write_buffer(&scene.globals, 0, bytemuck::bytes_of(&globals));
     let back = 1 - accum.front;
-    // The first sample's rows not traced yet show black, not an old image.
-    let clear = accum.samples == 0 && accum.rows_done == 0;
-    fullscreen::pass_rows(
+    // The first sample's pixels not traced yet show black, not an old image.
+    let clear = accum.samples == 0 && accum.pixels_done == 0;
+    fullscreen::pass_rects(
         encoder,
         &pipelines.trace,
         &[&scene.bind_group, &accum.bind_groups[accum.front]],
         &accum.views[back],
-        (rows.clone(), width),
+        &span_rects(&span, width),
         clear,
     );
-    accum.rows_done = rows.end;
-    if rows.end == height {
+    accum.pixels_done = span.end;
+    if span.end == total {
         accum.front = back;
         accum.samples += 1;
-        accum.rows_done = 0;
+        accum.pixels_done = 0;
     }
 }
 
 /// Encodes the display of the accumulated samples into `target`; during the
-/// first sample, of the rows traced so far. The globals are written through
+/// first sample, of the pixels traced so far. The globals are written through
 /// `queue`: submit before encoding anything else.
 pub fn encode_display(
     queue: &wgpu::Queue,
@@ -603,7 +606,7 @@ pub fn encode_display(
     accum: &Accumulator,
     target: &FrameTarget,
 ) {
-    let first_in_progress = accum.samples == 0 && accum.rows_done > 0;
+    let first_in_progress = accum.samples == 0 && accum.pixels_done > 0;
     let (shown, samples) = if first_in_progress {
         (1 - accum.front, 1)
     } else {

@@ -17,7 +17,7 @@ use super::outline::Outline;
 use super::texture::render_target;
 use super::timer::{GpuTimer, Timing};
 use super::tracer::{
-    Accumulator, FrameTarget, Pipelines, SceneBuffers, encode_display, encode_frame, encode_rows,
+    Accumulator, FrameTarget, Pipelines, SceneBuffers, encode_display, encode_frame, encode_job,
 };
 use super::view::ColourBar;
 use crate::scene::{Scene, ShapeId};
@@ -33,9 +33,9 @@ pub enum Refine {
     /// One sample of every pixel in one job: a moving view, whose
     /// resolution scale keeps the frame short.
     WholeSample,
-    /// The next rows of the next sample, as many as fit in a short job
+    /// The next pixels of the next sample, as many as fit in a short job
     /// ([`super::jobs`]).
-    NextRows,
+    NextJob,
 }
 
 /// What happened to a frame.
@@ -275,21 +275,21 @@ impl Viewport {
                 // Any sample in progress is traced over, whole.
                 self.jobs.restart();
                 let mut encoder = gpu.device.create_command_encoder(&Default::default());
-                let rows = 0..self.accum.size().1;
-                self.trace_job(gpu, &mut encoder, rows);
+                let (width, height) = self.accum.size();
+                self.trace_job(gpu, &mut encoder, 0..width * height);
                 self.submit_timed(gpu, encoder);
                 self.whole_frame = true;
             }
             // Shows what is done while the last job runs (the browser only).
-            Refine::NextRows if self.job_in_flight => {}
-            Refine::NextRows => {
+            Refine::NextJob if self.job_in_flight => {}
+            Refine::NextJob => {
                 let now = Instant::now();
                 if let Some(last) = self.last_job_start.replace(now) {
                     self.jobs.cycle(now - last);
                 }
-                let rows = self.jobs.next(self.accum.rows_done(), self.accum.size());
+                let span = self.jobs.next(self.accum.pixels_done(), self.accum.size());
                 let mut encoder = gpu.device.create_command_encoder(&Default::default());
-                self.trace_job(gpu, &mut encoder, rows);
+                self.trace_job(gpu, &mut encoder, span);
                 self.submit_timed(gpu, encoder);
                 self.whole_frame = false;
             }
@@ -345,18 +345,18 @@ impl Viewport {
         }
     }
 
-    /// Encodes the trace of `rows` of the next sample, between the
-    /// timer's queries where the adapter has timestamps.
-    fn trace_job(&mut self, gpu: &Gpu, encoder: &mut wgpu::CommandEncoder, rows: Range<u32>) {
+    /// Encodes the trace of the pixels `span` of the next sample, between
+    /// the timer's queries where the adapter has timestamps.
+    fn trace_job(&mut self, gpu: &Gpu, encoder: &mut wgpu::CommandEncoder, span: Range<u32>) {
         if let Some(timer) = &self.timer {
             timer.begin(encoder);
         }
-        encode_rows(
+        encode_job(
             &gpu.queue,
             encoder,
             (&self.pipelines, &self.scene),
             &mut self.accum,
-            rows,
+            span,
         );
         if let Some(timer) = &self.timer {
             timer.end(encoder);
