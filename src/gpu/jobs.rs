@@ -44,6 +44,21 @@ const GROWTH: u32 = 2;
 /// would cost nearly as much as this many pixels.
 const MIN_PIXELS: u32 = 16;
 
+/// The fewest pixels of a job in an image `width` pixels wide: natively
+/// [`MIN_PIXELS`]; in the browser a whole row. There a job's time is
+/// measured from its submission to the GPU's "work done", which includes
+/// the display and UI passes of the frames queued before it (hundreds of
+/// milliseconds on SwiftShader with the panel shown): pieces of 16 pixels
+/// each measured at that queue's length made the page's first sample take
+/// over 20 minutes (docs/performance.md, "Short GPU jobs").
+fn min_pixels(width: u32) -> u32 {
+    if cfg!(target_arch = "wasm32") {
+        width
+    } else {
+        MIN_PIXELS
+    }
+}
+
 /// Plans the pixels of each job from the times the last ones took. A job
 /// is a range of pixel indices in row-major order (`y * width + x`) of the
 /// sample in progress; [`span_rects`] turns it into scissor rectangles.
@@ -107,7 +122,7 @@ impl JobPlanner {
 
     /// The pixels of the next job, from pixel `start` of an image of
     /// `size` pixels: as many as the remembered costs say fit in the budget
-    /// (at least [`MIN_PIXELS`], or what is left), growing at most
+    /// (at least [`min_pixels`], or what is left), growing at most
     /// [`GROWTH`] times over pixels never measured. A job ends inside a
     /// row only where the budget ends there.
     pub fn next(&mut self, start: u32, (width, height): (u32, u32)) -> Range<u32> {
@@ -141,7 +156,7 @@ impl JobPlanner {
                 break;
             }
         }
-        let span = start..end.max(start + MIN_PIXELS).min(total);
+        let span = start..end.max(start + min_pixels(width)).min(total);
         self.pending = Some((span.clone(), (width, height)));
         span
     }
