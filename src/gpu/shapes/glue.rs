@@ -212,7 +212,7 @@ impl Element {
     /// number of them, so an element starts at a texel.
     fn texels(&self) -> usize {
         assert!(
-            self.size % 16 == 0,
+            self.size.is_multiple_of(16),
             "{} is not a multiple of 16 bytes",
             self.wgsl_struct
         );
