@@ -113,7 +113,7 @@ fn hit_bounded_bvh(ray: Ray, best_in: Hit, any: bool) -> Hit {
     var top = 1u;
     while top > 0u {
         top -= 1u;
-        let node = bvh_nodes[stack[top]];
+        let node = load_bvh_node(stack[top]);
         count_node();
         if !hit_box(node.bounds_min, node.bounds_max, ray, inv_d, best.t) {
             continue;
@@ -134,7 +134,7 @@ fn hit_bounded_bvh(ray: Ray, best_in: Hit, any: bool) -> Hit {
             continue;
         }
         for (var i = node.first; i < node.first + node.count; i++) {
-            let shape = bvh_shapes[i];
+            let shape = bvh_shape(i);
             count_test();
             best = hit_bounded(shape >> KIND_SHIFT, shape & INDEX_MASK, ray, best, any);
         }

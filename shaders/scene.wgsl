@@ -76,15 +76,16 @@ struct Light {
 // read, and keeps each one (2.7 MB a frame at 640 x 360) as long as the
 // pipeline lives (docs/reliability.md, "Memory under live editing").
 @group(0) @binding(0) var<storage, read> globals: Globals;
-@group(0) @binding(1) var<storage, read> materials: array<Material>;
-@group(0) @binding(2) var<storage, read> lights: array<Light>;
-@group(0) @binding(3) var<storage, read> bvh_nodes: array<BvhNode>;
-@group(0) @binding(4) var<storage, read> bvh_shapes: array<u32>;
-/// How many shapes of each kind, by KIND_* number (entry 0 unused).
-@group(0) @binding(5) var<storage, read> shape_counts: array<u32>;
-// Bindings 6 and up: one array per shape kind (`spheres`, `planes`, ...),
-// generated with the kinds' KIND_* numbers and HAS_* flags from the
-// registry (src/gpu/shapes/glue.rs); their structs are in shaders/shapes/.
+// Bindings 1 to 5, generated (src/gpu/shapes/glue.rs): the arrays
+// `materials`, `lights`, `bvh_nodes`, `bvh_shapes` and `shape_counts`
+// (how many shapes of each kind, by KIND_* number), each an `Rgba32Uint`
+// data texture, read as load_material(i), load_light(i), load_bvh_node(i),
+// bvh_shape(i) and shape_count(kind): llvmpipe reads a storage buffer one
+// lane at a time, a texture with one gather (docs/performance.md, "Where
+// the time goes").
+// Bindings 6 and up: one array per shape kind (`spheres`, `planes`, ...,
+// read as load_sphere(i), ...), generated with the kinds' KIND_* numbers
+// and HAS_* flags from the registry; their structs are in shaders/shapes/.
 
 // What the scene uses, as pipeline-overridable constants (src/gpu/features.rs):
 // the pipeline for a scene is compiled with false for what it does not use,

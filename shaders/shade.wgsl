@@ -116,7 +116,7 @@ fn shade_local(hit: Hit, ns: vec3<f32>, d: vec3<f32>, m: Material, albedo: vec3<
     let ng = select(-hit.normal, hit.normal, dot(hit.normal, ns) >= 0.0);
     let shadow_origin = offset_ray(hit.point, ng, hit.error_scale);
     for (var i = 0u; i < globals.light_count; i++) {
-        let light = lights[i];
+        let light = load_light(i);
         // A light at p (or nearer than length() can resolve) has no
         // direction and lights nothing: never divide by a zero length.
         let from_p = light.position - hit.point;
@@ -207,7 +207,7 @@ fn trace(primary: Ray) -> vec3<f32> {
             radiance += job.throughput * globals.background;
             continue;
         }
-        var m = materials[material_of(hit)];
+        var m = load_material(material_of(hit));
         if is_opaque(hit.kind) {
             m.transparency = 0.0;
         }

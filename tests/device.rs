@@ -17,46 +17,57 @@ fn scene(name: &str) -> Scene {
     Scene::load(&common::scenes_dir().join(name)).unwrap()
 }
 
-/// A device whose storage bindings stop between the two largest storage
-/// buffers of a scene of many spheres refuses the scene and names the
-/// array and the limit; the same device still renders a scene that fits.
+/// A device whose textures stop between the two largest arrays of a scene
+/// of many spheres (every array is a data texture of 4096 texels a row)
+/// refuses the scene and names the array and the limit; the same device
+/// still renders a scene that fits.
 #[test]
-fn a_scene_beyond_the_storage_buffer_limit_is_refused_naming_the_limit() {
+fn a_scene_beyond_the_texture_limit_is_refused_naming_the_limit() {
     let gpu = common::gpu().expect("a GPU");
-    let scene = scene("many_spheres.toml");
-    let mut buffers: Vec<PackedArray> = PackedScene::new(&scene, WIDTH, HEIGHT)
+    let mut scene = scene("many_spheres.toml");
+    let base = scene.spheres.clone();
+    for k in 1..400 {
+        scene.spheres.extend(base.iter().map(|s| {
+            let mut s = s.clone();
+            s.center.x += 100.0 * f64::from(k);
+            s
+        }));
+    }
+    let row = 4096 * 16;
+    let mut arrays: Vec<PackedArray> = PackedScene::new(&scene, WIDTH, HEIGHT)
         .arrays()
         .into_iter()
-        .filter(|a| !a.texture)
+        .filter(|a| a.texture)
         .collect();
-    buffers.sort_by_key(|a| std::cmp::Reverse(a.bytes));
-    let (largest, second) = (&buffers[0], buffers[1].bytes);
-    let limit = (largest.bytes + second) / 2 / 256 * 256;
-    assert!(second <= limit && limit < largest.bytes, "{buffers:?}");
+    arrays.sort_by_key(|a| std::cmp::Reverse(a.bytes));
+    let rows = |a: &PackedArray| a.bytes.div_ceil(row) as u32;
+    let (largest, second) = (&arrays[0], rows(&arrays[1]));
+    // At least the image's width: the device must still render a frame.
+    let limit = ((rows(largest) + second) / 2).max(WIDTH);
+    assert!(second <= limit && limit < rows(largest), "{arrays:?}");
     let small = pollster::block_on(Gpu::request_with_limits(
         gpu.instance.clone(),
         gpu.adapter.clone(),
-        |limits| limits.max_storage_buffer_binding_size = limit,
+        |limits| limits.max_texture_dimension_2d = limit,
     ))
     .expect("a device with a smaller limit");
 
     match render_image(&small, &scene, WIDTH, HEIGHT, 1) {
         Err(RenderError::Buffers(e)) => {
-            assert_eq!(e.limit, "max_storage_buffer_binding_size");
+            assert_eq!(e.limit, "max_texture_dimension_2d");
             assert_eq!(
                 (e.what.as_str(), e.bytes, e.allowed),
-                (largest.what.as_str(), largest.bytes, limit)
+                (largest.what.as_str(), largest.bytes, u64::from(limit) * row)
             );
             let message = e.to_string();
             println!("{message}");
             assert!(
-                message.contains("max_storage_buffer_binding_size")
-                    && message.contains(&largest.what),
+                message.contains("max_texture_dimension_2d") && message.contains(&largest.what),
                 "{message}"
             );
             assert!(RenderError::Buffers(e).is_input());
         }
-        Ok(_) => panic!("{largest:?} rendered with a {limit}-byte limit"),
+        Ok(_) => panic!("{largest:?} rendered with {limit} rows"),
         Err(e) => panic!("the wrong error: {e}"),
     }
     render_image(&small, &scene.without_shapes(), WIDTH, HEIGHT, 1)

@@ -128,6 +128,27 @@ fn timing_label(status: &Status) -> (String, &'static str) {
     }
 }
 
+/// Primary rays per second: one ray per traced pixel in the sample that
+/// `frame_time` timed (a frame while the view moves traces one sample too),
+/// over that time. The drawing pipelines count no rays, so this is the part
+/// of the rate the viewer knows exactly: shadow, reflected and refracted
+/// rays come on top (`raysandbox bench --throughput` counts them,
+/// docs/performance.md, "Rays per second").
+fn primary_rays_per_second(status: &Status) -> Option<f64> {
+    let seconds = status.frame_time?.as_secs_f64();
+    let (w, h) = status.resolution;
+    (seconds > 0.0).then(|| f64::from(w) * f64::from(h) / seconds)
+}
+
+/// `1.25 M primary rays/s`, `310 k primary rays/s`.
+fn rays_label(rate: f64) -> String {
+    if rate >= 1e6 {
+        format!("{:.2} M primary rays/s", rate / 1e6)
+    } else {
+        format!("{:.0} k primary rays/s", rate / 1e3)
+    }
+}
+
 /// The status line: "F1: help" first, so that it is never pushed off; the
 /// figures wrap, then what a view's colours mean (`legend`); the message on
 /// a row of its own, wrapped.
@@ -143,6 +164,13 @@ pub fn show(
         ui.separator();
         let (time, how) = timing_label(status);
         ui.label(time).on_hover_text(how);
+        if let Some(rate) = primary_rays_per_second(status) {
+            ui.label(rays_label(rate)).on_hover_text(
+                "the primary rays of that sample (one per traced pixel) over its time; \
+                 shadow, reflected and refracted rays come on top and are not counted \
+                 here (raysandbox bench --throughput counts them)",
+            );
+        }
         ui.separator();
         ui.label(format!("{} / {max_samples} spp", status.samples))
             .on_hover_text("samples per pixel in the picture shown");
@@ -192,6 +220,29 @@ mod tests {
         clock.update(0, at(10_000));
         clock.update(1, at(10_400));
         assert_eq!(clock.every(), Some(Duration::from_millis(400)));
+    }
+
+    #[test]
+    fn primary_rays_per_second_are_the_traced_pixels_over_the_sample_time() {
+        let status = Status {
+            frame_time: Some(Duration::from_millis(400)),
+            timing: Timing::GpuTimestamps,
+            sample_wall: None,
+            samples: 3,
+            resolution: (1280, 720),
+            scale: 1.0,
+            adapter: String::new(),
+            compiling: false,
+        };
+        let rate = primary_rays_per_second(&status).expect("a sample was timed");
+        assert!((rate - 2_304_000.0).abs() < 1e-6, "{rate}");
+        assert_eq!(rays_label(rate), "2.30 M primary rays/s");
+        assert_eq!(rays_label(310_400.0), "310 k primary rays/s");
+        let untimed = Status {
+            frame_time: None,
+            ..status
+        };
+        assert_eq!(primary_rays_per_second(&untimed), None);
     }
 
     #[test]

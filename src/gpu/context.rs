@@ -75,9 +75,10 @@ pub enum GpuWaitError {
 /// running after ten is taken to be stuck.
 pub const WAIT_LIMIT: Duration = Duration::from_secs(600);
 
-/// Storage buffers the shader binds in one stage: the fixed ones of
-/// `shaders/scene.wgsl` and one per shape kind. WebGPU's default allows 8;
-/// lavapipe and desktop GPUs offer far more.
+/// Storage buffers asked for per shader stage where the adapter has them.
+/// WebGPU's default allows 8; lavapipe and desktop GPUs offer far more. The
+/// tracer binds one (its globals; its arrays are data textures,
+/// `gpu::shapes::glue`); the rest is headroom for other shaders.
 pub const STORAGE_BUFFERS_NEEDED: u32 = 16;
 
 /// The default limits, with as many storage buffers per stage as the

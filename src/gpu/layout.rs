@@ -57,31 +57,31 @@ pub struct Selection {
     pub color: [f32; 4],
 }
 
-#[repr(C)]
-#[derive(Debug, Clone, Copy, PartialEq, Pod, Zeroable)]
-pub struct Material {
-    pub color: [f32; 3],
-    pub diffuse: f32,
-    pub checker_color: [f32; 3],
-    pub checker_size: f32,
-    pub checker_phase: [f32; 3],
-    pub specular: f32,
-    pub shininess: f32,
-    pub mirror: f32,
-    pub transparency: f32,
-    pub ior: f32,
+crate::packed_struct! {
+    pub struct Material {
+        pub color: [f32; 3],
+        pub diffuse: f32,
+        pub checker_color: [f32; 3],
+        pub checker_size: f32,
+        pub checker_phase: [f32; 3],
+        pub specular: f32,
+        pub shininess: f32,
+        pub mirror: f32,
+        pub transparency: f32,
+        pub ior: f32,
+    }
 }
 
-/// A BVH node (see `crate::bvh::Node`): an inner node (`count == 0`) has its
-/// children at `first` and `first + 1`, a leaf holds `count` entries of the
-/// shape list from `first`.
-#[repr(C)]
-#[derive(Debug, Clone, Copy, PartialEq, Pod, Zeroable)]
-pub struct BvhNode {
-    pub bounds_min: [f32; 3],
-    pub first: u32,
-    pub bounds_max: [f32; 3],
-    pub count: u32,
+crate::packed_struct! {
+    /// A BVH node (see `crate::bvh::Node`): an inner node (`count == 0`) has its
+    /// children at `first` and `first + 1`, a leaf holds `count` entries of the
+    /// shape list from `first`.
+    pub struct BvhNode {
+        pub bounds_min: [f32; 3],
+        pub first: u32,
+        pub bounds_max: [f32; 3],
+        pub count: u32,
+    }
 }
 
 /// An entry of the BVH's shape list is the shape's kind number
@@ -89,13 +89,13 @@ pub struct BvhNode {
 /// kind's array (`KIND_SHIFT` in `shaders/scene.wgsl`).
 pub const KIND_SHIFT: u32 = 24;
 
-#[repr(C)]
-#[derive(Debug, Clone, Copy, PartialEq, Pod, Zeroable)]
-pub struct Light {
-    pub position: [f32; 3],
-    pub _pad: u32,
-    pub radiance: [f32; 3],
-    pub _pad1: u32,
+crate::packed_struct! {
+    pub struct Light {
+        pub position: [f32; 3],
+        pub _pad: u32,
+        pub radiance: [f32; 3],
+        pub _pad1: u32,
+    }
 }
 
 /// A scene packed for the GPU. Arrays hold at least one (zeroed) element,
@@ -180,6 +180,8 @@ impl PackedScene {
     /// [`super::limits::check_buffers`] reports), with its size in bytes.
     pub fn arrays(&self) -> Vec<PackedArray> {
         use std::mem::size_of_val;
+        // The globals are a storage buffer; every array is a data texture
+        // (src/gpu/shapes/glue.rs).
         let fixed = [
             ("globals", size_of_val(&self.globals)),
             ("materials", size_of_val(self.materials.as_slice())),
@@ -187,25 +189,23 @@ impl PackedScene {
             ("BVH nodes", size_of_val(self.bvh_nodes.as_slice())),
             ("BVH shape list", size_of_val(self.bvh_prims.as_slice())),
         ]
-        .map(|(what, bytes)| (what.to_string(), bytes, false));
-        // A kind's own array (a storage buffer), then its shared data (a
-        // texture, e.g. a mesh's BVH and triangles).
+        .map(|(what, bytes)| (what.to_string(), bytes));
+        // A kind's own array, then its shared data (a mesh's BVH and
+        // triangles).
         let shape_names = super::shapes::kinds().into_iter().flat_map(|k| {
-            let data = k
-                .data
-                .map(|data| (format!("{} ({data})", k.kind.key()), true));
-            std::iter::once((k.kind.key().to_string(), false)).chain(data)
+            let data = k.data.map(|data| format!("{} ({data})", k.kind.key()));
+            std::iter::once(k.kind.key().to_string()).chain(data)
         });
         let shapes = shape_names
             .zip(&self.shapes)
-            .map(|((what, texture), words)| (what, size_of_val(words.as_slice()), texture));
+            .map(|(what, words)| (what, size_of_val(words.as_slice())));
         fixed
             .into_iter()
             .chain(shapes)
-            .map(|(what, bytes, texture)| PackedArray {
+            .map(|(what, bytes)| PackedArray {
+                texture: what != "globals",
                 what,
                 bytes: bytes as u64,
-                texture,
             })
             .collect()
     }

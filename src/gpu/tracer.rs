@@ -185,12 +185,12 @@ impl Pipelines {
 }
 
 /// Binding 0: the globals (a storage buffer, see `scene.wgsl`); 1..=5:
-/// materials, lights, BVH nodes, BVH shape list and shape counts; from [`FIRST_SHAPE_BINDING`] on, one array
-/// per shape kind in the registry order of `gpu::shapes` (read-only
-/// storage buffers, the order of `scene.wgsl` and of the generated WGSL),
-/// each followed by its data texture if the kind has one (`mesh_data`), of
-/// which only those of `bound_kinds` are bound (see
-/// [`ShaderSource::specialised`]).
+/// materials, lights, BVH nodes, BVH shape list and shape counts; from
+/// [`FIRST_SHAPE_BINDING`] on, one array per shape kind in the registry
+/// order of `gpu::shapes`, each followed by its shared data if the kind has
+/// one (`mesh_data`), of which only those of `bound_kinds` are bound (see
+/// [`ShaderSource::specialised`]). Every array is a data texture
+/// (`Rgba32Uint`, read by the loaders `shapes::glue` generates).
 pub(super) fn scene_layout_entries(bound_kinds: u32) -> Vec<wgpu::BindGroupLayoutEntry> {
     bound_bindings(bound_kinds)
         .into_iter()
@@ -216,13 +216,13 @@ pub(super) fn scene_layout_entries(bound_kinds: u32) -> Vec<wgpu::BindGroupLayou
 }
 
 /// The binding numbers of [`scene_layout_entries`], in order, each with
-/// whether it is a kind's data texture.
+/// whether it is a data texture (all but the globals).
 fn bound_bindings(bound_kinds: u32) -> Vec<(u32, bool)> {
-    let mut bindings: Vec<(u32, bool)> = (0..FIRST_SHAPE_BINDING).map(|i| (i, false)).collect();
+    let mut bindings: Vec<(u32, bool)> = (0..FIRST_SHAPE_BINDING).map(|i| (i, i > 0)).collect();
     let mut binding = FIRST_SHAPE_BINDING;
     for k in super::shapes::kinds() {
         if is_bound(bound_kinds, k.kind) {
-            bindings.push((binding, false));
+            bindings.push((binding, true));
             if k.data.is_some() {
                 bindings.push((binding + 1, true));
             }
@@ -232,9 +232,9 @@ fn bound_bindings(bound_kinds: u32) -> Vec<(u32, bool)> {
     bindings
 }
 
-/// A kind's shared data as an `Rgba32Uint` texture [`DATA_TEXTURE_WIDTH`]
-/// texels wide, its last row padded with zeros (`<data>_at` in the
-/// generated WGSL reads it).
+/// An array as an `Rgba32Uint` texture [`DATA_TEXTURE_WIDTH`] texels wide,
+/// its last row padded with zeros (the loaders and `<name>_texel` of the
+/// generated WGSL read it).
 fn data_texture(device: &wgpu::Device, queue: &wgpu::Queue, words: &[u32]) -> wgpu::TextureView {
     let texels = words.len().div_ceil(4).max(1) as u32;
     let width = texels.min(DATA_TEXTURE_WIDTH);
@@ -264,29 +264,12 @@ fn data_texture(device: &wgpu::Device, queue: &wgpu::Queue, words: &[u32]) -> wg
         .create_view(&Default::default())
 }
 
-/// A shape kind's array (a storage buffer) or shared data (a texture).
-#[derive(Clone)]
-enum ShapeResource {
-    Buffer(wgpu::Buffer),
-    Texture(wgpu::TextureView),
-}
-
-/// For each entry of `PackedScene::shapes` (registry order, see
-/// `gpu::shapes::pack_all`), whether it is a kind's shared data, which goes
-/// into a texture.
-fn data_positions() -> Vec<bool> {
-    super::shapes::kinds()
-        .iter()
-        .flat_map(|k| std::iter::once(false).chain(k.data.map(|_| true)))
-        .collect()
-}
-
 /// The scene in GPU buffers, with the CPU copy it was made from.
 pub struct SceneBuffers {
     packed: PackedScene,
     globals: wgpu::Buffer,
     /// One per entry of `packed.shapes`.
-    shape_buffers: Vec<ShapeResource>,
+    shape_textures: Vec<wgpu::TextureView>,
     pub(super) bind_group: wgpu::BindGroup,
 }
 
@@ -333,47 +316,32 @@ impl SceneBuffers {
             bytemuck::bytes_of(&packed.globals),
             wgpu::BufferUsages::STORAGE | wgpu::BufferUsages::COPY_DST,
         );
-        let storage = |label, contents: &[u8]| {
-            buffer::with_contents(device, label, contents, wgpu::BufferUsages::STORAGE)
-        };
+        let texture = |words: &[u32]| data_texture(device, queue, words);
         let fixed = [
-            storage("materials", bytemuck::cast_slice(&packed.materials)),
-            storage("lights", bytemuck::cast_slice(&packed.lights)),
-            storage("bvh nodes", bytemuck::cast_slice(&packed.bvh_nodes)),
-            storage("bvh shapes", bytemuck::cast_slice(&packed.bvh_prims)),
-            storage("shape counts", bytemuck::cast_slice(&packed.shape_counts)),
+            texture(bytemuck::cast_slice(&packed.materials)),
+            texture(bytemuck::cast_slice(&packed.lights)),
+            texture(bytemuck::cast_slice(&packed.bvh_nodes)),
+            texture(&packed.bvh_prims),
+            texture(&packed.shape_counts),
         ];
-        let is_texture = data_positions();
-        let shape_buffers: Vec<ShapeResource> = packed
+        let shape_textures: Vec<wgpu::TextureView> = packed
             .shapes
             .iter()
             .enumerate()
             .map(|(i, words)| {
                 let shared = previous.and_then(|p| {
                     let same = Arc::ptr_eq(p.packed.shapes.get(i)?, words);
-                    same.then(|| p.shape_buffers[i].clone())
+                    same.then(|| p.shape_textures[i].clone())
                 });
-                shared.unwrap_or_else(|| {
-                    if is_texture[i] {
-                        ShapeResource::Texture(data_texture(device, queue, words))
-                    } else {
-                        ShapeResource::Buffer(storage(
-                            "shapes",
-                            bytemuck::cast_slice(words.as_slice()),
-                        ))
-                    }
-                })
+                shared.unwrap_or_else(|| texture(words))
             })
             .collect();
         let resource = |i: u32| -> wgpu::BindingResource {
             let i = i as usize;
             match i.checked_sub(FIRST_SHAPE_BINDING as usize) {
                 None if i == 0 => globals.as_entire_binding(),
-                None => fixed[i - 1].as_entire_binding(),
-                Some(j) => match &shape_buffers[j] {
-                    ShapeResource::Buffer(b) => b.as_entire_binding(),
-                    ShapeResource::Texture(t) => wgpu::BindingResource::TextureView(t),
-                },
+                None => wgpu::BindingResource::TextureView(&fixed[i - 1]),
+                Some(j) => wgpu::BindingResource::TextureView(&shape_textures[j]),
             }
         };
         let entries: Vec<wgpu::BindGroupEntry> = bound_bindings(bound_kinds)
@@ -391,7 +359,7 @@ impl SceneBuffers {
         Ok(SceneBuffers {
             packed,
             globals,
-            shape_buffers,
+            shape_textures,
             bind_group,
         })
     }

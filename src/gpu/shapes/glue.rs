@@ -4,7 +4,7 @@
 //! lookups by kind (material, thin, opaque). Joined in front of the shader
 //! files by `gpu::shaders`.
 
-use super::{KindInfo, has_flag};
+use super::{KindInfo, Layout, has_flag};
 use crate::scene::ShapeKind;
 
 /// The binding of the first shape kind's array; the fixed bindings of
@@ -21,16 +21,19 @@ pub fn is_bound(bound_kinds: u32, kind: ShapeKind) -> bool {
     bound_kinds & (1 << kind.number()) != 0
 }
 
-/// The WGSL that visits every shape kind of the registry (`gpu::shapes`):
-/// per kind its `KIND_*` number, `HAS_*` flag and array binding, then the
-/// dispatch and loops that call each kind's `hit_<kind>` from
-/// `shaders/shapes/<kind>.wgsl`, the material lookup and the thin test.
+/// The WGSL that reads the scene's arrays and visits every shape kind of
+/// the registry (`gpu::shapes`): the fixed arrays' textures and loaders,
+/// per kind its `KIND_*` number, `HAS_*` flag, array texture and
+/// `load_<kind>`, then the dispatch and loops that call each kind's
+/// `hit_<kind>` from `shaders/shapes/<kind>.wgsl`, the material lookup and
+/// the thin test.
 ///
-/// A kind not in `bound_kinds` keeps its binding number unused and gets a
-/// one-element private array instead: its code still compiles (and its
-/// `HAS_*` flag, false for a scene without it, makes it dead), while the
-/// pipeline binds fewer storage buffers. WebGPU guarantees only 8 per
-/// shader stage, fewer than all kinds need (docs/web.md).
+/// A kind not in `bound_kinds` keeps its binding number unused and its
+/// loader returns a zeroed struct: its code still compiles (and its `HAS_*`
+/// flag, false for a scene without it, makes it dead), while the pipeline
+/// binds fewer textures. WebGPU guarantees 16 sampled textures per shader
+/// stage: the generic pipeline binds 13 here and the radiance sum
+/// (docs/web.md).
 pub(in crate::gpu) fn shape_glue(kinds: &[KindInfo], bound_kinds: u32) -> String {
     let mut declarations = String::from("// The shape kinds (src/gpu/shapes/mod.rs).\n");
     let mut binding = FIRST_SHAPE_BINDING;
@@ -42,19 +45,12 @@ pub(in crate::gpu) fn shape_glue(kinds: &[KindInfo], bound_kinds: u32) -> String
             flag = has_flag(k.kind),
         );
         let bound = is_bound(bound_kinds, k.kind);
-        declarations += &if bound {
-            format!(
-                "@group(0) @binding({binding}) var<storage, read> {}: array<{}>;\n",
-                k.kind.key(),
-                k.wgsl_struct
-            )
-        } else {
-            format!(
-                "var<private> {}: array<{}, 1>;\n",
-                k.kind.key(),
-                k.wgsl_struct
-            )
-        };
+        declarations += &struct_array(
+            k.kind.key(),
+            &loader(k),
+            &Element::of_kind(k),
+            bound.then_some(binding),
+        );
         binding += 1;
         if let Some(data) = k.data {
             declarations += &data_texture(data, bound.then_some(binding));
@@ -70,7 +66,7 @@ pub(in crate::gpu) fn shape_glue(kinds: &[KindInfo], bound_kinds: u32) -> String
                 "        case {}: {{ if {} {{ return {}; }} }}\n",
                 kind_const(k),
                 has_flag(k.kind),
-                visit(k, &format!("{}[index]", k.kind.key()), "index")
+                visit(k, &format!("{}(index)", loader(k)), "index")
             )
         })
         .collect();
@@ -83,16 +79,16 @@ pub(in crate::gpu) fn shape_glue(kinds: &[KindInfo], bound_kinds: u32) -> String
         .iter()
         .map(|k| {
             format!(
-                "        case {}: {{ return {}[hit.index].material; }}\n",
+                "        case {}: {{ return {}(hit.index).material; }}\n",
                 kind_const(k),
-                k.kind.key()
+                loader(k)
             )
         })
         .collect();
     let thin = kind_test(kinds, |k| k.kind.thin());
     let opaque = kind_test(kinds, |k| k.kind.opaque());
     format!(
-        "{declarations}\n{queries}\
+        "{}{declarations}\n{queries}\
          /// The hit of one bounded shape, by kind number and index (BVH leaves);\n\
          /// with `any`, any hit will do.\n\
          fn hit_bounded(kind: u32, index: u32, ray: Ray, best: Hit, any: bool) -> Hit {{\n\
@@ -128,6 +124,7 @@ pub(in crate::gpu) fn shape_glue(kinds: &[KindInfo], bound_kinds: u32) -> String
          fn is_opaque(kind: u32) -> bool {{\n\
          \x20   return {opaque};\n\
          }}\n",
+        fixed_arrays(),
         kind_loops(&unbounded),
         kind_loops(&bounded),
     )
@@ -148,27 +145,179 @@ fn kind_test(kinds: &[KindInfo], which: impl Fn(&KindInfo) -> bool) -> String {
     }
 }
 
-/// Width in texels of a kind's data texture (a mesh's BVH and triangles);
-/// its rows follow one another, so texel i is at (i % width, i / width).
+/// Width in texels of a data texture (every array the tracer reads); its
+/// rows follow one another, so texel i is at (i % width, i / width).
 pub const DATA_TEXTURE_WIDTH: u32 = 4096;
 
 /// A kind's shared data (`mesh_data`) and `<data>_at(i)`, its `vec4<u32>`
-/// number i. The data is an `Rgba32Uint` texture, not a storage buffer:
-/// llvmpipe reads a storage buffer at an index that differs between the
-/// lanes one lane at a time, with a bounds test each, and a texel fetch
-/// with one gather; two more texel fetches per BVH node cost a tenth of two
-/// more storage reads (docs/performance.md, "Where the time goes").
-/// Unbound (a scene without the kind), `<data>_at` returns zeros.
+/// number i, from a data texture ([`data_texels`]). Unbound (a scene
+/// without the kind), `<data>_at` returns zeros.
 fn data_texture(data: &str, binding: Option<u32>) -> String {
     match binding {
         Some(binding) => format!(
-            "@group(0) @binding({binding}) var {data}: texture_2d<u32>;\n\
-             fn {data}_at(i: u32) -> vec4<u32> {{\n\
-             \x20   return textureLoad({data}, vec2(i % {DATA_TEXTURE_WIDTH}u, i / {DATA_TEXTURE_WIDTH}u), 0);\n\
-             }}\n"
+            "{}fn {data}_at(i: u32) -> vec4<u32> {{\n    return {data}_texel(i);\n}}\n",
+            data_texels(data, binding)
         ),
         None => format!("fn {data}_at(i: u32) -> vec4<u32> {{\n    return vec4(0u);\n}}\n"),
     }
+}
+
+/// The binding of an array as an `Rgba32Uint` texture and `<name>_texel(i)`,
+/// its texel number i. Every array the tracer reads is such a texture, not
+/// a storage buffer: llvmpipe reads a storage buffer at an index that
+/// differs between the lanes one lane at a time, with a bounds test each,
+/// and a texel fetch with one gather; two more texel fetches per BVH node
+/// cost a tenth of two more storage reads (docs/performance.md, "Where the
+/// time goes").
+fn data_texels(name: &str, binding: u32) -> String {
+    format!(
+        "@group(0) @binding({binding}) var {name}: texture_2d<u32>;\n\
+         fn {name}_texel(i: u32) -> vec4<u32> {{\n\
+         \x20   return textureLoad({name}, vec2(i % {DATA_TEXTURE_WIDTH}u, i / {DATA_TEXTURE_WIDTH}u), 0);\n\
+         }}\n"
+    )
+}
+
+/// What one element of a struct array is: its WGSL struct and the fields of
+/// its Rust twin (`packed_struct!`).
+pub struct Element {
+    pub wgsl_struct: &'static str,
+    pub fields: &'static [(&'static str, usize)],
+    pub types: &'static [&'static str],
+    pub size: usize,
+}
+
+impl Element {
+    /// The element of a `packed_struct!` named as its WGSL twin.
+    fn of<T: Layout>(wgsl_struct: &'static str) -> Self {
+        Element {
+            wgsl_struct,
+            fields: T::FIELDS,
+            types: T::TYPES,
+            size: size_of::<T>(),
+        }
+    }
+
+    /// The element of a shape kind's array.
+    fn of_kind(k: &KindInfo) -> Self {
+        Element {
+            wgsl_struct: k.wgsl_struct,
+            fields: k.fields,
+            types: k.types,
+            size: k.size,
+        }
+    }
+
+    /// Texels (16 bytes) per element: every packed struct is a whole
+    /// number of them, so an element starts at a texel.
+    fn texels(&self) -> usize {
+        assert!(
+            self.size.is_multiple_of(16),
+            "{} is not a multiple of 16 bytes",
+            self.wgsl_struct
+        );
+        self.size / 16
+    }
+}
+
+/// An array of structs in a data texture and `<loader>(i)`, its element i
+/// built field by field from the element's texels, so that the WGSL reads
+/// `load_sphere(i)` where it read `spheres[i]` and gets the same struct.
+/// Unbound (a scene without the kind), the loader returns a zeroed struct.
+fn struct_array(name: &str, loader: &str, element: &Element, binding: Option<u32>) -> String {
+    let ty = element.wgsl_struct;
+    let Some(binding) = binding else {
+        return format!("fn {loader}(i: u32) -> {ty} {{\n    return {ty}();\n}}\n");
+    };
+    let texels = element.texels();
+    let reads: String = (0..texels)
+        .map(|t| format!("    let t{t} = {name}_texel(i * {texels}u + {t}u);\n"))
+        .collect();
+    let fields: Vec<String> = element
+        .fields
+        .iter()
+        .zip(element.types)
+        .map(|(&(_, offset), &rust)| field_from_texels(rust, offset))
+        .collect();
+    format!(
+        "{}/// Element i of `{name}` (src/gpu/shapes/glue.rs).\n\
+         fn {loader}(i: u32) -> {ty} {{\n{reads}    return {ty}({});\n}}\n",
+        data_texels(name, binding),
+        fields.join(", ")
+    )
+}
+
+/// An array of `u32` in a data texture, four a texel, and `<accessor>(i)`,
+/// its number i.
+fn word_array(name: &str, accessor: &str, binding: u32) -> String {
+    format!(
+        "{}fn {accessor}(i: u32) -> u32 {{\n    return {name}_texel(i / 4u)[i % 4u];\n}}\n",
+        data_texels(name, binding)
+    )
+}
+
+/// The WGSL that reads a field of Rust type `rust` (as `packed_struct!`
+/// writes it) at byte `offset` of an element from its texels `t0`, `t1`,
+/// ...: the words as they are for `u32`, their bits as floats for `f32`.
+/// WGSL's alignment keeps a vector inside one texel.
+fn field_from_texels(rust: &str, offset: usize) -> String {
+    let word = offset / 4;
+    let part = |word: usize, n: usize| {
+        let first = word % 4;
+        assert!(first + n <= 4, "a field at byte {offset} crosses a texel");
+        format!("t{}.{}", word / 4, &"xyzw"[first..first + n])
+    };
+    let floats = |ty: &str, word: usize, n: usize| format!("bitcast<{ty}>({})", part(word, n));
+    match rust.replace(' ', "").as_str() {
+        "u32" => part(word, 1),
+        "[u32;2]" => part(word, 2),
+        "f32" => floats("f32", word, 1),
+        "[f32;2]" => floats("vec2<f32>", word, 2),
+        "[f32;3]" => floats("vec3<f32>", word, 3),
+        "[f32;4]" => floats("vec4<f32>", word, 4),
+        // mat3x3<f32>: three columns, each padded to 16 bytes.
+        "[[f32;4];3]" => format!(
+            "mat3x3<f32>({}, {}, {})",
+            floats("vec3<f32>", word, 3),
+            floats("vec3<f32>", word + 4, 3),
+            floats("vec3<f32>", word + 8, 3)
+        ),
+        other => panic!("no WGSL type is read for the Rust field type {other}"),
+    }
+}
+
+/// `load_sphere`: the loader of a kind's array.
+fn loader(k: &KindInfo) -> String {
+    format!("load_{}", k.name())
+}
+
+/// The scene's arrays that are not a kind's (bindings 1 to 5, before
+/// [`FIRST_SHAPE_BINDING`]; their structs are in `shaders/scene.wgsl`).
+fn fixed_arrays() -> String {
+    use crate::gpu::layout::{BvhNode, Light, Material};
+    [
+        struct_array(
+            "materials",
+            "load_material",
+            &Element::of::<Material>("Material"),
+            Some(1),
+        ),
+        struct_array(
+            "lights",
+            "load_light",
+            &Element::of::<Light>("Light"),
+            Some(2),
+        ),
+        struct_array(
+            "bvh_nodes",
+            "load_bvh_node",
+            &Element::of::<BvhNode>("BvhNode"),
+            Some(3),
+        ),
+        word_array("bvh_shapes", "bvh_shape", 4),
+        word_array("shape_counts", "shape_count", 5),
+    ]
+    .concat()
 }
 
 /// `KIND_SPHERE`.
@@ -186,7 +335,7 @@ fn kind_loops(kinds: &[&KindInfo]) -> String {
         .iter()
         .map(|k| {
             format!(
-                "    if {flag} && shape_counts[{kind}] > 0u {{\n\
+                "    if {flag} && shape_count({kind}) > 0u {{\n\
                  \x20       var i = 0u;\n\
                  \x20       loop {{\n\
                  \x20           count_test();\n\
@@ -196,13 +345,13 @@ fn kind_loops(kinds: &[&KindInfo]) -> String {
                  \x20           }}\n\
                  \x20           continuing {{\n\
                  \x20               i++;\n\
-                 \x20               break if i >= shape_counts[{kind}];\n\
+                 \x20               break if i >= shape_count({kind});\n\
                  \x20           }}\n\
                  \x20       }}\n\
                  \x20   }}\n",
                 flag = has_flag(k.kind),
                 kind = kind_const(k),
-                visit = visit(k, &format!("{}[i]", k.kind.key()), "i"),
+                visit = visit(k, &format!("{}(i)", loader(k)), "i"),
             )
         })
         .collect()
@@ -242,4 +391,60 @@ fn occlusion_query(k: &KindInfo) -> String {
         ty = k.wgsl_struct,
         kind = kind_const(k),
     )
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn sphere() -> Element {
+        let kinds = super::super::kinds();
+        let k = kinds.iter().find(|k| k.kind == ShapeKind::Sphere);
+        Element::of_kind(k.expect("the sphere is a kind"))
+    }
+
+    #[test]
+    fn a_struct_is_read_field_by_field_from_its_texels() {
+        let wgsl = struct_array("spheres", "load_sphere", &sphere(), Some(6));
+        assert!(wgsl.contains("@group(0) @binding(6) var spheres: texture_2d<u32>;"));
+        assert!(wgsl.contains("let t0 = spheres_texel(i * 2u + 0u);"));
+        assert!(wgsl.contains("let t1 = spheres_texel(i * 2u + 1u);"));
+        assert!(wgsl.contains(
+            "return Sphere(bitcast<vec3<f32>>(t0.xyz), bitcast<f32>(t0.w), t1.x, t1.y, t1.z, t1.w);"
+        ));
+    }
+
+    #[test]
+    fn an_unbound_array_reads_zeros() {
+        let wgsl = struct_array("spheres", "load_sphere", &sphere(), None);
+        assert!(!wgsl.contains("@binding"));
+        assert!(wgsl.contains("return Sphere();"));
+    }
+
+    #[test]
+    fn a_matrix_is_read_as_three_padded_columns() {
+        assert_eq!(
+            field_from_texels("[[f32; 4]; 3]", 16),
+            "mat3x3<f32>(bitcast<vec3<f32>>(t1.xyz), bitcast<vec3<f32>>(t2.xyz), bitcast<vec3<f32>>(t3.xyz))"
+        );
+        assert_eq!(field_from_texels("[u32; 2]", 40), "t2.zw");
+    }
+
+    #[test]
+    fn every_kind_and_fixed_array_has_a_loader() {
+        for k in super::super::kinds() {
+            let wgsl = struct_array(k.kind.key(), &loader(&k), &Element::of_kind(&k), Some(9));
+            assert!(wgsl.contains(&format!("fn load_{}(i: u32)", k.name())));
+        }
+        let fixed = fixed_arrays();
+        for f in [
+            "load_material",
+            "load_light",
+            "load_bvh_node",
+            "bvh_shape",
+            "shape_count",
+        ] {
+            assert!(fixed.contains(&format!("fn {f}(i: u32)")), "{f}");
+        }
+    }
 }

@@ -26,8 +26,10 @@ mod sphere;
 mod torus;
 
 /// A `#[repr(C)]` struct that mirrors a WGSL struct, with the list of its
-/// fields and their offsets ([`Layout`]), which the layout test compares
-/// with naga's view of the shader.
+/// fields, their offsets and their Rust types ([`Layout`]): the layout test
+/// compares the offsets with naga's view of the shader, and the generated
+/// WGSL reads the struct from its data texture field by field
+/// (`glue::struct_array`).
 #[macro_export]
 #[doc(hidden)]
 macro_rules! packed_struct {
@@ -43,15 +45,17 @@ macro_rules! packed_struct {
 
         impl $crate::gpu::shapes::Layout for $name {
             const FIELDS: &[(&str, usize)] = &[$((stringify!($field), std::mem::offset_of!($name, $field))),*];
+            const TYPES: &[&str] = &[$(stringify!($ty)),*];
         }
     };
 }
 pub use packed_struct;
 
 /// The fields of a struct the shader reads, in declaration order, with
-/// their byte offsets.
+/// their byte offsets and their Rust types (`[f32; 3]`, `u32`, ...).
 pub trait Layout: Pod {
     const FIELDS: &[(&str, usize)];
+    const TYPES: &[&str];
 }
 
 /// The frame that packed positions are measured in. Positions are made
@@ -175,6 +179,8 @@ pub struct KindInfo {
     pub constants: fn(&ShaderOptions) -> Vec<(&'static str, u32)>,
     /// The packed struct's fields and offsets ([`Layout`]).
     pub fields: &'static [(&'static str, usize)],
+    /// The packed struct's fields' Rust types ([`Layout`]).
+    pub types: &'static [&'static str],
     /// The packed struct's size in bytes.
     pub size: usize,
 }
@@ -209,6 +215,7 @@ pub fn kinds() -> Vec<KindInfo> {
                 occludes: <crate::scene::$kind as PackShape>::OCCLUDES,
                 constants: <crate::scene::$kind as PackShape>::constants,
                 fields: <<crate::scene::$kind as PackShape>::Packed as Layout>::FIELDS,
+                types: <<crate::scene::$kind as PackShape>::Packed as Layout>::TYPES,
                 size: size_of::<<crate::scene::$kind as PackShape>::Packed>(),
             }),*]
         };
