@@ -6,6 +6,7 @@
 use std::fmt::Write as _;
 use std::path::{Path, PathBuf};
 
+use super::multipass;
 use super::render::{BuildFailed, FRAME_LIMIT, build_too_slow};
 use super::{
     CanvasStats, FrameUniforms, Offscreen, SandboxError, ShaderArgs, Warning, WarningKind,
@@ -26,12 +27,13 @@ pub(super) fn check_all(args: &ShaderArgs) -> Result<(), SandboxError> {
         .filter(|p| {
             p.extension()
                 .is_some_and(|e| SHADER_EXTENSIONS.contains(&e.to_string_lossy().as_ref()))
+                || is_multipass_entry(p)
         })
         .collect();
     files.sort();
     if files.is_empty() {
         return Err(SandboxError::Input(format!(
-            "{}: no shader files (.{}) in this folder",
+            "{}: no shader files (.{}), Shadertoy JSON files or multipass folders in this folder",
             dir.display(),
             SHADER_EXTENSIONS.join(", .")
         )));
@@ -41,7 +43,12 @@ pub(super) fn check_all(args: &ShaderArgs) -> Result<(), SandboxError> {
     let mut failed = 0;
     let mut totals = Totals::default();
     for path in &files {
-        match check_file(&gpu, path, size, args.time) {
+        let checked = if is_multipass_entry(path) {
+            multipass::headless::check_project(&gpu, path, size, args.time)
+        } else {
+            check_file(&gpu, path, size, args.time)
+        };
+        match checked {
             Ok(report) => {
                 println!("pass  {}{}", path.display(), report.column());
                 totals.count(&report);
@@ -71,6 +78,12 @@ pub(super) fn check_all(args: &ShaderArgs) -> Result<(), SandboxError> {
             dir.display()
         ))),
     }
+}
+
+/// A multipass shader among the files of a folder: a `.json` file, or a
+/// folder with an `image.glsl` (docs/sandbox.md, "Multipass").
+fn is_multipass_entry(path: &Path) -> bool {
+    multipass::is_multipass(path) && (path.is_file() || path.join("image.glsl").is_file())
 }
 
 /// Why a shader did not pass [`check_file`].
