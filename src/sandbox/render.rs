@@ -271,6 +271,10 @@ pub enum BuildFailed {
 }
 
 impl PipelineBuilder {
+    pub fn device(&self) -> &wgpu::Device {
+        &self.device
+    }
+
     /// The same builder for pipelines that draw into `format` (a multipass
     /// buffer, docs/sandbox.md, "Multipass").
     pub fn for_format(&self, format: wgpu::TextureFormat) -> Self {

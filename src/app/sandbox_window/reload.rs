@@ -20,6 +20,9 @@ impl SandboxApp {
         if self.gfx.is_none() {
             return;
         }
+        if self.multi.is_some() {
+            return self.load_multipass(reloaded);
+        }
         let compiled = self.session.compile();
         self.watch_files();
         let compiled = match compiled {

@@ -50,17 +50,27 @@ fn expand(name: &str, code: &Code) -> Result<Expanded, ShaderError> {
     }
 }
 
-/// Compiles one pass: Common's text, then the pass's.
-pub fn compile_one(project: &Project, pass: &Pass) -> Result<CompiledPass, ShaderError> {
+/// The text a pass compiles: Common's, then the pass's, includes joined.
+pub fn joined(project: &Project, pass: &Pass) -> Result<Expanded, ShaderError> {
     let mut expanded = expand(&pass.name, &pass.code)?;
     if let Some((name, code)) = &project.common {
         expanded = expanded.after(&expand(name, code)?);
     }
+    Ok(expanded)
+}
+
+/// Compiles one pass.
+pub fn compile_one(project: &Project, pass: &Pass) -> Result<CompiledPass, ShaderError> {
+    compile_joined(pass, &joined(project, pass)?)
+}
+
+/// Compiles one pass from its [`joined`] text.
+pub fn compile_joined(pass: &Pass, expanded: &Expanded) -> Result<CompiledPass, ShaderError> {
     let target = match pass.kind {
         PassKind::Buffer(_) => Target::Buffer,
         PassKind::Image => Target::Canvas,
     };
-    let compiled = compile_pass(&pass.name, &expanded, target)?;
+    let compiled = compile_pass(&pass.name, expanded, target)?;
     Ok(CompiledPass {
         kind: pass.kind,
         compiled,

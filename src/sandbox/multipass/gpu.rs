@@ -7,7 +7,6 @@
 
 use std::path::PathBuf;
 
-use super::compile::{CompiledPass, CompiledProject};
 use super::keyboard::Keyboard;
 use super::{BUFFERS, Input, PassKind};
 use crate::gpu::{Gpu, fullscreen, render_target};
@@ -31,27 +30,10 @@ pub fn buffer_format(device: &wgpu::Device) -> wgpu::TextureFormat {
     }
 }
 
-/// The pipelines of a compiled project, in its passes' order.
-pub fn build_pipelines(
-    builder: &PipelineBuilder,
-    device: &wgpu::Device,
-    project: &CompiledProject,
-) -> Result<Vec<ShaderPipeline>, String> {
-    project
-        .passes
-        .iter()
-        .map(|pass| pass_builder(builder, device, pass.kind).build(&pass.compiled))
-        .collect()
-}
-
 /// The builder for a pass: buffers are drawn in [`buffer_format`].
-pub fn pass_builder(
-    builder: &PipelineBuilder,
-    device: &wgpu::Device,
-    kind: PassKind,
-) -> PipelineBuilder {
+pub fn pass_builder(builder: &PipelineBuilder, kind: PassKind) -> PipelineBuilder {
     match kind {
-        PassKind::Buffer(_) => builder.for_format(buffer_format(device)),
+        PassKind::Buffer(_) => builder.for_format(buffer_format(builder.device())),
         PassKind::Image => builder.clone(),
     }
 }
@@ -80,12 +62,16 @@ pub struct Buffers {
     drawn: u64,
 }
 
-/// A pass to draw: its compiled form, pipeline and parameter values.
+/// A pass to draw: its pipeline, channels and parameter values.
 pub struct PassDraw<'a> {
-    pub pass: &'a CompiledPass,
+    pub kind: PassKind,
+    pub channels: &'a [Option<Input>; 4],
     pub pipeline: &'a ShaderPipeline,
     pub params: &'a ParamSet,
 }
+
+/// A pass's kind and channels, as [`Buffers::prepare`] reads them.
+pub type Binding<'a> = (PassKind, &'a [Option<Input>; 4]);
 
 impl Buffers {
     pub fn new(gpu: &Gpu, size: (u32, u32)) -> Self {
@@ -114,10 +100,10 @@ impl Buffers {
     /// Makes the buffers of `project` (the others are dropped; those it
     /// keeps keep their content) and reads the images its channels name.
     /// An image that cannot be read is an error naming the file.
-    pub fn prepare(&mut self, gpu: &Gpu, project: &CompiledProject) -> Result<(), String> {
+    pub fn prepare(&mut self, gpu: &Gpu, passes: &[Binding]) -> Result<(), String> {
         let mut images = Vec::new();
-        for pass in &project.passes {
-            for input in pass.channels.iter().flatten() {
+        for (_, channels) in passes {
+            for input in channels.iter().flatten() {
                 let Input::Texture(path) = input else {
                     continue;
                 };
@@ -137,7 +123,7 @@ impl Buffers {
         }
         self.images = images;
         for k in 0..BUFFERS {
-            let used = project.passes.iter().any(|p| p.kind == PassKind::Buffer(k));
+            let used = passes.iter().any(|(kind, _)| *kind == PassKind::Buffer(k));
             match (used, self.buffers[k].is_some()) {
                 (true, false) => self.buffers[k] = Some(self.buffer(gpu)),
                 (false, true) => self.buffers[k] = None,
@@ -240,11 +226,10 @@ impl Buffers {
         let current = (self.drawn % 2) as usize;
         for draw in passes {
             let views = draw
-                .pass
                 .channels
                 .each_ref()
-                .map(|input| self.view(sandbox, draw.pass.kind, input.as_ref()));
-            let PassKind::Buffer(k) = draw.pass.kind else {
+                .map(|input| self.view(sandbox, draw.kind, input.as_ref()));
+            let PassKind::Buffer(k) = draw.kind else {
                 canvas.set_channel_views(device, sandbox, views);
                 canvas.draw(gpu, sandbox, encoder, draw.pipeline, frame, draw.params);
                 continue;

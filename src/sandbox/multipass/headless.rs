@@ -45,7 +45,7 @@ impl MultipassOffscreen {
         let builder = sandbox.builder(&gpu.device);
         let mut pipelines = Vec::new();
         for pass in &project.passes {
-            let builder = pass_builder(&builder, &gpu.device, pass.kind);
+            let builder = pass_builder(&builder, pass.kind);
             match builder.build_within(&pass.compiled, FRAME_LIMIT) {
                 Ok(p) => pipelines.push(p),
                 Err(BuildFailed::Refused(m)) => return Err(Unbuilt::Refused(m)),
@@ -56,7 +56,12 @@ impl MultipassOffscreen {
             }
         }
         let mut buffers = Buffers::new(gpu, size);
-        buffers.prepare(gpu, &project).map_err(Unbuilt::Refused)?;
+        let bindings: Vec<_> = project
+            .passes
+            .iter()
+            .map(|p| (p.kind, &p.channels))
+            .collect();
+        buffers.prepare(gpu, &bindings).map_err(Unbuilt::Refused)?;
         Ok(MultipassOffscreen {
             canvas: Canvas::new(gpu, &sandbox, size),
             sandbox,
@@ -78,7 +83,8 @@ impl MultipassOffscreen {
             .iter()
             .zip(&self.pipelines)
             .map(|(pass, pipeline)| PassDraw {
-                pass,
+                kind: pass.kind,
+                channels: &pass.channels,
                 pipeline,
                 params: &pass.compiled.params,
             })

@@ -12,6 +12,7 @@
 //! | `compile` | the Common code joined before each pass, each pass compiled |
 //! | `keyboard` | Shadertoy's 256x3 keyboard texture |
 //! | `gpu` | the buffers (ping-pong textures), the passes drawn in order |
+//! | `session` | the window's reloads: each pass's last good pipeline |
 //! | `headless` | `--render`, `--frames` and `--check-all` of multipass shaders |
 
 pub mod compile;
@@ -21,6 +22,7 @@ pub mod gpu;
 pub mod headless;
 pub mod json;
 pub mod keyboard;
+pub mod session;
 
 use std::path::{Path, PathBuf};
 
