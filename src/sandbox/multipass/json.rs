@@ -106,6 +106,7 @@ pub fn parse(path: &Path, text: &str) -> Result<Project, String> {
         ));
     }
     let dir = path.parent().unwrap_or(Path::new(""));
+    let kinds: Vec<PassKind> = project.passes.iter().map(|p| p.kind).collect();
     for (i, p) in read {
         let mut channels: [Option<Input>; 4] = Default::default();
         let inputs = match list[i].get("inputs") {
@@ -120,12 +121,19 @@ pub fn parse(path: &Path, text: &str) -> Result<Project, String> {
                 _ => return Err(format!("{at}.channel: expected a number 0 to 3")),
             };
             let bound = bind(dir, &at, input, &outputs, &mut project.warnings)?;
+            if let Some(Input::Buffer(k)) = bound
+                && !kinds.contains(&PassKind::Buffer(k))
+            {
+                return Err(format!(
+                    "{at}: reads {}, which this shader does not have",
+                    PassKind::Buffer(k).title()
+                ));
+            }
             channels[channel] = bound;
         }
         project.passes[p].channels = channels;
     }
     project.passes.sort_by_key(|p| p.kind);
-    project.check_buffers(|pass, k| format!("{} iChannel{k}", pass.name))?;
     Ok(project)
 }
 

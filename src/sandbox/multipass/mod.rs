@@ -18,7 +18,6 @@
 pub mod compile;
 pub mod folder;
 pub mod gpu;
-#[cfg(not(target_arch = "wasm32"))]
 pub mod headless;
 pub mod json;
 pub mod keyboard;
