@@ -7,7 +7,6 @@
 mod common;
 
 use std::path::{Path, PathBuf};
-use std::process::Command;
 
 use raysandbox::gpu::Gpu;
 use raysandbox::sandbox::multipass::headless::MultipassOffscreen;
@@ -138,13 +137,6 @@ fn buffers_are_32_bit_floats_where_the_device_filters_them() {
     assert_eq!(format, expected);
 }
 
-fn raysandbox(args: &[&str]) -> std::process::Output {
-    Command::new(env!("CARGO_BIN_EXE_raysandbox"))
-        .args(args)
-        .output()
-        .expect("run raysandbox")
-}
-
 /// `--frames` carries the buffers from frame to frame: the progressive
 /// average's first frame is 0 or 1 in each pixel, later ones in between.
 #[test]
@@ -154,7 +146,7 @@ fn frames_of_a_multipass_folder_render_and_check_all_takes_folders_and_json() {
     }
     let out = common::temp_dir("multipass", "frames");
     let dir = shaders().join("progressive");
-    let output = raysandbox(&[
+    let output = common::raysandbox(&[
         "shader",
         dir.to_str().unwrap(),
         "--frames",
@@ -187,7 +179,7 @@ fn frames_of_a_multipass_folder_render_and_check_all_takes_folders_and_json() {
         "image.glsl",
         "void mainImage(out vec4 c, in vec2 p) {\n    c = vec4(x);\n}\n",
     );
-    let output = raysandbox(&["shader", "--check-all", folder.to_str().unwrap()]);
+    let output = common::raysandbox(&["shader", "--check-all", folder.to_str().unwrap()]);
     let stdout = String::from_utf8_lossy(&output.stdout);
     assert_eq!(output.status.code(), Some(2), "{stdout}");
     assert!(

@@ -261,6 +261,18 @@ pub fn run_headless(args: &ShaderArgs) -> Result<(), SandboxError> {
         }
         RenderError::Output(e) => e,
     })?;
+    report_rendered(out_dir, count, size, start);
+    Ok(())
+}
+
+/// The last lines of a headless render: where the frames went, how long
+/// they took.
+pub(crate) fn report_rendered(
+    out_dir: Option<&Path>,
+    count: u32,
+    size: (u32, u32),
+    start: Instant,
+) {
     if let Some(dir) = out_dir {
         println!(
             "wrote {count} frames to {} (frame-00000.png ...)",
@@ -273,7 +285,6 @@ pub fn run_headless(args: &ShaderArgs) -> Result<(), SandboxError> {
         size.1,
         start.elapsed().as_secs_f64() * 1e3
     );
-    Ok(())
 }
 
 /// Why a headless render stopped: the shader's pipeline (the user's input),

@@ -488,7 +488,7 @@ impl Canvas {
         )
     }
 
-    fn params_buffer(device: &wgpu::Device, size: u64) -> wgpu::Buffer {
+    pub(crate) fn params_buffer(device: &wgpu::Device, size: u64) -> wgpu::Buffer {
         device.create_buffer(&wgpu::BufferDescriptor {
             label: Some("sandbox parameters"),
             size,
@@ -786,13 +786,7 @@ impl Offscreen {
         let mut encoder = gpu.device.create_command_encoder(&Default::default());
         canvas.draw(gpu, sandbox, &mut encoder, pipeline, frame, params);
         let submission = gpu.queue.submit([encoder.finish()]);
-        gpu.device
-            .poll(wgpu::PollType::Wait {
-                submission_index: Some(submission),
-                timeout: Some(FRAME_LIMIT),
-            })
-            .map(|_| ())
-            .map_err(|_| TooSlow)
+        wait_for_frame(gpu, submission)
     }
 
     /// The last frame as 8-bit RGBA.
@@ -806,6 +800,17 @@ impl Offscreen {
         let canvas = self.canvas.as_ref().expect("draw before reading");
         canvas.stats(gpu)
     }
+}
+
+/// Waits for a frame's submission at most [`FRAME_LIMIT`]; see [`TooSlow`].
+pub(crate) fn wait_for_frame(gpu: &Gpu, submission: wgpu::SubmissionIndex) -> Result<(), TooSlow> {
+    gpu.device
+        .poll(wgpu::PollType::Wait {
+            submission_index: Some(submission),
+            timeout: Some(FRAME_LIMIT),
+        })
+        .map(|_| ())
+        .map_err(|_| TooSlow)
 }
 
 /// Renders one frame of a compiled shader without a window.

@@ -168,16 +168,7 @@ impl SandboxApp {
         multi.drawn_frame = None;
         self.session.error = error.clone();
         let warnings = multi.session.warnings();
-        if warnings != self.source_warnings {
-            for w in &warnings {
-                log::warn!("{w}");
-            }
-            if !warnings.is_empty() {
-                self.after_present
-                    .push(format!("shader-warning {}", warnings.len()));
-            }
-            self.source_warnings = warnings;
-        }
+        self.announce_warnings(warnings);
         self.draw_next = true;
         self.check_next = true;
         match error {

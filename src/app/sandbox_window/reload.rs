@@ -63,6 +63,11 @@ impl SandboxApp {
             .compiled()
             .map(|c| c.warnings.iter().map(ToString::to_string).collect())
             .unwrap_or_default();
+        self.announce_warnings(warnings);
+    }
+
+    /// Logs and announces the source's warnings when they changed.
+    pub(super) fn announce_warnings(&mut self, warnings: Vec<String>) {
         if warnings == self.source_warnings {
             return;
         }

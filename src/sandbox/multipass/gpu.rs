@@ -146,7 +146,7 @@ impl Buffers {
         };
         Buffer {
             views: [texture(), texture()],
-            params: params_buffer(&gpu.device, 16),
+            params: Canvas::params_buffer(&gpu.device, 16),
         }
     }
 
@@ -239,7 +239,7 @@ impl Buffers {
             };
             let bytes = draw.params.bytes();
             if bytes.len() as u64 > buffer.params.size() {
-                buffer.params = params_buffer(device, bytes.len() as u64);
+                buffer.params = Canvas::params_buffer(device, bytes.len() as u64);
             }
             gpu.queue.write_buffer(&buffer.params, 0, &bytes);
             let bind_group = Canvas::bind_group(
@@ -258,13 +258,4 @@ impl Buffers {
         }
         self.drawn += 1;
     }
-}
-
-fn params_buffer(device: &wgpu::Device, size: u64) -> wgpu::Buffer {
-    device.create_buffer(&wgpu::BufferDescriptor {
-        label: Some("multipass parameters"),
-        size,
-        usage: wgpu::BufferUsages::UNIFORM | wgpu::BufferUsages::COPY_DST,
-        mapped_at_creation: false,
-    })
 }

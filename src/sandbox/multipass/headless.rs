@@ -11,7 +11,8 @@ use super::{Project, compile_project};
 use crate::gpu::{EXPORT_FORMAT, Gpu, GpuWaitError};
 use crate::sandbox::check::{Checked, Report};
 use crate::sandbox::render::{
-    BuildFailed, Canvas, FRAME_LIMIT, NanColor, SandboxGpu, ShaderPipeline, TooSlow, build_too_slow,
+    BuildFailed, Canvas, FRAME_LIMIT, NanColor, SandboxGpu, ShaderPipeline, TooSlow,
+    build_too_slow, wait_for_frame,
 };
 use crate::sandbox::{CanvasStats, FrameUniforms, SandboxError, ShaderArgs};
 
@@ -99,13 +100,7 @@ impl MultipassOffscreen {
             &mut self.canvas,
         );
         let submission = gpu.queue.submit([encoder.finish()]);
-        gpu.device
-            .poll(wgpu::PollType::Wait {
-                submission_index: Some(submission),
-                timeout: Some(FRAME_LIMIT),
-            })
-            .map(|_| ())
-            .map_err(|_| TooSlow)
+        wait_for_frame(gpu, submission)
     }
 
     /// Clears the buffers, as `R` in the window.
@@ -195,18 +190,7 @@ pub fn run(args: &ShaderArgs) -> Result<(), SandboxError> {
             println!("wrote {}", path.display());
         }
     }
-    if let Some(dir) = out_dir {
-        println!(
-            "wrote {count} frames to {} (frame-00000.png ...)",
-            dir.display()
-        );
-    }
-    println!(
-        "rendered {count} frame(s) of {}x{} in {:.1} ms",
-        size.0,
-        size.1,
-        start.elapsed().as_secs_f64() * 1e3
-    );
+    crate::sandbox::report_rendered(out_dir, count, size, start);
     Ok(())
 }
 
