@@ -308,11 +308,13 @@ impl ApplicationHandler<SandboxEvent> for SandboxApp {
                 self.request_redraw();
             }
             WindowEvent::RedrawRequested => self.redraw(event_loop),
-            WindowEvent::KeyboardInput { event, .. } if !response.consumed => {
+            WindowEvent::KeyboardInput { event, .. }
+                if !response.consumed && self.multi.is_some() =>
+            {
                 if let Some(multi) = &mut self.multi {
                     multi.key(&event);
-                    gfx.window.request_redraw();
                 }
+                gfx.window.request_redraw();
             }
             _ => {
                 if response.repaint {

@@ -11,7 +11,6 @@ use winit::keyboard::{KeyCode, PhysicalKey};
 
 use super::reload::build_checked;
 use super::{SandboxApp, SandboxEvent};
-use crate::app::watch;
 use crate::gpu::Gpu;
 use crate::sandbox::FrameUniforms;
 use crate::sandbox::multipass::compile::CompiledPass;
@@ -183,18 +182,7 @@ impl SandboxApp {
     fn watch_multipass_files(&mut self) {
         let Some(multi) = &self.multi else { return };
         let files = multi.session.files();
-        if self.watch.is_some() && self.watched_includes == files {
-            return;
-        }
-        self.watched_includes = files.clone();
-        let proxy = self.proxy.clone();
-        let notify = move |_| {
-            let _ = proxy.send_event(SandboxEvent::FileChanged);
-        };
-        match watch::watch(None, None, &files, notify) {
-            Ok(w) => self.watch = Some(w),
-            Err(e) => self.panel.message = Some(e),
-        }
+        self.watch_set(None, files);
     }
 }
 

@@ -8,6 +8,7 @@ use crate::sandbox::render::{
 };
 use crate::sandbox::watchdog::Probe;
 use crate::sandbox::{Compiled, ReloadError};
+use std::path::{Path, PathBuf};
 use std::sync::{Arc, Mutex, PoisonError};
 
 impl SandboxApp {
@@ -85,16 +86,23 @@ impl SandboxApp {
     /// "Includes"): after a compile that changed the includes, the watch is
     /// made again for the new set.
     pub(super) fn watch_files(&mut self) {
-        let includes = self.session.includes();
-        if self.watch.is_some() && self.watched_includes == includes {
+        let includes = self.session.includes().to_vec();
+        let file = self.options.file.clone();
+        self.watch_set(Some(&file), includes);
+    }
+
+    /// Watches `file` (if any) and `files`, unless the watch is for them
+    /// already.
+    pub(super) fn watch_set(&mut self, file: Option<&Path>, files: Vec<PathBuf>) {
+        if self.watch.is_some() && self.watched_includes == files {
             return;
         }
-        self.watched_includes = includes.to_vec();
+        self.watched_includes = files;
         let proxy = self.proxy.clone();
         let notify = move |_| {
             let _ = proxy.send_event(SandboxEvent::FileChanged);
         };
-        match watch::watch(None, Some(&self.options.file), includes, notify) {
+        match watch::watch(None, file, &self.watched_includes, notify) {
             Ok(w) => self.watch = Some(w),
             Err(e) => self.panel.message = Some(e),
         }

@@ -9,7 +9,6 @@ use super::compile::CompiledProject;
 use super::gpu::{Buffers, PassDraw, pass_builder};
 use super::{Project, compile_project};
 use crate::gpu::{EXPORT_FORMAT, Gpu, GpuWaitError};
-use crate::sandbox::check::{Checked, Report};
 use crate::sandbox::render::{
     BuildFailed, Canvas, FRAME_LIMIT, NanColor, SandboxGpu, ShaderPipeline, TooSlow,
     build_too_slow, wait_for_frame,
@@ -192,40 +191,4 @@ pub fn run(args: &ShaderArgs) -> Result<(), SandboxError> {
     }
     crate::sandbox::report_rendered(out_dir, count, size, start);
     Ok(())
-}
-
-/// Frames `--check-all` draws of a multipass shader: two, so that each
-/// buffer is read back once after it was written.
-const CHECK_FRAMES: u32 = 2;
-
-/// `--check-all`'s verdict on a folder or JSON file: it compiles and its
-/// first frames draw.
-pub fn check_project(
-    gpu: &Gpu,
-    path: &Path,
-    size: (u32, u32),
-    time: f64,
-) -> Result<Report, Checked> {
-    let (_, compiled) = load(path).map_err(Checked::Failed)?;
-    let warnings = compiled
-        .passes
-        .iter()
-        .flat_map(|p| p.compiled.warnings.iter().cloned())
-        .collect();
-    let mut offscreen = match MultipassOffscreen::new(gpu, compiled, size, NanColor::Black) {
-        Ok(o) => o,
-        Err(Unbuilt::Refused(m)) => return Err(Checked::Failed(m)),
-        Err(Unbuilt::TooSlow(m)) => return Err(Checked::Stopped(m)),
-    };
-    for k in 0..CHECK_FRAMES {
-        let frame = FrameUniforms::at(time + f64::from(k) / 60.0, k, size);
-        if let Err(stopped) = offscreen.draw(gpu, &frame) {
-            std::mem::forget(offscreen);
-            return Err(Checked::Stopped(format!("{}: {stopped}", path.display())));
-        }
-    }
-    let stats = offscreen
-        .stats(gpu)
-        .map_err(|e| Checked::Failed(format!("{}: {e}", path.display())))?;
-    Ok(Report { warnings, stats })
 }
