@@ -4,8 +4,6 @@
 //! buffers with the clock, and the keys held reach Shadertoy's keyboard
 //! texture.
 
-use std::sync::Arc;
-
 use winit::event::{ElementState, KeyEvent};
 use winit::keyboard::{KeyCode, PhysicalKey};
 
@@ -115,7 +113,6 @@ impl SandboxApp {
         };
         let compiled = multi.session.compile();
         self.watch_multipass_files();
-        let Some(gfx) = &self.gfx else { return };
         let pending = match compiled {
             Ok(Some(pending)) => pending,
             Ok(None) => return,
@@ -126,28 +123,21 @@ impl SandboxApp {
                 return self.failed(&e);
             }
         };
-        self.generation += 1;
-        let builder = gfx.builder.clone();
-        let size = gfx.canvas.size();
-        let probe = Arc::clone(&self.probe);
-        let proxy = self.proxy.clone();
-        let generation = self.generation;
-        self.building = true;
-        std::thread::spawn(move || {
+        self.spawn_build(move |builder, probe, size, generation| {
             let built = pending
                 .build
                 .iter()
                 .map(|pass| {
-                    let builder = pass_builder(&builder, pass.kind);
-                    let result = build_checked(&builder, &probe, &pass.compiled, size);
+                    let builder = pass_builder(builder, pass.kind);
+                    let result = build_checked(&builder, probe, &pass.compiled, size);
                     (pass.clone(), result)
                 })
                 .collect();
-            let _ = proxy.send_event(SandboxEvent::MultiBuilt {
+            SandboxEvent::MultiBuilt {
                 generation,
                 built: Box::new(MultiBuilt { pending, built }),
                 reloaded,
-            });
+            }
         });
     }
 

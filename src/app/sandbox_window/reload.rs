@@ -36,6 +36,26 @@ impl SandboxApp {
                 return self.failed(&e);
             }
         };
+        self.spawn_build(move |builder, probe, size, generation| {
+            let result = build_checked(builder, probe, &compiled, size);
+            SandboxEvent::Built {
+                generation,
+                compiled: Box::new(compiled),
+                result,
+                reloaded,
+            }
+        });
+    }
+
+    /// Starts a build on another thread: `build` gets the pipeline
+    /// builder, the watchdog's probe, the render size and the reload's
+    /// generation, and its event is sent back to the event loop.
+    pub(super) fn spawn_build(
+        &mut self,
+        build: impl FnOnce(&PipelineBuilder, &Mutex<Probe>, (u32, u32), u64) -> SandboxEvent
+        + Send
+        + 'static,
+    ) {
         self.generation += 1;
         let Some(gfx) = &self.gfx else { return };
         let builder = gfx.builder.clone();
@@ -45,13 +65,7 @@ impl SandboxApp {
         let generation = self.generation;
         self.building = true;
         std::thread::spawn(move || {
-            let result = build_checked(&builder, &probe, &compiled, size);
-            let _ = proxy.send_event(SandboxEvent::Built {
-                generation,
-                compiled: Box::new(compiled),
-                result,
-                reloaded,
-            });
+            let _ = proxy.send_event(build(&builder, &probe, size, generation));
         });
     }
 
