@@ -8,6 +8,7 @@
 //! [`Session`]'s, which tests and headless renders use too.
 
 mod actions;
+mod multipass;
 mod reload;
 mod ui;
 
@@ -62,6 +63,12 @@ enum SandboxEvent {
         /// Not the first load (see [`SandboxApp::load`]).
         reloaded: bool,
     },
+    /// The changed passes of a multipass shader, built.
+    MultiBuilt {
+        generation: u64,
+        built: Box<multipass::MultiBuilt>,
+        reloaded: bool,
+    },
 }
 
 /// `raysandbox shader FILE` without `--render`/`--frames`: opens the window
@@ -70,6 +77,11 @@ enum SandboxEvent {
 pub fn run_sandbox(args: &ShaderArgs) -> Result<(), SandboxError> {
     sandbox::require_file(&args.file)?;
     let images = args.channel_images()?;
+    if sandbox::multipass::is_multipass(&args.file) {
+        // Before a window opens: a folder or JSON file that is not one is
+        // the user's error.
+        sandbox::multipass::Project::load(&args.file).map_err(SandboxError::Input)?;
+    }
     open_window(args.clone(), images).map_err(|e| match e {
         ViewerError::Shader(m) | ViewerError::Scene(m) => SandboxError::Input(m),
         e @ ViewerError::Size(_) => SandboxError::Input(e.to_string()),
@@ -101,6 +113,8 @@ fn open_window(
             print: options.print_events,
         },
         session: Session::new(&options.file),
+        multi: sandbox::multipass::is_multipass(&options.file)
+            .then(|| multipass::Multi::new(&options.file)),
         probe: Arc::default(),
         clock: Clock::new(options.start_paused, now),
         scale: options.scale.clamp(0.25, 1.0),
@@ -191,6 +205,9 @@ struct SandboxApp {
     options: ShaderArgs,
     events: EventLog,
     session: Session,
+    /// A multipass shader (docs/sandbox.md, "Multipass"): its passes run
+    /// instead of `session`'s, which only carries the error shown.
+    multi: Option<multipass::Multi>,
     /// The watchdog's device for trial frames, shared with build threads.
     probe: Arc<Mutex<Probe>>,
     clock: Clock,
@@ -260,6 +277,16 @@ impl ApplicationHandler<SandboxEvent> for SandboxApp {
                     self.built(*compiled, result, reloaded);
                 }
             }
+            SandboxEvent::MultiBuilt {
+                generation,
+                built,
+                reloaded,
+            } => {
+                if generation == self.generation {
+                    self.building = false;
+                    self.multipass_built(*built, reloaded);
+                }
+            }
         }
         // The shader a reload replaced is dropped by now.
         memory::release_freed();
@@ -281,6 +308,14 @@ impl ApplicationHandler<SandboxEvent> for SandboxApp {
                 self.request_redraw();
             }
             WindowEvent::RedrawRequested => self.redraw(event_loop),
+            WindowEvent::KeyboardInput { event, .. }
+                if !response.consumed && self.multi.is_some() =>
+            {
+                if let Some(multi) = &mut self.multi {
+                    multi.key(&event);
+                }
+                gfx.window.request_redraw();
+            }
             _ => {
                 if response.repaint {
                     gfx.window.request_redraw();
@@ -355,6 +390,9 @@ impl SandboxApp {
         let size = scaled((gfx.config.width, gfx.config.height), self.scale);
         if size != gfx.canvas.size() {
             gfx.canvas.resize(&gfx.gpu, &gfx.sandbox, size);
+            if let Some(multi) = &mut self.multi {
+                multi.resize(&gfx.gpu, size);
+            }
             self.draw_next = true;
             self.check_next = true;
         }
@@ -369,10 +407,11 @@ impl SandboxApp {
     /// Draws the shader (when the clock runs or something changed), shows
     /// the canvas, paints the UI over it and presents.
     fn paint(&mut self, output: egui::FullOutput) {
+        let runs = self.runs();
         let Some(gfx) = &mut self.gfx else { return };
         let painting = gfx.egui.prepare(&gfx.gpu, &gfx.window, output);
         let now = Instant::now();
-        let draw = self.session.pipeline().is_some() && (!self.clock.is_paused() || self.draw_next);
+        let draw = runs && (!self.clock.is_paused() || self.draw_next);
         let frame = if gfx.config.width == 0 || gfx.config.height == 0 {
             None
         } else {
@@ -405,19 +444,31 @@ impl SandboxApp {
             let tick = self.clock.tick(now);
             self.last_tick = Some(tick);
             let uniforms = self.mouse.frame_uniforms(&tick, gfx.canvas.size());
-            let pipeline = self.session.pipeline().expect("checked above");
+            let pipeline = self.session.pipeline();
             let timer = gfx.timer.as_ref();
             if let Some(timer) = timer {
                 timer.begin(&mut encoder);
             }
-            gfx.canvas.draw(
-                &gfx.gpu,
-                &gfx.sandbox,
-                &mut encoder,
-                pipeline,
-                &uniforms,
-                &self.session.params,
-            );
+            match (&mut self.multi, pipeline) {
+                (Some(multi), _) => {
+                    multi.draw(
+                        &gfx.gpu,
+                        &gfx.sandbox,
+                        &mut encoder,
+                        &uniforms,
+                        &mut gfx.canvas,
+                    );
+                }
+                (None, Some(pipeline)) => gfx.canvas.draw(
+                    &gfx.gpu,
+                    &gfx.sandbox,
+                    &mut encoder,
+                    pipeline,
+                    &uniforms,
+                    &self.session.params,
+                ),
+                (None, None) => {}
+            }
             if let Some(timer) = timer {
                 timer.end(&mut encoder);
             }
@@ -466,8 +517,17 @@ impl SandboxApp {
         for line in self.after_present.drain(..) {
             self.events.event(&line);
         }
-        let running = !self.clock.is_paused() && self.session.pipeline().is_some();
+        let running = !self.clock.is_paused() && self.runs();
         self.schedule(delay, running || self.draw_next);
+    }
+
+    /// Whether a shader runs: a pipeline, or a multipass shader's Image
+    /// pass.
+    fn runs(&self) -> bool {
+        match &self.multi {
+            Some(multi) => multi.session.runs(),
+            None => self.session.pipeline().is_some(),
+        }
     }
 
     fn schedule(&mut self, egui_delay: Duration, again: bool) {

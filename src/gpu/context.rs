@@ -172,7 +172,10 @@ impl Gpu {
             .request_device(&wgpu::DeviceDescriptor {
                 label: Some("raysandbox"),
                 // Timestamp queries time frames where the adapter has them.
-                required_features: adapter.features() & TIMER_FEATURES,
+                // Float32 filtering: the sandbox's multipass buffers are
+                // rgba32float where it is there (docs/sandbox.md, "Multipass").
+                required_features: adapter.features()
+                    & (TIMER_FEATURES | wgpu::Features::FLOAT32_FILTERABLE),
                 required_limits: limits,
                 ..Default::default()
             })

@@ -6,6 +6,11 @@
 use std::fmt::Write as _;
 use std::path::{Path, PathBuf};
 
+use super::multipass::{
+    self,
+    headless::{MultipassOffscreen, Unbuilt},
+};
+use super::render::NanColor;
 use super::render::{BuildFailed, FRAME_LIMIT, build_too_slow};
 use super::{
     CanvasStats, FrameUniforms, Offscreen, SandboxError, ShaderArgs, Warning, WarningKind,
@@ -26,12 +31,13 @@ pub(super) fn check_all(args: &ShaderArgs) -> Result<(), SandboxError> {
         .filter(|p| {
             p.extension()
                 .is_some_and(|e| SHADER_EXTENSIONS.contains(&e.to_string_lossy().as_ref()))
+                || is_multipass_entry(p)
         })
         .collect();
     files.sort();
     if files.is_empty() {
         return Err(SandboxError::Input(format!(
-            "{}: no shader files (.{}) in this folder",
+            "{}: no shader files (.{}), Shadertoy JSON files or multipass folders in this folder",
             dir.display(),
             SHADER_EXTENSIONS.join(", .")
         )));
@@ -41,7 +47,12 @@ pub(super) fn check_all(args: &ShaderArgs) -> Result<(), SandboxError> {
     let mut failed = 0;
     let mut totals = Totals::default();
     for path in &files {
-        match check_file(&gpu, path, size, args.time) {
+        let checked = if is_multipass_entry(path) {
+            check_multipass(&gpu, path, size, args.time)
+        } else {
+            check_file(&gpu, path, size, args.time)
+        };
+        match checked {
             Ok(report) => {
                 println!("pass  {}{}", path.display(), report.column());
                 totals.count(&report);
@@ -71,6 +82,12 @@ pub(super) fn check_all(args: &ShaderArgs) -> Result<(), SandboxError> {
             dir.display()
         ))),
     }
+}
+
+/// A multipass shader among the files of a folder: a `.json` file, or a
+/// folder with an `image.glsl` (docs/sandbox.md, "Multipass").
+fn is_multipass_entry(path: &Path) -> bool {
+    multipass::is_multipass(path) && (path.is_file() || path.join("image.glsl").is_file())
 }
 
 /// Why a shader did not pass [`check_file`].
@@ -204,4 +221,40 @@ impl std::fmt::Display for Totals {
         }
         Ok(())
     }
+}
+
+/// Frames `--check-all` draws of a multipass shader: two, so that each
+/// buffer is read back once after it was written.
+const CHECK_FRAMES: u32 = 2;
+
+/// `--check-all`'s verdict on a folder or JSON file: it compiles and its
+/// first frames draw.
+pub fn check_multipass(
+    gpu: &Gpu,
+    path: &Path,
+    size: (u32, u32),
+    time: f64,
+) -> Result<Report, Checked> {
+    let (_, compiled) = multipass::headless::load(path).map_err(Checked::Failed)?;
+    let warnings = compiled
+        .passes
+        .iter()
+        .flat_map(|p| p.compiled.warnings.iter().cloned())
+        .collect();
+    let mut offscreen = match MultipassOffscreen::new(gpu, compiled, size, NanColor::Black) {
+        Ok(o) => o,
+        Err(Unbuilt::Refused(m)) => return Err(Checked::Failed(m)),
+        Err(Unbuilt::TooSlow(m)) => return Err(Checked::Stopped(m)),
+    };
+    for k in 0..CHECK_FRAMES {
+        let frame = FrameUniforms::at(time + f64::from(k) / 60.0, k, size);
+        if let Err(stopped) = offscreen.draw(gpu, &frame) {
+            std::mem::forget(offscreen);
+            return Err(Checked::Stopped(format!("{}: {stopped}", path.display())));
+        }
+    }
+    let stats = offscreen
+        .stats(gpu)
+        .map_err(|e| Checked::Failed(format!("{}: {e}", path.display())))?;
+    Ok(Report { warnings, stats })
 }

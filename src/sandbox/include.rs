@@ -54,6 +54,39 @@ impl Expanded {
         e
     }
 
+    /// A text of no file on disk (a pass of a Shadertoy JSON export), named
+    /// `name` in errors; `#include` lines stay as they are.
+    pub fn of_text(name: &str, text: &str) -> Self {
+        Expanded {
+            text: text.to_string(),
+            files: vec![PathBuf::from(name)],
+            lines: (1..=text.split_inclusive('\n').count() as u32)
+                .map(|line| (0, line))
+                .collect(),
+            keys: vec![PathBuf::from(name)],
+        }
+    }
+
+    /// `first`'s text joined before this one's (Shadertoy's Common code
+    /// before each pass), every line still mapped to its own file. This
+    /// text's file stays the first of `files`: the one errors are named by.
+    pub fn after(mut self, first: &Expanded) -> Self {
+        let shift = self.files.len();
+        let mut text = first.text.clone();
+        if !text.is_empty() && !text.ends_with('\n') {
+            text.push('\n');
+        }
+        let mut lines: Vec<(usize, u32)> =
+            first.lines.iter().map(|&(f, l)| (f + shift, l)).collect();
+        lines.extend_from_slice(&self.lines);
+        text.push_str(&self.text);
+        self.text = text;
+        self.lines = lines;
+        self.files.extend(first.files.iter().cloned());
+        self.keys.extend(first.keys.iter().cloned());
+        self
+    }
+
     /// The (file, line) a 1-based line of the joined text came from.
     pub fn origin(&self, line: u32) -> Option<(&Path, u32)> {
         let &(file, original) = self.lines.get((line as usize).checked_sub(1)?)?;

@@ -17,6 +17,7 @@
 //! | `bundled` | the example shaders, embedded (the page's menu) |
 //! | `check` | `--check-all`: one frame of each file of a folder, the verdicts and warnings |
 //! | `channels` | the images a shader samples: files, or the built-in noise |
+//! | `multipass` | Shadertoy's Buffer A-D, Common and Image: a folder or a JSON export |
 //! | `session` | one file: the last good pipeline, reloads, parameter values |
 //! | `watchdog` | the window's trial frame that refuses shaders too slow to run |
 //! | `constants` | the same parameters for the ray tracer's shader folder (annotated `const`s) |
@@ -32,6 +33,7 @@ pub mod compose;
 mod gaps;
 pub mod include;
 pub mod mouse;
+pub mod multipass;
 pub mod render;
 mod repair;
 pub mod session;
@@ -57,7 +59,9 @@ use crate::shader_params::{self, ParamSet};
 pub struct ShaderArgs {
     /// The shader file: WGSL (`.wgsl`, with `fn main_image`) or GLSL (`.glsl`,
     /// `.frag`) in the GLSL Sandbox (`void main`) or Shadertoy (`mainImage`)
-    /// style. See docs/sandbox.md.
+    /// style; or a multipass Shadertoy shader: a folder (`image.glsl`,
+    /// `buffer_a.glsl`, ..., `channels.toml`) or a Shadertoy JSON export.
+    /// See docs/sandbox.md.
     pub file: PathBuf,
     /// FILE is a folder: check every shader file in it (compile, render one
     /// frame at --size, default 64x36) and print pass or the error for each,
@@ -163,10 +167,10 @@ impl ShaderArgs {
     }
 }
 
-/// The shader file must exist before anything else is tried (a GPU, a
-/// window): a mistyped name is the user's error.
+/// The shader file (or multipass folder) must exist before anything else
+/// is tried (a GPU, a window): a mistyped name is the user's error.
 pub fn require_file(path: &Path) -> Result<(), SandboxError> {
-    if path.is_file() {
+    if path.is_file() || path.is_dir() {
         Ok(())
     } else {
         Err(SandboxError::Input(format!(
@@ -183,6 +187,9 @@ pub fn run_headless(args: &ShaderArgs) -> Result<(), SandboxError> {
         return check::check_all(args);
     }
     require_file(&args.file)?;
+    if multipass::is_multipass(&args.file) {
+        return multipass::headless::run(args);
+    }
     let images = args.channel_images()?;
     let compiled = compile_file(&args.file).map_err(|e| SandboxError::Input(e.to_string()))?;
     for warning in &compiled.warnings {
@@ -254,6 +261,18 @@ pub fn run_headless(args: &ShaderArgs) -> Result<(), SandboxError> {
         }
         RenderError::Output(e) => e,
     })?;
+    report_rendered(out_dir, count, size, start);
+    Ok(())
+}
+
+/// The last lines of a headless render: where the frames went, how long
+/// they took.
+pub(crate) fn report_rendered(
+    out_dir: Option<&Path>,
+    count: u32,
+    size: (u32, u32),
+    start: Instant,
+) {
     if let Some(dir) = out_dir {
         println!(
             "wrote {count} frames to {} (frame-00000.png ...)",
@@ -266,7 +285,6 @@ pub fn run_headless(args: &ShaderArgs) -> Result<(), SandboxError> {
         size.1,
         start.elapsed().as_secs_f64() * 1e3
     );
-    Ok(())
 }
 
 /// Why a headless render stopped: the shader's pipeline (the user's input),

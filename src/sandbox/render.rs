@@ -99,7 +99,7 @@ pub const BACKBUFFER_FORMAT: wgpu::TextureFormat = wgpu::TextureFormat::Rgba8Uno
 
 /// The user's shader as a pipeline.
 pub struct ShaderPipeline {
-    pipeline: wgpu::RenderPipeline,
+    pub(crate) pipeline: wgpu::RenderPipeline,
     /// Each frame is copied for the next one to read.
     reads_backbuffer: bool,
 }
@@ -110,6 +110,8 @@ pub struct PipelineBuilder {
     device: wgpu::Device,
     pipeline_layout: wgpu::PipelineLayout,
     vertex: wgpu::ShaderModule,
+    /// The format drawn into: [`CANVAS_FORMAT`], or a multipass buffer's.
+    format: wgpu::TextureFormat,
 }
 
 /// How NaN and infinite pixels are shown. Browsers (so Shadertoy and GLSL
@@ -239,7 +241,13 @@ impl SandboxGpu {
             device: device.clone(),
             pipeline_layout: self.pipeline_layout.clone(),
             vertex: self.vertex.clone(),
+            format: CANVAS_FORMAT,
         }
+    }
+
+    /// The built-in noise channel image.
+    pub(crate) fn noise(&self) -> &wgpu::TextureView {
+        &self.noise
     }
 
     fn display(&self, format: wgpu::TextureFormat) -> &wgpu::RenderPipeline {
@@ -263,6 +271,19 @@ pub enum BuildFailed {
 }
 
 impl PipelineBuilder {
+    pub fn device(&self) -> &wgpu::Device {
+        &self.device
+    }
+
+    /// The same builder for pipelines that draw into `format` (a multipass
+    /// buffer, docs/sandbox.md, "Multipass").
+    pub fn for_format(&self, format: wgpu::TextureFormat) -> Self {
+        PipelineBuilder {
+            format,
+            ..self.clone()
+        }
+    }
+
     /// [`build`](Self::build) on a thread of its own, waited for at most
     /// `limit`. A driver compiling a shader's pipeline can take without end
     /// (lavapipe was seen recursing for minutes on a 200-line GLSL Sandbox
@@ -309,7 +330,7 @@ impl PipelineBuilder {
             (&self.vertex, "vs_fullscreen"),
             (&module, compiled.entry_point),
             &[],
-            CANVAS_FORMAT,
+            self.format,
         );
         match scope.pop().await {
             Some(error) => Err(format!(
@@ -429,6 +450,18 @@ impl Canvas {
         self.bind(&gpu.device, sandbox);
     }
 
+    /// Binds views to the four channels (a multipass shader's buffers
+    /// change every frame).
+    pub fn set_channel_views(
+        &mut self,
+        device: &wgpu::Device,
+        sandbox: &SandboxGpu,
+        views: [wgpu::TextureView; CHANNELS],
+    ) {
+        self.channels = views;
+        self.bind(device, sandbox);
+    }
+
     /// The previous frame starts black, as on GLSL Sandbox.
     fn backbuffer(device: &wgpu::Device, size: (u32, u32)) -> wgpu::TextureView {
         Self::target(device, "sandbox backbuffer", size, BACKBUFFER_FORMAT)
@@ -455,7 +488,7 @@ impl Canvas {
         )
     }
 
-    fn params_buffer(device: &wgpu::Device, size: u64) -> wgpu::Buffer {
+    pub(crate) fn params_buffer(device: &wgpu::Device, size: u64) -> wgpu::Buffer {
         device.create_buffer(&wgpu::BufferDescriptor {
             label: Some("sandbox parameters"),
             size,
@@ -477,7 +510,7 @@ impl Canvas {
     }
 
     /// The bindings of the preludes, in the order of [`SandboxGpu`]'s layout.
-    fn bind_group(
+    pub(crate) fn bind_group(
         device: &wgpu::Device,
         sandbox: &SandboxGpu,
         [frame, params]: [&wgpu::Buffer; 2],
@@ -614,6 +647,16 @@ impl Canvas {
         read_texture(gpu, &texture)
     }
 
+    /// The canvas's pixels as the shader wrote them (RGBA, f32), rows from
+    /// the top of the picture, for tests that measure values.
+    pub fn texels(&self, gpu: &Gpu) -> Result<Vec<[f32; 4]>, GpuWaitError> {
+        let data = read_texels(gpu, &self.texture)?;
+        Ok(data
+            .chunks_exact(16)
+            .map(bytemuck::pod_read_unaligned)
+            .collect())
+    }
+
     /// Reads the canvas back and counts NaN, infinite and empty pixels.
     pub fn stats(&self, gpu: &Gpu) -> Result<CanvasStats, GpuWaitError> {
         let (width, height) = self.size();
@@ -743,13 +786,7 @@ impl Offscreen {
         let mut encoder = gpu.device.create_command_encoder(&Default::default());
         canvas.draw(gpu, sandbox, &mut encoder, pipeline, frame, params);
         let submission = gpu.queue.submit([encoder.finish()]);
-        gpu.device
-            .poll(wgpu::PollType::Wait {
-                submission_index: Some(submission),
-                timeout: Some(FRAME_LIMIT),
-            })
-            .map(|_| ())
-            .map_err(|_| TooSlow)
+        wait_for_frame(gpu, submission)
     }
 
     /// The last frame as 8-bit RGBA.
@@ -763,6 +800,17 @@ impl Offscreen {
         let canvas = self.canvas.as_ref().expect("draw before reading");
         canvas.stats(gpu)
     }
+}
+
+/// Waits for a frame's submission at most [`FRAME_LIMIT`]; see [`TooSlow`].
+pub(crate) fn wait_for_frame(gpu: &Gpu, submission: wgpu::SubmissionIndex) -> Result<(), TooSlow> {
+    gpu.device
+        .poll(wgpu::PollType::Wait {
+            submission_index: Some(submission),
+            timeout: Some(FRAME_LIMIT),
+        })
+        .map(|_| ())
+        .map_err(|_| TooSlow)
 }
 
 /// Renders one frame of a compiled shader without a window.

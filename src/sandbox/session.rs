@@ -22,13 +22,16 @@ pub enum ReloadError {
     Shader(ShaderError),
     /// wgpu refused a module naga accepted (rare: an adapter limit).
     Gpu(String),
+    /// A multipass shader's `channels.toml` or JSON file is wrong: the
+    /// message names the file and the key.
+    Project(String),
 }
 
 impl fmt::Display for ReloadError {
     fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
         match self {
             ReloadError::Shader(e) => write!(f, "{e}"),
-            ReloadError::Gpu(e) => write!(f, "{e}"),
+            ReloadError::Gpu(e) | ReloadError::Project(e) => write!(f, "{e}"),
         }
     }
 }
@@ -38,7 +41,9 @@ impl ReloadError {
     pub fn location(&self) -> String {
         match self {
             ReloadError::Shader(e) => format!("{}:{}:{}", e.file, e.line, e.column),
-            ReloadError::Gpu(e) => e.lines().next().unwrap_or_default().to_string(),
+            ReloadError::Gpu(e) | ReloadError::Project(e) => {
+                e.lines().next().unwrap_or_default().to_string()
+            }
         }
     }
 }

@@ -168,3 +168,11 @@ pub const SHADER_MISTAKES: [&str; 24] = [
     "mainImage(",
     "[",
 ];
+
+/// Runs the raysandbox binary with `args`, its output captured.
+pub fn raysandbox(args: &[&str]) -> std::process::Output {
+    std::process::Command::new(env!("CARGO_BIN_EXE_raysandbox"))
+        .args(args)
+        .output()
+        .expect("run raysandbox")
+}

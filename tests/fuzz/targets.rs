@@ -12,6 +12,7 @@ use std::sync::LazyLock;
 use arbitrary::{Result, Unstructured};
 use glam::DVec3;
 use raysandbox::expr::{FUNCTIONS, Function};
+use raysandbox::sandbox::multipass;
 use raysandbox::scene::{GivenFiles, Scene};
 use raysandbox::shader_params::{self as params, ParamSet, ParamSpec, ParamType, Scalar};
 use raysandbox::web::link;
@@ -36,7 +37,7 @@ pub struct Target {
     pub run: fn(&[u8]) -> std::result::Result<(), String>,
 }
 
-pub const TARGETS: [Target; 8] = [
+pub const TARGETS: [Target; 10] = [
     Target {
         name: "scene",
         quick: 20_000,
@@ -100,6 +101,22 @@ pub const TARGETS: [Target; 8] = [
         seeds: sidecar_seeds,
         make: make_sidecar,
         run: run_sidecar,
+    },
+    Target {
+        name: "shadertoy-json",
+        quick: 2_000,
+        extension: "json",
+        seeds: shadertoy_json_seeds,
+        make: make_shadertoy_json,
+        run: run_shadertoy_json,
+    },
+    Target {
+        name: "channels-toml",
+        quick: 20_000,
+        extension: "toml",
+        seeds: channels_toml_seeds,
+        make: make_channels_toml,
+        run: run_channels_toml,
     },
 ];
 
@@ -1086,4 +1103,134 @@ fn run_sidecar(input: &[u8]) -> std::result::Result<(), String> {
         }
     }
     sidecar_round_trip(set)
+}
+
+// ------------------------------------------------------ multipass shaders
+
+/// The Shadertoy JSON exports of the tests (written for this project).
+fn shadertoy_json_seeds() -> Vec<Vec<u8>> {
+    read_all(&files(Path::new("tests/shaders/multipass"), &["json"]))
+}
+
+/// What goes wrong in a JSON export: its syntax, the keys of passes and
+/// inputs, ids and channels out of range.
+fn make_shadertoy_json(u: &mut Unstructured, seeds: &[Vec<u8>]) -> Result<Vec<u8>> {
+    let tokens = [
+        "{",
+        "}",
+        "[",
+        "]",
+        "\"",
+        ",",
+        ":",
+        "null",
+        "-1",
+        "4",
+        "1e999",
+        "\"channel\": ",
+        "\"ctype\": \"buffer\"",
+        "\"type\": \"image\"",
+        "\"type\": \"buffer\"",
+        "\"id\": 257",
+        "\"id\": \"XsXGR8\"",
+        "\"name\": \"Buffer C\"",
+        "\"code\": \"\"",
+        "\\n",
+        "\\u0000",
+    ];
+    Ok(mutate_seed(u, seeds, &tokens)?.into_bytes())
+}
+
+/// A JSON export reads or is refused with an error that names the file;
+/// what reads compiles, or its error names the file too.
+fn run_shadertoy_json(input: &[u8]) -> std::result::Result<(), String> {
+    let Ok(text) = text(input) else {
+        return Ok(());
+    };
+    let path = Path::new("fuzz-dir/fuzz.json");
+    let project = match multipass::json::parse(path, text) {
+        Ok(project) => project,
+        Err(e) if e.starts_with("fuzz-dir/fuzz.json: ") => return Ok(()),
+        Err(e) => return Err(format!("the error does not name the file: {e}")),
+    };
+    check_bindings(&project)?;
+    match multipass::compile_project(&project) {
+        Err(e) if !e.file.starts_with("fuzz-dir/fuzz.json [") => Err(format!(
+            "the compile error does not name the file's pass: {e}"
+        )),
+        _ => Ok(()),
+    }
+}
+
+/// Every channel reads a buffer the project has.
+fn check_bindings(project: &multipass::Project) -> std::result::Result<(), String> {
+    for pass in &project.passes {
+        for input in pass.channels.iter().flatten() {
+            if let multipass::Input::Buffer(k) = input
+                && project.pass(multipass::PassKind::Buffer(*k)).is_none()
+            {
+                return Err(format!("{} reads buffer {k}, which is missing", pass.name));
+            }
+        }
+    }
+    Ok(())
+}
+
+fn channels_toml_seeds() -> Vec<Vec<u8>> {
+    read_all(&files(Path::new("tests/shaders/multipass"), &["toml"]))
+}
+
+fn make_channels_toml(u: &mut Unstructured, seeds: &[Vec<u8>]) -> Result<Vec<u8>> {
+    let text = if u.ratio(1, 2)? {
+        mutate_seed(
+            u,
+            seeds,
+            &["[", "]", "\"", "=", "iChannel", "buffer_", "image", "\n"],
+        )?
+    } else {
+        let mut s = String::new();
+        for _ in 0..u.int_in_range(0..=4)? {
+            let section = u.choose(&["image", "buffer_a", "buffer_d", "buffer_e", "", "common"])?;
+            s.push_str(&format!("[{section}]\n"));
+            for _ in 0..u.int_in_range(0..=4)? {
+                let key = u.choose(&["iChannel0", "iChannel3", "iChannel4", "iChannel", "x"])?;
+                let value = match u.int_in_range(0..=3)? {
+                    0 => u
+                        .choose(&["\"buffer_a\"", "\"buffer_c\"", "\"keyboard\"", "\"noise\""])?
+                        .to_string(),
+                    1 => number(u)?,
+                    2 => format!("\"{}\"", random_text(u, 12)?.replace(['"', '\\'], "")),
+                    _ => u.choose(&["{}", "[]", "true", "\"\""])?.to_string(),
+                };
+                s.push_str(&format!("{key} = {value}\n"));
+            }
+        }
+        s
+    };
+    Ok(text.into_bytes())
+}
+
+/// `channels.toml` binds the channels of a folder with every pass, or is
+/// refused with an error naming the file; what it binds is a channel the
+/// folder can give.
+fn run_channels_toml(input: &[u8]) -> std::result::Result<(), String> {
+    let Ok(text) = text(input) else {
+        return Ok(());
+    };
+    let mut passes: Vec<multipass::Pass> = multipass::PassKind::all()
+        .into_iter()
+        .map(|kind| multipass::Pass {
+            kind,
+            name: kind.stem(),
+            code: multipass::Code::Text(String::new()),
+            channels: Default::default(),
+        })
+        .collect();
+    let dir = Path::new("fuzz-dir");
+    match multipass::folder::bind(dir, "fuzz-dir/channels.toml", text, &mut passes) {
+        Err(e) if !e.starts_with("fuzz-dir/channels.toml: ") => {
+            Err(format!("the error does not name the file: {e}"))
+        }
+        _ => Ok(()),
+    }
 }

@@ -16,6 +16,10 @@ impl SandboxApp {
             Some(ClockAction::Toggle) => self.clock.toggle(now),
             Some(ClockAction::Restart) => {
                 self.clock.restart(now);
+                if let (Some(multi), Some(gfx)) = (&mut self.multi, &self.gfx) {
+                    multi.reset(&gfx.gpu);
+                    self.after_present.push("buffers-cleared".into());
+                }
                 self.draw_next = true;
             }
             Some(ClockAction::Step) => {

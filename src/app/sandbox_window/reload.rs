@@ -8,6 +8,7 @@ use crate::sandbox::render::{
 };
 use crate::sandbox::watchdog::Probe;
 use crate::sandbox::{Compiled, ReloadError};
+use std::path::{Path, PathBuf};
 use std::sync::{Arc, Mutex, PoisonError};
 
 impl SandboxApp {
@@ -19,6 +20,9 @@ impl SandboxApp {
     pub(super) fn load(&mut self, reloaded: bool) {
         if self.gfx.is_none() {
             return;
+        }
+        if self.multi.is_some() {
+            return self.load_multipass(reloaded);
         }
         let compiled = self.session.compile();
         self.watch_files();
@@ -32,6 +36,26 @@ impl SandboxApp {
                 return self.failed(&e);
             }
         };
+        self.spawn_build(move |builder, probe, size, generation| {
+            let result = build_checked(builder, probe, &compiled, size);
+            SandboxEvent::Built {
+                generation,
+                compiled: Box::new(compiled),
+                result,
+                reloaded,
+            }
+        });
+    }
+
+    /// Starts a build on another thread: `build` gets the pipeline
+    /// builder, the watchdog's probe, the render size and the reload's
+    /// generation, and its event is sent back to the event loop.
+    pub(super) fn spawn_build(
+        &mut self,
+        build: impl FnOnce(&PipelineBuilder, &Mutex<Probe>, (u32, u32), u64) -> SandboxEvent
+        + Send
+        + 'static,
+    ) {
         self.generation += 1;
         let Some(gfx) = &self.gfx else { return };
         let builder = gfx.builder.clone();
@@ -41,13 +65,7 @@ impl SandboxApp {
         let generation = self.generation;
         self.building = true;
         std::thread::spawn(move || {
-            let result = build_checked(&builder, &probe, &compiled, size);
-            let _ = proxy.send_event(SandboxEvent::Built {
-                generation,
-                compiled: Box::new(compiled),
-                result,
-                reloaded,
-            });
+            let _ = proxy.send_event(build(&builder, &probe, size, generation));
         });
     }
 
@@ -60,6 +78,11 @@ impl SandboxApp {
             .compiled()
             .map(|c| c.warnings.iter().map(ToString::to_string).collect())
             .unwrap_or_default();
+        self.announce_warnings(warnings);
+    }
+
+    /// Logs and announces the source's warnings when they changed.
+    pub(super) fn announce_warnings(&mut self, warnings: Vec<String>) {
         if warnings == self.source_warnings {
             return;
         }
@@ -77,16 +100,23 @@ impl SandboxApp {
     /// "Includes"): after a compile that changed the includes, the watch is
     /// made again for the new set.
     pub(super) fn watch_files(&mut self) {
-        let includes = self.session.includes();
-        if self.watch.is_some() && self.watched_includes == includes {
+        let includes = self.session.includes().to_vec();
+        let file = self.options.file.clone();
+        self.watch_set(Some(&file), includes);
+    }
+
+    /// Watches `file` (if any) and `files`, unless the watch is for them
+    /// already.
+    pub(super) fn watch_set(&mut self, file: Option<&Path>, files: Vec<PathBuf>) {
+        if self.watch.is_some() && self.watched_includes == files {
             return;
         }
-        self.watched_includes = includes.to_vec();
+        self.watched_includes = files;
         let proxy = self.proxy.clone();
         let notify = move |_| {
             let _ = proxy.send_event(SandboxEvent::FileChanged);
         };
-        match watch::watch(None, Some(&self.options.file), includes, notify) {
+        match watch::watch(None, file, &self.watched_includes, notify) {
             Ok(w) => self.watch = Some(w),
             Err(e) => self.panel.message = Some(e),
         }

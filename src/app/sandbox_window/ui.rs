@@ -35,6 +35,14 @@ impl SandboxApp {
         let paused = self.clock.is_paused();
         let status = status_text(canvas_size, self.gpu_time, paused, tick.rate);
         let adapter = gfx.gpu.adapter.get_info().name;
+        let style = match &self.multi {
+            Some(multi) => multi.describe(),
+            None => self
+                .session
+                .style()
+                .map_or("not compiled yet", |s| s.describe())
+                .to_string(),
+        };
         let session = &mut self.session;
         let panel = &mut self.panel;
         let mouse = &mut self.mouse;
@@ -55,8 +63,7 @@ impl SandboxApp {
                     .default_width(280.0)
                     .resizable(true)
                     .show(ui.ctx(), |ui| {
-                        let style = session.style().map_or("not compiled yet", |s| s.describe());
-                        ui.weak(style);
+                        ui.weak(&style);
                         ui.separator();
                         if let Some(a) = controls::clock_controls(ui, paused, &tick) {
                             actions.clock = Some(a);

@@ -12,7 +12,8 @@ use super::glslviewer;
 use super::param_block::{GLSL_BOOL_PREFIX, read_params};
 use super::silent_zeros::{self, Warning, WarningKind};
 use super::{
-    Compiled, EPILOGUE_NAME, GLSL_ENTRY, PRELUDE_NAME, Style, at_end_of_file, error_at, find_pair,
+    Compiled, EPILOGUE_NAME, GLSL_ENTRY, PRELUDE_NAME, Style, Target, at_end_of_file, error_at,
+    find_pair,
 };
 use crate::gpu::{ShaderError, ShaderSource};
 use crate::sandbox::{gaps, repair};
@@ -39,7 +40,11 @@ fn declares_uniform(tokens: &[Token], names: &[&str]) -> bool {
 /// written `#ifdef GL_ES precision mediump float; #endif` expect it.
 pub(super) const GLSL_DEFINES: &[&str] = &["GL_ES"];
 
-pub(super) fn compile_glsl(name: &str, scan: &Scan) -> Result<Compiled, ShaderError> {
+pub(super) fn compile_glsl(
+    name: &str,
+    scan: &Scan,
+    target: Target,
+) -> Result<Compiled, ShaderError> {
     if let Some(offset) = scan.too_deep() {
         let message = format!(
             "nested more than {} levels deep (brackets and signs): more than the GLSL \
@@ -186,12 +191,17 @@ pub(super) fn compile_glsl(name: &str, scan: &Scan) -> Result<Compiled, ShaderEr
         Style::GlslSandbox if declared.contains(&"resolution") => "resolution",
         _ => "rsb_resolution",
     };
+    // A buffer keeps fragCoord's rows in the texture's order (Target::Buffer).
+    let y = match target {
+        Target::Canvas => format!("{resolution}.y - gl_FragCoord.y"),
+        Target::Buffer => "gl_FragCoord.y".to_string(),
+    };
     let _ = write!(
         prelude,
         "layout(location = 0) out vec4 rsb_frag_color;\n\
          // Shadertoy's and GLSL Sandbox's convention: y up (Vulkan's gl_FragCoord is y down).\n\
          vec4 rsb_frag_coord() {{\n\
-         \x20   return vec4(gl_FragCoord.x, {resolution}.y - gl_FragCoord.y, gl_FragCoord.z, gl_FragCoord.w);\n\
+         \x20   return vec4(gl_FragCoord.x, {y}, gl_FragCoord.z, gl_FragCoord.w);\n\
          }}\n\
          #define gl_FragCoord rsb_frag_coord()\n\
          #define gl_FragColor rsb_frag_color\n"

@@ -116,7 +116,38 @@ pub fn compile_file(path: &Path) -> Result<Compiled, ShaderError> {
 /// Compiles a file whose includes are joined in: errors are at the line of
 /// the file, included or not, that they are in.
 pub fn compile_expanded(name: &str, expanded: &Expanded) -> Result<Compiled, ShaderError> {
-    let mut compiled = compile(name, &expanded.text).map_err(|e| expanded.locate(e, name))?;
+    let compiled = compile(name, &expanded.text).map_err(|e| expanded.locate(e, name))?;
+    Ok(located(compiled, expanded))
+}
+
+/// Compiles one pass of a multipass Shadertoy shader (docs/sandbox.md,
+/// "Multipass"): GLSL whatever its name, in the Shadertoy style, with
+/// `fragCoord` in the rows `target` stores. `expanded` holds the Common code
+/// and the pass's text, each line mapped to its own file.
+pub fn compile_pass(
+    name: &str,
+    expanded: &Expanded,
+    target: Target,
+) -> Result<Compiled, ShaderError> {
+    let compiled = compile_with(name, &expanded.text, Some(false), target)
+        .map_err(|e| expanded.locate(e, name))?;
+    if compiled.style != Style::Shadertoy {
+        let scan = Scan::new(&expanded.text);
+        let e = at_end_of_file(
+            name,
+            &scan,
+            "a pass of a multipass shader defines \
+             `void mainImage(out vec4 fragColor, in vec2 fragCoord)` (Shadertoy style)"
+                .into(),
+        );
+        return Err(expanded.locate(e, name));
+    }
+    Ok(located(compiled, expanded))
+}
+
+/// Moves the warnings and the parameters' lines of a compiled joined text
+/// to the files and lines they came from.
+fn located(mut compiled: Compiled, expanded: &Expanded) -> Compiled {
     compiled.includes = expanded.included().to_vec();
     for w in &mut compiled.warnings {
         if let Some((file, line)) = expanded.origin(w.line) {
@@ -130,13 +161,39 @@ pub fn compile_expanded(name: &str, expanded: &Expanded) -> Result<Compiled, Sha
             spec.line = line;
         }
     }
-    Ok(compiled)
+    compiled
 }
 
 /// Compiles the text of a shader file called `name` (its extension, if any,
 /// tells the language: `.wgsl` is WGSL, `.glsl`, `.frag`, `.fs`, `.fsh` are
 /// GLSL; otherwise the text decides).
 pub fn compile(name: &str, text: &str) -> Result<Compiled, ShaderError> {
+    compile_with(name, text, None, Target::Canvas)
+}
+
+/// Where a shader's pixels go, which decides how `fragCoord`'s rows lie in
+/// the texture (docs/sandbox.md, "Multipass").
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
+pub enum Target {
+    /// The canvas that is shown: y up in the shader, its bottom row the
+    /// texture's last.
+    #[default]
+    Canvas,
+    /// A buffer that passes read: `fragCoord.y = 0.5` is the texture's
+    /// first row, so that `texelFetch(iChannel0, ivec2(fragCoord), 0)` and
+    /// `texture(iChannel0, fragCoord / iResolution.xy)` read the same pixel
+    /// back, as on Shadertoy.
+    Buffer,
+}
+
+/// [`compile`], with the language forced (`Some(true)`: WGSL,
+/// `Some(false)`: GLSL) or told by the name and text (`None`).
+fn compile_with(
+    name: &str,
+    text: &str,
+    wgsl: Option<bool>,
+    target: Target,
+) -> Result<Compiled, ShaderError> {
     let scan = Scan::new(text);
     if let Some(t) = scan
         .tokens
@@ -156,17 +213,18 @@ pub fn compile(name: &str, text: &str) -> Result<Compiled, ShaderError> {
     let extension = Path::new(name)
         .extension()
         .map(|e| e.to_string_lossy().to_ascii_lowercase());
-    let wgsl = match extension.as_deref() {
-        Some("wgsl") => true,
-        Some("glsl" | "frag" | "fs" | "fsh" | "fragment") => false,
-        _ => scan.tokens.iter().any(|t| t.is("fn")),
+    let wgsl = match (wgsl, extension.as_deref()) {
+        (Some(wgsl), _) => wgsl,
+        (None, Some("wgsl")) => true,
+        (None, Some("glsl" | "frag" | "fs" | "fsh" | "fragment")) => false,
+        (None, _) => scan.tokens.iter().any(|t| t.is("fn")),
     };
     let result = if wgsl {
         compile_wgsl(name, text, &scan)
     } else {
         let mut scan = Scan::new(text);
         scan.drop_inactive_branches(GLSL_DEFINES);
-        compile_glsl(name, &scan)
+        compile_glsl(name, &scan, target)
     };
     result.map_err(|mut e| {
         if e.line == 0 {

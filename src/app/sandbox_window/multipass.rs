@@ -1,0 +1,236 @@
+//! The sandbox window with a multipass Shadertoy shader (docs/sandbox.md,
+//! "Multipass"): each pass reloads on its own (a pass that fails keeps its
+//! last good pipeline, the error at its file and line), `R` clears the
+//! buffers with the clock, and the keys held reach Shadertoy's keyboard
+//! texture.
+
+use winit::event::{ElementState, KeyEvent};
+use winit::keyboard::{KeyCode, PhysicalKey};
+
+use super::reload::build_checked;
+use super::{SandboxApp, SandboxEvent};
+use crate::gpu::Gpu;
+use crate::sandbox::FrameUniforms;
+use crate::sandbox::multipass::compile::CompiledPass;
+use crate::sandbox::multipass::gpu::{Buffers, pass_builder};
+use crate::sandbox::multipass::keyboard::Keyboard;
+use crate::sandbox::multipass::session::{MultiSession, Pending};
+use crate::sandbox::render::{Canvas, SandboxGpu, ShaderPipeline};
+
+/// A multipass shader's state in the window.
+pub(super) struct Multi {
+    pub(super) session: MultiSession,
+    /// Made with the window's GPU.
+    buffers: Option<Buffers>,
+    keyboard: Keyboard,
+    /// The clock's frame the passes last ran for: a paused clock does not
+    /// run them again (the buffers would go on accumulating), unless the
+    /// buffers were cleared or a pass reloaded.
+    drawn_frame: Option<u32>,
+}
+
+/// A build of the passes that changed, sent back to the event loop.
+pub(super) struct MultiBuilt {
+    pub(super) pending: Pending,
+    pub(super) built: Vec<(CompiledPass, Result<ShaderPipeline, String>)>,
+}
+
+impl Multi {
+    pub(super) fn new(path: &std::path::Path) -> Self {
+        Multi {
+            session: MultiSession::new(path),
+            buffers: None,
+            keyboard: Keyboard::default(),
+            drawn_frame: None,
+        }
+    }
+
+    /// The panel's line for the kind of shader.
+    pub(super) fn describe(&self) -> String {
+        let passes = self.session.draws().len();
+        format!("GLSL (Shadertoy style), multipass: {passes} passes")
+    }
+
+    /// Clears the buffers: `R`, with the clock's restart.
+    pub(super) fn reset(&mut self, gpu: &Gpu) {
+        if let Some(buffers) = &mut self.buffers {
+            buffers.reset(gpu);
+        }
+        self.drawn_frame = None;
+    }
+
+    pub(super) fn resize(&mut self, gpu: &Gpu, size: (u32, u32)) {
+        let buffers = self.buffers.get_or_insert_with(|| Buffers::new(gpu, size));
+        if buffers.size() != size {
+            buffers.resize(gpu, size);
+            self.drawn_frame = None;
+        }
+    }
+
+    /// A key went down or up: its JavaScript code in the keyboard texture.
+    pub(super) fn key(&mut self, event: &KeyEvent) {
+        let PhysicalKey::Code(code) = event.physical_key else {
+            return;
+        };
+        let Some(js) = js_key_code(code) else { return };
+        match event.state {
+            ElementState::Pressed => self.keyboard.press(js),
+            ElementState::Released => self.keyboard.release(js),
+        }
+    }
+
+    /// Encodes the passes of one frame, unless the clock is paused on the
+    /// frame drawn already. Returns whether it drew.
+    pub(super) fn draw(
+        &mut self,
+        gpu: &Gpu,
+        sandbox: &SandboxGpu,
+        encoder: &mut wgpu::CommandEncoder,
+        frame: &FrameUniforms,
+        canvas: &mut Canvas,
+    ) -> bool {
+        if self.drawn_frame == Some(frame.frame) {
+            return false;
+        }
+        let size = canvas.size();
+        self.resize(gpu, size);
+        let buffers = self.buffers.as_mut().expect("made by resize");
+        buffers.set_keyboard(gpu, &self.keyboard);
+        buffers.draw(gpu, sandbox, encoder, &self.session.draws(), frame, canvas);
+        self.keyboard.frame_drawn();
+        self.drawn_frame = Some(frame.frame);
+        true
+    }
+}
+
+impl SandboxApp {
+    /// The first load and every change of a multipass shader's files:
+    /// read and compile now, build the passes that changed on another
+    /// thread (each tried by the watchdog), while the last good ones draw.
+    pub(super) fn load_multipass(&mut self, reloaded: bool) {
+        let Some(multi) = &mut self.multi else {
+            return;
+        };
+        let compiled = multi.session.compile();
+        self.watch_multipass_files();
+        let pending = match compiled {
+            Ok(Some(pending)) => pending,
+            Ok(None) => return,
+            Err(e) => {
+                self.generation += 1;
+                self.building = false;
+                self.session.error = Some(e.clone());
+                return self.failed(&e);
+            }
+        };
+        self.spawn_build(move |builder, probe, size, generation| {
+            let built = pending
+                .build
+                .iter()
+                .map(|pass| {
+                    let builder = pass_builder(builder, pass.kind);
+                    let result = build_checked(&builder, probe, &pass.compiled, size);
+                    (pass.clone(), result)
+                })
+                .collect();
+            SandboxEvent::MultiBuilt {
+                generation,
+                built: Box::new(MultiBuilt { pending, built }),
+                reloaded,
+            }
+        });
+    }
+
+    /// The passes built: the new ones run, the images the channels name
+    /// are read.
+    pub(super) fn multipass_built(&mut self, built: MultiBuilt, reloaded: bool) {
+        let (Some(multi), Some(gfx)) = (&mut self.multi, &self.gfx) else {
+            return;
+        };
+        let mut error = multi.session.install(built.pending, built.built);
+        let size = gfx.canvas.size();
+        multi.resize(&gfx.gpu, size);
+        let buffers = multi.buffers.as_mut().expect("made by resize");
+        if let Err(e) = buffers.prepare(&gfx.gpu, &multi.session.bindings()) {
+            error.get_or_insert(crate::sandbox::ReloadError::Project(e));
+        }
+        multi.drawn_frame = None;
+        self.session.error = error.clone();
+        let warnings = multi.session.warnings();
+        self.announce_warnings(warnings);
+        self.draw_next = true;
+        self.check_next = true;
+        match error {
+            Some(e) => self.failed(&e),
+            None if reloaded => self.after_present.push("shader-reloaded".into()),
+            None => {}
+        }
+    }
+
+    /// Watches every file of the shader: the pass files (also those a
+    /// folder may gain), Common, the bindings or the JSON file, includes.
+    fn watch_multipass_files(&mut self) {
+        let Some(multi) = &self.multi else { return };
+        let files = multi.session.files();
+        self.watch_set(None, files);
+    }
+}
+
+/// The JavaScript `keyCode` of a key, as Shadertoy's keyboard texture
+/// indexes it: letters 65 to 90, digits 48 to 57, the arrows 37 to 40,
+/// space 32, and the common controls.
+fn js_key_code(code: KeyCode) -> Option<u8> {
+    use KeyCode::*;
+    let letters = [
+        KeyA, KeyB, KeyC, KeyD, KeyE, KeyF, KeyG, KeyH, KeyI, KeyJ, KeyK, KeyL, KeyM, KeyN, KeyO,
+        KeyP, KeyQ, KeyR, KeyS, KeyT, KeyU, KeyV, KeyW, KeyX, KeyY, KeyZ,
+    ];
+    if let Some(k) = letters.iter().position(|&c| c == code) {
+        return Some(65 + k as u8);
+    }
+    let digits = [
+        Digit0, Digit1, Digit2, Digit3, Digit4, Digit5, Digit6, Digit7, Digit8, Digit9,
+    ];
+    if let Some(k) = digits.iter().position(|&c| c == code) {
+        return Some(48 + k as u8);
+    }
+    let functions = [F1, F2, F3, F4, F5, F6, F7, F8, F9, F10, F11, F12];
+    if let Some(k) = functions.iter().position(|&c| c == code) {
+        return Some(112 + k as u8);
+    }
+    Some(match code {
+        Backspace => 8,
+        Tab => 9,
+        Enter | NumpadEnter => 13,
+        ShiftLeft | ShiftRight => 16,
+        ControlLeft | ControlRight => 17,
+        AltLeft | AltRight => 18,
+        Escape => 27,
+        Space => 32,
+        PageUp => 33,
+        PageDown => 34,
+        End => 35,
+        Home => 36,
+        ArrowLeft => 37,
+        ArrowUp => 38,
+        ArrowRight => 39,
+        ArrowDown => 40,
+        Delete => 46,
+        _ => return None,
+    })
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn keys_get_javascript_codes() {
+        assert_eq!(js_key_code(KeyCode::KeyA), Some(65));
+        assert_eq!(js_key_code(KeyCode::KeyZ), Some(90));
+        assert_eq!(js_key_code(KeyCode::Digit7), Some(55));
+        assert_eq!(js_key_code(KeyCode::ArrowLeft), Some(37));
+        assert_eq!(js_key_code(KeyCode::F12), Some(123));
+        assert_eq!(js_key_code(KeyCode::CapsLock), None);
+    }
+}

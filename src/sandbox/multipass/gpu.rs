@@ -1,0 +1,261 @@
+//! A multipass shader on the GPU: each buffer is two textures (ping-pong),
+//! one written this frame while the other holds the previous frame. The
+//! passes are drawn in Shadertoy's order, A, B, C, D, then Image into the
+//! canvas that is shown; a pass reading a buffer drawn before it this frame
+//! gets this frame's content, one reading itself or a later buffer the
+//! previous frame's (docs/sandbox.md, "Multipass").
+
+use std::path::PathBuf;
+
+use super::keyboard::Keyboard;
+use super::{BUFFERS, Input, PassKind};
+use crate::gpu::{Gpu, fullscreen, render_target};
+use crate::sandbox::channels;
+use crate::sandbox::render::{Canvas, PipelineBuilder, SandboxGpu, ShaderPipeline};
+use crate::sandbox::uniforms::{FRAME_UNIFORMS_SIZE, FrameUniforms};
+use crate::shader_params::ParamSet;
+
+/// The buffers' format: 32-bit floats where the device can filter them
+/// (as Shadertoy's buffers, so that a path tracer's sum of thousands of
+/// frames keeps its precision), else 16-bit floats, which every WebGPU
+/// device filters.
+pub fn buffer_format(device: &wgpu::Device) -> wgpu::TextureFormat {
+    if device
+        .features()
+        .contains(wgpu::Features::FLOAT32_FILTERABLE)
+    {
+        wgpu::TextureFormat::Rgba32Float
+    } else {
+        wgpu::TextureFormat::Rgba16Float
+    }
+}
+
+/// The builder for a pass: buffers are drawn in [`buffer_format`].
+pub fn pass_builder(builder: &PipelineBuilder, kind: PassKind) -> PipelineBuilder {
+    match kind {
+        PassKind::Buffer(_) => builder.for_format(buffer_format(builder.device())),
+        PassKind::Image => builder.clone(),
+    }
+}
+
+/// One buffer: the two textures it alternates between.
+struct Buffer {
+    views: [wgpu::TextureView; 2],
+    params: wgpu::Buffer,
+}
+
+/// The buffers, the keyboard, the images the channels read, and which of
+/// each buffer's textures is this frame's.
+pub struct Buffers {
+    format: wgpu::TextureFormat,
+    size: (u32, u32),
+    buffers: [Option<Buffer>; BUFFERS],
+    frame: wgpu::Buffer,
+    keyboard: wgpu::Texture,
+    keyboard_view: wgpu::TextureView,
+    /// An empty channel: black, as on Shadertoy.
+    black: wgpu::TextureView,
+    /// The images of the channels, by file (at most 4 per pass).
+    images: Vec<(PathBuf, wgpu::TextureView)>,
+    /// Frames drawn since the buffers were cleared: its parity picks the
+    /// texture written.
+    drawn: u64,
+}
+
+/// A pass to draw: its pipeline, channels and parameter values.
+pub struct PassDraw<'a> {
+    pub kind: PassKind,
+    pub channels: &'a [Option<Input>; 4],
+    pub pipeline: &'a ShaderPipeline,
+    pub params: &'a ParamSet,
+}
+
+/// A pass's kind and channels, as [`Buffers::prepare`] reads them.
+pub type Binding<'a> = (PassKind, &'a [Option<Input>; 4]);
+
+impl Buffers {
+    pub fn new(gpu: &Gpu, size: (u32, u32)) -> Self {
+        let device = &gpu.device;
+        let keyboard = Keyboard::default().texture(device, &gpu.queue);
+        let black = channels::upload(device, &gpu.queue, &image::RgbaImage::new(1, 1))
+            .create_view(&Default::default());
+        Buffers {
+            format: buffer_format(device),
+            size: (size.0.max(1), size.1.max(1)),
+            buffers: Default::default(),
+            frame: device.create_buffer(&wgpu::BufferDescriptor {
+                label: Some("multipass frame uniforms"),
+                size: FRAME_UNIFORMS_SIZE,
+                usage: wgpu::BufferUsages::UNIFORM | wgpu::BufferUsages::COPY_DST,
+                mapped_at_creation: false,
+            }),
+            keyboard_view: keyboard.create_view(&Default::default()),
+            keyboard,
+            black,
+            images: Vec::new(),
+            drawn: 0,
+        }
+    }
+
+    /// Makes the buffers of `project` (the others are dropped; those it
+    /// keeps keep their content) and reads the images its channels name.
+    /// An image that cannot be read is an error naming the file.
+    pub fn prepare(&mut self, gpu: &Gpu, passes: &[Binding]) -> Result<(), String> {
+        let mut images = Vec::new();
+        for (_, channels) in passes {
+            for input in channels.iter().flatten() {
+                let Input::Texture(path) = input else {
+                    continue;
+                };
+                if images.iter().any(|(p, _)| p == path) {
+                    continue;
+                }
+                let view = match self.images.iter().find(|(p, _)| p == path) {
+                    Some((_, view)) => view.clone(),
+                    None => {
+                        let image = channels::load(path)?;
+                        channels::upload(&gpu.device, &gpu.queue, &image)
+                            .create_view(&Default::default())
+                    }
+                };
+                images.push((path.clone(), view));
+            }
+        }
+        self.images = images;
+        for k in 0..BUFFERS {
+            let used = passes.iter().any(|(kind, _)| *kind == PassKind::Buffer(k));
+            match (used, self.buffers[k].is_some()) {
+                (true, false) => self.buffers[k] = Some(self.buffer(gpu)),
+                (false, true) => self.buffers[k] = None,
+                _ => {}
+            }
+        }
+        Ok(())
+    }
+
+    fn buffer(&self, gpu: &Gpu) -> Buffer {
+        let texture = || {
+            render_target(
+                &gpu.device,
+                "multipass buffer",
+                self.size,
+                self.format,
+                wgpu::TextureUsages::TEXTURE_BINDING | wgpu::TextureUsages::COPY_SRC,
+            )
+            .create_view(&Default::default())
+        };
+        Buffer {
+            views: [texture(), texture()],
+            params: Canvas::params_buffer(&gpu.device, 16),
+        }
+    }
+
+    /// Clears every buffer (new textures start as zeros) and counts frames
+    /// from 0 again: the `R` of the window.
+    pub fn reset(&mut self, gpu: &Gpu) {
+        for k in 0..BUFFERS {
+            if self.buffers[k].is_some() {
+                self.buffers[k] = Some(self.buffer(gpu));
+            }
+        }
+        self.drawn = 0;
+    }
+
+    /// A new render size clears the buffers.
+    pub fn resize(&mut self, gpu: &Gpu, size: (u32, u32)) {
+        let size = (size.0.max(1), size.1.max(1));
+        if size != self.size {
+            self.size = size;
+            self.reset(gpu);
+        }
+    }
+
+    pub fn size(&self) -> (u32, u32) {
+        self.size
+    }
+
+    /// The keyboard's state for the next frame.
+    pub fn set_keyboard(&self, gpu: &Gpu, keyboard: &Keyboard) {
+        keyboard.write(&gpu.queue, &self.keyboard);
+    }
+
+    /// The view a channel of `reader` reads: for a buffer, the texture
+    /// written this frame if the buffer was drawn before `reader`, else
+    /// the previous frame's.
+    fn view(
+        &self,
+        sandbox: &SandboxGpu,
+        reader: PassKind,
+        input: Option<&Input>,
+    ) -> wgpu::TextureView {
+        let current = (self.drawn % 2) as usize;
+        match input {
+            None => self.black.clone(),
+            Some(Input::Noise) => sandbox.noise().clone(),
+            Some(Input::Keyboard) => self.keyboard_view.clone(),
+            Some(Input::Texture(path)) => self
+                .images
+                .iter()
+                .find(|(p, _)| p == path)
+                .map_or_else(|| sandbox.noise().clone(), |(_, v)| v.clone()),
+            Some(Input::Buffer(k)) => {
+                let done = PassKind::Buffer(*k) < reader;
+                let slot = if done { current } else { 1 - current };
+                match &self.buffers[*k] {
+                    Some(buffer) => buffer.views[slot].clone(),
+                    None => self.black.clone(),
+                }
+            }
+        }
+    }
+
+    /// Encodes one frame: the buffer passes into their textures, the Image
+    /// pass into `canvas`. Submit before the next frame.
+    pub fn draw(
+        &mut self,
+        gpu: &Gpu,
+        sandbox: &SandboxGpu,
+        encoder: &mut wgpu::CommandEncoder,
+        passes: &[PassDraw],
+        frame: &FrameUniforms,
+        canvas: &mut Canvas,
+    ) {
+        let device = &gpu.device;
+        gpu.queue
+            .write_buffer(&self.frame, 0, bytemuck::bytes_of(frame));
+        let current = (self.drawn % 2) as usize;
+        for draw in passes {
+            let views = draw
+                .channels
+                .each_ref()
+                .map(|input| self.view(sandbox, draw.kind, input.as_ref()));
+            let PassKind::Buffer(k) = draw.kind else {
+                canvas.set_channel_views(device, sandbox, views);
+                canvas.draw(gpu, sandbox, encoder, draw.pipeline, frame, draw.params);
+                continue;
+            };
+            let Some(buffer) = &mut self.buffers[k] else {
+                continue;
+            };
+            let bytes = draw.params.bytes();
+            if bytes.len() as u64 > buffer.params.size() {
+                buffer.params = Canvas::params_buffer(device, bytes.len() as u64);
+            }
+            gpu.queue.write_buffer(&buffer.params, 0, &bytes);
+            let bind_group = Canvas::bind_group(
+                device,
+                sandbox,
+                [&self.frame, &buffer.params],
+                &views,
+                &self.black,
+            );
+            fullscreen::pass(
+                encoder,
+                &draw.pipeline.pipeline,
+                &[&bind_group],
+                &buffer.views[current],
+            );
+        }
+        self.drawn += 1;
+    }
+}
