@@ -39,7 +39,10 @@ use crate::scene::{Material, Scene, TriangleTest};
 pub use camera::{Camera, camera_ray};
 pub use intersect::ShapeId;
 pub use output::{encode_srgb8, to_rgba8};
-pub use ray_tree::{RayKind, RayTree, TreeRay, ray_tree};
+pub use ray_tree::{
+    RayDifference, RayKind, RayTree, TreeRay, compare as compare_trees, describe as describe_trees,
+    ray_tree,
+};
 pub use sampling::{r4, r4_rotated};
 pub use views::{ViewHit, sphere_uv, view_hit};
 

@@ -220,6 +220,21 @@ impl Recorder for RayTree {
 }
 
 impl RayTree {
+    /// A tree of these rays (the GPU's, read back): its radiance is the
+    /// sum of their contributions.
+    pub fn from_rays(rays: Vec<TreeRay>) -> RayTree {
+        let radiance = rays
+            .iter()
+            .filter(|r| r.kind != RayKind::Shadow)
+            .map(|r| r.contribution)
+            .sum();
+        RayTree {
+            rays,
+            radiance,
+            ..RayTree::default()
+        }
+    }
+
     /// The ray being traced.
     fn current(&mut self) -> &mut TreeRay {
         let i = *self.open.last().expect("a ray is being traced");
@@ -243,6 +258,169 @@ pub fn ray_tree(scene: &PreparedScene, width: u32, height: u32, i: u32, j: u32) 
     tree.radiance = trace_recorded(&scene, &ray, 0, 1.0, &mut tree);
     tree.end();
     tree
+}
+
+/// How far one ray of a tree is from the same ray of another tree of the
+/// same pixel (the GPU's against the reference's).
+#[derive(Debug, Clone, Copy, Default, PartialEq)]
+pub struct RayDifference {
+    /// `|a - b|` of the origins, directions and normals.
+    pub origin: f64,
+    pub dir: f64,
+    pub normal: f64,
+    /// `|a - b|` of the distances, relative to the larger.
+    pub t: f64,
+    /// The largest `|a - b|` of F, `wr` and `wt`.
+    pub weights: f64,
+    /// The largest `|a - b|` of a channel of the contributions.
+    pub contribution: f64,
+}
+
+impl RayDifference {
+    /// The larger of each field.
+    pub fn max(self, o: RayDifference) -> RayDifference {
+        RayDifference {
+            origin: self.origin.max(o.origin),
+            dir: self.dir.max(o.dir),
+            normal: self.normal.max(o.normal),
+            t: self.t.max(o.t),
+            weights: self.weights.max(o.weights),
+            contribution: self.contribution.max(o.contribution),
+        }
+    }
+}
+
+/// The differences ray by ray of two trees of the same pixel; `Err`
+/// naming the first ray where they part: another kind, parent, shape,
+/// light or shadow, or one tree longer (a ray that grazes an edge, or a
+/// glass surface met near the critical angle, can go either way in f32).
+pub fn compare(a: &RayTree, b: &RayTree) -> Result<Vec<RayDifference>, String> {
+    let mut differences = Vec::with_capacity(a.rays.len());
+    for (i, (x, y)) in a.rays.iter().zip(&b.rays).enumerate() {
+        let same = (x.kind, x.parent, x.shape, x.light, x.blocked, x.t.is_some())
+            == (y.kind, y.parent, y.shape, y.light, y.blocked, y.t.is_some());
+        if !same {
+            return Err(format!("ray {i}: {} against {}", summary(x), summary(y)));
+        }
+        let t = match (x.t, y.t) {
+            (Some(p), Some(q)) => (p - q).abs() / p.abs().max(q.abs()).max(f64::MIN_POSITIVE),
+            _ => 0.0,
+        };
+        differences.push(RayDifference {
+            origin: (x.origin - y.origin).length(),
+            dir: (x.dir - y.dir).length(),
+            normal: (x.normal - y.normal).length(),
+            t,
+            weights: (x.fresnel - y.fresnel)
+                .abs()
+                .max((x.wr - y.wr).abs())
+                .max((x.wt - y.wt).abs()),
+            contribution: (x.contribution - y.contribution).abs().max_element(),
+        });
+    }
+    if a.rays.len() != b.rays.len() {
+        return Err(format!("{} rays against {}", a.rays.len(), b.rays.len()));
+    }
+    Ok(differences)
+}
+
+/// One line naming a ray: its kind, what it came from and what it met.
+pub fn summary(r: &TreeRay) -> String {
+    let parent = r.parent.map_or(String::new(), |p| format!(" from ray {p}"));
+    let met = match (r.kind, r.shape, r.t) {
+        (RayKind::Shadow, _, _) => format!(
+            "to light {}, {}",
+            r.light.unwrap_or(0),
+            if r.blocked { "blocked" } else { "free" }
+        ),
+        (_, Some(shape), Some(_)) => format!("hits {} {}", shape.kind().name(), shape.index()),
+        _ => "misses (background)".to_string(),
+    };
+    format!("{}{parent}, depth {}, {met}", r.kind.name(), r.depth)
+}
+
+/// A tree as text, ray by ray; with a second tree of the same pixel (the
+/// GPU's), each quantity of both side by side with their difference. What
+/// the panel and `raysandbox ray-tree` show.
+pub fn describe(reference: &RayTree, gpu: Option<&RayTree>) -> String {
+    let mut text = String::new();
+    let v = |x: DVec3| format!("({:10.6}, {:10.6}, {:10.6})", x.x, x.y, x.z);
+    let s = |x: Option<f64>| x.map_or("-".to_string(), |x| format!("{x:.6}"));
+    for (i, r) in reference.rays.iter().enumerate() {
+        let other = gpu.and_then(|g| g.rays.get(i));
+        text += &format!("ray {i}: {}\n", summary(r));
+        let rows: [(&str, String, Option<String>, Option<f64>); 7] = [
+            (
+                "origin",
+                v(r.origin),
+                other.map(|o| v(o.origin)),
+                other.map(|o| (r.origin - o.origin).length()),
+            ),
+            (
+                "direction",
+                v(r.dir),
+                other.map(|o| v(o.dir)),
+                other.map(|o| (r.dir - o.dir).length()),
+            ),
+            (
+                "t",
+                s(r.t),
+                other.map(|o| s(o.t)),
+                other.and_then(|o| Some((r.t? - o.t?).abs())),
+            ),
+            (
+                "normal",
+                v(r.normal),
+                other.map(|o| v(o.normal)),
+                other.map(|o| (r.normal - o.normal).length()),
+            ),
+            (
+                "F wr wt",
+                format!("{:.6} {:.6} {:.6}", r.fresnel, r.wr, r.wt),
+                other.map(|o| format!("{:.6} {:.6} {:.6}", o.fresnel, o.wr, o.wt)),
+                other.map(|o| {
+                    (r.fresnel - o.fresnel)
+                        .abs()
+                        .max((r.wr - o.wr).abs())
+                        .max((r.wt - o.wt).abs())
+                }),
+            ),
+            (
+                "throughput",
+                v(r.throughput),
+                other.map(|o| v(o.throughput)),
+                other.map(|o| (r.throughput - o.throughput).abs().max_element()),
+            ),
+            (
+                "contribution",
+                v(r.contribution),
+                other.map(|o| v(o.contribution)),
+                other.map(|o| (r.contribution - o.contribution).abs().max_element()),
+            ),
+        ];
+        for (name, mine, theirs, difference) in rows {
+            if r.kind == RayKind::Shadow && matches!(name, "normal" | "F wr wt") {
+                continue;
+            }
+            text += &format!("  {name:<12} {mine}");
+            if let (Some(theirs), Some(d)) = (theirs, difference) {
+                text += &format!("  gpu {theirs}  diff {d:.1e}");
+            }
+            text += "\n";
+        }
+    }
+    text += &format!("radiance {}", v(reference.radiance));
+    if let Some(g) = gpu {
+        text += &format!(
+            "  gpu {}  diff {:.1e}",
+            v(g.radiance),
+            (reference.radiance - g.radiance).abs().max_element()
+        );
+        if let Err(e) = compare(reference, g) {
+            text += &format!("\nthe trees part at {e}");
+        }
+    }
+    text + "\n"
 }
 
 #[cfg(test)]

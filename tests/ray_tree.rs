@@ -1,0 +1,121 @@
+//! A pixel's ray tree (docs/ray-tree.md): the GPU's debug pass against
+//! the f64 reference, ray by ray, on a Whitted scene with glass where
+//! total internal reflection occurs.
+
+mod common;
+
+use raysandbox::gpu::{Gpu, RayTreeRenderer, ShaderOptions, ShaderSource};
+use raysandbox::reference::{self, PreparedScene, RayDifference, RayKind, RayTree};
+use raysandbox::scene::Scene;
+
+const WIDTH: u32 = 64;
+const HEIGHT: u32 = 36;
+
+/// The Whitted scene with a glass block beside the glass sphere: light
+/// that enters the block's front face and meets a side face from inside
+/// beyond the critical angle is reflected totally. (A sphere alone never
+/// does: inside it every ray meets the surface at the angle it entered by.)
+fn glass_scene() -> Scene {
+    let whitted = std::fs::read_to_string(common::scenes_dir().join("whitted.toml")).unwrap();
+    let text = format!(
+        "{whitted}
+        [[cubes]]
+        center = [-1.3, 0.6, 1.6]
+        size = [0.8, 1.2, 0.8]
+        rotation = [0, 35, 0]
+        material = \"glass\""
+    );
+    Scene::from_toml_str(&text, None).unwrap()
+}
+
+/// The reference's tree at every pixel, row by row.
+fn reference_trees(scene: &Scene) -> Vec<RayTree> {
+    let prepared = PreparedScene::new(scene);
+    (0..HEIGHT)
+        .flat_map(|j| (0..WIDTH).map(move |i| (i, j)))
+        .map(|(i, j)| reference::ray_tree(&prepared, WIDTH, HEIGHT, i, j))
+        .collect()
+}
+
+fn has(tree: &RayTree, kind: RayKind) -> bool {
+    tree.rays.iter().any(|r| r.kind == kind)
+}
+
+/// The GPU's tree equals the reference's at the pixels where total
+/// internal reflection occurs and at every fifth pixel: the same rays
+/// (kind, parent, shape hit, light, shadow blocked or not) at all but a
+/// few pixels where a ray grazes an edge, and, where they are the same,
+/// each quantity within the limits below (what was measured is printed).
+#[test]
+fn the_gpu_tree_equals_the_reference_tree() {
+    let Some(gpu) = common::gpu() else { return };
+    let scene = glass_scene();
+    let trees = reference_trees(&scene);
+    let total_internal: Vec<usize> = (0..trees.len())
+        .filter(|&p| has(&trees[p], RayKind::TotalInternal))
+        .collect();
+    assert!(
+        total_internal.len() >= 10,
+        "the scene must show total internal reflection: {} pixels",
+        total_internal.len()
+    );
+    let mut pixels: Vec<usize> = (0..trees.len()).step_by(5).collect();
+    pixels.extend(&total_internal);
+    pixels.sort();
+    pixels.dedup();
+
+    let renderer = RayTreeRenderer::new(
+        &gpu,
+        &ShaderSource::embedded(),
+        &ShaderOptions::for_scene(&scene),
+    )
+    .unwrap_or_else(|e| panic!("{e}"));
+    let mut worst = RayDifference::default();
+    let mut parted = Vec::new();
+    let mut compared_tir = 0;
+    let mut largest_radiance = 0.0f64;
+    for &p in &pixels {
+        let (i, j) = ((p as u32) % WIDTH, (p as u32) / WIDTH);
+        let gpu_tree = renderer
+            .trace(&gpu, &scene, (WIDTH, HEIGHT), (i, j))
+            .unwrap_or_else(|e| panic!("{e}"));
+        let expected = &trees[p];
+        assert!(
+            gpu_tree.total <= raysandbox::gpu::TREE_MAX,
+            "pixel {i}, {j}"
+        );
+        match reference::compare_trees(expected, &gpu_tree.tree) {
+            Ok(differences) => {
+                worst = differences.into_iter().fold(worst, RayDifference::max);
+                compared_tir += usize::from(has(expected, RayKind::TotalInternal));
+                largest_radiance = largest_radiance.max(
+                    (expected.radiance - gpu_tree.tree.radiance)
+                        .abs()
+                        .max_element(),
+                );
+            }
+            Err(e) => parted.push(format!("pixel {i}, {j}: {e}")),
+        }
+    }
+    println!(
+        "{} pixels, {} with total internal reflection ({} compared); parted at {}:\n{}",
+        pixels.len(),
+        total_internal.len(),
+        compared_tir,
+        parted.len(),
+        parted.join("\n")
+    );
+    println!("largest differences: {worst:?}; radiance {largest_radiance:e}");
+    assert!(parted.len() * 50 <= pixels.len(), "more than 2 % parted");
+    assert!(
+        compared_tir * 10 >= total_internal.len() * 9,
+        "total internal reflection must be compared"
+    );
+    assert!(worst.origin < 1e-4, "{worst:?}");
+    assert!(worst.dir < 1e-4, "{worst:?}");
+    assert!(worst.normal < 1e-4, "{worst:?}");
+    assert!(worst.t < 1e-4, "{worst:?}");
+    assert!(worst.weights < 1e-4, "{worst:?}");
+    assert!(worst.contribution < 1e-4, "{worst:?}");
+    assert!(largest_radiance < 1e-4);
+}
