@@ -10,10 +10,10 @@
 
 override RAY_TREE: bool = false;
 
-/// The rays kept: a deeper tree is cut here (`tree_out.total` says how
-/// many there were). 64: a glass sphere at max_depth 16 with two lights
-/// traces at most 3 rays per level along its deepest path.
-const TREE_MAX: u32 = 64u;
+/// The rays kept: a larger tree is cut here (the counts say how many
+/// rays there were). The pass traces the tree once per ray kept and row,
+/// so this bounds its time too.
+const TREE_MAX: u32 = 256u;
 
 // The kinds of ray: `reference::RayKind` in this order.
 const TREE_CAMERA: u32 = 0u;

@@ -22,7 +22,7 @@ use crate::reference::{RayKind, RayTree, TreeRay};
 use crate::scene::{Scene, ShapeId, ShapeKind};
 
 /// The rays the shader keeps (`TREE_MAX` in `shaders/ray_tree.wgsl`).
-pub const TREE_MAX: usize = 64;
+pub const TREE_MAX: usize = 256;
 
 /// The shader's `TREE_NONE`: no parent.
 const NONE: u32 = u32::MAX;

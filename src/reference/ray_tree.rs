@@ -264,7 +264,9 @@ pub fn ray_tree(scene: &PreparedScene, width: u32, height: u32, i: u32, j: u32) 
 /// same pixel (the GPU's against the reference's).
 #[derive(Debug, Clone, Copy, Default, PartialEq)]
 pub struct RayDifference {
-    /// `|a - b|` of the origins, directions and normals.
+    /// `|a - b|` of the origins relative to `max(|a|, 1)` (a shadow ray
+    /// from the floor near the horizon starts far away), and of the
+    /// directions and normals.
     pub origin: f64,
     pub dir: f64,
     pub normal: f64,
@@ -307,7 +309,7 @@ pub fn compare(a: &RayTree, b: &RayTree) -> Result<Vec<RayDifference>, String> {
             _ => 0.0,
         };
         differences.push(RayDifference {
-            origin: (x.origin - y.origin).length(),
+            origin: (x.origin - y.origin).length() / x.origin.length().max(1.0),
             dir: (x.dir - y.dir).length(),
             normal: (x.normal - y.normal).length(),
             t,
