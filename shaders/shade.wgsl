@@ -137,7 +137,9 @@ fn shade_local(hit: Hit, ns: vec3<f32>, d: vec3<f32>, m: Material, albedo: vec3<
         if SHADOWS {
             count_ray(1u);
             count_shadow_ray();
-            if occluded(Ray(shadow_origin, to_light / dist, 0.0), dist) {
+            let blocked = occluded(Ray(shadow_origin, to_light / dist, 0.0), dist);
+            tree_shadow(i, shadow_origin, to_light / dist, dist, blocked);
+            if blocked {
                 continue;
             }
         }
@@ -146,7 +148,9 @@ fn shade_local(hit: Hit, ns: vec3<f32>, d: vec3<f32>, m: Material, albedo: vec3<
         if m.specular > 0.0 && n_dot_h > 0.0 {
             highlight = m.specular * pow(n_dot_h, m.shininess);
         }
-        color += light.radiance * (m.diffuse * albedo * n_dot_l + highlight);
+        let term = light.radiance * (m.diffuse * albedo * n_dot_l + highlight);
+        tree_light(i, term);
+        color += term;
     }
     return color;
 }
@@ -195,6 +199,7 @@ fn trace(primary: Ray) -> vec3<f32> {
     var top = 0u;
     stack[0] = PendingRay(primary, 0u, 1.0, vec3(1.0));
     top = 1u;
+    tree_pending(0u, TREE_CAMERA);
     count_ray(0u);
     var radiance = vec3(0.0);
     while top > 0u {
@@ -202,8 +207,10 @@ fn trace(primary: Ray) -> vec3<f32> {
         let job = stack[top];
         let ray = job.ray;
         count_depth(job.depth);
+        tree_begin(top, ray, job.depth, job.throughput);
         let hit = hit_scene(ray, T_FAR);
         if hit.kind == KIND_NONE {
+            tree_missed(job.throughput * globals.background);
             radiance += job.throughput * globals.background;
             continue;
         }
@@ -217,7 +224,9 @@ fn trace(primary: Ray) -> vec3<f32> {
         let ns = select(-hit.shading, hit.shading, into_surface);
         let ng = select(-hit.normal, hit.normal, into_surface);
         let albedo = albedo_at(m, hit.point, hit.normal);
-        radiance += job.throughput * shade_local(hit, ns, ray.dir, m, albedo);
+        tree_hit(hit, ray, ns);
+        let local = shade_local(hit, ns, ray.dir, m, albedo);
+        radiance += job.throughput * local;
 
         // Fresnel only where the material has a dielectric part.
         var f = 0.0;
@@ -234,6 +243,7 @@ fn trace(primary: Ray) -> vec3<f32> {
         }
         let wr = m.mirror + m.transparency * f;
         let wt = m.transparency * (1.0 - f);
+        tree_split(local, f, wr, wt);
         let child_depth = job.depth + 1u;
 
         let refracted_weight = job.weight * wt * max(albedo.r, max(albedo.g, albedo.b));
@@ -245,6 +255,7 @@ fn trace(primary: Ray) -> vec3<f32> {
             }
             let origin = offset_ray(hit.point, -ng, hit.error_scale);
             stack[top] = PendingRay(Ray(origin, dir, 0.0), child_depth, refracted_weight, job.throughput * wt * albedo);
+            tree_pending(top, TREE_REFRACTED);
             top += 1u;
             count_ray(3u);
         }
@@ -253,6 +264,7 @@ fn trace(primary: Ray) -> vec3<f32> {
         if reflects && worth_tracing(child_depth, reflected_weight) && top < STACK_SIZE {
             let origin = offset_ray(hit.point, ng, hit.error_scale);
             stack[top] = PendingRay(Ray(origin, reflect_dir(ray.dir, ns), 0.0), child_depth, reflected_weight, job.throughput * wr);
+            tree_pending(top, tree_reflected_kind(f, !into_surface && !is_thin(hit.kind), m.transparency > 0.0));
             top += 1u;
             count_ray(2u);
         }

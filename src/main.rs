@@ -28,6 +28,9 @@ enum Command {
     Check(commands::check::Args),
     /// Render a scene to a PNG file, on the GPU or with the CPU reference.
     Render(commands::render::Args),
+    /// Print one pixel's Whitted ray tree, from the f64 reference and from
+    /// the GPU, side by side (docs/ray-tree.md).
+    RayTree(commands::ray_tree::Args),
     /// Numerical stress suite: GPU (robust and naive) against the reference.
     Stress(stress::StressArgs),
     /// Run your own fragment shader file (WGSL, GLSL Sandbox or Shadertoy
@@ -48,6 +51,7 @@ fn main() -> ExitCode {
         Some(Command::View(args)) => commands::view::run(&args),
         Some(Command::Check(args)) => commands::check::run(&args),
         Some(Command::Render(args)) => commands::render::run(&args),
+        Some(Command::RayTree(args)) => commands::ray_tree::run(&args),
         Some(Command::Stress(args)) => stress::run(&args).map_err(Failure::from),
         Some(Command::Shader(args)) => commands::shader::run(&args),
         Some(Command::Bench(args)) => bench::run(&args).map_err(Failure::from),

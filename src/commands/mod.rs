@@ -1,10 +1,11 @@
 //! The subcommands of the `raysandbox` binary, one module each with its
 //! clap `Args` and its `run`, as [`crate::stress`] and [`crate::bench`]
-//! are: `view`, `render`, `check` and `shader`. `src/main.rs` only parses
+//! are: `view`, `render`, `check`, `shader` and `ray-tree`. `src/main.rs` only parses
 //! the command line, calls the chosen `run` and turns a [`Failure`] into
 //! the exit status.
 
 pub mod check;
+pub mod ray_tree;
 pub mod render;
 pub mod shader;
 pub mod view;

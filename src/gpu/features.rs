@@ -120,6 +120,10 @@ pub struct ShaderOptions {
     /// (docs/performance.md, "Rays per second"). Off in every pipeline
     /// that draws.
     pub count_rays: bool,
+    /// The ray tree's debug pass (`RAY_TREE`, `shaders/ray_tree.wgsl`):
+    /// the trace loop records every ray of one pixel. Only
+    /// `gpu::RayTreeRenderer` sets it.
+    pub ray_tree: bool,
     /// What the trace and display passes show (`VIEW`): the shaded
     /// picture, or a view inside the tracer (docs/views.md).
     pub view: View,
@@ -170,6 +174,7 @@ impl Default for ShaderOptions {
             torus: TorusMethod::default(),
             functions: Vec::new(),
             count_rays: false,
+            ray_tree: false,
             view: View::Shaded,
             rays: Rays::ALL,
         }
@@ -198,6 +203,7 @@ impl ShaderOptions {
             torus: TorusMethod::default(),
             functions: crate::scene::implicit::functions(scene),
             count_rays: false,
+            ray_tree: false,
             view: View::Shaded,
             rays: Rays::of(scene),
         }

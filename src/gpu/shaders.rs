@@ -15,7 +15,7 @@ use super::shapes::{KindInfo, implicit, kinds};
 /// The shader files in the order they are joined, before the shape kinds'
 /// `shapes/<kind>.wgsl` (see `gpu::shapes`). WGSL resolves names at module
 /// scope in any order, so the order only decides line numbering.
-pub const SHADER_FILES: [&str; 7] = [
+pub const SHADER_FILES: [&str; 8] = [
     "scene.wgsl",
     "camera.wgsl",
     "intersect.wgsl",
@@ -23,9 +23,10 @@ pub const SHADER_FILES: [&str; 7] = [
     "main.wgsl",
     "outline.wgsl",
     "views.wgsl",
+    "ray_tree.wgsl",
 ];
 
-const EMBEDDED: [&str; 7] = [
+const EMBEDDED: [&str; 8] = [
     include_str!("../../shaders/scene.wgsl"),
     include_str!("../../shaders/camera.wgsl"),
     include_str!("../../shaders/intersect.wgsl"),
@@ -33,6 +34,7 @@ const EMBEDDED: [&str; 7] = [
     include_str!("../../shaders/main.wgsl"),
     include_str!("../../shaders/outline.wgsl"),
     include_str!("../../shaders/views.wgsl"),
+    include_str!("../../shaders/ray_tree.wgsl"),
 ];
 
 /// One named piece of WGSL: a file of the shader folder.

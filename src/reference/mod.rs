@@ -14,7 +14,8 @@
 //! - `intersect.rs`: the nearest hit and shadow hits over the scene;
 //! - `shade.rs`: Whitted's recursive shading;
 //! - `output.rs`: exposure, sRGB and 8 bits;
-//! - `views.rs`: what the views inside the tracer show of a first hit.
+//! - `views.rs`: what the views inside the tracer show of a first hit;
+//! - `ray_tree.rs`: a pixel's ray tree, every ray recorded as `shade.rs` traces it.
 //!
 //! Here: the scene prepared for tracing, and the renderers over it.
 
@@ -23,6 +24,7 @@ mod hit;
 pub mod intersect;
 mod output;
 pub mod ray;
+mod ray_tree;
 mod sampling;
 mod shade;
 pub mod shapes;
@@ -37,6 +39,10 @@ use crate::scene::{Material, Scene, TriangleTest};
 pub use camera::{Camera, camera_ray};
 pub use intersect::ShapeId;
 pub use output::{encode_srgb8, to_rgba8};
+pub use ray_tree::{
+    RayDifference, RayKind, RayTree, TreeRay, compare as compare_trees, describe as describe_trees,
+    ray_tree,
+};
 pub use sampling::{r4, r4_rotated};
 pub use views::{ViewHit, sphere_uv, view_hit};
 

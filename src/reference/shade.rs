@@ -7,6 +7,7 @@ use glam::DVec3;
 use super::PreparedScene;
 use super::intersect::{Hit, ShapeId, any_hit, nearest_hit};
 use super::ray::{Ray, offset_ray, offset_ray_naive};
+use super::ray_tree::{RayKind, Recorder};
 use crate::scene::Material;
 
 /// The radiance arriving along `ray`: the background on a miss, else the
@@ -16,9 +17,24 @@ use crate::scene::Material;
 /// much this ray can still contribute to the pixel (1 for camera rays); both
 /// decide which child rays are worth tracing (see [`shade`]).
 pub fn trace(scene: &PreparedScene, ray: &Ray, depth: u32, weight: f64) -> DVec3 {
+    trace_recorded(scene, ray, depth, weight, &mut ())
+}
+
+/// [`trace`], telling `rec` every ray and hit (a pixel's ray tree,
+/// `ray_tree.rs`; the caller has begun `ray`).
+pub(super) fn trace_recorded<R: Recorder>(
+    scene: &PreparedScene,
+    ray: &Ray,
+    depth: u32,
+    weight: f64,
+    rec: &mut R,
+) -> DVec3 {
     match nearest_hit(scene, ray) {
-        None => scene.background,
-        Some((shape, hit)) => shade(scene, ray, shape, &hit, depth, weight),
+        None => {
+            rec.missed(scene.background);
+            scene.background
+        }
+        Some((shape, hit)) => shade(scene, ray, (shape, &hit), (depth, weight), rec),
     }
 }
 
@@ -31,13 +47,12 @@ pub fn trace(scene: &PreparedScene, ray: &Ray, depth: u32, weight: f64) -> DVec3
 /// positive and at least `min_weight`; otherwise it adds nothing. The weight
 /// test is what keeps a glass scene from tracing `2^max_depth` rays per pixel,
 /// and the `> 0` part skips rays that could not change the image anyway.
-fn shade(
+fn shade<R: Recorder>(
     scene: &PreparedScene,
     ray: &Ray,
-    shape: ShapeId,
-    hit: &Hit,
-    depth: u32,
-    weight: f64,
+    (shape, hit): (ShapeId, &Hit),
+    (depth, weight): (u32, f64),
+    rec: &mut R,
 ) -> DVec3 {
     let m = scene.material(shape);
     let d = ray.dir;
@@ -47,12 +62,10 @@ fn shade(
     // rays start off the surface along the geometric normal.
     let ns = if entering { hit.shading } else { -hit.shading };
     let ng = if entering { hit.n } else { -hit.n };
+    rec.hit(shape, hit, ns);
     let albedo = albedo(m, hit.p + scene.frame_origin, hit.n, scene.options.robust);
-    let mut radiance = local(scene, m, albedo, hit, ns, d);
+    let mut radiance = local(scene, (m, albedo), hit, ns, d, rec);
 
-    if depth >= scene.max_depth {
-        return radiance;
-    }
     let thin = shape.is_thin();
     let opaque;
     let m = if shape.is_opaque() {
@@ -65,18 +78,34 @@ fn shade(
         m
     };
     let split = split(m, d, ns, entering, thin);
+    rec.split(radiance, split.fresnel, split.wr, split.wt);
+    if depth >= scene.max_depth {
+        return radiance;
+    }
     let traced = |child_weight: f64| child_weight > 0.0 && child_weight >= scene.min_weight;
 
     let reflected_weight = weight * split.wr;
     if scene.reflection && traced(reflected_weight) {
         let child = Ray::new(offset(scene, hit, ng), reflect(d, ns));
-        radiance += split.wr * trace(scene, &child, depth + 1, reflected_weight);
+        // Glass met from inside beyond the critical angle reflects it all.
+        let total = m.transparency > 0.0 && split.fresnel >= 1.0 && !entering && !thin;
+        let kind = if total {
+            RayKind::TotalInternal
+        } else {
+            RayKind::Reflected
+        };
+        rec.begin(kind, &child, DVec3::splat(split.wr));
+        radiance += split.wr * trace_recorded(scene, &child, depth + 1, reflected_weight, rec);
+        rec.end();
     }
     if let Some(dir) = split.transmitted.filter(|_| scene.refraction) {
         let refracted_weight = weight * split.wt * albedo.max_element();
         if traced(refracted_weight) {
             let child = Ray::new(offset(scene, hit, -ng), dir);
-            radiance += split.wt * albedo * trace(scene, &child, depth + 1, refracted_weight);
+            rec.begin(RayKind::Refracted, &child, split.wt * albedo);
+            radiance +=
+                split.wt * albedo * trace_recorded(scene, &child, depth + 1, refracted_weight, rec);
+            rec.end();
         }
     }
     radiance
@@ -89,51 +118,61 @@ fn shade(
 /// `l` points from `p` to the light and `h = normalize(l - d)` is Blinn's
 /// half vector between it and the direction back to the viewer. Lights do not
 /// fall off with distance (docs/rendering-model.md, "Whitted shading").
-fn local(
+fn local<R: Recorder>(
     scene: &PreparedScene,
-    m: &Material,
-    albedo: DVec3,
+    (m, albedo): (&Material, DVec3),
     hit: &Hit,
     ns: DVec3,
     d: DVec3,
+    rec: &mut R,
 ) -> DVec3 {
     let mut radiance = scene.ambient * albedo * m.diffuse;
     if m.diffuse == 0.0 && m.specular == 0.0 {
         // No light could add anything: spare the shadow rays.
         return radiance;
     }
-    for light in &scene.lights {
+    for (index, light) in scene.lights.iter().enumerate() {
         // A light exactly at p has no direction; it lights nothing.
         let Some(l) = (light.position - hit.p).try_normalize() else {
             continue;
         };
         let cos = ns.dot(l);
-        if cos <= 0.0 || in_shadow(scene, hit, ns, light.position) {
+        if cos <= 0.0 {
             continue;
         }
+        let shadow = shadow_ray(scene, hit, ns, light.position);
+        let blocked = shadow.is_some_and(|(ray, distance)| any_hit(scene, &ray, distance));
         // l = d only if cos = dot(ns, d) < 0, excluded above; or_zero is a
         // guard against NaN, not a case that occurs.
         let h = (l - d).normalize_or_zero();
         let highlight = ns.dot(h).max(0.0).powf(m.shininess);
-        radiance += light.radiance * (m.diffuse * albedo * cos + m.specular * highlight);
+        let term = if blocked {
+            DVec3::ZERO
+        } else {
+            light.radiance * (m.diffuse * albedo * cos + m.specular * highlight)
+        };
+        if let Some((ray, distance)) = shadow {
+            rec.shadow(index, &ray, distance, blocked, term);
+        }
+        radiance += term;
     }
     radiance
 }
 
-/// Whether a shape lies between the hit point and the light: the shadow ray
+/// The shadow ray from a hit to a light and the distance to the light: it
 /// starts at `p` offset to the lit side `ns` (along the geometric normal on
-/// that side) and is blocked by any hit with `0 < t < |L - o|` (classic
-/// Whitted shadows: glass blocks fully too). With the lecture switch
-/// `shadows` off, no shadow ray is cast and nothing is in shadow.
-fn in_shadow(scene: &PreparedScene, hit: &Hit, ns: DVec3, light: DVec3) -> bool {
+/// that side) and is blocked by any hit with `0 < t < |L - o|`. `None`
+/// where no shadow ray is cast: with the lecture switch `shadows` off, and
+/// for a light at the origin itself (nothing fits strictly between a light
+/// and itself).
+fn shadow_ray(scene: &PreparedScene, hit: &Hit, ns: DVec3, light: DVec3) -> Option<(Ray, f64)> {
     if !scene.shadows {
-        return false;
+        return None;
     }
     let ng = if hit.n.dot(ns) >= 0.0 { hit.n } else { -hit.n };
     let origin = offset(scene, hit, ng);
     let distance = (light - origin).length();
-    // Nothing fits strictly between a light and itself.
-    distance > 0.0 && any_hit(scene, &Ray::new(origin, light - origin), distance)
+    (distance > 0.0).then(|| (Ray::new(origin, light - origin), distance))
 }
 
 /// The origin of a secondary or shadow ray leaving `hit` to the side `n`:
@@ -198,6 +237,8 @@ pub fn checker_cell(x: DVec3, step: DVec3) -> [i64; 3] {
 
 /// How a hit divides its light between the mirror and the dielectric parts.
 struct Split {
+    /// Fresnel's reflectance F (0 where there is no dielectric part).
+    fresnel: f64,
     /// Weight of the reflected ray, `kr + kt F`.
     wr: f64,
     /// Weight of the transmitted ray, `kt (1 - F)`.
@@ -216,6 +257,7 @@ fn split(m: &Material, d: DVec3, ns: DVec3, entering: bool, thin: bool) -> Split
     let (kr, kt) = (m.mirror, m.transparency);
     if kt <= 0.0 {
         return Split {
+            fresnel: 0.0,
             wr: kr,
             wt: 0.0,
             transmitted: None,
@@ -245,6 +287,7 @@ fn split(m: &Material, d: DVec3, ns: DVec3, entering: bool, thin: bool) -> Split
         refract(d, ns, n1 / n2)
     };
     Split {
+        fresnel: f,
         wr: kr + kt * f,
         wt,
         transmitted,
@@ -488,6 +531,13 @@ mod tests {
                 assert_eq!(cell, [expected; 3], "x {x} step {step}");
             }
         }
+    }
+
+    /// Whether a shape lies between the hit point and the light (classic
+    /// Whitted shadows: glass blocks fully too).
+    fn in_shadow(scene: &PreparedScene, hit: &Hit, ns: DVec3, light: DVec3) -> bool {
+        shadow_ray(scene, hit, ns, light)
+            .is_some_and(|(ray, distance)| any_hit(scene, &ray, distance))
     }
 
     /// Over a 320 x 180 image of a scene with one convex shape and one

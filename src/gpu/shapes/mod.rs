@@ -293,6 +293,7 @@ impl ShaderOptions {
             ("HAS_LENS", f.lens),
             ("USE_BVH", f.bvh),
             ("COUNT_RAYS", self.count_rays),
+            ("RAY_TREE", self.ray_tree),
             ("SHADOWS", self.rays.shadows),
             ("REFLECTION", self.rays.reflection),
             ("REFRACTION", self.rays.refraction),
