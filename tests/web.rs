@@ -1344,8 +1344,8 @@ fn ctrl_plus_scales_panel_and_editor_together_and_the_scale_is_kept() {
     assert_eq!(page.exceptions(), Vec::<String>::new());
 }
 
-/// A class's first minute with the page (docs/web.md, "Short GPU jobs in
-/// the page"): while the default scene refines (64 samples, seconds of
+/// A class's first minute with the page (docs/web.md, "The status
+/// line"): while the default scene refines (64 samples, seconds of
 /// GPU work on SwiftShader), a drag of one second, as a hand makes it,
 /// orbits the camera (moving frames come while the button is down, the
 /// address and the picture follow), and the Scenes menu and the editor

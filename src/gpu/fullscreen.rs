@@ -143,6 +143,22 @@ fn encode(
     }
 }
 
+/// A uniform buffer at `binding`, read by the fragment stage: how the
+/// passes get their few per-pass numbers (the selection, the sandbox's
+/// uniforms, the ray tree's pixel).
+pub fn uniform_entry(binding: u32) -> wgpu::BindGroupLayoutEntry {
+    wgpu::BindGroupLayoutEntry {
+        binding,
+        visibility: wgpu::ShaderStages::FRAGMENT,
+        ty: wgpu::BindingType::Buffer {
+            ty: wgpu::BufferBindingType::Uniform,
+            has_dynamic_offset: false,
+            min_binding_size: None,
+        },
+        count: None,
+    }
+}
+
 /// A bind group layout of one texture read with `textureLoad` in the
 /// fragment stage (unfilterable, so `Rgba32Float` works everywhere): how a
 /// pass reads the image an earlier pass wrote.

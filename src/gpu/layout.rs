@@ -6,6 +6,7 @@
 use bytemuck::{Pod, Zeroable};
 use glam::DVec3;
 
+use super::shapes::glue::{Element, struct_array, word_array};
 use super::shapes::{Frame, PackShape, Words, buffer_position, f32x3, pack_all, round_out};
 use crate::bvh::{Aabb, Bvh};
 use crate::scene::{self, Scene, ShapeKind};
@@ -325,8 +326,52 @@ fn pack_light(l: &scene::Light, frame: &Frame) -> Light {
     }
 }
 
+/// The scene's arrays that are not a kind's (bindings 1 to 5, before
+/// the kinds' arrays; their structs are in `shaders/scene.wgsl`): the WGSL
+/// that declares their data textures and loaders.
+pub fn fixed_arrays() -> String {
+    [
+        struct_array(
+            "materials",
+            "load_material",
+            &Element::of::<Material>("Material"),
+            Some(1),
+        ),
+        struct_array(
+            "lights",
+            "load_light",
+            &Element::of::<Light>("Light"),
+            Some(2),
+        ),
+        struct_array(
+            "bvh_nodes",
+            "load_bvh_node",
+            &Element::of::<BvhNode>("BvhNode"),
+            Some(3),
+        ),
+        word_array("bvh_shapes", "bvh_shape", 4),
+        word_array("shape_counts", "shape_count", 5),
+    ]
+    .concat()
+}
+
 #[cfg(test)]
 mod tests {
+
+    #[test]
+    fn every_fixed_array_has_a_loader() {
+        let fixed = super::fixed_arrays();
+        for f in [
+            "load_material",
+            "load_light",
+            "load_bvh_node",
+            "bvh_shape",
+            "shape_count",
+        ] {
+            assert!(fixed.contains(&format!("fn {f}(i: u32)")), "{f}");
+        }
+    }
+
     use super::*;
     use std::mem::{offset_of, size_of};
 

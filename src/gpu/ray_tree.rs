@@ -108,19 +108,7 @@ impl RayTreeRenderer {
         };
         let scene_layout = layout("scene (ray tree)", &scene_layout_entries(bound_kinds));
         let empty_layout = layout("nothing", &[]);
-        let pixel_layout = layout(
-            "ray tree pixel",
-            &[wgpu::BindGroupLayoutEntry {
-                binding: 0,
-                visibility: wgpu::ShaderStages::FRAGMENT,
-                ty: wgpu::BindingType::Buffer {
-                    ty: wgpu::BufferBindingType::Uniform,
-                    has_dynamic_offset: false,
-                    min_binding_size: None,
-                },
-                count: None,
-            }],
-        );
+        let pixel_layout = layout("ray tree pixel", &[fullscreen::uniform_entry(0)]);
         let pipeline_layout = device.create_pipeline_layout(&wgpu::PipelineLayoutDescriptor {
             label: Some("ray tree"),
             bind_group_layouts: &[

@@ -9,6 +9,7 @@ use std::fmt;
 use std::path::{Path, PathBuf};
 
 use super::features::MAX_STACK_SIZE;
+use super::layout::fixed_arrays;
 use super::shapes::glue::{ALL_KINDS_BOUND, shape_glue};
 use super::shapes::{KindInfo, implicit, kinds};
 
@@ -124,8 +125,9 @@ fn generated_part(stack_size: u32, bound_kinds: u32) -> (String, String) {
             "// Written by raysandbox for the scene being drawn (src/gpu/shaders.rs).\n\
              const STACK_SIZE: u32 = {stack_size}u;\n\
              // The BVH traversal stack, for trees as deep as src/bvh.rs builds them.\n\
-             const BVH_STACK: u32 = {}u;\n{}",
+             const BVH_STACK: u32 = {}u;\n{}{}",
             crate::bvh::TRAVERSAL_STACK,
+            fixed_arrays(),
             shape_glue(&kinds(), bound_kinds)
         ),
     )

@@ -15,6 +15,7 @@
 //! - `shade.rs`: Whitted's recursive shading;
 //! - `output.rs`: exposure, sRGB and 8 bits;
 //! - `views.rs`: what the views inside the tracer show of a first hit;
+//! - `record.rs`: what `shade.rs` tells while it traces, ray by ray;
 //! - `ray_tree.rs`: a pixel's ray tree, every ray recorded as `shade.rs` traces it.
 //!
 //! Here: the scene prepared for tracing, and the renderers over it.
@@ -25,6 +26,7 @@ pub mod intersect;
 mod output;
 pub mod ray;
 mod ray_tree;
+mod record;
 mod sampling;
 mod shade;
 pub mod shapes;
@@ -40,9 +42,9 @@ pub use camera::{Camera, camera_ray};
 pub use intersect::ShapeId;
 pub use output::{encode_srgb8, to_rgba8};
 pub use ray_tree::{
-    RayDifference, RayKind, RayTree, TreeRay, compare as compare_trees, describe as describe_trees,
-    ray_tree,
+    RayDifference, RayTree, TreeRay, compare as compare_trees, describe as describe_trees, ray_tree,
 };
+pub use record::RayKind;
 pub use sampling::{r4, r4_rotated};
 pub use views::{ViewHit, sphere_uv, view_hit};
 

@@ -17,50 +17,8 @@ use super::PreparedScene;
 use super::camera::camera_ray;
 use super::intersect::{Hit, ShapeId};
 use super::ray::Ray;
+use super::record::{RayKind, Recorder};
 use super::shade::trace_recorded;
-
-/// What a ray of the tree is for.
-#[derive(Debug, Clone, Copy, PartialEq, Eq)]
-pub enum RayKind {
-    /// From the eye through the pixel.
-    Camera,
-    /// A mirror ray (the mirror term, or the Fresnel part of glass).
-    Reflected,
-    /// A ray bent into or out of glass by Snell's law.
-    Refracted,
-    /// The reflected ray of glass met from inside beyond the critical
-    /// angle: Fresnel's F is 1 and nothing is transmitted.
-    TotalInternal,
-    /// From a hit point towards a light.
-    Shadow,
-}
-
-impl RayKind {
-    /// The names the panel and `render --ray-tree` print.
-    pub fn name(self) -> &'static str {
-        match self {
-            RayKind::Camera => "camera",
-            RayKind::Reflected => "reflected",
-            RayKind::Refracted => "refracted",
-            RayKind::TotalInternal => "total internal",
-            RayKind::Shadow => "shadow",
-        }
-    }
-
-    /// The kind from its number (the shader's `TREE_*` in
-    /// `shaders/ray_tree.wgsl`, this enum's order).
-    pub fn from_number(n: u32) -> Option<RayKind> {
-        [
-            RayKind::Camera,
-            RayKind::Reflected,
-            RayKind::Refracted,
-            RayKind::TotalInternal,
-            RayKind::Shadow,
-        ]
-        .get(n as usize)
-        .copied()
-    }
-}
 
 /// One ray of a pixel's tree. Positions are in world coordinates.
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -125,27 +83,6 @@ pub struct RayTree {
     /// Added to every position: the frame origin the scene was moved by.
     frame_origin: DVec3,
 }
-
-/// What `shade.rs` tells while it traces. Every method does nothing by
-/// default: `()` is the recorder of the renderers.
-pub(super) trait Recorder {
-    /// A ray of `kind` is about to be traced; its radiance counts `factor`
-    /// times in its parent's (the weight `wr`, or `wt * albedo`).
-    fn begin(&mut self, _kind: RayKind, _ray: &Ray, _factor: DVec3) {}
-    /// It hit `shape`; `ns` is the shading normal facing it.
-    fn hit(&mut self, _shape: ShapeId, _hit: &Hit, _ns: DVec3) {}
-    /// It hit nothing and sees `background`.
-    fn missed(&mut self, _background: DVec3) {}
-    /// A shadow ray from its hit to light `light`, `distance` away;
-    /// `term` is what the light adds (zero when `blocked`).
-    fn shadow(&mut self, _light: usize, _ray: &Ray, _distance: f64, _blocked: bool, _term: DVec3) {}
-    /// Its hit's local light and how the rest divides.
-    fn split(&mut self, _local: DVec3, _fresnel: f64, _wr: f64, _wt: f64) {}
-    /// It and its children are done.
-    fn end(&mut self) {}
-}
-
-impl Recorder for () {}
 
 impl Recorder for RayTree {
     fn begin(&mut self, kind: RayKind, ray: &Ray, factor: DVec3) {

@@ -7,7 +7,7 @@ use glam::DVec3;
 use super::PreparedScene;
 use super::intersect::{Hit, ShapeId, any_hit, nearest_hit};
 use super::ray::{Ray, offset_ray, offset_ray_naive};
-use super::ray_tree::{RayKind, Recorder};
+use super::record::{RayKind, Recorder};
 use crate::scene::Material;
 
 /// The radiance arriving along `ray`: the background on a miss, else the

@@ -129,16 +129,6 @@ impl SandboxGpu {
     /// that shows NaN pixels in `nan`.
     pub fn new(gpu: &Gpu, formats: &[wgpu::TextureFormat], nan: NanColor) -> Self {
         let device = &gpu.device;
-        let uniform = |binding| wgpu::BindGroupLayoutEntry {
-            binding,
-            visibility: wgpu::ShaderStages::FRAGMENT,
-            ty: wgpu::BindingType::Buffer {
-                ty: wgpu::BufferBindingType::Uniform,
-                has_dynamic_offset: false,
-                min_binding_size: None,
-            },
-            count: None,
-        };
         let texture = |binding| wgpu::BindGroupLayoutEntry {
             binding,
             visibility: wgpu::ShaderStages::FRAGMENT,
@@ -155,8 +145,8 @@ impl SandboxGpu {
         let bind_layout = device.create_bind_group_layout(&wgpu::BindGroupLayoutDescriptor {
             label: Some("sandbox uniforms"),
             entries: &[
-                uniform(0),
-                uniform(1),
+                fullscreen::uniform_entry(0),
+                fullscreen::uniform_entry(1),
                 texture(2),
                 texture(3),
                 texture(4),

@@ -88,7 +88,7 @@ pub(in crate::gpu) fn shape_glue(kinds: &[KindInfo], bound_kinds: u32) -> String
     let thin = kind_test(kinds, |k| k.kind.thin());
     let opaque = kind_test(kinds, |k| k.kind.opaque());
     format!(
-        "{}{declarations}\n{queries}\
+        "{declarations}\n{queries}\
          /// The hit of one bounded shape, by kind number and index (BVH leaves);\n\
          /// with `any`, any hit will do.\n\
          fn hit_bounded(kind: u32, index: u32, ray: Ray, best: Hit, any: bool) -> Hit {{\n\
@@ -124,7 +124,6 @@ pub(in crate::gpu) fn shape_glue(kinds: &[KindInfo], bound_kinds: u32) -> String
          fn is_opaque(kind: u32) -> bool {{\n\
          \x20   return {opaque};\n\
          }}\n",
-        fixed_arrays(),
         kind_loops(&unbounded),
         kind_loops(&bounded),
     )
@@ -189,7 +188,7 @@ pub struct Element {
 
 impl Element {
     /// The element of a `packed_struct!` named as its WGSL twin.
-    fn of<T: Layout>(wgsl_struct: &'static str) -> Self {
+    pub(in crate::gpu) fn of<T: Layout>(wgsl_struct: &'static str) -> Self {
         Element {
             wgsl_struct,
             fields: T::FIELDS,
@@ -224,7 +223,12 @@ impl Element {
 /// built field by field from the element's texels, so that the WGSL reads
 /// `load_sphere(i)` where it read `spheres[i]` and gets the same struct.
 /// Unbound (a scene without the kind), the loader returns a zeroed struct.
-fn struct_array(name: &str, loader: &str, element: &Element, binding: Option<u32>) -> String {
+pub(in crate::gpu) fn struct_array(
+    name: &str,
+    loader: &str,
+    element: &Element,
+    binding: Option<u32>,
+) -> String {
     let ty = element.wgsl_struct;
     let Some(binding) = binding else {
         return format!("fn {loader}(i: u32) -> {ty} {{\n    return {ty}();\n}}\n");
@@ -249,7 +253,7 @@ fn struct_array(name: &str, loader: &str, element: &Element, binding: Option<u32
 
 /// An array of `u32` in a data texture, four a texel, and `<accessor>(i)`,
 /// its number i.
-fn word_array(name: &str, accessor: &str, binding: u32) -> String {
+pub(in crate::gpu) fn word_array(name: &str, accessor: &str, binding: u32) -> String {
     format!(
         "{}fn {accessor}(i: u32) -> u32 {{\n    return {name}_texel(i / 4u)[i % 4u];\n}}\n",
         data_texels(name, binding)
@@ -289,35 +293,6 @@ fn field_from_texels(rust: &str, offset: usize) -> String {
 /// `load_sphere`: the loader of a kind's array.
 fn loader(k: &KindInfo) -> String {
     format!("load_{}", k.name())
-}
-
-/// The scene's arrays that are not a kind's (bindings 1 to 5, before
-/// [`FIRST_SHAPE_BINDING`]; their structs are in `shaders/scene.wgsl`).
-fn fixed_arrays() -> String {
-    use crate::gpu::layout::{BvhNode, Light, Material};
-    [
-        struct_array(
-            "materials",
-            "load_material",
-            &Element::of::<Material>("Material"),
-            Some(1),
-        ),
-        struct_array(
-            "lights",
-            "load_light",
-            &Element::of::<Light>("Light"),
-            Some(2),
-        ),
-        struct_array(
-            "bvh_nodes",
-            "load_bvh_node",
-            &Element::of::<BvhNode>("BvhNode"),
-            Some(3),
-        ),
-        word_array("bvh_shapes", "bvh_shape", 4),
-        word_array("shape_counts", "shape_count", 5),
-    ]
-    .concat()
 }
 
 /// `KIND_SPHERE`.
@@ -431,20 +406,10 @@ mod tests {
     }
 
     #[test]
-    fn every_kind_and_fixed_array_has_a_loader() {
+    fn every_kind_has_a_loader() {
         for k in super::super::kinds() {
             let wgsl = struct_array(k.kind.key(), &loader(&k), &Element::of_kind(&k), Some(9));
             assert!(wgsl.contains(&format!("fn load_{}(i: u32)", k.name())));
-        }
-        let fixed = fixed_arrays();
-        for f in [
-            "load_material",
-            "load_light",
-            "load_bvh_node",
-            "bvh_shape",
-            "shape_count",
-        ] {
-            assert!(fixed.contains(&format!("fn {f}(i: u32)")), "{f}");
         }
     }
 }
