@@ -15,6 +15,8 @@
 //!   infinity and naga rejects): the largest float, `3.4028235e38`;
 //! - `dot(`, which naga lacks for two floats: `rsb_dot(`, overloads the
 //!   prelude adds for floats and float vectors;
+//! - `matrixCompMult(`, which naga lacks: `rsb_matrixCompMult(`, overloads
+//!   the prelude adds for square matrices;
 //! - a `sampler2D` parameter, which naga's Vulkan GLSL has no type for:
 //!   a `texture2D` parameter, each use of it in the function's body wrapped
 //!   as `sampler2D(NAME, rsb_linear_sampler)` with the prelude's sampler;
@@ -22,6 +24,18 @@
 //!   parameter list: blanked everywhere, it means nothing in Vulkan GLSL;
 //! - a local `const int N = 4;` used as an array size (`float a[N];`),
 //!   which naga does not know as a constant: `[N]` becomes `[4]`.
+//!
+//! - an array declared without its size and sized by its initializer
+//!   (`float w[] = float[](0.2, 0.5, 0.3);`, `const int[] f = int[](...)`),
+//!   which naga takes for an array of run-time size and refuses as a
+//!   global or a constant: the count of the constructor's arguments is
+//!   written into both empty brackets, `w[3] = float[3](...)`.
+//!
+//! - a declaration of several names, one of them an array before the
+//!   last (`vec4 B[4], P[3];`, `float a[2], x;`), where naga gives the
+//!   names after it the array's type: one declaration per name,
+//!   `vec4 B[4]; vec4 P[3];` (the comma becomes `;` and the type is
+//!   written again after it).
 //!
 //! - `mix(x, y, a)` in the declaration of a global `const`, which naga
 //!   cannot evaluate as a constant: its definition in GLSL,
@@ -57,16 +71,26 @@ float rsb_dot(vec3 a, vec3 b) { return dot(a, b); }
 float rsb_dot(vec4 a, vec4 b) { return dot(a, b); }
 ";
 
+/// The overloads behind `rsb_matrixCompMult(...)`, for the prelude.
+pub const COMP_MULT_OVERLOADS: &str = "\
+// matrixCompMult(a, b): the product of each component (docs/sandbox.md).
+mat2 rsb_matrixCompMult(mat2 a, mat2 b) { return mat2(a[0] * b[0], a[1] * b[1]); }
+mat3 rsb_matrixCompMult(mat3 a, mat3 b) { return mat3(a[0] * b[0], a[1] * b[1], a[2] * b[2]); }
+mat4 rsb_matrixCompMult(mat4 a, mat4 b) {
+    return mat4(a[0] * b[0], a[1] * b[1], a[2] * b[2], a[3] * b[3]);
+}
+";
+
 /// The largest finite float, written for a literal WebGL reads as infinity.
 const LARGEST_FLOAT: &str = "3.4028235e38";
 
 /// The user's text after the rewrites.
 pub struct Bridged {
     pub text: String,
-    /// `mat2(` calls were renamed: the prelude needs [`MAT2_OVERLOADS`].
-    pub uses_mat2: bool,
-    /// `dot(` calls were renamed: the prelude needs [`DOT_OVERLOADS`].
-    pub uses_dot: bool,
+    /// The overloads that renamed calls need in the prelude
+    /// ([`MAT2_OVERLOADS`], [`DOT_OVERLOADS`], [`COMP_MULT_OVERLOADS`]),
+    /// each once.
+    pub overloads: Vec<&'static str>,
     /// (offset in the original text, inserted text), in order.
     insertions: Vec<(usize, String)>,
 }
@@ -122,8 +146,11 @@ const PARAMETER_QUALIFIERS: [&str; 8] = [
 pub fn bridge(scan: &Scan, mut text: String) -> Bridged {
     let tokens = &scan.tokens;
     let mut insertions: Vec<(usize, String)> = Vec::new();
-    let mut uses_mat2 = false;
-    let mut uses_dot = false;
+    // First, so that a parameter whose name is renamed too (`sampler2D
+    // sampler`) is wrapped around its new name: insertions at one offset
+    // keep the order they are made in.
+    sampler_parameters(tokens, &mut text, &mut insertions);
+    let mut overloads = Vec::new();
     let (mut braces, mut parens) = (0i32, 0i32);
     // In the declaration of a global `const` (a constant expression).
     let mut global_const = false;
@@ -142,36 +169,44 @@ pub fn bridge(scan: &Scan, mut text: String) -> Bridged {
             ")" => parens -= 1,
             "const" if braces == 0 && parens > 0 => scan::blank(&mut text, t.start..t.end()),
             _ if t.kind == Kind::Directive => {
-                uses_mat2 |= define_body_rewrites(t, &mut text, &mut insertions);
+                define_body_rewrites(t, &mut text, &mut insertions, &mut overloads);
             }
             "dot" if global_const => {}
             "mix" if global_const => mix_in_constant(tokens, i, &mut text, &mut insertions),
             _ => {
                 let used = rewrite_token(tokens, i, &mut text, &mut insertions);
-                uses_mat2 |= used == Some("mat2");
-                uses_dot |= used == Some("dot");
+                note_overloads(&mut overloads, used);
             }
         }
         if braces == 0 && parens == 0 && t.kind == Kind::Ident {
             name_prototype_parameters(tokens, i, &mut insertions);
         }
     }
-    sampler_parameters(tokens, &mut text, &mut insertions);
     const_array_sizes(tokens, &mut text, &mut insertions);
+    unsized_array_sizes(tokens, &mut insertions);
+    split_array_declarations(tokens, &mut text, &mut insertions);
     insertions.sort_by_key(|(offset, _)| *offset);
     for (offset, inserted) in insertions.iter().rev() {
         text.insert_str(*offset, inserted);
     }
     Bridged {
         text,
-        uses_mat2,
-        uses_dot,
+        overloads,
         insertions,
     }
 }
 
-/// The rewrites of one token (other than brackets) at `i`; returns
-/// `Some("mat2")` or `Some("dot")` when the prelude needs those overloads.
+/// Adds `used` to `overloads` unless it is there.
+fn note_overloads(overloads: &mut Vec<&'static str>, used: Option<&'static str>) {
+    if let Some(used) = used
+        && !overloads.contains(&used)
+    {
+        overloads.push(used);
+    }
+}
+
+/// The rewrites of one token (other than brackets) at `i`; returns the
+/// overloads the prelude needs for a renamed call.
 fn rewrite_token(
     tokens: &[Token],
     i: usize,
@@ -193,11 +228,15 @@ fn rewrite_token(
         }
         "mat2" if single_argument(tokens, i + 1) => {
             insertions.push((t.start, "rsb_".to_string()));
-            return Some("mat2");
+            return Some(MAT2_OVERLOADS);
         }
-        "dot" if tokens.get(i + 1).is_some_and(|n| n.is("(")) => {
+        name @ ("dot" | "matrixCompMult") if tokens.get(i + 1).is_some_and(|n| n.is("(")) => {
             insertions.push((t.start, "rsb_".to_string()));
-            return Some("dot");
+            return Some(if name == "dot" {
+                DOT_OVERLOADS
+            } else {
+                COMP_MULT_OVERLOADS
+            });
         }
         number if t.kind == Kind::Number && is_infinite_float(number) => {
             overwrite(text, t.start..t.end(), "");
@@ -215,19 +254,19 @@ fn rewrite_token(
 
 /// The rewrites of [`rewrite_token`] inside the body of `#define` (the
 /// directive token `t`), but `dot`: a macro with `dot` is also used in
-/// constant expressions, which take no call of a helper. Returns whether
-/// `rsb_mat2` is used.
+/// constant expressions, which take no call of a helper.
 fn define_body_rewrites(
     t: &Token,
     text: &mut String,
     insertions: &mut Vec<(usize, String)>,
-) -> bool {
+    overloads: &mut Vec<&'static str>,
+) {
     let Some(body) = t.text.strip_prefix('#') else {
-        return false;
+        return;
     };
     let inner = Scan::new(body);
     if !inner.tokens.first().is_some_and(|d| d.is("define")) {
-        return false;
+        return;
     }
     // The macro's tokens at their offsets in the whole text.
     let tokens: Vec<Token> = inner
@@ -238,15 +277,14 @@ fn define_body_rewrites(
             ..*k
         })
         .collect();
-    let mut uses_mat2 = false;
     // From the macro's name on (its parameters are names too).
     for i in 1..tokens.len() {
         if tokens[i].is("dot") {
             continue;
         }
-        uses_mat2 |= rewrite_token(&tokens, i, text, insertions) == Some("mat2");
+        let used = rewrite_token(&tokens, i, text, insertions);
+        note_overloads(overloads, used);
     }
-    uses_mat2
 }
 
 /// A local `const int NAME = NUMBER;` is not a constant to naga: an array
@@ -289,6 +327,125 @@ fn const_array_sizes(tokens: &[Token], text: &mut String, out: &mut Vec<(usize, 
             _ => {}
         }
     }
+}
+
+/// Each empty `[]` that an array constructor's arguments size: the
+/// constructor's own (`float[](a, b)`) and a declaration's (`float w[] =
+/// float[](a, b)`, `float[] w = ...`, and each name of `float[] a = ..., b
+/// = ...`), which takes the size of the first constructor after its `=`.
+/// An empty `[]` without an initializer (a parameter) is left as it is.
+fn unsized_array_sizes(tokens: &[Token], out: &mut Vec<(usize, String)>) {
+    for (i, t) in tokens.iter().enumerate() {
+        if !(t.is("[") && tokens.get(i + 1).is_some_and(|n| n.is("]"))) {
+            continue;
+        }
+        let open = if tokens.get(i + 2).is_some_and(|n| n.is("(")) {
+            Some(i + 2)
+        } else {
+            initializer_constructor(tokens, i + 2)
+        };
+        if let Some((commas, _)) = open.and_then(|open| arguments(tokens, open)) {
+            out.push((tokens[i + 1].start, (commas.len() + 1).to_string()));
+        }
+    }
+}
+
+/// From the token after a declaration's `[]`: the `(` of the array
+/// constructor that its initializer starts with, if it has one, whether
+/// the name comes after the brackets (`float[] w = ...`) or before them.
+fn initializer_constructor(tokens: &[Token], from: usize) -> Option<usize> {
+    let mut k = from;
+    if tokens.get(k).is_some_and(|t| t.kind == Kind::Ident) {
+        k += 1;
+    }
+    if !tokens.get(k).is_some_and(|t| t.is("=")) {
+        return None;
+    }
+    // `T [ ]` or `T [ N ]`, then `(`.
+    let rest = tokens.get(k + 1..k + 6)?;
+    match rest {
+        [ty, open, close, paren, ..]
+            if ty.kind == Kind::Ident && open.is("[") && close.is("]") && paren.is("(") =>
+        {
+            Some(k + 4)
+        }
+        [ty, open, _, close, paren]
+            if ty.kind == Kind::Ident && open.is("[") && close.is("]") && paren.is("(") =>
+        {
+            Some(k + 5)
+        }
+        _ => None,
+    }
+}
+
+/// Words that start a statement but are not a type.
+const STATEMENT_WORDS: [&str; 6] = ["return", "else", "case", "do", "while", "if"];
+
+/// Splits each declaration of several names that declares an array before
+/// its last name into one declaration per name (the module's comment says
+/// why). A declaration is a statement that starts with two or more words
+/// (qualifiers, a type, the first name).
+fn split_array_declarations(tokens: &[Token], text: &mut String, out: &mut Vec<(usize, String)>) {
+    let mut start = true;
+    for (s, t) in tokens.iter().enumerate() {
+        let at_start = start;
+        start = matches!(t.text, ";" | "{" | "}") || (at_start && t.kind == Kind::Directive);
+        // Blanked by the GLSL rewrite (a `uniform` declaration) or not a
+        // declaration.
+        let blanked = text[t.start..t.end()].trim().is_empty();
+        if !at_start || blanked || t.kind != Kind::Ident || STATEMENT_WORDS.contains(&t.text) {
+            continue;
+        }
+        let words = tokens[s..]
+            .iter()
+            .take_while(|w| w.kind == Kind::Ident)
+            .count();
+        let after = s + words;
+        if words < 2
+            || !tokens
+                .get(after)
+                .is_some_and(|n| matches!(n.text, "[" | "=" | "," | ";"))
+        {
+            continue;
+        }
+        let Some((commas, has_array)) = declarators(tokens, after) else {
+            continue;
+        };
+        if commas.is_empty() || !has_array {
+            continue;
+        }
+        let ty = text[t.start..tokens[after - 2].end()].to_string();
+        for comma in commas {
+            overwrite(text, tokens[comma].start..tokens[comma].end(), ";");
+            out.push((tokens[comma].end(), format!(" {ty} ")));
+        }
+    }
+}
+
+/// From the token after a declaration's first name: the commas between its
+/// names, and whether a name before the last is an array (`NAME [`).
+fn declarators(tokens: &[Token], from: usize) -> Option<(Vec<usize>, bool)> {
+    let mut depth = 0i32;
+    let mut commas = Vec::new();
+    let mut array_before_last = false;
+    let mut array = tokens[from].is("[");
+    for (i, t) in tokens.iter().enumerate().skip(from) {
+        match t.text {
+            "(" | "[" | "{" => depth += 1,
+            ")" | "]" | "}" => depth -= 1,
+            "," if depth == 0 => {
+                commas.push(i);
+                array_before_last |= array;
+                array = tokens.get(i + 2).is_some_and(|n| n.is("["));
+            }
+            ";" if depth == 0 => return Some((commas, array_before_last)),
+            _ => {}
+        }
+        if depth < 0 {
+            return None;
+        }
+    }
+    None
 }
 
 /// A float literal beyond the largest float (`1e39`, `1e100`).
@@ -475,6 +632,40 @@ mod tests {
     }
 
     #[test]
+    fn unsized_arrays_take_the_size_of_their_initializer() {
+        let (b, _) = bridged(
+            "const int[] font = int[](7, 8, 9);\n\
+             float w[] = float[](0.1, max(0.2, 0.3));\n\
+             float[] a = float[](1., 2.), c = float[](3., 4.);\n\
+             vec2 p[] = vec2[2](vec2(0), vec2(1));\n\
+             float f(float x[]) { return float[](x[0], 1.0)[1]; }",
+        );
+        assert_eq!(
+            b.text,
+            "const int[3] font = int[3](7, 8, 9);\n\
+             float w[2] = float[2](0.1, max(0.2, 0.3));\n\
+             float[2] a = float[2](1., 2.), c = float[2](3., 4.);\n\
+             vec2 p[2] = vec2[2](vec2(0), vec2(1));\n\
+             float f(float x[]) { return float[2](x[0], 1.0)[1]; }"
+        );
+    }
+
+    #[test]
+    fn declarations_with_an_array_before_the_last_name_are_split() {
+        let (b, _) = bridged(
+            "vec4 B[4],P[3];\n\
+             void f() { const float a[2] = float[2](1., 2.), x = max(1., 2.); float y, z[2]; }\n\
+             float u, v; return a, b;",
+        );
+        assert_eq!(
+            b.text,
+            "vec4 B[4]; vec4 P[3];\n\
+             void f() { const float a[2] = float[2](1., 2.); const float  x = max(1., 2.); float y, z[2]; }\n\
+             float u, v; return a, b;"
+        );
+    }
+
+    #[test]
     fn const_parameters_lose_const_and_keep_their_offsets() {
         let text = "float f(const in float x, const vec2 y) { const float z = 1.0; return z; }";
         let (b, _) = bridged(text);
@@ -494,7 +685,7 @@ mod tests {
             b.text,
             "mat2 m = rsb_mat2(cos(a + vec4(0, 1, 2, 3))); mat2 n = mat2(1.0, 0.0, 0.0, 1.0);"
         );
-        assert!(b.uses_mat2);
+        assert_eq!(b.overloads, [MAT2_OVERLOADS]);
     }
 
     #[test]
@@ -534,7 +725,10 @@ mod tests {
             b.text,
             "float far = 3.4028235e38    ; float d = rsb_dot(a, b) + 1.5e3 + rsb_dot (c, c);"
         );
-        assert!(b.uses_dot);
+        assert_eq!(b.overloads, [DOT_OVERLOADS]);
+        let (m, _) = bridged("mat3 m = matrixCompMult(a, b);");
+        assert_eq!(m.text, "mat3 m = rsb_matrixCompMult(a, b);");
+        assert_eq!(m.overloads, [COMP_MULT_OVERLOADS]);
     }
 
     #[test]
@@ -561,6 +755,13 @@ mod tests {
                 "}",
                 "vec4 g() { return texture(s, p); }",
             ]
+        );
+        // A parameter named `sampler`, a keyword renamed too.
+        let (k, _) =
+            bridged("vec4 h(sampler2D sampler) { return texelFetch(sampler, ivec2(0), 0); }");
+        assert_eq!(
+            k.text,
+            "vec4 h(texture2D rsb_sampler) { return texelFetch(sampler2D(rsb_sampler, rsb_linear_sampler), ivec2(0), 0); }"
         );
     }
 
@@ -608,7 +809,7 @@ mod tests {
                 "void f() { float e = rsb_dot(a, b); }",
             ]
         );
-        assert!(b.uses_mat2 && b.uses_dot);
+        assert_eq!(b.overloads, [MAT2_OVERLOADS, DOT_OVERLOADS]);
     }
 
     #[test]

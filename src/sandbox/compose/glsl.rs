@@ -36,6 +36,37 @@ fn declares_uniform(tokens: &[Token], names: &[&str]) -> bool {
     })
 }
 
+/// Whether the file defines the function `entry` at the top level, itself
+/// or through a macro it uses there (`#define Main void mainImage(out vec4
+/// Q, vec2 U)`, then `Main { ... }`, as some Common tabs have it).
+fn defines_entry(tokens: &[Token], entry: &str) -> bool {
+    if find_pair(tokens, entry, "(").is_some() {
+        return true;
+    }
+    let mut depth = 0i32;
+    let macros: Vec<&str> = tokens
+        .iter()
+        .filter(|t| t.kind == Kind::Directive)
+        .filter_map(|t| {
+            let inner = Scan::new(t.text.strip_prefix('#')?);
+            match &inner.tokens[..] {
+                [define, name, rest @ ..] if define.is("define") => {
+                    find_pair(rest, entry, "(").map(|_| name.text)
+                }
+                _ => None,
+            }
+        })
+        .collect();
+    tokens.iter().any(|t| {
+        match t.text {
+            "{" => depth += 1,
+            "}" => depth -= 1,
+            _ => {}
+        }
+        depth == 0 && t.kind == Kind::Ident && macros.contains(&t.text)
+    })
+}
+
 /// Macros defined before the user's GLSL, as WebGL defines them: shaders
 /// written `#ifdef GL_ES precision mediump float; #endif` expect it.
 pub(super) const GLSL_DEFINES: &[&str] = &["GL_ES"];
@@ -59,7 +90,7 @@ pub(super) fn compile_glsl(
     // GLSL Sandbox's uniforms: then it is a port to GLSL Sandbox.
     let user_main = find_pair(tokens, "main", "(").is_some();
     let sandbox_port = user_main && declares_uniform(tokens, &["time", "resolution", "mouse"]);
-    let style = if find_pair(tokens, "mainImage", "(").is_some() && !sandbox_port {
+    let style = if defines_entry(tokens, "mainImage") && !sandbox_port {
         Style::Shadertoy
     } else if user_main && glslviewer::is_glslviewer(tokens) {
         Style::GlslViewer
@@ -244,11 +275,8 @@ pub(super) fn compile_glsl(
         _ => String::new(),
     };
     let bridged = gaps::bridge(scan, rewrite.text);
-    if bridged.uses_mat2 {
-        prelude.push_str(gaps::MAT2_OVERLOADS);
-    }
-    if bridged.uses_dot {
-        prelude.push_str(gaps::DOT_OVERLOADS);
+    for overloads in &bridged.overloads {
+        prelude.push_str(overloads);
     }
     let mut parts = vec![
         (PRELUDE_NAME.to_string(), prelude),

@@ -562,6 +562,21 @@ void main() {
     }
 
     #[test]
+    fn main_image_defined_through_a_macro_is_shadertoy_style() {
+        let text = "#define Main void mainImage(out vec4 Q, vec2 U)\n\
+                    Main {\n    Q = vec4(U / iResolution.xy, 0.0, 1.0);\n}\n";
+        let compiled = compile("toy.glsl", text).expect("compiles");
+        assert_eq!(compiled.style, Style::Shadertoy);
+        // A macro that is defined but never used at the top level is not
+        // an entry point.
+        let unused = error(
+            "u.glsl",
+            "#define Main void mainImage(out vec4 Q, vec2 U)\nfloat f() { return 1.0; }\n",
+        );
+        assert!(unused.message.starts_with("neither"), "{unused}");
+    }
+
+    #[test]
     fn errors_about_the_whole_file_have_a_line_too() {
         // No entry function: at the end of the file, where it would go.
         let missing = error(
