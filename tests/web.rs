@@ -738,6 +738,75 @@ fn a_shader_link_reproduces_the_shader_in_a_fresh_browser() {
     assert_eq!(page.exceptions(), Vec::<String>::new());
 }
 
+/// A Shadertoy JSON export with a buffer, written for this test: Buffer A
+/// paints itself magenta on frame 0 and then copies its own previous frame
+/// (so it stays magenta only if it reads itself); Image shows Buffer A with
+/// green and blue swapped, yellow.
+fn feedback_json() -> String {
+    let pass = |kind: &str, name: &str, output: &str, code: &str| {
+        format!(
+            r#"{{"type": "{kind}", "name": "{name}", "code": {code:?},
+              "inputs": [{{"id": "4dXGR8", "ctype": "buffer", "channel": 0}}],
+              "outputs": [{{"id": "{output}", "channel": 0}}]}}"#
+        )
+    };
+    let buffer = "void mainImage(out vec4 fragColor, in vec2 fragCoord) {\n    \
+                  vec4 previous = texelFetch(iChannel0, ivec2(fragCoord), 0);\n    \
+                  fragColor = iFrame == 0 ? vec4(1.0, 0.0, 1.0, 1.0) : previous;\n}\n";
+    let image = "void mainImage(out vec4 fragColor, in vec2 fragCoord) {\n    \
+                 fragColor = vec4(texture(iChannel0, fragCoord / iResolution.xy).rbg, 1.0);\n}\n";
+    format!(
+        "{{\"Shader\": {{\"info\": {{\"name\": \"feedback\"}}, \"renderpass\": [{}, {}]}}}}\n",
+        pass("buffer", "Buffer A", "4dXGR8", buffer),
+        pass("image", "Image", "4dfGRr", image)
+    )
+}
+
+/// A multipass Shadertoy JSON in a `#shader=` link runs in the page: the
+/// Image pass shows Buffer A, which keeps its own content from frame to
+/// frame (docs/web.md, "Multipass shaders"); malformed JSON typed over it
+/// is marked at its line and the picture stays.
+#[test]
+fn a_multipass_shadertoy_json_runs_in_the_page_with_its_buffer_feedback() {
+    let Some(display) = common::xwindow::Display::start() else {
+        return;
+    };
+    let json = feedback_json();
+    raysandbox::sandbox::multipass::json::parse(std::path::Path::new("t.json"), &json)
+        .unwrap_or_else(|e| panic!("the test's JSON: {e}"));
+    let url = browser::serve(browser::page_dir());
+    let address = format!("{url}?ui=0&editor#{}", link::shader_hash(&json));
+    let mut page = Browser::open(&display, &address);
+    page.wait_for("shader from-link");
+    let ok = page.wait_for("shader ok");
+    eprintln!("multipass: {ok}");
+    let (status, _) = shown_problem(&mut page, "shader");
+    assert_eq!(
+        status,
+        "GLSL (Shadertoy style), multipass: 2 passes: compiled"
+    );
+    wait_for_picture(&page, "Buffer A as yellow", |p| middle_is(p, [255, 255, 0]));
+    // Frames later still yellow: the buffer read its own previous frame.
+    std::thread::sleep(Duration::from_secs(2));
+    assert!(
+        middle_is(&canvas_beside_editor(&page), [255, 255, 0]),
+        "Buffer A lost its content after frame 0: it does not read itself"
+    );
+
+    let broken = json.replacen("\"renderpass\": [", "\"renderpass\": [,", 1);
+    replace_text(&mut page, "shader", &broken);
+    assert_eq!(page.wait_for("shader-error"), "line=1");
+    let (status, marked) = shown_problem(&mut page, "shader");
+    assert!(status.starts_with("shader.json: "), "{status}");
+    assert_eq!(marked, "1", "the gutter marks the JSON's line");
+    std::thread::sleep(Duration::from_secs(2));
+    assert!(
+        middle_is(&canvas_beside_editor(&page), [255, 255, 0]),
+        "the last good passes keep running"
+    );
+    assert_eq!(page.exceptions(), Vec::<String>::new());
+}
+
 /// Every example shader of the editor's menu compiles in the page and
 /// draws (the browser's WebGPU takes what naga writes for it).
 #[test]

@@ -1,5 +1,5 @@
 //! The images a shader samples (docs/sandbox.md, "Textures"): Shadertoy's
-//! `iChannel0..3`, given as PNG files on the command line or in the panel,
+//! `iChannel0..3`, given as PNG or JPEG files on the command line or in the panel,
 //! and, where none is given, a noise image made here, as Shadertoy's
 //! default channels are often noise.
 

@@ -39,10 +39,11 @@ impl Dropped {
             Some("obj" | "ply") => {
                 Mesh::inline_from_bytes(name, &bytes).map(|mesh| Dropped::Mesh(Box::new(mesh)))
             }
-            Some("wgsl" | "glsl" | "frag") => text(bytes).map(Dropped::Shader),
+            // A Shadertoy JSON export is a multipass shader (docs/web.md).
+            Some("wgsl" | "glsl" | "frag" | "json") => text(bytes).map(Dropped::Shader),
             _ => Err(format!(
                 "{name}: the page opens scenes (.toml), models (.obj, .ply) and shaders \
-                 (.wgsl, .glsl, .frag)"
+                 (.wgsl, .glsl, .frag, and Shadertoy's .json)"
             )),
         }
     }

@@ -15,6 +15,8 @@ mod editor;
 pub mod link;
 pub mod meshes;
 #[cfg(target_arch = "wasm32")]
+mod multipass_page;
+#[cfg(target_arch = "wasm32")]
 mod page;
 #[cfg(target_arch = "wasm32")]
 mod sandbox_page;

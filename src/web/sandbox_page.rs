@@ -11,9 +11,11 @@ use web_time::{Duration, Instant};
 use winit::event::{ElementState, MouseButton, MouseScrollDelta, WindowEvent};
 
 use super::editor::Problem;
+use super::multipass_page::{self, MultiBuilt, PageMulti};
 use crate::gpu::{Gpu, ShaderError};
 use crate::sandbox::clock::Clock;
 use crate::sandbox::mouse::Mouse;
+use crate::sandbox::multipass::json;
 use crate::sandbox::render::{Canvas, NanColor, PipelineBuilder, SandboxGpu, ShaderPipeline};
 use crate::sandbox::{Compiled, ReloadError, Session, compile};
 
@@ -29,8 +31,14 @@ pub struct Built {
     /// How long naga took (composing, parsing, validating), then the
     /// pipeline's build (wgpu and the browser).
     times: (Duration, Duration),
-    compiled: Compiled,
-    result: Result<ShaderPipeline, String>,
+    pipelines: Pipelines,
+}
+
+/// What a text was built into: one shader's pipeline, or the passes of a
+/// multipass shader (a JSON text).
+enum Pipelines {
+    Single(Box<Compiled>, Result<ShaderPipeline, String>),
+    Multi(MultiBuilt),
 }
 
 impl Built {
@@ -56,6 +64,9 @@ pub struct ShaderView {
     builder: PipelineBuilder,
     canvas: Canvas,
     session: Session,
+    /// The multipass shader, while the document is JSON (docs/web.md,
+    /// "Multipass shaders"); else `session`'s shader runs.
+    multi: Option<PageMulti>,
     clock: Clock,
     mouse: Mouse,
     /// Counts texts sent to be built: a build finishing after a newer text
@@ -78,6 +89,7 @@ impl ShaderView {
             builder,
             canvas,
             session: Session::new(Path::new(SHADER_NAME)),
+            multi: None,
             clock: Clock::new(false, Instant::now()),
             mouse: Mouse::default(),
             generation: 0,
@@ -96,23 +108,42 @@ impl ShaderView {
         done: impl FnOnce(Built) + 'static,
     ) -> Result<(), Problem> {
         let start = Instant::now();
+        let builder = self.builder.clone();
+        let owned = text.to_string();
+        if json::is_json(text) {
+            let pending = self.multi.get_or_insert_default().compile(text)?;
+            let generation = self.next_generation();
+            let compiled_at = Instant::now();
+            wasm_bindgen_futures::spawn_local(async move {
+                let built = multipass_page::build(builder, pending).await;
+                done(Built {
+                    generation,
+                    text: owned,
+                    times: (compiled_at - start, compiled_at.elapsed()),
+                    pipelines: Pipelines::Multi(built),
+                });
+            });
+            return Ok(());
+        }
         let compiled = compile(SHADER_NAME, text).map_err(|e| shader_problem(&e))?;
         let compiled_at = Instant::now();
-        self.generation += 1;
-        let generation = self.generation;
-        let builder = self.builder.clone();
-        let text = text.to_string();
+        let generation = self.next_generation();
         wasm_bindgen_futures::spawn_local(async move {
             let result = builder.build_async(&compiled).await;
             done(Built {
                 generation,
-                text,
+                text: owned,
                 times: (compiled_at - start, compiled_at.elapsed()),
-                compiled,
-                result,
+                pipelines: Pipelines::Single(Box::new(compiled), result),
             });
         });
         Ok(())
+    }
+
+    /// Counts a text sent to be built.
+    fn next_generation(&mut self) -> u64 {
+        self.generation += 1;
+        self.generation
     }
 
     /// Takes a finished build: `None` for a build of an older text (dropped),
@@ -121,10 +152,17 @@ impl ShaderView {
         if built.generation != self.generation {
             return None;
         }
-        Some(match built.result {
+        let (compiled, result) = match built.pipelines {
+            Pipelines::Single(compiled, result) => (compiled, result),
+            Pipelines::Multi(built) => {
+                return self.multi.as_mut().map(|multi| multi.install(built));
+            }
+        };
+        Some(match result {
             Ok(pipeline) => {
-                let style = built.compiled.style.describe();
-                self.session.install(built.compiled, pipeline);
+                let style = compiled.style.describe();
+                self.session.install(*compiled, pipeline);
+                self.multi = None;
                 Ok(format!("{style}: compiled"))
             }
             Err(message) => {
@@ -139,7 +177,7 @@ impl ShaderView {
 
     /// Whether a shader has compiled yet.
     pub fn has_shader(&self) -> bool {
-        self.session.pipeline().is_some()
+        self.multi.as_ref().is_some_and(PageMulti::runs) || self.session.pipeline().is_some()
     }
 
     /// Follows the canvas's size.
@@ -157,17 +195,24 @@ impl ShaderView {
         target: &wgpu::TextureView,
         format: wgpu::TextureFormat,
     ) {
-        if let Some(pipeline) = self.session.pipeline() {
+        let multi = self.multi.as_mut().filter(|m| m.runs());
+        if multi.is_some() || self.session.pipeline().is_some() {
             let tick = self.clock.tick(Instant::now());
             let uniforms = self.mouse.frame_uniforms(&tick, self.canvas.size());
-            self.canvas.draw(
-                gpu,
-                &self.sandbox,
-                encoder,
-                pipeline,
-                &uniforms,
-                &self.session.params,
-            );
+            match (multi, self.session.pipeline()) {
+                (Some(multi), _) => {
+                    multi.draw(gpu, &self.sandbox, encoder, &uniforms, &mut self.canvas);
+                }
+                (None, Some(pipeline)) => self.canvas.draw(
+                    gpu,
+                    &self.sandbox,
+                    encoder,
+                    pipeline,
+                    &uniforms,
+                    &self.session.params,
+                ),
+                (None, None) => {}
+            }
             self.mouse.just_clicked = false;
         }
         self.canvas.show(&self.sandbox, encoder, target, format);

@@ -22,6 +22,19 @@ const BUFFER_IDS: [[&str; 2]; BUFFERS] = [
     ["260", "XdfGR8"],
 ];
 
+/// Whether `text` is JSON rather than a shader (the page's shader document
+/// holds either): no GLSL or WGSL file starts with `{` or `[`.
+pub fn is_json(text: &str) -> bool {
+    text.trim_start().starts_with(['{', '['])
+}
+
+/// The line a [`parse`] error names, when the JSON is malformed
+/// (serde_json's `... at line 3 column 7`).
+pub fn error_line(message: &str) -> Option<usize> {
+    let (_, rest) = message.rsplit_once(" at line ")?;
+    rest.split_whitespace().next()?.parse().ok()
+}
+
 /// What a JSON file holds, read from `text` (the content of `path`).
 pub fn parse(path: &Path, text: &str) -> Result<Project, String> {
     let file = path.display().to_string();
@@ -260,6 +273,22 @@ fn bind(
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    #[test]
+    fn json_texts_are_told_from_shaders_and_their_errors_have_a_line() {
+        assert!(is_json("  \n{\"Shader\": {}}"));
+        assert!(is_json("[{}]"));
+        assert!(!is_json(
+            "void mainImage(out vec4 c, in vec2 p) { c = vec4(1.0); }"
+        ));
+        assert!(!is_json("// {\nfn main() {}"));
+        let text = "{\n  \"Shader\": {\n    \"renderpass\": [,]\n  }\n}";
+        let message = parse(Path::new("shader.json"), text).expect_err("malformed");
+        assert!(message.starts_with("shader.json: "), "{message}");
+        assert_eq!(error_line(&message), Some(3), "{message}");
+        let missing = parse(Path::new("shader.json"), "{}").expect_err("no passes");
+        assert_eq!(error_line(&missing), None, "{missing}");
+    }
 
     #[test]
     fn buffers_are_known_by_name_or_output_id() {

@@ -87,6 +87,19 @@ impl MultiSession {
     pub fn compile(&mut self) -> Result<Option<Pending>, ReloadError> {
         let project =
             Project::load(&self.path).map_err(|e| self.failed(ReloadError::Project(e)))?;
+        Ok(self.compile_project(project))
+    }
+
+    /// Compiles every pass of `project`, read by the caller (the page's
+    /// JSON text): no pass is taken as unchanged, since the page drops the
+    /// build of a text that a newer one overtook.
+    pub fn compile_every_pass(&mut self, project: Project) -> Option<Pending> {
+        self.texts.clear();
+        self.compile_project(project)
+    }
+
+    /// Compiles the passes of `project` whose text changed.
+    fn compile_project(&mut self, project: Project) -> Option<Pending> {
         let mut build = Vec::new();
         let mut error = None;
         let mut texts = Vec::new();
@@ -119,13 +132,13 @@ impl MultiSession {
         let same_project = self.project.as_ref() == Some(&project);
         self.texts = texts;
         if same_project && build.is_empty() && error.is_none() {
-            return Ok(None);
+            return None;
         }
-        Ok(Some(Pending {
+        Some(Pending {
             project,
             build,
             error,
-        }))
+        })
     }
 
     fn failed(&mut self, e: ReloadError) -> ReloadError {
