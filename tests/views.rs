@@ -441,9 +441,21 @@ fn lecture_switches_agree_with_the_reference() {
 /// the errors as the GPU shows them (read back after they were written),
 /// one per pixel, row by row.
 fn errors(gpu: &Gpu, scene: &Scene, change: impl FnOnce(&mut ShaderOptions)) -> Vec<f32> {
-    let mut renderer = rendered(gpu, scene, View::Error, change, (WIDTH, HEIGHT));
+    let (_, errors) = error_view(gpu, scene, change, (WIDTH, HEIGHT));
+    errors
+}
+
+/// The error view of `scene` at `size`, as `render --view error` makes it:
+/// the renderer showing it, and the errors read back.
+fn error_view(
+    gpu: &Gpu,
+    scene: &Scene,
+    change: impl FnOnce(&mut ShaderOptions),
+    (width, height): (u32, u32),
+) -> (OffscreenRenderer, Vec<f32>) {
+    let mut renderer = rendered(gpu, scene, View::Error, change, (width, height));
     let radiance = renderer.read_sums(gpu).unwrap_or_else(|e| panic!("{e}"));
-    let reference = reference::ErrorImage::traced(&PreparedScene::new(scene), WIDTH, HEIGHT);
+    let reference = reference::ErrorImage::traced(&PreparedScene::new(scene), width, height);
     let computed = reference.quantities(&radiance);
     let bar = renderer
         .show_quantities(gpu, &computed)
@@ -451,7 +463,7 @@ fn errors(gpu: &Gpu, scene: &Scene, change: impl FnOnce(&mut ShaderOptions)) -> 
     assert!(bar.is_some(), "no colour bar");
     let shown = renderer.read_sums(gpu).unwrap_or_else(|e| panic!("{e}"));
     assert_eq!(shown, computed, "the GPU shows other errors than computed");
-    shown.chunks_exact(4).map(|q| q[0]).collect()
+    (renderer, shown.chunks_exact(4).map(|q| q[0]).collect())
 }
 
 /// Where the GPU and the f64 reference agree, the error view is zero: on
@@ -518,4 +530,36 @@ fn the_error_view_marks_the_textbook_sphere_failure() {
     assert!(phantom_marked * 100 >= phantom * 95, "{phantom_marked} of {phantom}");
     assert_eq!(clear_marked, 0);
     assert!(robust_marked * 100 <= hits.len(), "{robust_marked} robust pixels marked");
+}
+
+/// The error view in the window (`view --view error`): the reference comes
+/// in on worker threads, coarser grids first, and once it reaches every
+/// pixel the window shows what `render --view error` renders headless.
+#[test]
+fn the_error_view_refines_in_the_window() {
+    use common::xwindow::{Display, Window, crop};
+    let Some(display) = Display::start() else {
+        return;
+    };
+    let size = (800, 450);
+    let path = common::scenes_dir().join("whitted.toml");
+    let path = path.to_str().unwrap();
+    let mut viewer = Window::open(&display, &["view", path, "--view", "error"], size);
+    let mut strides = Vec::new();
+    while strides.last() != Some(&1) {
+        let level = viewer.wait_for("error-level stride=");
+        strides.push(level.parse::<u32>().unwrap());
+    }
+    println!("levels drawn: strides {strides:?}");
+    assert!(strides.is_sorted_by(|a, b| a > b), "{strides:?}");
+    let (panel, status) = (viewer.part("panel"), viewer.part("status"));
+    let x = (panel.right() + 16) as u32;
+    let area = (x, 0, size.0 - x, status.y as u32);
+    let window = viewer.capture();
+    let gpu = common::gpu().unwrap();
+    let (renderer, _) = error_view(&gpu, &scene("whitted.toml"), |_| {}, size);
+    let headless = renderer.read_image(&gpu).unwrap_or_else(|e| panic!("{e}"));
+    let d = raysandbox::compare::diff_images(&crop(&window, area), &crop(&headless, area));
+    println!("error view, window against headless: mean {:.4}, max {}", d.mean_abs, d.max_abs);
+    assert!(d.mean_abs <= 0.5 && d.frac_over_8 <= 0.001, "{d:?}");
 }

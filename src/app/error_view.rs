@@ -33,6 +33,9 @@ pub struct ErrorView {
     shown: Option<u32>,
     /// A reference of the current generation is being traced.
     running: bool,
+    /// The stride of a level handed out by [`Self::poll`] and not yet
+    /// reported as drawn.
+    handed_out: Option<u32>,
 }
 
 impl Default for ErrorView {
@@ -44,6 +47,7 @@ impl Default for ErrorView {
             levels,
             shown: None,
             running: false,
+            handed_out: None,
         }
     }
 }
@@ -54,6 +58,7 @@ impl ErrorView {
         self.generation.fetch_add(1, Ordering::Relaxed);
         self.running = false;
         self.shown = None;
+        self.handed_out = None;
     }
 
     /// Starts tracing the reference of `scene` at `size` pixels, whose
@@ -121,9 +126,16 @@ impl ErrorView {
             }
             self.running &= level.stride > 1;
             self.shown = Some(level.stride);
+            self.handed_out = Some(level.stride);
             newest = Some(level.quantities);
         }
         newest
+    }
+
+    /// The stride of the level the last [`Self::poll`] handed out, once:
+    /// called after the next frame, it is on screen then.
+    pub fn take_drawn(&mut self) -> Option<u32> {
+        self.handed_out.take()
     }
 
     /// Whether the reference is still being traced: the viewer looks again

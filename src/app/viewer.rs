@@ -610,6 +610,9 @@ impl Viewer {
     /// replaces the last on screen; while one is traced, the viewer looks
     /// again a tenth of a second later.
     fn error_view_frame(&mut self, traced: bool) {
+        if let Some(stride) = self.error_view.take_drawn() {
+            self.event(&format!("error-level stride={stride}"));
+        }
         let scene = traced.then(|| self.shown_scene());
         let Some(gfx) = &mut self.gfx else { return };
         if let Some(scene) = scene {
