@@ -109,6 +109,18 @@ fn show_error(
         start.elapsed().as_secs_f64() * 1e3
     );
     let gpu_radiance = renderer.read_sums(gpu).map_err(gpu_failure)?;
+    let gpu_picture: Vec<glam::DVec3> = gpu_radiance
+        .chunks_exact(4)
+        .map(|q| glam::DVec3::new(q[0].into(), q[1].into(), q[2].into()))
+        .collect();
+    let gpu_picture = reference::to_rgba8(
+        &gpu_picture,
+        args.width,
+        args.height,
+        scene.render.exposure,
+    );
+    let (flip, _) = crate::stress::metrics::flip(&image.rgba8(), &gpu_picture);
+    println!("FLIP of the GPU's picture against the reference's (mean): {flip:.4}");
     renderer
         .show_quantities(gpu, &image.quantities(&gpu_radiance))
         .map_err(gpu_failure)

@@ -108,6 +108,12 @@ impl ErrorImage {
         trace(&self.scene, &ray, 0, 1.0)
     }
 
+    /// The reference's picture, as `render --reference` encodes it (at
+    /// the pixel centres; black where no level has traced yet).
+    pub fn rgba8(&self) -> image::RgbaImage {
+        super::output::to_rgba8(&self.radiance, self.width, self.height, self.scene.exposure)
+    }
+
     /// The error view's quantities: four floats per pixel, row by row, the
     /// error of [`pixel_error`] first and 1 last; `gpu` holds the GPU's
     /// radiance at the same pixel centres, four floats per pixel (the
