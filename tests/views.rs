@@ -487,8 +487,16 @@ fn the_error_view_is_zero_where_the_gpu_agrees_with_the_reference() {
     assert!(errors.iter().all(|e| e.is_finite() && *e >= 0.0));
     // Measured (96 x 54, lavapipe): 5182 of 5184 pixels 0, 2 above 1
     // level, on the glass sphere's silhouette.
-    assert!(over(1.0) * 1000 <= errors.len(), "{} pixels above 1", over(1.0));
-    assert!(over(0.0) * 100 <= errors.len(), "{} pixels above 0", over(0.0));
+    assert!(
+        over(1.0) * 1000 <= errors.len(),
+        "{} pixels above 1",
+        over(1.0)
+    );
+    assert!(
+        over(0.0) * 100 <= errors.len(),
+        "{} pixels above 0",
+        over(0.0)
+    );
 }
 
 /// The textbook sphere quadratic in f32 (docs/accuracy.md,
@@ -526,10 +534,19 @@ fn the_error_view_marks_the_textbook_sphere_failure() {
     );
     // Measured (96 x 54, lavapipe): all 3208 phantom pixels marked, none
     // of the 1072 others, none with the robust pipeline.
-    assert!(phantom * 10 > hits.len(), "the phantom covers {phantom} pixels");
-    assert!(phantom_marked * 100 >= phantom * 95, "{phantom_marked} of {phantom}");
+    assert!(
+        phantom * 10 > hits.len(),
+        "the phantom covers {phantom} pixels"
+    );
+    assert!(
+        phantom_marked * 100 >= phantom * 95,
+        "{phantom_marked} of {phantom}"
+    );
     assert_eq!(clear_marked, 0);
-    assert!(robust_marked * 100 <= hits.len(), "{robust_marked} robust pixels marked");
+    assert!(
+        robust_marked * 100 <= hits.len(),
+        "{robust_marked} robust pixels marked"
+    );
 }
 
 /// The error view in the window (`view --view error`): the reference comes
@@ -560,6 +577,9 @@ fn the_error_view_refines_in_the_window() {
     let (renderer, _) = error_view(&gpu, &scene("whitted.toml"), |_| {}, size);
     let headless = renderer.read_image(&gpu).unwrap_or_else(|e| panic!("{e}"));
     let d = raysandbox::compare::diff_images(&crop(&window, area), &crop(&headless, area));
-    println!("error view, window against headless: mean {:.4}, max {}", d.mean_abs, d.max_abs);
+    println!(
+        "error view, window against headless: mean {:.4}, max {}",
+        d.mean_abs, d.max_abs
+    );
     assert!(d.mean_abs <= 0.5 && d.frac_over_8 <= 0.001, "{d:?}");
 }

@@ -1442,11 +1442,14 @@ fn the_v_key_cycles_the_views_in_the_page() {
         .map(|(i, j)| reference::view_hit(&prepared, w, h, i, j))
         .collect();
     let level = |x: f64| (255.0 * (0.5 * x + 0.5)).round().clamp(0.0, 255.0) as u8;
-    let normals = RgbaImage::from_fn(w, h, |i, j| {
-        match hits[(j * w + i) as usize] {
-            Some(hit) => image::Rgba([level(hit.shading.x), level(hit.shading.y), level(hit.shading.z), 255]),
-            None => image::Rgba([26, 26, 26, 255]),
-        }
+    let normals = RgbaImage::from_fn(w, h, |i, j| match hits[(j * w + i) as usize] {
+        Some(hit) => image::Rgba([
+            level(hit.shading.x),
+            level(hit.shading.y),
+            level(hit.shading.z),
+            255,
+        ]),
+        None => image::Rgba([26, 26, 26, 255]),
     });
     let like_normals = |picture: &RgbaImage| {
         let d = diff_images(picture, &normals);
@@ -1457,7 +1460,10 @@ fn the_v_key_cycles_the_views_in_the_page() {
     page.wait_for("ready");
     let shown = wait_for_whole_picture(&page, "normals", like_normals);
     let d = diff_images(&shown, &normals);
-    eprintln!("normals against the reference's: mean {:.4}, max {}", d.mean_abs, d.max_abs);
+    eprintln!(
+        "normals against the reference's: mean {:.4}, max {}",
+        d.mean_abs, d.max_abs
+    );
     assert!(diff_images(&shown, &shaded).mean_abs > 20.0);
     for view in ["geometric", "depth", "id"] {
         page.key("v");
@@ -1471,7 +1477,11 @@ fn the_v_key_cycles_the_views_in_the_page() {
             Default::default();
         for (p, hit) in picture.pixels().zip(&hits) {
             let shape = hit.map(|h| h.shape);
-            *colours.entry(shape).or_default().entry([p[0], p[1], p[2]]).or_default() += 1;
+            *colours
+                .entry(shape)
+                .or_default()
+                .entry([p[0], p[1], p[2]])
+                .or_default() += 1;
         }
         let mut seen = std::collections::HashSet::new();
         colours.values().all(|counts| {

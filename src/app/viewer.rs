@@ -617,7 +617,11 @@ impl Viewer {
         let Some(gfx) = &mut self.gfx else { return };
         if let Some(scene) = scene {
             let options = reference::ReferenceOptions {
-                triangles: self.drawing.as_ref().map(|o| o.triangles).unwrap_or_default(),
+                triangles: self
+                    .drawing
+                    .as_ref()
+                    .map(|o| o.triangles)
+                    .unwrap_or_default(),
                 ..Default::default()
             };
             let size = gfx.viewport.traced_resolution();

@@ -113,12 +113,8 @@ fn show_error(
         .chunks_exact(4)
         .map(|q| glam::DVec3::new(q[0].into(), q[1].into(), q[2].into()))
         .collect();
-    let gpu_picture = reference::to_rgba8(
-        &gpu_picture,
-        args.width,
-        args.height,
-        scene.render.exposure,
-    );
+    let gpu_picture =
+        reference::to_rgba8(&gpu_picture, args.width, args.height, scene.render.exposure);
     let (flip, _) = crate::stress::metrics::flip(&image.rgba8(), &gpu_picture);
     println!("FLIP of the GPU's picture against the reference's (mean): {flip:.4}");
     renderer

@@ -226,7 +226,10 @@ pub(super) fn fit_colour_bar(
 /// The current sums of `accum`, four floats per pixel, row by row
 /// (waited for).
 pub(super) fn read_sums(gpu: &Gpu, accum: &Accumulator) -> Result<Vec<f32>, GpuWaitError> {
-    Ok(bytemuck::pod_collect_to_vec(&read_texels(gpu, accum.sum())?))
+    Ok(bytemuck::pod_collect_to_vec(&read_texels(
+        gpu,
+        accum.sum(),
+    )?))
 }
 
 /// Writes `quantities` into `accum` in place of the traced ones and sets

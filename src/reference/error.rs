@@ -86,7 +86,11 @@ impl ErrorImage {
         let on = |k: u32, s: u32| k.is_multiple_of(s);
         (0..self.height)
             .step_by(stride as usize)
-            .flat_map(|j| (0..self.width).step_by(stride as usize).map(move |i| (i, j)))
+            .flat_map(|j| {
+                (0..self.width)
+                    .step_by(stride as usize)
+                    .map(move |i| (i, j))
+            })
             .filter(|&(i, j)| coarser.is_none_or(|c| !(on(i, c) && on(j, c))))
             .map(|(i, j)| j as usize * self.width as usize + i as usize)
             .collect()
