@@ -5,6 +5,7 @@
 
 mod common;
 
+use common::xwindow::{Display, Window, crop};
 use raysandbox::gpu::{Gpu, OffscreenRenderer, ShaderOptions, ShaderSource, View};
 use raysandbox::reference::{self, PreparedScene, ViewHit};
 use raysandbox::scene::{NamedOption, Scene, ShapeKind};
@@ -356,36 +357,61 @@ fn render_view_on_the_command_line() {
 /// fitted to the window's image.
 #[test]
 fn the_v_key_cycles_the_views_in_the_window() {
-    use common::xwindow::{Display, Window, crop};
     let Some(display) = Display::start() else {
         return;
     };
-    let size = (800, 450);
-    let path = common::scenes_dir().join("whitted.toml");
-    let path = path.to_str().unwrap();
-    let mut viewer = Window::open(&display, &["view", path, "--max-samples", "1"], size);
+    let mut viewer = whitted_window(&display, &["--max-samples", "1"]);
     let gpu = common::gpu().unwrap();
     let scene = scene("whitted.toml");
     for view in [View::Normals, View::Geometric, View::Depth] {
         viewer.key("v");
         assert_eq!(viewer.wait_for("view-shown"), view.name());
         viewer.wait_for("ready");
-        // The image right of the panel and above the status line, which
-        // grows a row when the view's legend does not fit beside the rest.
-        let (panel, status) = (viewer.part("panel"), viewer.part("status"));
-        let x = (panel.right() + 16) as u32;
-        let area = (x, 0, size.0 - x, status.y as u32);
-        let window = viewer.capture();
-        let headless = rendered(&gpu, &scene, view, |_| {}, size)
+        let headless = rendered(&gpu, &scene, view, |_| {}, WINDOW)
             .read_image(&gpu)
             .unwrap_or_else(|e| panic!("{e}"));
-        let d = raysandbox::compare::diff_images(&crop(&window, area), &crop(&headless, area));
-        println!("{}: mean {:.4}, max {}", view.name(), d.mean_abs, d.max_abs);
-        assert!(
-            d.mean_abs <= 0.5 && d.frac_over_8 <= 0.001,
-            "{}: {d:?}",
-            view.name()
-        );
+        assert_window_shows(&mut viewer, &headless, view.name());
+    }
+}
+
+/// The size of the viewer's window in the window tests.
+const WINDOW: (u32, u32) = (800, 450);
+
+/// The viewer on the Whitted scene in a [`WINDOW`], with `args` after the
+/// scene's path.
+fn whitted_window<'d>(display: &'d Display, args: &[&str]) -> Window<'d> {
+    let path = common::scenes_dir().join("whitted.toml");
+    let args = [&["view", path.to_str().unwrap()], args].concat();
+    Window::open(display, &args, WINDOW)
+}
+
+/// The window shows `headless` in the image right of the panel and above
+/// the status line (which grows a row when the view's legend does not fit
+/// beside the rest), within 0.5 of 255 on average: captured again for up
+/// to ten seconds, as the X server may show the frame a little after the
+/// event that announced it; both saved in the temporary folder if not.
+fn assert_window_shows(viewer: &mut Window, headless: &image::RgbaImage, what: &str) {
+    let (panel, status) = (viewer.part("panel"), viewer.part("status"));
+    let x = (panel.right() + 16) as u32;
+    let area = (x, 0, WINDOW.0 - x, status.y as u32);
+    let deadline = std::time::Instant::now() + std::time::Duration::from_secs(10);
+    loop {
+        let window = crop(&viewer.capture(), area);
+        let d = raysandbox::compare::diff_images(&window, &crop(headless, area));
+        println!("{what}: mean {:.4}, max {}", d.mean_abs, d.max_abs);
+        if d.mean_abs <= 0.5 && d.frac_over_8 <= 0.001 {
+            return;
+        }
+        if std::time::Instant::now() > deadline {
+            let dir = std::env::temp_dir();
+            let name = what.replace(' ', "-");
+            window.save(dir.join(format!("{name}-window.png"))).unwrap();
+            crop(headless, area)
+                .save(dir.join(format!("{name}-headless.png")))
+                .unwrap();
+            panic!("{what}: {d:?} (both saved in {})", dir.display());
+        }
+        std::thread::sleep(std::time::Duration::from_millis(500));
     }
 }
 
@@ -554,14 +580,14 @@ fn the_error_view_marks_the_textbook_sphere_failure() {
 /// pixel the window shows what `render --view error` renders headless.
 #[test]
 fn the_error_view_refines_in_the_window() {
-    use common::xwindow::{Display, Window, crop};
     let Some(display) = Display::start() else {
         return;
     };
-    let size = (800, 450);
-    let path = common::scenes_dir().join("whitted.toml");
-    let path = path.to_str().unwrap();
-    let mut viewer = Window::open(&display, &["view", path, "--view", "error"], size);
+    let mut viewer = whitted_window(&display, &["--view", "error"]);
+    // The pointer off the window (the screen is 1024 x 768): resting over
+    // the status line while the reference is traced, it opens a tooltip
+    // over the picture.
+    viewer.xdotool(&["mousemove", "1000", "700"]);
     let mut strides = Vec::new();
     while strides.last() != Some(&1) {
         let level = viewer.wait_for("error-level stride=");
@@ -569,17 +595,8 @@ fn the_error_view_refines_in_the_window() {
     }
     println!("levels drawn: strides {strides:?}");
     assert!(strides.is_sorted_by(|a, b| a > b), "{strides:?}");
-    let (panel, status) = (viewer.part("panel"), viewer.part("status"));
-    let x = (panel.right() + 16) as u32;
-    let area = (x, 0, size.0 - x, status.y as u32);
-    let window = viewer.capture();
     let gpu = common::gpu().unwrap();
-    let (renderer, _) = error_view(&gpu, &scene("whitted.toml"), |_| {}, size);
+    let (renderer, _) = error_view(&gpu, &scene("whitted.toml"), |_| {}, WINDOW);
     let headless = renderer.read_image(&gpu).unwrap_or_else(|e| panic!("{e}"));
-    let d = raysandbox::compare::diff_images(&crop(&window, area), &crop(&headless, area));
-    println!(
-        "error view, window against headless: mean {:.4}, max {}",
-        d.mean_abs, d.max_abs
-    );
-    assert!(d.mean_abs <= 0.5 && d.frac_over_8 <= 0.001, "{d:?}");
+    assert_window_shows(&mut viewer, &headless, "error view");
 }
