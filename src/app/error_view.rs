@@ -53,9 +53,12 @@ impl Default for ErrorView {
 }
 
 impl ErrorView {
-    /// Stops the reference being traced: the picture changed.
+    /// Stops the reference being traced: the picture changed. Its levels
+    /// not yet shown are dropped, so that at most the one a worker was
+    /// finishing waits in the channel (a few megabytes) until the next poll.
     pub fn cancel(&mut self) {
         self.generation.fetch_add(1, Ordering::Relaxed);
+        while self.levels.try_recv().is_ok() {}
         self.running = false;
         self.shown = None;
         self.handed_out = None;
