@@ -1,6 +1,6 @@
 // views.wgsl: ways of looking inside the tracer (docs/views.md): normals,
-// depth, object id, barycentrics, cost, steps and bounces, in place of the
-// shaded picture.
+// depth, object id, barycentrics, cost, steps, bounces and the error against
+// the f64 reference, in place of the shaded picture.
 //
 // VIEW is a pipeline constant (src/gpu/view.rs, `View::number`): 0 is the
 // shaded picture, and every counter below is then dead code that the
@@ -27,6 +27,12 @@ const VIEW_TESTS_ALL: u32 = 9u;      // tests, all rays of the pixel
 const VIEW_STEPS: u32 = 10u;         // sphere-tracing and root-finding steps, all rays
 const VIEW_BOUNCES: u32 = 11u;       // deepest level of the ray tree
 const VIEW_SHADOW_RAYS: u32 = 12u;   // shadow rays cast
+const VIEW_ERROR: u32 = 13u;         // radiance, then its error against the reference
+
+/// In the error view, `w` of a pixel whose error is not known yet: its
+/// quantity is the GPU's radiance, which the CPU compares with the f64
+/// reference and replaces with the error (w = 1) as the reference comes in.
+const ERROR_PENDING: f32 = 2.0;
 
 /// The counters of the cost, steps and bounces views: BVH nodes visited,
 /// shape and triangle tests, steps, deepest ray-tree level.
@@ -89,6 +95,9 @@ fn note_barycentric(b: vec3<f32>) {
 /// The CPU twin is `reference::views`.
 fn view_quantity(pixel: vec2<f32>) -> vec4<f32> {
     let ray = camera_ray(pixel + vec2(0.5), vec2(0.0));
+    if VIEW == VIEW_ERROR {
+        return vec4(trace(ray), ERROR_PENDING);
+    }
     if VIEW >= VIEW_NODES_ALL {
         // Counters over the whole ray tree of the pixel.
         _ = trace(ray);
@@ -170,6 +179,10 @@ fn id_colour(kind: u32, index: u32) -> vec3<f32> {
 fn view_colour(q: vec4<f32>) -> vec3<f32> {
     if q.w == 0.0 {
         return vec3(0.1);
+    }
+    if VIEW == VIEW_ERROR && q.w == ERROR_PENDING {
+        // The GPU's picture, dimmed, until the reference reaches the pixel.
+        return 0.35 * srgb_encode(clamp(globals.exposure * q.xyz, vec3(0.0), vec3(1.0)));
     }
     switch VIEW {
         case VIEW_NORMALS, VIEW_GEOMETRIC: { return clamp(0.5 * q.xyz + 0.5, vec3(0.0), vec3(1.0)); }

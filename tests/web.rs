@@ -1466,3 +1466,100 @@ fn a_one_second_drag_orbits_and_menus_open_while_the_page_refines() {
     assert_eq!(page.evaluate(open), true, "Ctrl+E opened the editor");
     println!("the editor opened after {:?}", opened.elapsed());
 }
+
+/// Captures the page's picture until `shows` holds (the browser composites
+/// some time after the page drew); fails with the last picture saved when
+/// it does not within the browser module's timeout.
+fn wait_for_whole_picture(
+    page: &Browser,
+    what: &str,
+    mut shows: impl FnMut(&RgbaImage) -> bool,
+) -> RgbaImage {
+    let deadline = Instant::now() + browser::TIMEOUT;
+    loop {
+        let picture = page.capture_picture();
+        if shows(&picture) {
+            return picture;
+        }
+        if Instant::now() > deadline {
+            let file = std::env::temp_dir().join(format!("web-{what}.png"));
+            picture.save(&file).unwrap();
+            panic!("the page never showed {what} (saved in {})", file.display());
+        }
+        std::thread::sleep(Duration::from_millis(300));
+    }
+}
+
+/// The views inside the tracer in the page (docs/views.md): `V` steps from
+/// the picture through the normals, the geometric normals and the depth to
+/// the object ids, as in the window. The normals are the reference's
+/// shading normals as colours (x y z as red green blue, background dark
+/// grey), unlike the shaded picture; the id view is one flat colour per
+/// shape the reference sees, a different one for each.
+#[test]
+fn the_v_key_cycles_the_views_in_the_page() {
+    let Some((_display, mut page)) = browser::open_page("?samples=1&ui=0") else {
+        return;
+    };
+    page.wait_for("ready");
+    let (_, scene) = whitted();
+    let shaded = page.capture_picture();
+    let prepared = reference::PreparedScene::new(&scene);
+    let (w, h) = SIZE;
+    let hits: Vec<Option<reference::ViewHit>> = (0..h)
+        .flat_map(|j| (0..w).map(move |i| (i, j)))
+        .map(|(i, j)| reference::view_hit(&prepared, w, h, i, j))
+        .collect();
+    let level = |x: f64| (255.0 * (0.5 * x + 0.5)).round().clamp(0.0, 255.0) as u8;
+    let normals = RgbaImage::from_fn(w, h, |i, j| match hits[(j * w + i) as usize] {
+        Some(hit) => image::Rgba([
+            level(hit.shading.x),
+            level(hit.shading.y),
+            level(hit.shading.z),
+            255,
+        ]),
+        None => image::Rgba([26, 26, 26, 255]),
+    });
+    let like_normals = |picture: &RgbaImage| {
+        let d = diff_images(picture, &normals);
+        d.mean_abs <= 1.0 && d.frac_over_8 <= 0.01
+    };
+    page.key("v");
+    assert_eq!(page.wait_for("view-shown"), "normals");
+    page.wait_for("ready");
+    let shown = wait_for_whole_picture(&page, "normals", like_normals);
+    let d = diff_images(&shown, &normals);
+    eprintln!(
+        "normals against the reference's: mean {:.4}, max {}",
+        d.mean_abs, d.max_abs
+    );
+    assert!(diff_images(&shown, &shaded).mean_abs > 20.0);
+    for view in ["geometric", "depth", "id"] {
+        page.key("v");
+        assert_eq!(page.wait_for("view-shown"), view);
+        page.wait_for("ready");
+    }
+    // One colour per shape: the most common colour of each shape's pixels
+    // covers all but its silhouette, and no two shapes share one.
+    let flat = |picture: &RgbaImage| {
+        let mut colours: std::collections::HashMap<_, std::collections::HashMap<[u8; 3], usize>> =
+            Default::default();
+        for (p, hit) in picture.pixels().zip(&hits) {
+            let shape = hit.map(|h| h.shape);
+            *colours
+                .entry(shape)
+                .or_default()
+                .entry([p[0], p[1], p[2]])
+                .or_default() += 1;
+        }
+        let mut seen = std::collections::HashSet::new();
+        colours.values().all(|counts| {
+            let all: usize = counts.values().sum();
+            let (colour, most) = counts.iter().max_by_key(|(_, n)| **n).unwrap();
+            most * 100 >= all * 97 && seen.insert(*colour)
+        })
+    };
+    let ids = wait_for_whole_picture(&page, "ids", flat);
+    eprintln!("id view: {} colours", distinct_colors(&ids, 64));
+    assert!(distinct_colors(&ids, 64) >= scene.shape_ids().len());
+}

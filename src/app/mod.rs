@@ -11,6 +11,7 @@
 
 mod controls;
 pub(crate) mod document;
+mod error_view;
 pub(crate) mod help;
 pub(crate) mod layout;
 mod mesh_files;

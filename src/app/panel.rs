@@ -62,6 +62,9 @@ pub struct ViewSettings {
     /// The colour bar of a scalar view, fitted to the traced image (shown,
     /// not edited).
     pub colour_bar: Option<ColourBar>,
+    /// What the view still waits for, after its legend in the status line
+    /// (the error view's reference, docs/views.md).
+    pub progress: Option<String>,
 }
 
 /// The frame budget while the view moves: 100 ms, ten frames a second,
@@ -89,6 +92,7 @@ impl Default for ViewSettings {
             min_weight: DEFAULT_MIN_WEIGHT,
             shown: View::Shaded,
             colour_bar: None,
+            progress: None,
         }
     }
 }

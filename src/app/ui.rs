@@ -192,8 +192,13 @@ pub fn draw(
         let message = editor.message.as_deref();
         let max_samples = editor.view.max_samples;
         // What a colour means in a view inside the tracer (docs/views.md).
-        let legend = (editor.view.shown != View::Shaded)
-            .then(|| editor.view.shown.legend(editor.view.colour_bar));
+        let legend = (editor.view.shown != View::Shaded).then(|| {
+            let legend = editor.view.shown.legend(editor.view.colour_bar);
+            match &editor.view.progress {
+                Some(progress) => format!("{legend}; {progress}"),
+                None => legend,
+            }
+        });
         let status = egui::Panel::bottom("status").show(ui, |ui| {
             status::show(ui, status, max_samples, legend.as_deref(), message)
         });

@@ -11,6 +11,7 @@ use web_time::{Duration, Instant};
 use winit::window::Window;
 
 use super::document::Document;
+use super::error_view::ErrorView;
 use super::layout::{self, Layout, LayoutReport};
 use super::pipelines::{self, PipelineCache};
 use super::shell::EguiLayer;
@@ -108,6 +109,8 @@ pub struct Viewer {
     /// The feature set of the pipelines drawing now (a shader reload keeps
     /// it: the old shader draws the scene until the new one is built).
     drawing: Option<ShaderOptions>,
+    /// The error view's f64 reference, traced beside the window.
+    error_view: ErrorView,
 }
 
 /// The state a frame starts from, to tell what the frame's UI changed.
@@ -149,6 +152,7 @@ impl Viewer {
             sample_clock: SampleClock::default(),
             deferred: None,
             drawing: None,
+            error_view: ErrorView::default(),
         }
     }
 
@@ -322,6 +326,7 @@ impl Viewer {
     /// A new feature set gets its own pipelines, and the scene waits for
     /// them (the last picture stays, the status line says "compiling").
     pub fn scene_changed(&mut self, before: Option<&Scene>) {
+        self.error_view.cancel();
         let shown = self.shown_scene();
         if self.gfx.is_some() && !self.pipelines_ready() {
             self.deferred = Some(shown);
@@ -424,6 +429,8 @@ impl Viewer {
         }
         if self.editor.view.shown != start.shown {
             self.editor.view.colour_bar = None;
+            self.editor.view.progress = None;
+            self.error_view.cancel();
             self.event(&format!("view-shown {}", self.editor.view.shown.name()));
             self.ensure_pipelines();
         }
@@ -549,7 +556,7 @@ impl Viewer {
         }
         self.sample_clock.update(samples, Instant::now());
         let fitted = shown.scalar() && traced && !dragging && samples > 0;
-        if fitted {
+        if fitted && shown != View::Error {
             // The colour bar of the image just traced, shown by the next frame.
             match gfx.viewport.fit_colour_bar(&gfx.gpu) {
                 Ok(bar) => self.editor.view.colour_bar = bar,
@@ -591,6 +598,46 @@ impl Viewer {
         }
         if delay < Duration::from_secs(5) {
             self.repaint_at = Some(Instant::now() + delay);
+        }
+        if shown == View::Error {
+            self.error_view_frame(fitted);
+        }
+    }
+
+    /// The error view's part of a frame (docs/views.md, "The error view"):
+    /// a picture just `traced` at rest starts its reference against the
+    /// GPU's radiance, read back; a level of the reference that came in
+    /// replaces the last on screen; while one is traced, the viewer looks
+    /// again a tenth of a second later.
+    fn error_view_frame(&mut self, traced: bool) {
+        if let Some(stride) = self.error_view.take_drawn() {
+            self.event(&format!("error-level stride={stride}"));
+        }
+        let scene = traced.then(|| self.shown_scene());
+        let Some(gfx) = &mut self.gfx else { return };
+        if let Some(scene) = scene {
+            let options = reference::ReferenceOptions {
+                triangles: self
+                    .drawing
+                    .as_ref()
+                    .map(|o| o.triangles)
+                    .unwrap_or_default(),
+                ..Default::default()
+            };
+            let size = gfx.viewport.traced_resolution();
+            match gfx.viewport.read_sums(&gfx.gpu) {
+                Ok(sums) => self.error_view.start(&scene, &options, size, sums),
+                Err(e) => log::error!("error view: {e}"),
+            }
+        }
+        if let Some(errors) = self.error_view.poll() {
+            self.editor.view.colour_bar = gfx.viewport.show_quantities(&gfx.gpu, &errors);
+            gfx.window.request_redraw();
+        }
+        self.editor.view.progress = Some(self.error_view.progress());
+        if self.error_view.busy() {
+            let soon = Instant::now() + Duration::from_millis(100);
+            self.repaint_at = Some(self.repaint_at.map_or(soon, |at| at.min(soon)));
         }
     }
 

@@ -34,6 +34,8 @@ pub struct ViewerOptions {
     pub size: Option<(u32, u32)>,
     /// Progressive refinement limit (samples per pixel).
     pub max_samples: Option<u32>,
+    /// What the picture shows at first (docs/views.md).
+    pub view: crate::gpu::View,
     /// Print one line per event on stdout (ready, saved, shader error, ...),
     /// for scripts and tests that drive the window.
     pub print_events: bool,
@@ -122,6 +124,7 @@ pub fn run(options: ViewerOptions) -> Result<(), ViewerError> {
     if let Some(n) = options.max_samples {
         viewer.editor.view.max_samples = n.max(1);
     }
+    viewer.editor.view.shown = options.view;
     let mut app = App {
         proxy,
         options,

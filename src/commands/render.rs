@@ -59,7 +59,8 @@ pub struct Args {
     /// What the picture shows: shaded (the Whitted picture), or a view
     /// inside the tracer, of the ray through each pixel's centre
     /// (docs/views.md): normals, geometric, depth, id, barycentric, nodes,
-    /// tests, nodes-all, tests-all, steps, bounces, shadow-rays.
+    /// tests, nodes-all, tests-all, steps, bounces, shadow-rays, error
+    /// (against the f64 reference, traced at every pixel).
     #[arg(long, default_value = "shaded", value_parser = View::from_name)]
     view: View,
 }
@@ -84,6 +85,41 @@ fn render_failure(e: RenderError) -> Failure {
     } else {
         Failure::Runtime(e.to_string())
     }
+}
+
+/// The error view of a rendered `renderer`: the f64 reference traced at
+/// every pixel centre (docs/views.md, "The error view"), the errors shown
+/// in place of the GPU's radiance. Returns their colour bar.
+fn show_error(
+    gpu: &Gpu,
+    renderer: &mut OffscreenRenderer,
+    scene: &crate::scene::Scene,
+    args: &Args,
+) -> Result<Option<crate::gpu::ColourBar>, Failure> {
+    let start = Instant::now();
+    let options = reference::ReferenceOptions {
+        triangles: args.triangles,
+        ..Default::default()
+    };
+    let prepared = reference::PreparedScene::with_options(scene, &options);
+    let image = reference::ErrorImage::traced(&prepared, args.width, args.height);
+    println!(
+        "reference: f64 at every pixel centre, {} threads, {:.1} ms",
+        rayon::current_num_threads(),
+        start.elapsed().as_secs_f64() * 1e3
+    );
+    let gpu_radiance = renderer.read_sums(gpu).map_err(gpu_failure)?;
+    let gpu_picture: Vec<glam::DVec3> = gpu_radiance
+        .chunks_exact(4)
+        .map(|q| glam::DVec3::new(q[0].into(), q[1].into(), q[2].into()))
+        .collect();
+    let gpu_picture =
+        reference::to_rgba8(&gpu_picture, args.width, args.height, scene.render.exposure);
+    let (flip, _) = crate::stress::metrics::flip(&image.rgba8(), &gpu_picture);
+    println!("FLIP of the GPU's picture against the reference's (mean): {flip:.4}");
+    renderer
+        .show_quantities(gpu, &image.quantities(&gpu_radiance))
+        .map_err(gpu_failure)
 }
 
 /// The GPU did not deliver the image.
@@ -169,7 +205,10 @@ pub fn run(args: &Args) -> Result<(), Failure> {
                 );
             }
         }
-        if args.view != View::Shaded {
+        if args.view == View::Error {
+            let bar = show_error(&gpu, &mut renderer, &scene, args)?;
+            println!("view {}", args.view.legend(bar));
+        } else if args.view != View::Shaded {
             let bar = renderer.fit_colour_bar(&gpu).map_err(gpu_failure)?;
             println!("view {}", args.view.legend(bar));
         }

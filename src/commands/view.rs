@@ -6,6 +6,8 @@ use std::path::PathBuf;
 use super::Failure;
 use crate::app::{ViewerError, ViewerOptions};
 use crate::cli::parse_size;
+use crate::gpu::View;
+use crate::scene::NamedOption;
 
 #[derive(clap::Args, Default)]
 pub struct Args {
@@ -21,6 +23,10 @@ pub struct Args {
     /// Progressive refinement limit in samples per pixel.
     #[arg(long, value_parser = clap::value_parser!(u32).range(1..=65536))]
     max_samples: Option<u32>,
+    /// What the picture shows at first (docs/views.md): shaded, or a view
+    /// inside the tracer, as `render --view`; `V` cycles on from it.
+    #[arg(long, default_value = "shaded", value_parser = View::from_name)]
+    view: View,
     /// Print one line per event (ready, saved, shader-error, ...) on stdout,
     /// for scripts and tests that drive the window.
     #[arg(long, hide = true)]
@@ -33,6 +39,7 @@ pub fn run(args: &Args) -> Result<(), Failure> {
         shaders: args.shaders.clone(),
         size: args.size,
         max_samples: args.max_samples,
+        view: args.view,
         print_events: args.print_events,
     };
     crate::app::run(options).map_err(|e| match e {

@@ -175,14 +175,30 @@ impl OffscreenRenderer {
         Ok(fitted)
     }
 
+    /// Shows `quantities` (four floats per pixel, row by row) in place of
+    /// the view's own, with a colour bar fitted to them: the error view's
+    /// errors ([`crate::reference::ErrorImage::quantities`]). Returns the
+    /// bar, `None` when nothing was shown (no quantities, another size).
+    pub fn show_quantities(
+        &mut self,
+        gpu: &Gpu,
+        quantities: &[f32],
+    ) -> Result<Option<ColourBar>, GpuWaitError> {
+        let shown = show_quantities(gpu, &mut self.scene, &self.accum, quantities);
+        if shown.is_some() {
+            // As in `fit_colour_bar`: this pass copies them and displays.
+            self.accumulate(gpu, 1)?;
+        }
+        Ok(shown)
+    }
+
     /// The per-pixel sums of the passes since the last [`Self::render`],
     /// four floats per pixel, row by row: the radiance (and 1 per pass), or
     /// in the ray-counting variant (`ShaderOptions::count_rays`) the rays
     /// traced by kind; in a view (`ShaderOptions::view`) its quantity at
     /// the pixel centre (`view_quantity` in `shaders/views.wgsl`).
     pub fn read_sums(&self, gpu: &Gpu) -> Result<Vec<f32>, GpuWaitError> {
-        let bytes = read_texels(gpu, self.accum.sum())?;
-        Ok(bytemuck::pod_collect_to_vec(&bytes))
+        read_sums(gpu, &self.accum)
     }
 
     /// Copies the last rendered image back to the CPU.
@@ -199,12 +215,38 @@ pub(super) fn fit_colour_bar(
     scene: &mut SceneBuffers,
     accum: &Accumulator,
 ) -> Result<Option<ColourBar>, GpuWaitError> {
-    let quantities: Vec<f32> = bytemuck::pod_collect_to_vec(&read_texels(gpu, accum.sum())?);
+    let quantities = read_sums(gpu, accum)?;
     let fitted = colour_bar(&quantities);
     if let Some(bar) = fitted {
         scene.set_view_range(bar.range);
     }
     Ok(fitted)
+}
+
+/// The current sums of `accum`, four floats per pixel, row by row
+/// (waited for).
+pub(super) fn read_sums(gpu: &Gpu, accum: &Accumulator) -> Result<Vec<f32>, GpuWaitError> {
+    Ok(bytemuck::pod_collect_to_vec(&read_texels(
+        gpu,
+        accum.sum(),
+    )?))
+}
+
+/// Writes `quantities` into `accum` in place of the traced ones and sets
+/// `scene`'s colour bar to fit them; the next pass encoded shows them.
+/// `None`, and nothing written, where they have no quantity or another size.
+pub(super) fn show_quantities(
+    gpu: &Gpu,
+    scene: &mut SceneBuffers,
+    accum: &Accumulator,
+    quantities: &[f32],
+) -> Option<ColourBar> {
+    let bar = colour_bar(quantities)?;
+    if !accum.write_sum(&gpu.queue, quantities) {
+        return None;
+    }
+    scene.set_view_range(bar.range);
+    Some(bar)
 }
 
 /// Copies an `Rgba8Unorm` texture back to the CPU and waits for it.

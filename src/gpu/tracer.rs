@@ -414,14 +414,17 @@ pub struct Accumulator {
 
 impl Accumulator {
     pub fn new(device: &wgpu::Device, pipelines: &Pipelines, width: u32, height: u32) -> Self {
-        // COPY_SRC: the ray-counting variant's counts are read back.
+        // COPY_SRC: the ray-counting variant's counts are read back;
+        // COPY_DST: the error view's errors are written in (`write_sum`).
         let textures: [wgpu::Texture; 2] = std::array::from_fn(|_| {
             render_target(
                 device,
                 "accumulated radiance",
                 (width, height),
                 ACCUM_FORMAT,
-                wgpu::TextureUsages::TEXTURE_BINDING | wgpu::TextureUsages::COPY_SRC,
+                wgpu::TextureUsages::TEXTURE_BINDING
+                    | wgpu::TextureUsages::COPY_SRC
+                    | wgpu::TextureUsages::COPY_DST,
             )
         });
         let views = textures
@@ -467,6 +470,28 @@ impl Accumulator {
     /// The texture that holds the current sum.
     pub fn sum(&self) -> &wgpu::Texture {
         &self.textures[self.front]
+    }
+
+    /// Replaces the current sum with `texels`, four floats per pixel, row
+    /// by row: the error view's errors, computed on the CPU from the view's
+    /// read-back (docs/views.md, "The error view"). Returns false, writing
+    /// nothing, when they are not of this size (resized meanwhile).
+    pub fn write_sum(&self, queue: &wgpu::Queue, texels: &[f32]) -> bool {
+        let (width, height) = self.size;
+        if texels.len() != 4 * width as usize * height as usize {
+            return false;
+        }
+        queue.write_texture(
+            self.sum().as_image_copy(),
+            bytemuck::cast_slice(texels),
+            wgpu::TexelCopyBufferLayout {
+                offset: 0,
+                bytes_per_row: Some(16 * width),
+                rows_per_image: Some(height),
+            },
+            self.sum().size(),
+        );
+        true
     }
 
     /// Forgets the accumulated samples, and the sample in progress (the

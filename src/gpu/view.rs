@@ -37,6 +37,9 @@ crate::named_option! {
         Bounces = "bounces",
         /// Shadow rays cast by the pixel's ray tree.
         ShadowRays = "shadow-rays",
+        /// How far the GPU's picture is from the f64 reference's, in 8-bit
+        /// levels (`reference::ErrorImage`).
+        Error = "error",
     }
 }
 
@@ -75,6 +78,7 @@ impl View {
             View::Steps => "sphere-tracing and root-finding steps of all rays",
             View::Bounces => "deepest level of the ray tree (0: the camera ray)",
             View::ShadowRays => "shadow rays cast",
+            View::Error => "|GPU - f64 reference| in 8-bit sRGB levels, largest of r g b",
         };
         match bar {
             Some(bar) if self.scalar() => {

@@ -421,6 +421,20 @@ impl Viewport {
         super::offscreen::fit_colour_bar(gpu, &mut self.scene, &self.accum)
     }
 
+    /// The view's quantities of the image traced, four floats per pixel,
+    /// row by row (waited for): the error view compares them with the
+    /// reference.
+    pub fn read_sums(&self, gpu: &Gpu) -> Result<Vec<f32>, GpuWaitError> {
+        super::offscreen::read_sums(gpu, &self.accum)
+    }
+
+    /// Shows `quantities` in place of the view's own (the error view's
+    /// errors) with a colour bar fitted to them, from the next frame on;
+    /// returns the bar, `None` when nothing was shown.
+    pub fn show_quantities(&mut self, gpu: &Gpu, quantities: &[f32]) -> Option<ColourBar> {
+        super::offscreen::show_quantities(gpu, &mut self.scene, &self.accum, quantities)
+    }
+
     /// The current image at the traced resolution, without anything drawn
     /// on top, as 8-bit sRGB (for screenshots and tests).
     pub fn capture(&mut self, gpu: &Gpu) -> Result<image::RgbaImage, GpuWaitError> {

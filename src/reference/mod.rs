@@ -15,12 +15,14 @@
 //! - `shade.rs`: Whitted's recursive shading;
 //! - `output.rs`: exposure, sRGB and 8 bits;
 //! - `views.rs`: what the views inside the tracer show of a first hit;
+//! - `error.rs`: the error view's reference, coarse to fine, and its measure;
 //! - `record.rs`: what `shade.rs` tells while it traces, ray by ray;
 //! - `ray_tree.rs`: a pixel's ray tree, every ray recorded as `shade.rs` traces it.
 //!
 //! Here: the scene prepared for tracing, and the renderers over it.
 
 mod camera;
+mod error;
 mod hit;
 pub mod intersect;
 mod output;
@@ -39,6 +41,7 @@ use crate::bvh::Bvh;
 use crate::scene::{Material, Scene, TriangleTest};
 
 pub use camera::{Camera, camera_ray};
+pub use error::ErrorImage;
 pub use intersect::ShapeId;
 pub use output::{encode_srgb8, to_rgba8};
 pub use ray_tree::{
