@@ -18,6 +18,7 @@ mod orbit;
 mod overlay;
 pub(crate) mod panel;
 pub(crate) mod pipelines;
+pub(crate) mod ray_tree;
 pub(crate) mod shell;
 mod status;
 pub(crate) mod ui;

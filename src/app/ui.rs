@@ -7,6 +7,7 @@ use egui::{Key, KeyboardShortcut, Modifiers, PointerButton, Sense};
 use super::document::Document;
 use super::help::Help;
 use super::panel::{self, PanelAction, PanelState, ViewSettings};
+use super::ray_tree::PixelTree;
 use super::status::MessageAge;
 use super::{controls, help, layout, overlay, status};
 use crate::gpu::View;
@@ -36,6 +37,9 @@ pub struct Editor {
     /// old.
     pub message: Option<String>,
     message_age: MessageAge,
+    /// The pixel's ray tree shown in the panel and drawn over the picture
+    /// (docs/ray-tree.md); Esc or "Clear" forgets it.
+    pub ray_tree: Option<PixelTree>,
 }
 
 impl Default for Editor {
@@ -52,6 +56,7 @@ impl Default for Editor {
             confirm_quit: false,
             message: None,
             message_age: MessageAge::default(),
+            ray_tree: None,
         }
     }
 }
@@ -140,6 +145,9 @@ pub struct ViewInput {
     pub zoom: f64,
     pub click: Option<(f64, f64)>,
     pub double_click: Option<(f64, f64)>,
+    /// Shift+click, or `T` with the mouse over the picture: that pixel's
+    /// ray tree (docs/ray-tree.md).
+    pub ray_tree: Option<(f64, f64)>,
     /// A camera drag is in progress (render at the interaction scale).
     pub dragging: bool,
     /// A widget of the panel is being dragged (a slider: Julia's c, a
@@ -170,6 +178,11 @@ pub fn draw(
                 ui.set_min_width(ui.available_width());
                 menu_bar(ui, host, &mut commands);
                 egui::ScrollArea::vertical().show(ui, |ui| {
+                    if let Some(tree) = &editor.ray_tree
+                        && panel::ray_tree_section(ui, tree)
+                    {
+                        editor.ray_tree = None;
+                    }
                     let actions = panel::show(
                         ui,
                         &mut doc.scene,
@@ -312,8 +325,11 @@ fn shortcuts(ui: &mut egui::Ui, editor: &mut Editor) -> Vec<Command> {
         if plain(i, Key::F11) {
             commands.push(Command::ToggleFullscreen);
         }
+        // Esc forgets a ray tree first, a second Esc leaves fullscreen.
         if plain(i, Key::Escape) {
-            commands.push(Command::LeaveFullscreen);
+            if editor.ray_tree.take().is_none() {
+                commands.push(Command::LeaveFullscreen);
+            }
         }
     });
     commands
@@ -342,10 +358,20 @@ fn view_input(ui: &mut egui::Ui) -> ViewInput {
         input.zoom = f64::from(scroll) / 50.0;
     }
     let pointer = response.interact_pointer_pos().map(physical);
+    let shift = ui.input(|i| i.modifiers.shift);
     if response.double_clicked() {
         input.double_click = pointer;
+    } else if response.clicked() && shift {
+        input.ray_tree = pointer;
     } else if response.clicked() {
         input.click = pointer;
+    }
+    let over = response.hover_pos().map(physical);
+    if over.is_some()
+        && !ui.ctx().egui_wants_keyboard_input()
+        && ui.input_mut(|i| i.consume_key(Modifiers::NONE, Key::T))
+    {
+        input.ray_tree = over;
     }
     input
 }

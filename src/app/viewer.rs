@@ -13,20 +13,24 @@ use winit::window::Window;
 use super::document::Document;
 use super::layout::{self, Layout, LayoutReport};
 use super::pipelines::{self, PipelineCache};
+use super::ray_tree::{GpuAnswer, PixelTree};
 use super::shell::EguiLayer;
 use super::status::SampleClock;
 use super::ui::{self, Command, Editor, Host, Status, ViewInput};
 use super::{orbit, panel};
 use crate::gpu::{
-    FrameStatus, Gpu, Pipelines, Refine, ShaderOptions, ShaderSource, View, Viewport,
+    FrameStatus, Gpu, LineOverlay, Pipelines, Refine, ShaderOptions, ShaderSource, View, Viewport,
 };
 use crate::reference;
-use crate::scene::{NamedOption, Scene, SceneError};
+use crate::scene::{Camera, NamedOption, Scene, SceneError};
 use crate::shader_params::SourceParams;
 
 /// Width of the selection outline in logical pixels (scaled by the window's
 /// DPI factor).
 const OUTLINE_WIDTH: f64 = 2.0;
+
+/// Width of the ray tree's lines over the picture in logical pixels.
+const RAY_WIDTH: f64 = 2.0;
 
 /// Pipelines to build for `options` from `source`, handed to the program's
 /// worker: a thread natively, a future in the browser. The worker reports
@@ -63,6 +67,8 @@ pub struct Graphics {
     pub viewport: Viewport,
     pub pipelines: PipelineCache,
     pub egui: EguiLayer,
+    /// A pixel's ray tree drawn over the picture (docs/ray-tree.md).
+    pub lines: LineOverlay,
 }
 
 /// What the program around the viewer provides.
@@ -108,6 +114,17 @@ pub struct Viewer {
     /// The feature set of the pipelines drawing now (a shader reload keeps
     /// it: the old shader draws the scene until the new one is built).
     drawing: Option<ShaderOptions>,
+    /// Ray trees asked for so far (numbers the trees).
+    trees_asked: u64,
+    /// What the line overlay holds: the tree it draws, projected with this
+    /// camera for this window size; `None`: nothing.
+    lines_for: Option<(u64, Camera, (u32, u32))>,
+    /// The GPU's answer for the tree shown came in this frame: told once
+    /// the frame is on screen.
+    tree_answered: bool,
+    /// Traces the GPU's trees off the input path.
+    #[cfg(not(target_arch = "wasm32"))]
+    tree_worker: super::ray_tree::worker::Worker,
 }
 
 /// The state a frame starts from, to tell what the frame's UI changed.
@@ -149,6 +166,11 @@ impl Viewer {
             sample_clock: SampleClock::default(),
             deferred: None,
             drawing: None,
+            trees_asked: 0,
+            lines_for: None,
+            tree_answered: false,
+            #[cfg(not(target_arch = "wasm32"))]
+            tree_worker: Default::default(),
         }
     }
 
@@ -188,13 +210,18 @@ impl Viewer {
         let shown = self.shown_scene();
         let viewport = Viewport::new(&gpu, surface, (size.width, size.height), first, &shown);
         let egui = EguiLayer::new(&window, &gpu, viewport.surface_format());
+        let lines = LineOverlay::new(&gpu.device, viewport.surface_format());
         self.gfx = Some(Graphics {
             window,
             gpu,
             viewport,
             pipelines: cache,
             egui,
+            lines,
         });
+        self.lines_for = None;
+        #[cfg(not(target_arch = "wasm32"))]
+        self.tree_worker.forget();
         self.deferred = None;
         self.drawing = Some(options);
         self.upload_scene(&shown);
@@ -375,6 +402,7 @@ impl Viewer {
             shown: self.editor.view.shown,
             at: Instant::now(),
         };
+        self.take_tree_answer();
         let gfx = self.gfx.as_mut().expect("drawing needs graphics");
         let status = Status {
             frame_time: gfx.viewport.last_frame_time(),
@@ -428,12 +456,113 @@ impl Viewer {
             self.ensure_pipelines();
         }
         let moving = ui.input.dragging || ui.input.widget_dragging;
+        let had_lines = self.lines_for.is_some();
+        self.project_lines();
         self.paint(ui.output, moving, start.at);
         if picked {
             // Once the frame with its outline is on screen.
             self.event(&format!("selected {:?}", self.editor.panel.selection));
         }
+        if let Some(tree) = &self.editor.ray_tree
+            && std::mem::take(&mut self.tree_answered)
+        {
+            self.event(&tree.event());
+        }
+        if had_lines && self.lines_for.is_none() {
+            self.event("ray-tree-cleared");
+        }
         changed
+    }
+
+    /// The tree of the pixel at `(x, y)` (window pixels): the reference's
+    /// at once, the GPU's from the worker (natively; the page has none).
+    fn ask_ray_tree(&mut self, (x, y): (f64, f64)) {
+        let Some(gfx) = &self.gfx else { return };
+        let size = gfx.window.inner_size();
+        let size = (size.width, size.height);
+        if x < 0.0 || y < 0.0 || size.0 == 0 || size.1 == 0 {
+            return;
+        }
+        let pixel = ((x as u32).min(size.0 - 1), (y as u32).min(size.1 - 1));
+        self.trees_asked += 1;
+        let scene = self.shown_scene();
+        let tree = PixelTree::new(&scene, size, pixel, self.trees_asked);
+        #[cfg(not(target_arch = "wasm32"))]
+        {
+            let window = gfx.window.clone();
+            let request = super::ray_tree::worker::Request {
+                gpu: gfx.gpu.clone(),
+                source: self.shader_params.apply(&self.shaders),
+                options: ShaderOptions::for_scene(&scene),
+                scene,
+                size,
+                pixel,
+                number: self.trees_asked,
+            };
+            self.tree_worker
+                .trace(request, move || window.request_redraw());
+        }
+        #[cfg(target_arch = "wasm32")]
+        let tree = {
+            let mut tree = tree;
+            tree.answered(GpuAnswer::Missing(
+                "the page cannot wait for the GPU's readback; the window program shows it".into(),
+            ));
+            tree
+        };
+        self.editor.message = Some(tree.summary());
+        self.event(&format!("ray-tree-asked {},{}", pixel.0, pixel.1));
+        self.editor.ray_tree = Some(tree);
+    }
+
+    /// Takes the worker's answer for the tree shown (one for a tree
+    /// forgotten or replaced since is dropped).
+    fn take_tree_answer(&mut self) {
+        #[cfg(not(target_arch = "wasm32"))]
+        while let Some((number, answer)) = self.tree_worker.take() {
+            let Some(tree) = &mut self.editor.ray_tree else {
+                continue;
+            };
+            if tree.number == number && tree.gpu == GpuAnswer::Tracing {
+                if let GpuAnswer::Missing(why) = &answer {
+                    log::error!("the GPU's ray tree: {why}");
+                }
+                tree.answered(answer);
+                self.editor.message = Some(tree.summary());
+                self.tree_answered = true;
+            }
+        }
+    }
+
+    /// Projects the tree's rays with the camera of the picture, when the
+    /// tree, the camera or the window changed: they stay where they are in
+    /// the scene while the camera orbits.
+    fn project_lines(&mut self) {
+        let Some(gfx) = &mut self.gfx else { return };
+        let size = gfx.window.inner_size();
+        let wanted = self.editor.ray_tree.as_ref().map(|tree| {
+            (
+                tree.number,
+                self.doc.scene.camera.clone(),
+                (size.width, size.height),
+            )
+        });
+        if wanted == self.lines_for {
+            return;
+        }
+        let segments = match &self.editor.ray_tree {
+            Some(tree) => tree.segments.as_slice(),
+            None => &[],
+        };
+        let width = (RAY_WIDTH * gfx.window.scale_factor()).round() as u32;
+        gfx.lines.set(
+            &gfx.gpu.device,
+            &self.doc.scene.camera,
+            ((size.width, size.height), width),
+            segments,
+        );
+        self.lines_for = wanted;
+        gfx.window.request_redraw();
     }
 
     /// Shows `doc` instead of the document open now, unsaved edits or not
@@ -466,6 +595,9 @@ impl Viewer {
             orbit::zoom(camera, input.zoom, start);
         } else {
             self.drag_start_distance = None;
+        }
+        if let Some(at) = input.ray_tree {
+            self.ask_ray_tree(at);
         }
         let click = input.click.or(input.double_click);
         if let Some((x, y)) = click {
@@ -517,9 +649,12 @@ impl Viewer {
 
         let painting = gfx.egui.prepare(&gfx.gpu, &gfx.window, output);
         let egui = &mut gfx.egui;
+        let lines = &gfx.lines;
         let gpu = &gfx.gpu;
         gfx.window.pre_present_notify();
+        // The ray tree over the picture, under the UI.
         let status = gfx.viewport.frame(gpu, refine, |encoder, view| {
+            lines.draw(encoder, view);
             egui.paint(gpu, encoder, view, &painting)
         });
         let delay = gfx.egui.finish(painting);

@@ -1,0 +1,219 @@
+//! A pixel's ray tree in the viewer (docs/ray-tree.md) as a person uses it,
+//! under Xvfb (tests/common/xwindow.rs): Shift+click on the glass sphere of
+//! the Whitted scene shows the tree in the panel, both trees alike, and
+//! draws its rays over the picture where they project; they stay in the
+//! scene while the camera orbits, and Esc clears them.
+
+mod common;
+
+use common::xwindow::{Display, Rect, Window};
+use glam::DVec3;
+use image::RgbaImage;
+use raysandbox::gpu::{DEFAULT_MIN_WEIGHT, project};
+use raysandbox::reference::{self, PreparedScene, RayKind};
+use raysandbox::scene::{Camera, Scene};
+
+const SIZE: (u32, u32) = (800, 450);
+
+/// The colour of refracted rays over the picture
+/// (`REFRACTED_COLOUR` in src/app/ray_tree.rs): pure green, which the
+/// Whitted scene's picture has nowhere.
+fn refracted_colour(p: &image::Rgba<u8>) -> bool {
+    p[0] < 40 && p[1] > 215 && p[2] < 40
+}
+
+/// The part of the window right of the panel and above the status line.
+fn view(viewer: &Window) -> Rect {
+    let panel = viewer.part("panel");
+    let status = viewer.part("status");
+    let x = panel.right() + 16;
+    Rect {
+        x,
+        y: 0,
+        w: SIZE.0 as i32 - x,
+        h: status.y,
+    }
+}
+
+/// The pixels of `area` in the refracted rays' colour.
+fn green_pixels(image: &RgbaImage, area: Rect) -> Vec<(i32, i32)> {
+    let (x0, y0, w, h) = area.crop();
+    (y0..y0 + h)
+        .flat_map(|y| (x0..x0 + w).map(move |x| (x, y)))
+        .filter(|&(x, y)| refracted_colour(image.get_pixel(x, y)))
+        .map(|(x, y)| (x as i32, y as i32))
+        .collect()
+}
+
+/// The refracted rays of the tree of `pixel` of `scene`, projected with
+/// `camera` into the window: segments in window pixels, cut where they pass
+/// behind the eye (as the GPU clips them).
+fn projected_refracted(scene: &Scene, pixel: (u32, u32), camera: &Camera) -> Vec<[(f64, f64); 2]> {
+    let mut scene = scene.clone();
+    scene.render.min_weight = scene.render.min_weight.max(DEFAULT_MIN_WEIGHT);
+    let tree = reference::ray_tree(
+        &PreparedScene::new(&scene),
+        SIZE.0,
+        SIZE.1,
+        pixel.0,
+        pixel.1,
+    );
+    let aspect = f64::from(SIZE.0) / f64::from(SIZE.1);
+    let clip = |p: DVec3| project(camera, aspect, p).map(f64::from);
+    let to_window = |c: [f64; 4]| {
+        (
+            (c[0] / c[3] + 1.0) / 2.0 * f64::from(SIZE.0),
+            (1.0 - c[1] / c[3]) / 2.0 * f64::from(SIZE.1),
+        )
+    };
+    let near = 0.01 * (camera.from - camera.to).length();
+    tree.rays
+        .iter()
+        .filter(|r| r.kind == RayKind::Refracted)
+        .filter_map(|r| {
+            // A ray that misses is drawn some way on: all of it lies on
+            // this far longer segment.
+            let far = r.origin + 1e3 * scene.view_scale() * r.dir;
+            let (mut a, mut b) = (r.origin, r.end().unwrap_or(far));
+            let (wa, wb) = (clip(a)[3], clip(b)[3]);
+            if wa < near && wb < near {
+                return None;
+            }
+            if wa < near {
+                a = a + (near - wa) / (wb - wa) * (b - a);
+            } else if wb < near {
+                b = a + (near - wa) / (wb - wa) * (b - a);
+            }
+            Some([to_window(clip(a)), to_window(clip(b))])
+        })
+        .collect()
+}
+
+/// Distance from `p` to the segment `[a, b]`.
+fn distance((px, py): (f64, f64), [a, b]: [(f64, f64); 2]) -> f64 {
+    let (dx, dy) = (b.0 - a.0, b.1 - a.1);
+    let length2 = dx * dx + dy * dy;
+    let s = if length2 > 0.0 {
+        (((px - a.0) * dx + (py - a.1) * dy) / length2).clamp(0.0, 1.0)
+    } else {
+        0.0
+    };
+    (px - a.0 - s * dx).hypot(py - a.1 - s * dy)
+}
+
+/// Green pixels in the view, all on the projected refracted rays (within
+/// the lines' width), and how many.
+fn assert_on_the_rays(image: &RgbaImage, area: Rect, rays: &[[(f64, f64); 2]]) -> Vec<(i32, i32)> {
+    let green = green_pixels(image, area);
+    let off: Vec<_> = green
+        .iter()
+        .filter(|&&(x, y)| {
+            let centre = (f64::from(x) + 0.5, f64::from(y) + 0.5);
+            rays.iter().all(|&s| distance(centre, s) > 3.0)
+        })
+        .collect();
+    println!(
+        "{} green pixels, {} off the projected rays {rays:?}",
+        green.len(),
+        off.len()
+    );
+    assert!(
+        green.len() >= 20,
+        "too few refracted ray pixels: {}",
+        green.len()
+    );
+    assert!(
+        off.len() * 50 <= green.len(),
+        "green pixels off the refracted rays: {:?}",
+        &off[..off.len().min(20)]
+    );
+    green
+}
+
+#[test]
+fn shift_click_shows_a_pixels_ray_tree_which_stays_in_the_scene_while_orbiting() {
+    let Some(display) = Display::start() else {
+        return;
+    };
+    let dir = common::temp_dir("ray-tree-window", "orbit");
+    let path = dir.join("whitted.toml");
+    std::fs::copy(common::scenes_dir().join("whitted.toml"), &path).unwrap();
+    let path_text = path.to_str().unwrap();
+    let mut viewer = Window::open(&display, &["view", path_text, "--max-samples", "1"], SIZE);
+    let area = view(&viewer);
+    let before = viewer.capture();
+    assert!(
+        green_pixels(&before, area).is_empty(),
+        "green before any tree"
+    );
+
+    // Shift+click on the glass sphere (the middle of the right half). The
+    // window needs the keyboard focus to see Shift held.
+    viewer.xdotool(&["windowfocus", "--sync", &viewer.id]);
+    let (x, y) = area.at(0.45, 0.45);
+    let (x, y) = (x.to_string(), y.to_string());
+    viewer.xdotool(&["mousemove", "--window", &viewer.id, &x, &y]);
+    viewer.xdotool(&["keydown", "shift", "click", "1", "keyup", "shift"]);
+    let asked = viewer.wait_for("ray-tree-asked");
+    let (px, py) = asked.split_once(',').expect("X,Y");
+    let pixel: (u32, u32) = (px.parse().unwrap(), py.parse().unwrap());
+    assert_eq!(pixel, (x.parse().unwrap(), y.parse().unwrap()));
+    // The GPU's tree, traced on the worker thread, has as many rays.
+    let answered = viewer.wait_for("ray-tree ");
+    println!("{answered}");
+    let rays = |name: &str| -> usize {
+        let field = answered
+            .split_whitespace()
+            .find_map(|f| f.strip_prefix(&format!("{name}=")))
+            .unwrap_or_else(|| panic!("{name} in {answered:?}"));
+        field
+            .parse()
+            .unwrap_or_else(|_| panic!("{name} in {answered:?}"))
+    };
+    assert!(rays("rays") > 4, "{answered}");
+    assert_eq!(rays("rays"), rays("gpu"), "{answered}");
+    // The panel shows the section, and it was not a selection.
+    viewer.part("ray-tree");
+    assert!(
+        viewer
+            .events_within(std::time::Duration::from_millis(500))
+            .iter()
+            .all(|e| !e.contains("selected")),
+        "Shift+click selected"
+    );
+
+    let scene = Scene::load(&path).unwrap();
+    let drawn = viewer.capture();
+    drawn.save(dir.join("drawn.png")).unwrap();
+    let first = assert_on_the_rays(
+        &drawn,
+        area,
+        &projected_refracted(&scene, pixel, &scene.camera),
+    );
+
+    // Orbit: the rays stay where they are in the scene, so they move on
+    // the screen, onto the projection with the new camera.
+    viewer.drag("1", area.at(0.5, 0.8), area.at(0.8, 0.8));
+    viewer.wait_for("ready");
+    viewer.key("ctrl+s");
+    viewer.wait_for("saved");
+    let orbited = Scene::load(&path).unwrap();
+    assert_ne!(orbited.camera.from, scene.camera.from, "the drag orbited");
+    let moved = viewer.capture();
+    moved.save(dir.join("orbited.png")).unwrap();
+    let second = assert_on_the_rays(
+        &moved,
+        area,
+        &projected_refracted(&scene, pixel, &orbited.camera),
+    );
+    assert_ne!(first, second, "the rays moved on the screen");
+
+    // Esc clears them.
+    viewer.key("Escape");
+    viewer.wait_for("ray-tree-cleared");
+    let cleared = viewer.capture();
+    assert!(
+        green_pixels(&cleared, area).is_empty(),
+        "rays left after Esc"
+    );
+}
