@@ -326,10 +326,8 @@ fn shortcuts(ui: &mut egui::Ui, editor: &mut Editor) -> Vec<Command> {
             commands.push(Command::ToggleFullscreen);
         }
         // Esc forgets a ray tree first, a second Esc leaves fullscreen.
-        if plain(i, Key::Escape) {
-            if editor.ray_tree.take().is_none() {
-                commands.push(Command::LeaveFullscreen);
-            }
+        if plain(i, Key::Escape) && editor.ray_tree.take().is_none() {
+            commands.push(Command::LeaveFullscreen);
         }
     });
     commands
