@@ -6,6 +6,8 @@
 
 mod common;
 
+use std::path::Path;
+
 use common::xwindow::{Display, Rect, Window};
 use glam::DVec3;
 use image::RgbaImage;
@@ -101,10 +103,18 @@ fn distance((px, py): (f64, f64), [a, b]: [(f64, f64); 2]) -> f64 {
     (px - a.0 - s * dx).hypot(py - a.1 - s * dy)
 }
 
-/// Green pixels in the view, all on the projected refracted rays (within
-/// the lines' width), and how many.
-fn assert_on_the_rays(image: &RgbaImage, area: Rect, rays: &[[(f64, f64); 2]]) -> Vec<(i32, i32)> {
-    let green = green_pixels(image, area);
+/// The green pixels of the window's view, all on the projected refracted
+/// rays (within the lines' width); the capture is kept in `file`, to be
+/// looked at.
+fn captured_on_the_rays(
+    viewer: &Window,
+    area: Rect,
+    file: &Path,
+    rays: &[[(f64, f64); 2]],
+) -> Vec<(i32, i32)> {
+    let image = viewer.capture();
+    image.save(file).unwrap();
+    let green = green_pixels(&image, area);
     let off: Vec<_> = green
         .iter()
         .filter(|&&(x, y)| {
@@ -183,13 +193,8 @@ fn shift_click_shows_a_pixels_ray_tree_which_stays_in_the_scene_while_orbiting()
     );
 
     let scene = Scene::load(&path).unwrap();
-    let drawn = viewer.capture();
-    drawn.save(dir.join("drawn.png")).unwrap();
-    let first = assert_on_the_rays(
-        &drawn,
-        area,
-        &projected_refracted(&scene, pixel, &scene.camera),
-    );
+    let rays = projected_refracted(&scene, pixel, &scene.camera);
+    let first = captured_on_the_rays(&viewer, area, &dir.join("drawn.png"), &rays);
 
     // Orbit: the rays stay where they are in the scene, so they move on
     // the screen, onto the projection with the new camera.
@@ -199,13 +204,8 @@ fn shift_click_shows_a_pixels_ray_tree_which_stays_in_the_scene_while_orbiting()
     viewer.wait_for("saved");
     let orbited = Scene::load(&path).unwrap();
     assert_ne!(orbited.camera.from, scene.camera.from, "the drag orbited");
-    let moved = viewer.capture();
-    moved.save(dir.join("orbited.png")).unwrap();
-    let second = assert_on_the_rays(
-        &moved,
-        area,
-        &projected_refracted(&scene, pixel, &orbited.camera),
-    );
+    let rays = projected_refracted(&scene, pixel, &orbited.camera);
+    let second = captured_on_the_rays(&viewer, area, &dir.join("orbited.png"), &rays);
     assert_ne!(first, second, "the rays moved on the screen");
 
     // Esc clears them.
