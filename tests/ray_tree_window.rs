@@ -2,15 +2,17 @@
 //! under Xvfb (tests/common/xwindow.rs): Shift+click on the glass sphere of
 //! the Whitted scene shows the tree in the panel, both trees alike, and
 //! draws its rays over the picture where they project; they stay in the
-//! scene while the camera orbits, and Esc clears them.
+//! scene while the camera orbits, and Esc clears them. `C` shows the
+//! scene's camera from an observer's view, which follows the panel's
+//! camera fields and orbits without moving the scene's camera.
 
 mod common;
 
-use std::path::Path;
+use std::path::{Path, PathBuf};
 
 use common::xwindow::{Display, Rect, Window};
 use glam::DVec3;
-use image::RgbaImage;
+use image::{Rgba, RgbaImage};
 use raysandbox::gpu::{DEFAULT_MIN_WEIGHT, project};
 use raysandbox::reference::{self, PreparedScene, RayKind};
 use raysandbox::scene::{Camera, Scene};
@@ -20,7 +22,7 @@ const SIZE: (u32, u32) = (800, 450);
 /// The colour of refracted rays over the picture
 /// (`REFRACTED_COLOUR` in src/app/ray_tree.rs): pure green, which the
 /// Whitted scene's picture has nowhere.
-fn refracted_colour(p: &image::Rgba<u8>) -> bool {
+fn refracted_colour(p: &Rgba<u8>) -> bool {
     p[0] < 40 && p[1] > 215 && p[2] < 40
 }
 
@@ -37,14 +39,44 @@ fn view(viewer: &Window) -> Rect {
     }
 }
 
-/// The pixels of `area` in the refracted rays' colour.
-fn green_pixels(image: &RgbaImage, area: Rect) -> Vec<(i32, i32)> {
+/// The pixels of `area` whose colour passes `colour`.
+fn pixels(image: &RgbaImage, area: Rect, colour: fn(&Rgba<u8>) -> bool) -> Vec<(i32, i32)> {
     let (x0, y0, w, h) = area.crop();
     (y0..y0 + h)
         .flat_map(|y| (x0..x0 + w).map(move |x| (x, y)))
-        .filter(|&(x, y)| refracted_colour(image.get_pixel(x, y)))
+        .filter(|&(x, y)| colour(image.get_pixel(x, y)))
         .map(|(x, y)| (x as i32, y as i32))
         .collect()
+}
+
+/// The pixels of `area` in the refracted rays' colour.
+fn green_pixels(image: &RgbaImage, area: Rect) -> Vec<(i32, i32)> {
+    pixels(image, area, refracted_colour)
+}
+
+/// A copy of the Whitted scene in a fresh folder (the test saves it),
+/// open in a window refined to one sample per pixel.
+fn open_whitted<'d>(display: &'d Display, test: &str) -> (Window<'d>, PathBuf) {
+    let dir = common::temp_dir("ray-tree-window", test);
+    let path = dir.join("whitted.toml");
+    std::fs::copy(common::scenes_dir().join("whitted.toml"), &path).unwrap();
+    let args = ["view", path.to_str().unwrap(), "--max-samples", "1"];
+    (Window::open(display, &args, SIZE), path)
+}
+
+/// The window's pixels, kept as `name` beside the scene file, to be
+/// looked at.
+fn capture_kept(viewer: &Window, path: &Path, name: &str) -> RgbaImage {
+    let image = viewer.capture();
+    image.save(path.with_file_name(name)).unwrap();
+    image
+}
+
+/// Ctrl+S, then the scene as saved.
+fn saved(viewer: &mut Window, path: &Path) -> Scene {
+    viewer.key("ctrl+s");
+    viewer.wait_for("saved");
+    Scene::load(path).unwrap()
 }
 
 /// The refracted rays of the tree of `pixel` of `scene`, projected with
@@ -103,18 +135,10 @@ fn distance((px, py): (f64, f64), [a, b]: [(f64, f64); 2]) -> f64 {
     (px - a.0 - s * dx).hypot(py - a.1 - s * dy)
 }
 
-/// The green pixels of the window's view, all on the projected refracted
-/// rays (within the lines' width); the capture is kept in `file`, to be
-/// looked at.
-fn captured_on_the_rays(
-    viewer: &Window,
-    area: Rect,
-    file: &Path,
-    rays: &[[(f64, f64); 2]],
-) -> Vec<(i32, i32)> {
-    let image = viewer.capture();
-    image.save(file).unwrap();
-    let green = green_pixels(&image, area);
+/// The green pixels of `image`'s view `area`, all on the projected
+/// refracted rays (within the lines' width).
+fn on_the_rays(image: &RgbaImage, area: Rect, rays: &[[(f64, f64); 2]]) -> Vec<(i32, i32)> {
+    let green = green_pixels(image, area);
     let off: Vec<_> = green
         .iter()
         .filter(|&&(x, y)| {
@@ -145,11 +169,7 @@ fn shift_click_shows_a_pixels_ray_tree_which_stays_in_the_scene_while_orbiting()
     let Some(display) = Display::start() else {
         return;
     };
-    let dir = common::temp_dir("ray-tree-window", "orbit");
-    let path = dir.join("whitted.toml");
-    std::fs::copy(common::scenes_dir().join("whitted.toml"), &path).unwrap();
-    let path_text = path.to_str().unwrap();
-    let mut viewer = Window::open(&display, &["view", path_text, "--max-samples", "1"], SIZE);
+    let (mut viewer, path) = open_whitted(&display, "orbit");
     let area = view(&viewer);
     let before = viewer.capture();
     assert!(
@@ -194,18 +214,16 @@ fn shift_click_shows_a_pixels_ray_tree_which_stays_in_the_scene_while_orbiting()
 
     let scene = Scene::load(&path).unwrap();
     let rays = projected_refracted(&scene, pixel, &scene.camera);
-    let first = captured_on_the_rays(&viewer, area, &dir.join("drawn.png"), &rays);
+    let first = on_the_rays(&capture_kept(&viewer, &path, "drawn.png"), area, &rays);
 
     // Orbit: the rays stay where they are in the scene, so they move on
     // the screen, onto the projection with the new camera.
     viewer.drag("1", area.at(0.5, 0.8), area.at(0.8, 0.8));
     viewer.wait_for("ready");
-    viewer.key("ctrl+s");
-    viewer.wait_for("saved");
-    let orbited = Scene::load(&path).unwrap();
+    let orbited = saved(&mut viewer, &path);
     assert_ne!(orbited.camera.from, scene.camera.from, "the drag orbited");
     let rays = projected_refracted(&scene, pixel, &orbited.camera);
-    let second = captured_on_the_rays(&viewer, area, &dir.join("orbited.png"), &rays);
+    let second = on_the_rays(&capture_kept(&viewer, &path, "orbited.png"), area, &rays);
     assert_ne!(first, second, "the rays moved on the screen");
 
     // Esc clears them.
@@ -216,4 +234,71 @@ fn shift_click_shows_a_pixels_ray_tree_which_stays_in_the_scene_while_orbiting()
         green_pixels(&cleared, area).is_empty(),
         "rays left after Esc"
     );
+}
+
+/// The film's colour (`COLOURS.film` in src/app/camera_model.rs), which the
+/// Whitted scene's picture has nowhere (its red floor is far less blue).
+fn film_pixels(image: &RgbaImage, area: Rect) -> Vec<(i32, i32)> {
+    pixels(image, area, |p| {
+        p[0] > 215 && p[1] < 40 && (90..170).contains(&p[2])
+    })
+}
+
+#[test]
+fn the_observer_sees_the_scene_camera_follow_the_panel_and_orbits_alone() {
+    let Some(display) = Display::start() else {
+        return;
+    };
+    let (mut viewer, path) = open_whitted(&display, "observer");
+    let original = Scene::load(&path).unwrap();
+    let area = view(&viewer);
+    assert!(film_pixels(&viewer.capture(), area).is_empty());
+
+    viewer.key("c");
+    viewer.wait_for("observer on");
+    viewer.wait_for("ready");
+    let image = capture_kept(&viewer, &path, "observer.png");
+    let film = film_pixels(&image, area);
+    println!("film: {} pixels", film.len());
+    assert!(
+        film.len() >= 100,
+        "the film is drawn: {} pixels",
+        film.len()
+    );
+
+    // The scene's camera edited in the panel: a wider field of view, a
+    // larger film; the drawing follows.
+    let (x, y) = viewer.part("camera-fov").at(0.1, 0.5);
+    viewer.drag("1", (x, y), (x + 60, y));
+    viewer.wait_for("ready");
+    let image = capture_kept(&viewer, &path, "wider.png");
+    let wider = film_pixels(&image, area);
+    println!("wider film: {} pixels", wider.len());
+    assert!(
+        wider.len() >= 100 && wider != film,
+        "the film follows the fov"
+    );
+
+    // Orbiting moves the observer: the drawing moves, the scene's camera
+    // stays where the panel put it.
+    viewer.drag("1", area.at(0.5, 0.85), area.at(0.8, 0.85));
+    viewer.wait_for("ready");
+    let image = capture_kept(&viewer, &path, "orbited.png");
+    let orbited = film_pixels(&image, area);
+    assert!(
+        orbited.len() >= 100 && orbited != wider,
+        "the observer orbited"
+    );
+    let saved = saved(&mut viewer, &path);
+    assert_eq!(
+        saved.camera.from, original.camera.from,
+        "the scene's eye stayed"
+    );
+    assert_eq!(saved.camera.to, original.camera.to);
+    assert!(saved.camera.fov > original.camera.fov, "the fov was edited");
+
+    viewer.key("c");
+    viewer.wait_for("observer off");
+    viewer.wait_for("ready");
+    assert!(film_pixels(&viewer.capture(), area).is_empty(), "film left");
 }

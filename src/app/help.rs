@@ -35,6 +35,10 @@ pub const WINDOW: Help = Help {
                 "V",
                 "next view: shaded, normals, depth, id, cost, steps, bounces...",
             ),
+            (
+                "C",
+                "the camera model: an observer's view of the scene's camera",
+            ),
             ("Ctrl+S", "save the scene"),
             (
                 "Ctrl+plus / minus / 0",

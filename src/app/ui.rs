@@ -9,9 +9,9 @@ use super::help::Help;
 use super::panel::{self, PanelAction, PanelState, ViewSettings};
 use super::ray_tree::PixelTree;
 use super::status::MessageAge;
-use super::{controls, help, layout, overlay, status};
+use super::{camera_model, controls, help, layout, overlay, status};
 use crate::gpu::View;
-use crate::scene::Scene;
+use crate::scene::{Camera, Scene};
 use crate::shader_params::ParamSet;
 
 /// UI state that is not part of the scene.
@@ -40,6 +40,9 @@ pub struct Editor {
     /// The pixel's ray tree shown in the panel and drawn over the picture
     /// (docs/ray-tree.md); Esc or "Clear" forgets it.
     pub ray_tree: Option<PixelTree>,
+    /// The observer's camera while `C` shows the scene's camera from
+    /// outside (docs/ray-tree.md, "The camera model"); not saved.
+    pub observer: Option<Camera>,
 }
 
 impl Default for Editor {
@@ -57,6 +60,7 @@ impl Default for Editor {
             message: None,
             message_age: MessageAge::default(),
             ray_tree: None,
+            observer: None,
         }
     }
 }
@@ -165,7 +169,7 @@ pub fn draw(
     status: &Status,
     host: &Host,
 ) -> (Vec<Command>, ViewInput) {
-    let mut commands = shortcuts(ui, editor);
+    let mut commands = shortcuts(ui, editor, &doc.scene.camera);
     if editor.show_panel {
         let (title, path) = (doc.short_label(), doc.label());
         let panel = egui::Panel::left("scene panel")
@@ -294,7 +298,7 @@ fn shader_params_section(ui: &mut egui::Ui, params: &mut ParamSet, commands: &mu
 }
 
 /// Keys work only while no text field has the keyboard.
-fn shortcuts(ui: &mut egui::Ui, editor: &mut Editor) -> Vec<Command> {
+fn shortcuts(ui: &mut egui::Ui, editor: &mut Editor, camera: &Camera) -> Vec<Command> {
     let mut commands = Vec::new();
     if ui.ctx().egui_wants_keyboard_input() {
         return commands;
@@ -321,6 +325,12 @@ fn shortcuts(ui: &mut egui::Ui, editor: &mut Editor) -> Vec<Command> {
         }
         if plain(i, Key::V) {
             editor.view.shown = editor.view.shown.next();
+        }
+        if plain(i, Key::C) {
+            editor.observer = match editor.observer {
+                Some(_) => None,
+                None => Some(camera_model::observer_for(camera)),
+            };
         }
         if plain(i, Key::F11) {
             commands.push(Command::ToggleFullscreen);

@@ -17,7 +17,7 @@ use super::ray_tree::{GpuAnswer, PixelTree};
 use super::shell::EguiLayer;
 use super::status::SampleClock;
 use super::ui::{self, Command, Editor, Host, Status, ViewInput};
-use super::{orbit, panel};
+use super::{camera_model, orbit, panel};
 use crate::gpu::{
     FrameStatus, Gpu, LineOverlay, Pipelines, Refine, ShaderOptions, ShaderSource, View, Viewport,
 };
@@ -116,9 +116,8 @@ pub struct Viewer {
     drawing: Option<ShaderOptions>,
     /// Ray trees asked for so far (numbers the trees).
     trees_asked: u64,
-    /// What the line overlay holds: the tree it draws, projected with this
-    /// camera for this window size; `None`: nothing.
-    lines_for: Option<(u64, Camera, (u32, u32))>,
+    /// What the line overlay holds ([`Lines`]); `None`: nothing.
+    lines_for: Option<Lines>,
     /// The GPU's answer for the tree shown came in this frame: told once
     /// the frame is on screen.
     tree_answered: bool,
@@ -127,9 +126,21 @@ pub struct Viewer {
     tree_worker: super::ray_tree::worker::Worker,
 }
 
+/// What the line overlay draws: the ray tree `tree` and, from an
+/// observer's view, the camera model of `model`, projected with `picture`
+/// (the camera the picture is traced from) for a window of `size`.
+#[derive(Clone, PartialEq)]
+struct Lines {
+    tree: Option<u64>,
+    model: Option<Camera>,
+    picture: Camera,
+    size: (u32, u32),
+}
+
 /// The state a frame starts from, to tell what the frame's UI changed.
 pub struct FrameStart {
     scene: Scene,
+    observer: Option<Camera>,
     min_weight: f64,
     shown: View,
     /// When the frame began, for a moving frame's time in all.
@@ -365,9 +376,19 @@ impl Viewer {
         }
     }
 
-    /// The scene as the viewer draws it: the file's, with `min_weight`
-    /// raised to the viewer's floor (the panel's "min weight").
+    /// The scene as the viewer draws it: [`Viewer::floored_scene`], seen
+    /// by the observer while the camera model is shown.
     fn shown_scene(&self) -> Scene {
+        let mut scene = self.floored_scene();
+        if let Some(observer) = &self.editor.observer {
+            scene.camera = observer.clone();
+        }
+        scene
+    }
+
+    /// The file's scene with `min_weight` raised to the viewer's floor (the
+    /// panel's "min weight").
+    fn floored_scene(&self) -> Scene {
         let mut scene = self.doc.scene.clone();
         let floor = self.editor.view.min_weight;
         scene.render.min_weight = scene.render.min_weight.max(floor);
@@ -398,6 +419,7 @@ impl Viewer {
     pub fn begin_frame(&mut self, host: &Host) -> (FrameStart, FrameUi) {
         let start = FrameStart {
             scene: self.doc.scene.clone(),
+            observer: self.editor.observer.clone(),
             min_weight: self.editor.view.min_weight,
             shown: self.editor.view.shown,
             at: Instant::now(),
@@ -447,7 +469,8 @@ impl Viewer {
     pub fn end_frame(&mut self, start: FrameStart, ui: FrameUi) -> bool {
         let picked = self.apply_view_input(&ui.input);
         let changed = self.doc.scene != start.scene;
-        if changed || self.editor.view.min_weight != start.min_weight {
+        let observed = self.editor.observer != start.observer;
+        if changed || observed || self.editor.view.min_weight != start.min_weight {
             self.scene_changed(Some(&start.scene));
         }
         if self.editor.view.shown != start.shown {
@@ -456,7 +479,7 @@ impl Viewer {
             self.ensure_pipelines();
         }
         let moving = ui.input.dragging || ui.input.widget_dragging;
-        let had_lines = self.lines_for.is_some();
+        let had_tree = self.lines_for.as_ref().and_then(|l| l.tree).is_some();
         self.project_lines();
         self.paint(ui.output, moving, start.at);
         if picked {
@@ -468,10 +491,32 @@ impl Viewer {
         {
             self.event(&tree.event());
         }
-        if had_lines && self.lines_for.is_none() {
+        if had_tree && self.lines_for.as_ref().and_then(|l| l.tree).is_none() {
             self.event("ray-tree-cleared");
         }
+        if self.editor.observer.is_some() != start.observer.is_some() {
+            self.observer_toggled();
+        }
         changed
+    }
+
+    /// Says in the status line what the observer's view shows, once it is
+    /// on screen.
+    fn observer_toggled(&mut self) {
+        let size = self.lines_for.as_ref().map_or((0, 0), |l| l.size);
+        if self.editor.observer.is_some() {
+            self.editor.message = Some(format!(
+                "observer's view (C: back): the scene's camera, its film of {} x {} pixels \
+                 (grid every {} pixels) and frustum; orbit to look around it",
+                size.0,
+                size.1,
+                camera_model::grid_step(size)
+            ));
+            self.event("observer on");
+        } else {
+            self.editor.message = None;
+            self.event("observer off");
+        }
     }
 
     /// The tree of the pixel at `(x, y)` (window pixels): the reference's
@@ -485,7 +530,7 @@ impl Viewer {
         }
         let pixel = ((x as u32).min(size.0 - 1), (y as u32).min(size.1 - 1));
         self.trees_asked += 1;
-        let scene = self.shown_scene();
+        let scene = self.floored_scene();
         let tree = PixelTree::new(&scene, size, pixel, self.trees_asked);
         #[cfg(not(target_arch = "wasm32"))]
         {
@@ -534,33 +579,38 @@ impl Viewer {
         }
     }
 
-    /// Projects the tree's rays with the camera of the picture, when the
-    /// tree, the camera or the window changed: they stay where they are in
-    /// the scene while the camera orbits.
+    /// Projects the tree's rays (and the camera model, from an observer's
+    /// view) with the camera of the picture, when the tree, a camera or
+    /// the window changed: they stay where they are in the scene while the
+    /// camera orbits.
     fn project_lines(&mut self) {
         let Some(gfx) = &mut self.gfx else { return };
         let size = gfx.window.inner_size();
-        let wanted = self.editor.ray_tree.as_ref().map(|tree| {
-            (
-                tree.number,
-                self.doc.scene.camera.clone(),
-                (size.width, size.height),
-            )
+        let size = (size.width, size.height);
+        let tree = self.editor.ray_tree.as_ref();
+        let model = self
+            .editor
+            .observer
+            .is_some()
+            .then(|| self.doc.scene.camera.clone());
+        let picture = self.editor.observer.as_ref();
+        let wanted = (tree.is_some() || model.is_some()).then(|| Lines {
+            tree: tree.map(|t| t.number),
+            model: model.clone(),
+            picture: picture.unwrap_or(&self.doc.scene.camera).clone(),
+            size,
         });
         if wanted == self.lines_for {
             return;
         }
-        let segments = match &self.editor.ray_tree {
-            Some(tree) => tree.segments.as_slice(),
-            None => &[],
-        };
+        let mut segments = tree.map(|t| t.segments.clone()).unwrap_or_default();
+        if let Some(model) = &model {
+            segments.extend(camera_model::segments(model, size));
+        }
         let width = (RAY_WIDTH * gfx.window.scale_factor()).round() as u32;
-        gfx.lines.set(
-            &gfx.gpu.device,
-            &self.doc.scene.camera,
-            ((size.width, size.height), width),
-            segments,
-        );
+        let camera = picture.unwrap_or(&self.doc.scene.camera);
+        gfx.lines
+            .set(&gfx.gpu.device, camera, (size, width), &segments);
         self.lines_for = wanted;
         gfx.window.request_redraw();
     }
@@ -585,7 +635,12 @@ impl Viewer {
     fn apply_view_input(&mut self, input: &ViewInput) -> bool {
         let Some(gfx) = &self.gfx else { return false };
         let size = gfx.window.inner_size();
-        let camera = &mut self.doc.scene.camera;
+        // From an observer's view the mouse moves the observer; the
+        // scene's camera stays as the panel has it.
+        let camera = match &mut self.editor.observer {
+            Some(observer) => observer,
+            None => &mut self.doc.scene.camera,
+        };
         if input.dragging || input.zoom != 0.0 {
             let start = *self
                 .drag_start_distance
@@ -601,11 +656,15 @@ impl Viewer {
         }
         let click = input.click.or(input.double_click);
         if let Some((x, y)) = click {
-            let scene = reference::PreparedScene::new(&self.doc.scene);
+            let scene = reference::PreparedScene::new(&self.shown_scene());
             let hit = reference::pick(&scene, size.width, size.height, x, y);
             self.editor.panel.selection = hit.map(|(id, _)| id);
             if let (Some((_, point)), Some(_)) = (hit, input.double_click) {
-                orbit::recenter(&mut self.doc.scene.camera, point);
+                let camera = match &mut self.editor.observer {
+                    Some(observer) => observer,
+                    None => &mut self.doc.scene.camera,
+                };
+                orbit::recenter(camera, point);
             }
         }
         click.is_some()
