@@ -18,6 +18,10 @@ pub const MOUSE: &[(&str, &str)] = &[
     ("Right / middle drag", "pan"),
     ("Wheel", "zoom (dolly towards the target)"),
     ("Click / double-click", "select an object / orbit around it"),
+    (
+        "Shift+click / T",
+        "that pixel's ray tree (the one under the mouse for T): panel and 3D rays",
+    ),
 ];
 
 /// The window program's help.
@@ -31,12 +35,19 @@ pub const WINDOW: Help = Help {
                 "V",
                 "next view: shaded, normals, depth, id, cost, steps, bounces...",
             ),
+            (
+                "C",
+                "the camera model: an observer's view of the scene's camera",
+            ),
             ("Ctrl+S", "save the scene"),
             (
                 "Ctrl+plus / minus / 0",
                 "UI scale: larger / smaller / as it was",
             ),
-            ("F11 / Esc", "fullscreen / leave fullscreen"),
+            (
+                "F11 / Esc",
+                "fullscreen / clear the ray tree, then leave fullscreen",
+            ),
             ("F1 / Ctrl+Q", "this help / quit"),
         ],
     ],

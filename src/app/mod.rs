@@ -9,6 +9,7 @@
 // clock's controls): no warnings for those in the wasm build.
 #![cfg_attr(target_arch = "wasm32", allow(dead_code))]
 
+mod camera_model;
 mod controls;
 pub(crate) mod document;
 mod error_view;
@@ -19,6 +20,7 @@ mod orbit;
 mod overlay;
 pub(crate) mod panel;
 pub(crate) mod pipelines;
+pub(crate) mod ray_tree;
 pub(crate) mod shell;
 mod status;
 pub(crate) mod ui;

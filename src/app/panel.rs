@@ -16,6 +16,7 @@ mod edit;
 mod file;
 mod lights;
 mod materials;
+mod ray_tree;
 mod render;
 mod shape_list;
 mod shapes;
@@ -33,6 +34,7 @@ use camera::camera_section;
 use file::file_section;
 use lights::lights_section;
 use materials::materials_section;
+pub use ray_tree::ray_tree_section;
 use render::render_section;
 use shape_list::{mesh_error_row, selected_shape_section, shapes_section};
 

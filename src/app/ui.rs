@@ -7,10 +7,11 @@ use egui::{Key, KeyboardShortcut, Modifiers, PointerButton, Sense};
 use super::document::Document;
 use super::help::Help;
 use super::panel::{self, PanelAction, PanelState, ViewSettings};
+use super::ray_tree::PixelTree;
 use super::status::MessageAge;
-use super::{controls, help, layout, overlay, status};
+use super::{camera_model, controls, help, layout, overlay, status};
 use crate::gpu::View;
-use crate::scene::Scene;
+use crate::scene::{Camera, Scene};
 use crate::shader_params::ParamSet;
 
 /// UI state that is not part of the scene.
@@ -36,6 +37,12 @@ pub struct Editor {
     /// old.
     pub message: Option<String>,
     message_age: MessageAge,
+    /// The pixel's ray tree shown in the panel and drawn over the picture
+    /// (docs/ray-tree.md); Esc or "Clear" forgets it.
+    pub ray_tree: Option<PixelTree>,
+    /// The observer's camera while `C` shows the scene's camera from
+    /// outside (docs/ray-tree.md, "The camera model"); not saved.
+    pub observer: Option<Camera>,
 }
 
 impl Default for Editor {
@@ -52,6 +59,8 @@ impl Default for Editor {
             confirm_quit: false,
             message: None,
             message_age: MessageAge::default(),
+            ray_tree: None,
+            observer: None,
         }
     }
 }
@@ -140,6 +149,9 @@ pub struct ViewInput {
     pub zoom: f64,
     pub click: Option<(f64, f64)>,
     pub double_click: Option<(f64, f64)>,
+    /// Shift+click, or `T` with the mouse over the picture: that pixel's
+    /// ray tree (docs/ray-tree.md).
+    pub ray_tree: Option<(f64, f64)>,
     /// A camera drag is in progress (render at the interaction scale).
     pub dragging: bool,
     /// A widget of the panel is being dragged (a slider: Julia's c, a
@@ -157,7 +169,7 @@ pub fn draw(
     status: &Status,
     host: &Host,
 ) -> (Vec<Command>, ViewInput) {
-    let mut commands = shortcuts(ui, editor);
+    let mut commands = shortcuts(ui, editor, &doc.scene.camera);
     if editor.show_panel {
         let (title, path) = (doc.short_label(), doc.label());
         let panel = egui::Panel::left("scene panel")
@@ -170,6 +182,11 @@ pub fn draw(
                 ui.set_min_width(ui.available_width());
                 menu_bar(ui, host, &mut commands);
                 egui::ScrollArea::vertical().show(ui, |ui| {
+                    if let Some(tree) = &editor.ray_tree
+                        && panel::ray_tree_section(ui, tree)
+                    {
+                        editor.ray_tree = None;
+                    }
                     let actions = panel::show(
                         ui,
                         &mut doc.scene,
@@ -286,7 +303,7 @@ fn shader_params_section(ui: &mut egui::Ui, params: &mut ParamSet, commands: &mu
 }
 
 /// Keys work only while no text field has the keyboard.
-fn shortcuts(ui: &mut egui::Ui, editor: &mut Editor) -> Vec<Command> {
+fn shortcuts(ui: &mut egui::Ui, editor: &mut Editor, camera: &Camera) -> Vec<Command> {
     let mut commands = Vec::new();
     if ui.ctx().egui_wants_keyboard_input() {
         return commands;
@@ -314,10 +331,17 @@ fn shortcuts(ui: &mut egui::Ui, editor: &mut Editor) -> Vec<Command> {
         if plain(i, Key::V) {
             editor.view.shown = editor.view.shown.next();
         }
+        if plain(i, Key::C) {
+            editor.observer = match editor.observer {
+                Some(_) => None,
+                None => Some(camera_model::observer_for(camera)),
+            };
+        }
         if plain(i, Key::F11) {
             commands.push(Command::ToggleFullscreen);
         }
-        if plain(i, Key::Escape) {
+        // Esc forgets a ray tree first, a second Esc leaves fullscreen.
+        if plain(i, Key::Escape) && editor.ray_tree.take().is_none() {
             commands.push(Command::LeaveFullscreen);
         }
     });
@@ -347,10 +371,20 @@ fn view_input(ui: &mut egui::Ui) -> ViewInput {
         input.zoom = f64::from(scroll) / 50.0;
     }
     let pointer = response.interact_pointer_pos().map(physical);
+    let shift = ui.input(|i| i.modifiers.shift);
     if response.double_clicked() {
         input.double_click = pointer;
+    } else if response.clicked() && shift {
+        input.ray_tree = pointer;
     } else if response.clicked() {
         input.click = pointer;
+    }
+    let over = response.hover_pos().map(physical);
+    if over.is_some()
+        && !ui.ctx().egui_wants_keyboard_input()
+        && ui.input_mut(|i| i.consume_key(Modifiers::NONE, Key::T))
+    {
+        input.ray_tree = over;
     }
     input
 }

@@ -14,20 +14,24 @@ use super::document::Document;
 use super::error_view::ErrorView;
 use super::layout::{self, Layout, LayoutReport};
 use super::pipelines::{self, PipelineCache};
+use super::ray_tree::{GpuAnswer, PixelTree};
 use super::shell::EguiLayer;
 use super::status::SampleClock;
 use super::ui::{self, Command, Editor, Host, Status, ViewInput};
-use super::{orbit, panel};
+use super::{camera_model, orbit, panel};
 use crate::gpu::{
-    FrameStatus, Gpu, Pipelines, Refine, ShaderOptions, ShaderSource, View, Viewport,
+    FrameStatus, Gpu, LineOverlay, Pipelines, Refine, ShaderOptions, ShaderSource, View, Viewport,
 };
 use crate::reference;
-use crate::scene::{NamedOption, Scene, SceneError};
+use crate::scene::{Camera, NamedOption, Scene, SceneError};
 use crate::shader_params::SourceParams;
 
 /// Width of the selection outline in logical pixels (scaled by the window's
 /// DPI factor).
 const OUTLINE_WIDTH: f64 = 2.0;
+
+/// Width of the ray tree's lines over the picture in logical pixels.
+const RAY_WIDTH: f64 = 2.0;
 
 /// Pipelines to build for `options` from `source`, handed to the program's
 /// worker: a thread natively, a future in the browser. The worker reports
@@ -64,6 +68,8 @@ pub struct Graphics {
     pub viewport: Viewport,
     pub pipelines: PipelineCache,
     pub egui: EguiLayer,
+    /// A pixel's ray tree drawn over the picture (docs/ray-tree.md).
+    pub lines: LineOverlay,
 }
 
 /// What the program around the viewer provides.
@@ -111,11 +117,33 @@ pub struct Viewer {
     drawing: Option<ShaderOptions>,
     /// The error view's f64 reference, traced beside the window.
     error_view: ErrorView,
+    /// Ray trees asked for so far (numbers the trees).
+    trees_asked: u64,
+    /// What the line overlay holds ([`Lines`]); `None`: nothing.
+    lines_for: Option<Lines>,
+    /// The GPU's answer for the tree shown came in this frame: told once
+    /// the frame is on screen.
+    tree_answered: bool,
+    /// Traces the GPU's trees off the input path.
+    #[cfg(not(target_arch = "wasm32"))]
+    tree_worker: super::ray_tree::worker::Worker,
+}
+
+/// What the line overlay draws: the ray tree `tree` and, from an
+/// observer's view, the camera model of `model`, projected with `picture`
+/// (the camera the picture is traced from) for a window of `size`.
+#[derive(Clone, PartialEq)]
+struct Lines {
+    tree: Option<u64>,
+    model: Option<Camera>,
+    picture: Camera,
+    size: (u32, u32),
 }
 
 /// The state a frame starts from, to tell what the frame's UI changed.
 pub struct FrameStart {
     scene: Scene,
+    observer: Option<Camera>,
     min_weight: f64,
     shown: View,
     /// When the frame began, for a moving frame's time in all.
@@ -153,6 +181,11 @@ impl Viewer {
             deferred: None,
             drawing: None,
             error_view: ErrorView::default(),
+            trees_asked: 0,
+            lines_for: None,
+            tree_answered: false,
+            #[cfg(not(target_arch = "wasm32"))]
+            tree_worker: Default::default(),
         }
     }
 
@@ -192,13 +225,18 @@ impl Viewer {
         let shown = self.shown_scene();
         let viewport = Viewport::new(&gpu, surface, (size.width, size.height), first, &shown);
         let egui = EguiLayer::new(&window, &gpu, viewport.surface_format());
+        let lines = LineOverlay::new(&gpu.device, viewport.surface_format());
         self.gfx = Some(Graphics {
             window,
             gpu,
             viewport,
             pipelines: cache,
             egui,
+            lines,
         });
+        self.lines_for = None;
+        #[cfg(not(target_arch = "wasm32"))]
+        self.tree_worker.forget();
         self.deferred = None;
         self.drawing = Some(options);
         self.upload_scene(&shown);
@@ -343,9 +381,19 @@ impl Viewer {
         }
     }
 
-    /// The scene as the viewer draws it: the file's, with `min_weight`
-    /// raised to the viewer's floor (the panel's "min weight").
+    /// The scene as the viewer draws it: [`Viewer::floored_scene`], seen
+    /// by the observer while the camera model is shown.
     fn shown_scene(&self) -> Scene {
+        let mut scene = self.floored_scene();
+        if let Some(observer) = &self.editor.observer {
+            scene.camera = observer.clone();
+        }
+        scene
+    }
+
+    /// The file's scene with `min_weight` raised to the viewer's floor (the
+    /// panel's "min weight").
+    fn floored_scene(&self) -> Scene {
         let mut scene = self.doc.scene.clone();
         let floor = self.editor.view.min_weight;
         scene.render.min_weight = scene.render.min_weight.max(floor);
@@ -376,10 +424,12 @@ impl Viewer {
     pub fn begin_frame(&mut self, host: &Host) -> (FrameStart, FrameUi) {
         let start = FrameStart {
             scene: self.doc.scene.clone(),
+            observer: self.editor.observer.clone(),
             min_weight: self.editor.view.min_weight,
             shown: self.editor.view.shown,
             at: Instant::now(),
         };
+        self.take_tree_answer();
         let gfx = self.gfx.as_mut().expect("drawing needs graphics");
         let status = Status {
             frame_time: gfx.viewport.last_frame_time(),
@@ -424,7 +474,8 @@ impl Viewer {
     pub fn end_frame(&mut self, start: FrameStart, ui: FrameUi) -> bool {
         let picked = self.apply_view_input(&ui.input);
         let changed = self.doc.scene != start.scene;
-        if changed || self.editor.view.min_weight != start.min_weight {
+        let observed = self.editor.observer != start.observer;
+        if changed || observed || self.editor.view.min_weight != start.min_weight {
             self.scene_changed(Some(&start.scene));
         }
         if self.editor.view.shown != start.shown {
@@ -435,12 +486,140 @@ impl Viewer {
             self.ensure_pipelines();
         }
         let moving = ui.input.dragging || ui.input.widget_dragging;
+        let had_tree = self.lines_for.as_ref().and_then(|l| l.tree).is_some();
+        self.project_lines();
         self.paint(ui.output, moving, start.at);
         if picked {
             // Once the frame with its outline is on screen.
             self.event(&format!("selected {:?}", self.editor.panel.selection));
         }
+        if let Some(tree) = &self.editor.ray_tree
+            && std::mem::take(&mut self.tree_answered)
+        {
+            self.event(&tree.event());
+        }
+        if had_tree && self.lines_for.as_ref().and_then(|l| l.tree).is_none() {
+            self.event("ray-tree-cleared");
+        }
+        if self.editor.observer.is_some() != start.observer.is_some() {
+            self.observer_toggled();
+        }
         changed
+    }
+
+    /// Says in the status line what the observer's view shows, once it is
+    /// on screen.
+    fn observer_toggled(&mut self) {
+        let size = self.lines_for.as_ref().map_or((0, 0), |l| l.size);
+        if self.editor.observer.is_some() {
+            self.editor.message = Some(format!(
+                "observer's view (C: back): the scene's camera, its film of {} x {} pixels \
+                 (grid every {} pixels) and frustum; orbit to look around it",
+                size.0,
+                size.1,
+                camera_model::grid_step(size)
+            ));
+            self.event("observer on");
+        } else {
+            self.editor.message = None;
+            self.event("observer off");
+        }
+    }
+
+    /// The tree of the pixel at `(x, y)` (window pixels): the reference's
+    /// at once, the GPU's from the worker (natively; the page has none).
+    fn ask_ray_tree(&mut self, (x, y): (f64, f64)) {
+        let Some(gfx) = &self.gfx else { return };
+        let size = gfx.window.inner_size();
+        let size = (size.width, size.height);
+        if x < 0.0 || y < 0.0 || size.0 == 0 || size.1 == 0 {
+            return;
+        }
+        let pixel = ((x as u32).min(size.0 - 1), (y as u32).min(size.1 - 1));
+        self.trees_asked += 1;
+        let scene = self.floored_scene();
+        let tree = PixelTree::new(&scene, size, pixel, self.trees_asked);
+        #[cfg(not(target_arch = "wasm32"))]
+        {
+            let window = gfx.window.clone();
+            let request = super::ray_tree::worker::Request {
+                gpu: gfx.gpu.clone(),
+                source: self.shader_params.apply(&self.shaders),
+                options: ShaderOptions::for_scene(&scene),
+                scene,
+                size,
+                pixel,
+                number: self.trees_asked,
+            };
+            self.tree_worker
+                .trace(request, move || window.request_redraw());
+        }
+        #[cfg(target_arch = "wasm32")]
+        let tree = {
+            let mut tree = tree;
+            tree.answered(GpuAnswer::Missing(
+                "the page cannot wait for the GPU's readback; the window program shows it".into(),
+            ));
+            tree
+        };
+        self.editor.message = Some(tree.summary());
+        self.event(&format!("ray-tree-asked {},{}", pixel.0, pixel.1));
+        self.editor.ray_tree = Some(tree);
+    }
+
+    /// Takes the worker's answer for the tree shown (one for a tree
+    /// forgotten or replaced since is dropped).
+    fn take_tree_answer(&mut self) {
+        #[cfg(not(target_arch = "wasm32"))]
+        while let Some((number, answer)) = self.tree_worker.take() {
+            let Some(tree) = &mut self.editor.ray_tree else {
+                continue;
+            };
+            if tree.number == number && tree.gpu == GpuAnswer::Tracing {
+                if let GpuAnswer::Missing(why) = &answer {
+                    log::error!("the GPU's ray tree: {why}");
+                }
+                tree.answered(answer);
+                self.editor.message = Some(tree.summary());
+                self.tree_answered = true;
+            }
+        }
+    }
+
+    /// Projects the tree's rays (and the camera model, from an observer's
+    /// view) with the camera of the picture, when the tree, a camera or
+    /// the window changed: they stay where they are in the scene while the
+    /// camera orbits.
+    fn project_lines(&mut self) {
+        let Some(gfx) = &mut self.gfx else { return };
+        let size = gfx.window.inner_size();
+        let size = (size.width, size.height);
+        let tree = self.editor.ray_tree.as_ref();
+        let model = self
+            .editor
+            .observer
+            .is_some()
+            .then(|| self.doc.scene.camera.clone());
+        let picture = self.editor.observer.as_ref();
+        let wanted = (tree.is_some() || model.is_some()).then(|| Lines {
+            tree: tree.map(|t| t.number),
+            model: model.clone(),
+            picture: picture.unwrap_or(&self.doc.scene.camera).clone(),
+            size,
+        });
+        if wanted == self.lines_for {
+            return;
+        }
+        let mut segments = tree.map(|t| t.segments.clone()).unwrap_or_default();
+        if let Some(model) = &model {
+            segments.extend(camera_model::segments(model, size));
+        }
+        let width = (RAY_WIDTH * gfx.window.scale_factor()).round() as u32;
+        let camera = picture.unwrap_or(&self.doc.scene.camera);
+        gfx.lines
+            .set(&gfx.gpu.device, camera, (size, width), &segments);
+        self.lines_for = wanted;
+        gfx.window.request_redraw();
     }
 
     /// Shows `doc` instead of the document open now, unsaved edits or not
@@ -463,7 +642,12 @@ impl Viewer {
     fn apply_view_input(&mut self, input: &ViewInput) -> bool {
         let Some(gfx) = &self.gfx else { return false };
         let size = gfx.window.inner_size();
-        let camera = &mut self.doc.scene.camera;
+        // From an observer's view the mouse moves the observer; the
+        // scene's camera stays as the panel has it.
+        let camera = match &mut self.editor.observer {
+            Some(observer) => observer,
+            None => &mut self.doc.scene.camera,
+        };
         if input.dragging || input.zoom != 0.0 {
             let start = *self
                 .drag_start_distance
@@ -474,13 +658,20 @@ impl Viewer {
         } else {
             self.drag_start_distance = None;
         }
+        if let Some(at) = input.ray_tree {
+            self.ask_ray_tree(at);
+        }
         let click = input.click.or(input.double_click);
         if let Some((x, y)) = click {
-            let scene = reference::PreparedScene::new(&self.doc.scene);
+            let scene = reference::PreparedScene::new(&self.shown_scene());
             let hit = reference::pick(&scene, size.width, size.height, x, y);
             self.editor.panel.selection = hit.map(|(id, _)| id);
             if let (Some((_, point)), Some(_)) = (hit, input.double_click) {
-                orbit::recenter(&mut self.doc.scene.camera, point);
+                let camera = match &mut self.editor.observer {
+                    Some(observer) => observer,
+                    None => &mut self.doc.scene.camera,
+                };
+                orbit::recenter(camera, point);
             }
         }
         click.is_some()
@@ -524,9 +715,12 @@ impl Viewer {
 
         let painting = gfx.egui.prepare(&gfx.gpu, &gfx.window, output);
         let egui = &mut gfx.egui;
+        let lines = &gfx.lines;
         let gpu = &gfx.gpu;
         gfx.window.pre_present_notify();
+        // The ray tree over the picture, under the UI.
         let status = gfx.viewport.frame(gpu, refine, |encoder, view| {
+            lines.draw(encoder, view);
             egui.paint(gpu, encoder, view, &painting)
         });
         let delay = gfx.egui.finish(painting);

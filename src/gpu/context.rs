@@ -6,7 +6,9 @@ use std::time::Duration;
 
 use super::tracer::ACCUM_FORMAT;
 
-/// Adapter, device and queue, shared by everything that draws.
+/// Adapter, device and queue, shared by everything that draws. A clone
+/// shares them (the viewer's worker traces a pixel's ray tree with one).
+#[derive(Clone)]
 pub struct Gpu {
     pub instance: wgpu::Instance,
     pub adapter: wgpu::Adapter,
