@@ -373,6 +373,7 @@ mod tests {
     }
 
     use super::*;
+    use crate::scene::test_scenes::NEAR_THE_ORIGIN;
     use std::mem::{offset_of, size_of};
 
     /// (field name, offset) of each field, in declaration order.
@@ -555,26 +556,7 @@ mod tests {
     /// the same scene; the checker's phase keeps its world cells.
     #[test]
     fn positions_are_packed_relative_to_the_target() {
-        let text = r#"
-            [camera]
-            from = [0.4, 1.7, 6.5]
-            to = [0, 0.6, 0]
-            [materials.floor]
-            checker = { color = [0, 0, 0], size = 0.5 }
-            [[lights]]
-            position = [-4, 6, 5]
-            [[planes]]
-            point = [0, 0, 0]
-            normal = [0, 1, 0]
-            material = "floor"
-            [[spheres]]
-            center = [0.9, 0.7, 1]
-            radius = 0.7
-            [[cubes]]
-            center = [1.8, 0.5, -1]
-            size = 1
-        "#;
-        let scene = Scene::from_toml_str(text, None).expect("valid scene");
+        let scene = Scene::from_toml_str(NEAR_THE_ORIGIN, None).expect("valid scene");
         let offset = DVec3::new(-1e6, 1e6, -1e6);
         let near = PackedScene::new(&scene, 4, 3);
         let far = PackedScene::new(&scene.translated(offset), 4, 3);

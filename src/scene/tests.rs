@@ -5,76 +5,11 @@ use std::path::{Path, PathBuf};
 
 use glam::DVec3;
 
+use super::test_scenes::FULL;
 use super::{CubeSize, Material, Placement, RenderSettings, Scale, Scene, SceneError};
 
 /// A valid camera, for tests about other sections. Three lines long.
 const CAMERA: &str = "[camera]\nfrom = [0, 1, 5]\nto = [0, 0, 0]\n";
-
-/// A scene that uses every feature of the format, with materials out of
-/// alphabetical order and both forms of cube size.
-const FULL: &str = r#"
-[render]
-max_depth = 7
-min_weight = 0.01
-background = [0.1, 0.2, 0.3]
-ambient = [0.05, 0.05, 0.05]
-exposure = 1.5
-
-[camera]
-from = [0, 1.5, 6]
-to = [0, 1, 0]
-up = [0, 1, 0]
-fov = 40
-aperture = 0.05
-focus_distance = 6.0
-
-[[lights]]
-position = [5, 8, 5]
-color = [1, 0.9, 0.8]
-intensity = 0.8
-
-[[lights]]
-position = [-5, 8, 5]
-
-[materials.glass]
-color = [1, 1, 1]
-diffuse = 0.0
-specular = 0.6
-shininess = 200
-transparency = 0.95
-ior = 1.5
-
-[materials.floor]
-color = [0.9, 0.9, 0.9]
-checker = { color = [0.15, 0.15, 0.15], size = 1.0 }
-
-[materials."brushed steel"]
-mirror = 0.7
-
-[[spheres]]
-center = [0, 1, 0]
-radius = 1
-material = "glass"
-
-[[spheres]]
-center = [-2, 0.5, 1]
-radius = 0.5
-
-[[planes]]
-point = [0, 0, 0]
-normal = [0, 2, 0]
-material = "floor"
-
-[[cubes]]
-center = [2.2, 0.5, 0]
-size = 1
-rotation = [0, 30, 0]
-material = "brushed steel"
-
-[[cubes]]
-center = [-2.2, 1, -1]
-size = [1, 2, 3]
-"#;
 
 /// Loads `text` as `test.toml`, with [`CAMERA`] after it unless `text` has
 /// its own camera. (After, so that lines keep their numbers and top-level
