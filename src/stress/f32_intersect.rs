@@ -66,15 +66,9 @@ fn max3(v: Vec3) -> f32 {
     v.x.max(v.y.max(v.z))
 }
 
-/// WGSL's `sign`: -1, 0 or 1.
+/// WGSL's `sign`: -1, 0 or 1, which f32 holds exactly.
 fn wgsl_sign(x: f32) -> f32 {
-    if x > 0.0 {
-        1.0
-    } else if x < 0.0 {
-        -1.0
-    } else {
-        0.0
-    }
+    crate::expr::wgsl_sign(f64::from(x)) as f32
 }
 
 /// The shader's `foot`: the foot of the perpendicular from `anchor` to the

@@ -3,6 +3,7 @@
 use glam::{DMat3, DVec3};
 
 use super::{Prepare, Trace};
+use crate::expr::wgsl_sign;
 use crate::reference::ReferenceOptions;
 use crate::reference::hit::{Hit, foot};
 use crate::reference::ray::Ray;
@@ -150,17 +151,6 @@ pub fn hit_cube(cube: &Cube, ray: &Ray, t_max: f64) -> Option<Hit> {
         sign * cube.rotation.col(axis),
         cube.error_scale,
     ))
-}
-
-/// WGSL's `sign`: -1, 0 or +1 (Rust's `signum` gives +1 for +0).
-fn wgsl_sign(x: f64) -> f64 {
-    if x > 0.0 {
-        1.0
-    } else if x < 0.0 {
-        -1.0
-    } else {
-        0.0
-    }
 }
 
 /// The plain slab test as usually taught (the naive variant, the shader's
