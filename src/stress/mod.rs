@@ -20,7 +20,7 @@ use image::{RgbImage, RgbaImage};
 use crate::gpu::{
     Accumulator, FirstHit, FrameTarget, Gpu, IdRenderer, PipelineError, Pipelines, RenderError,
     SceneBuffers, ShaderOptions, ShaderSource, encode_frame, layout::PackedScene, read_texture,
-    render_target,
+    readback_target,
 };
 use crate::reference::{self, PreparedScene, ReferenceOptions};
 use crate::scene::Scene;
@@ -136,13 +136,7 @@ impl GpuVariant {
         };
         let buffers = SceneBuffers::new((device, &gpu.queue), &variant.pipelines, packed)?;
         let mut accum = Accumulator::new(device, &variant.pipelines, width, height);
-        let texture = render_target(
-            device,
-            "stress image",
-            (width, height),
-            IMAGE_FORMAT,
-            wgpu::TextureUsages::COPY_SRC,
-        );
+        let texture = readback_target(device, "stress image", (width, height), IMAGE_FORMAT);
         let view = texture.create_view(&Default::default());
         let target = FrameTarget {
             view: &view,
