@@ -1,6 +1,7 @@
 //! A rotated box for the f64 tracer (docs/rendering-model.md, "Shapes").
 
 use glam::{DMat3, DVec3};
+use num_traits::Float;
 
 use super::{Prepare, Trace};
 use crate::expr::wgsl_sign;
@@ -156,24 +157,37 @@ pub fn hit_cube(cube: &Cube, ray: &Ray, t_max: f64) -> Option<Hit> {
 /// The plain slab test as usually taught (the naive variant, the shader's
 /// `hit_cube_naive`): `inv = 1 / d'_i`, the entry and exit of every slab with
 /// no special case for `d'_i = 0` (IEEE gives inf and, for an origin on a
-/// slab plane, `0 * inf = NaN`, which `f64::min`/`max` then skip), no
+/// slab plane, `0 * inf = NaN`, which the minima and maxima of
+/// [`naive_slab`] drop or keep by the order of their operands), no
 /// widening of the far bound, and the hit point `o + t d`, not re-projected.
 pub fn hit_cube_naive(cube: &Cube, ray: &Ray, t_max: f64) -> Option<Hit> {
     let o = cube.inverse * (ray.origin - cube.center);
     let d = cube.inverse * ray.dir;
-    let h = cube.half;
-    let inv = DVec3::ONE / d;
-    let ta = (-h - o) * inv;
-    let tb = (h - o) * inv;
-    let lo = ta.min(tb);
-    let hi = ta.max(tb);
-    let (mut t_near, mut near_axis) = (lo.x, 0);
+    let (t, axis, n) = naive_slab(o.to_array(), d.to_array(), cube.half.to_array(), t_max)?;
+    let mut n_local = DVec3::ZERO;
+    n_local[axis] = n;
+    Some(Hit::new(t, ray.at(t), cube.rotation * n_local, 0.0))
+}
+
+/// The naive slab test in the box's frame (`o`, `d`: the ray there; `h`:
+/// the half edges) in any float type (f64 here, f32 in the port of the
+/// shader, `src/stress/f32_intersect.rs`): the hit's `t`, the axis of the
+/// face it is on and the sign of the outward normal along that axis.
+pub fn naive_slab<T: Float>(o: [T; 3], d: [T; 3], h: [T; 3], t_max: T) -> Option<(T, usize, T)> {
+    let zero = T::zero();
+    let ta: [T; 3] = std::array::from_fn(|i| (-h[i] - o[i]) * (T::one() / d[i]));
+    let tb: [T; 3] = std::array::from_fn(|i| (h[i] - o[i]) * (T::one() / d[i]));
+    // Minimum and maximum by one comparison, as glam's: with a NaN, the
+    // second operand.
+    let lo: [T; 3] = std::array::from_fn(|i| if ta[i] < tb[i] { ta[i] } else { tb[i] });
+    let hi: [T; 3] = std::array::from_fn(|i| if ta[i] > tb[i] { ta[i] } else { tb[i] });
+    let (mut t_near, mut near_axis) = (lo[0], 0);
     for i in 1..3 {
         if lo[i] > t_near {
             (t_near, near_axis) = (lo[i], i);
         }
     }
-    let (mut t_far, mut far_axis) = (hi.x, 0);
+    let (mut t_far, mut far_axis) = (hi[0], 0);
     for i in 1..3 {
         if hi[i] < t_far {
             (t_far, far_axis) = (hi[i], i);
@@ -182,15 +196,13 @@ pub fn hit_cube_naive(cube: &Cube, ray: &Ray, t_max: f64) -> Option<Hit> {
     if t_near > t_far {
         return None;
     }
-    let (t, axis, side) = if t_near <= 0.0 {
-        (t_far, far_axis, 1.0)
+    let (t, axis, side) = if t_near <= zero {
+        (t_far, far_axis, T::one())
     } else {
-        (t_near, near_axis, -1.0)
+        (t_near, near_axis, -T::one())
     };
-    if t <= 0.0 || t >= t_max {
+    if t <= zero || t >= t_max {
         return None;
     }
-    let mut n_local = DVec3::ZERO;
-    n_local[axis] = side * wgsl_sign(d[axis]);
-    Some(Hit::new(t, ray.at(t), cube.rotation * n_local, 0.0))
+    Some((t, axis, side * wgsl_sign(d[axis])))
 }

@@ -1,6 +1,7 @@
 //! A sphere for the f64 tracer (docs/rendering-model.md, "Shapes").
 
 use glam::DVec3;
+use num_traits::Float;
 
 use super::{Prepare, Trace};
 use crate::reference::ReferenceOptions;
@@ -131,17 +132,27 @@ pub fn hit_sphere_naive(sphere: &Sphere, ray: &Ray, t_max: f64) -> Option<Hit> {
     let a = d.dot(d);
     let b = 2.0 * f.dot(d);
     let c = f.dot(f) - sphere.radius * sphere.radius;
-    let disc = b * b - 4.0 * a * c;
-    if disc < 0.0 {
-        return None;
-    }
-    let mut t = (-b - disc.sqrt()) / (2.0 * a);
-    if t <= 0.0 {
-        t = (-b + disc.sqrt()) / (2.0 * a);
-    }
-    if t <= 0.0 || t >= t_max {
-        return None;
-    }
+    let t = naive_root(a, b, c, t_max)?;
     let p = ray.at(t);
     Some(Hit::new(t, p, (p - sphere.center) / sphere.radius, 0.0))
+}
+
+/// The naive sphere's root of `a t^2 + b t + c` in any float type (f64
+/// here, f32 in the port of the shader, `src/stress/f32_intersect.rs`):
+/// `(-b - sqrt(disc)) / 2a`, else `(-b + sqrt(disc)) / 2a`, if in
+/// `(0, t_max)`.
+pub fn naive_root<T: Float>(a: T, b: T, c: T, t_max: T) -> Option<T> {
+    let (zero, two) = (T::zero(), T::one() + T::one());
+    let disc = b * b - (two + two) * a * c;
+    if disc < zero {
+        return None;
+    }
+    let mut t = (-b - disc.sqrt()) / (two * a);
+    if t <= zero {
+        t = (-b + disc.sqrt()) / (two * a);
+    }
+    if t <= zero || t >= t_max {
+        return None;
+    }
+    Some(t)
 }
