@@ -3,7 +3,7 @@
 use glam::{DMat3, DVec3};
 use num_traits::Float;
 
-use super::{Prepare, Trace};
+use super::{Prepare, Trace, robust_or_naive};
 use crate::expr::wgsl_sign;
 use crate::reference::ReferenceOptions;
 use crate::reference::hit::{Hit, foot};
@@ -53,11 +53,7 @@ impl Prepare for scene::Cube {
 
 impl Trace for Cube {
     fn hit(&self, ray: &Ray, t_max: f64, options: &ReferenceOptions) -> Option<Hit> {
-        if options.robust {
-            hit_cube(self, ray, t_max)
-        } else {
-            hit_cube_naive(self, ray, t_max)
-        }
+        robust_or_naive(options, hit_cube, hit_cube_naive)(self, ray, t_max)
     }
 }
 

@@ -35,6 +35,20 @@ pub trait Trace: Debug + Clone {
     fn hit(&self, ray: &Ray, t_max: f64, options: &ReferenceOptions) -> Option<Hit>;
 }
 
+/// A hit test of one kind: the shape, the ray, `t_max`.
+pub type HitTest<S> = fn(&S, &Ray, f64) -> Option<Hit>;
+
+/// `robust` or, with `options.robust = false`, the lecture's `naive` test
+/// (docs/implementation.md, "The naive variant"), for the kinds that have
+/// both.
+pub fn robust_or_naive<S>(
+    options: &ReferenceOptions,
+    robust: HitTest<S>,
+    naive: HitTest<S>,
+) -> HitTest<S> {
+    if options.robust { robust } else { naive }
+}
+
 /// A prepared shape and the slot of its material in
 /// `PreparedScene::materials`, kept beside it for every kind alike.
 #[derive(Debug, Clone)]

@@ -2,7 +2,7 @@
 
 use glam::DVec3;
 
-use super::{Prepare, Trace};
+use super::{Prepare, Trace, robust_or_naive};
 use crate::reference::ReferenceOptions;
 use crate::reference::hit::{Hit, foot};
 use crate::reference::ray::Ray;
@@ -41,11 +41,7 @@ impl Prepare for scene::Plane {
 
 impl Trace for Plane {
     fn hit(&self, ray: &Ray, t_max: f64, options: &ReferenceOptions) -> Option<Hit> {
-        if options.robust {
-            hit_plane(self, ray, t_max)
-        } else {
-            hit_plane_naive(self, ray, t_max)
-        }
+        robust_or_naive(options, hit_plane, hit_plane_naive)(self, ray, t_max)
     }
 }
 

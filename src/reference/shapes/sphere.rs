@@ -3,7 +3,7 @@
 use glam::DVec3;
 use num_traits::Float;
 
-use super::{Prepare, Trace};
+use super::{Prepare, Trace, robust_or_naive};
 use crate::reference::ReferenceOptions;
 use crate::reference::hit::{Hit, foot, major_axis};
 use crate::reference::ray::Ray;
@@ -32,11 +32,7 @@ impl Prepare for scene::Sphere {
 
 impl Trace for Sphere {
     fn hit(&self, ray: &Ray, t_max: f64, options: &ReferenceOptions) -> Option<Hit> {
-        if options.robust {
-            hit_sphere(self, ray, t_max)
-        } else {
-            hit_sphere_naive(self, ray, t_max)
-        }
+        robust_or_naive(options, hit_sphere, hit_sphere_naive)(self, ray, t_max)
     }
 }
 
