@@ -34,7 +34,7 @@ use std::path::{Path, PathBuf};
 use super::include::{self, Expanded, include_target};
 use crate::gpu::{ShaderError, ShaderSource};
 use crate::shader_params::ParamSet;
-use crate::shader_params::scan::{Scan, Token};
+use crate::shader_params::scan::{Scan, Token, top_level};
 use glsl::{GLSL_DEFINES, compile_glsl};
 pub use silent_zeros::{Warning, WarningKind};
 use wgsl::compile_wgsl;
@@ -340,18 +340,7 @@ fn at_end_of_file(name: &str, scan: &Scan, message: String) -> ShaderError {
 
 /// Index of the first token `a` directly followed by `b`, at brace depth 0.
 fn find_pair(tokens: &[Token], a: &str, b: &str) -> Option<usize> {
-    let mut depth = 0i32;
-    for (i, t) in tokens.iter().enumerate() {
-        match t.text {
-            "{" => depth += 1,
-            "}" => depth -= 1,
-            _ => {}
-        }
-        if depth == 0 && t.is(a) && tokens.get(i + 1).is_some_and(|n| n.is(b)) {
-            return Some(i);
-        }
-    }
-    None
+    top_level(tokens).find(|&i| tokens[i].is(a) && tokens.get(i + 1).is_some_and(|n| n.is(b)))
 }
 
 #[cfg(test)]
