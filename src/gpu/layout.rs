@@ -373,7 +373,7 @@ mod tests {
     }
 
     use super::*;
-    use crate::scene::test_scenes::NEAR_THE_ORIGIN;
+    use crate::scene::test_scenes::{FULL, NEAR_THE_ORIGIN};
     use std::mem::{offset_of, size_of};
 
     /// (field name, offset) of each field, in declaration order.
@@ -505,28 +505,15 @@ mod tests {
 
     #[test]
     fn materials_are_indexed_default_first_then_in_file_order() {
-        let text = r#"
-            [camera]
-            from = [0, 0, 5]
-            to = [0, 0, 0]
-            [materials.b]
-            color = [0, 0, 1]
-            [materials.a]
-            color = [1, 0, 0]
-            [[spheres]]
-            center = [0, 0, 0]
-            radius = 1
-            material = "a"
-            [[spheres]]
-            center = [0, 0, 0]
-            radius = 1
-        "#;
-        let scene = Scene::from_toml_str(text, None).expect("valid scene");
+        let scene = Scene::from_toml_str(FULL, None).expect("valid scene");
         let packed = PackedScene::new(&scene, 4, 3);
-        assert_eq!(packed.materials[1].color, [0.0, 0.0, 1.0]);
-        assert_eq!(packed.materials[2].color, [1.0, 0.0, 0.0]);
-        assert_eq!(packed.shapes_of::<scene::Sphere>()[0].material, 2);
+        // glass, floor, "brushed steel": the file's order, not the alphabet's.
+        assert_eq!(packed.materials[1].color, [1.0, 1.0, 1.0]);
+        assert_eq!(packed.materials[2].color, [0.9, 0.9, 0.9]);
+        assert_eq!(packed.shapes_of::<scene::Sphere>()[0].material, 1);
         assert_eq!(packed.shapes_of::<scene::Sphere>()[1].material, 0);
+        assert_eq!(packed.shapes_of::<scene::Plane>()[0].material, 2);
+        assert_eq!(packed.shapes_of::<scene::Cube>()[0].material, 3);
         assert_eq!(packed.materials[0].color, [0.8, 0.8, 0.8]);
     }
 
