@@ -94,3 +94,21 @@ macro_rules! prepared_shapes {
     };
 }
 crate::scene::for_each_shape_kind!(prepared_shapes);
+
+/// What the tests of the kinds' hit tests share.
+#[cfg(test)]
+pub mod test_rays {
+    use glam::DVec3;
+
+    use super::Ray;
+
+    /// The ray from `o` along `d` (normalised).
+    pub fn ray(o: [f64; 3], d: [f64; 3]) -> Ray {
+        Ray::new(DVec3::from(o), DVec3::from(d))
+    }
+
+    /// Equal to 1e-12.
+    pub fn close(a: DVec3, b: DVec3) -> bool {
+        (a - b).length() < 1e-12
+    }
+}
