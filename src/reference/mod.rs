@@ -93,9 +93,10 @@ pub struct PreparedScene {
     /// The robust routines or the textbook ones, the triangle test and the
     /// pixel angle.
     options: ReferenceOptions,
-    /// Whether a Julia set grows its epsilon with the pixel footprint: then
-    /// each render sets `options.pixel_angle` for its image height.
-    uses_footprint: bool,
+    /// Whether a shape's hit depends on the pixel angle (a Julia set that
+    /// grows its epsilon with the pixel footprint): then each render sets
+    /// `options.pixel_angle` for its image height.
+    uses_pixel_angle: bool,
 }
 
 /// Variants of the reference, the twin of the shader's `gpu::ShaderOptions`.
@@ -142,7 +143,9 @@ impl PreparedScene {
         let materials = std::iter::once(Material::default())
             .chain(scene.materials.values().cloned())
             .collect();
+        let shapes = shapes::Shapes::new(scene);
         Self {
+            uses_pixel_angle: shapes.use_pixel_angle(),
             frame_origin,
             bvh: Bvh::build(scene),
             camera: Camera::new(&scene.camera),
@@ -155,7 +158,7 @@ impl PreparedScene {
                 })
                 .collect(),
             materials,
-            shapes: shapes::Shapes::new(scene),
+            shapes,
             unbounded: scene.unbounded_shapes(),
             background: scene.render.background,
             ambient: scene.render.ambient,
@@ -166,7 +169,6 @@ impl PreparedScene {
             refraction: scene.render.refraction,
             exposure: scene.render.exposure,
             options: *options,
-            uses_footprint: scene.julias.iter().any(|j| j.footprint),
         }
     }
 
@@ -174,7 +176,7 @@ impl PreparedScene {
     /// angle of that height when a Julia set needs it (a copy), else itself.
     fn sized(&self, height: u32) -> std::borrow::Cow<'_, PreparedScene> {
         let pixel_angle = self.camera.film_height / f64::from(height.max(1));
-        if !self.uses_footprint || self.options.pixel_angle == pixel_angle {
+        if !self.uses_pixel_angle || self.options.pixel_angle == pixel_angle {
             return std::borrow::Cow::Borrowed(self);
         }
         let mut sized = self.clone();

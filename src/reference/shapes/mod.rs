@@ -33,6 +33,13 @@ pub trait Trace: Debug + Clone {
     /// (docs/implementation.md) or, with `options.robust = false`, the
     /// lecture's; triangles by `options.triangles`.
     fn hit(&self, ray: &Ray, t_max: f64, options: &ReferenceOptions) -> Option<Hit>;
+
+    /// Whether the hit depends on `options.pixel_angle`, which a render
+    /// then sets for its image height (a Julia set whose epsilon grows with
+    /// the pixel footprint).
+    fn uses_pixel_angle(&self) -> bool {
+        false
+    }
 }
 
 /// A hit test of one kind: the shape, the ray, `t_max`.
@@ -82,6 +89,11 @@ macro_rules! prepared_shapes {
                 match id {
                     $(ShapeId::$kind(i) => self.$field[i].traced.hit(ray, t_max, options),)*
                 }
+            }
+
+            /// Whether any shape's hit depends on `options.pixel_angle`.
+            pub fn use_pixel_angle(&self) -> bool {
+                false $(|| self.$field.iter().any(|p| p.traced.uses_pixel_angle()))*
             }
 
             /// The material slot of shape `id`.
