@@ -178,15 +178,15 @@ pub fn naive_slab<T: Float>(o: [T; 3], d: [T; 3], h: [T; 3], t_max: T) -> Option
     let lo: [T; 3] = std::array::from_fn(|i| if ta[i] < tb[i] { ta[i] } else { tb[i] });
     let hi: [T; 3] = std::array::from_fn(|i| if ta[i] > tb[i] { ta[i] } else { tb[i] });
     let (mut t_near, mut near_axis) = (lo[0], 0);
-    for i in 1..3 {
-        if lo[i] > t_near {
-            (t_near, near_axis) = (lo[i], i);
+    for (i, &x) in lo.iter().enumerate().skip(1) {
+        if x > t_near {
+            (t_near, near_axis) = (x, i);
         }
     }
     let (mut t_far, mut far_axis) = (hi[0], 0);
-    for i in 1..3 {
-        if hi[i] < t_far {
-            (t_far, far_axis) = (hi[i], i);
+    for (i, &x) in hi.iter().enumerate().skip(1) {
+        if x < t_far {
+            (t_far, far_axis) = (x, i);
         }
     }
     if t_near > t_far {
