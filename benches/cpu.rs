@@ -11,11 +11,10 @@ use glam::{DMat3, DVec3};
 use raysandbox::bench::sphere_field;
 use raysandbox::bvh::Bvh;
 use raysandbox::gpu::layout::PackedScene;
-use raysandbox::reference::intersect::{
-    Cube, Plane, Sphere, hit_cube, hit_cube_naive, hit_plane, hit_plane_naive, hit_sphere,
-    hit_sphere_naive,
-};
 use raysandbox::reference::ray::Ray;
+use raysandbox::reference::shapes::cube::{Cube, hit_cube, hit_cube_naive};
+use raysandbox::reference::shapes::plane::{Plane, hit_plane, hit_plane_naive};
+use raysandbox::reference::shapes::sphere::{Sphere, hit_sphere, hit_sphere_naive};
 use raysandbox::reference::{PreparedScene, render_linear};
 use raysandbox::scene::{Instance, Loaded, Mesh, Placement, Scene, bundled};
 

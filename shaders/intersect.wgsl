@@ -97,6 +97,33 @@ fn hit_box(lo: vec3<f32>, hi: vec3<f32>, ray: Ray, inv_d: vec3<f32>, t_max: f32)
     return near <= far;
 }
 
+/// Pushes an inner BVH node's children, `first` and `first + 1` (split
+/// along the longest axis of the node's box, of extent `e`), onto a
+/// traversal's stack above `top`: the nearer along `dir` last, so that it
+/// is visited first. Returns the new top.
+fn push_children(stack: ptr<function, array<u32, BVH_STACK>>, top: u32, first: u32, e: vec3<f32>, dir: vec3<f32>) -> u32 {
+    var axis = 2u;
+    if e.x >= e.y && e.x >= e.z {
+        axis = 0u;
+    } else if e.y >= e.z {
+        axis = 1u;
+    }
+    let near_first = dir[axis] >= 0.0;
+    (*stack)[top] = select(first, first + 1u, near_first);
+    (*stack)[top + 1u] = select(first + 1u, first, near_first);
+    return min(top + 2u, BVH_STACK);
+}
+
+/// Narrows a bracket [a, b] of a sign change of g (g(a) < 0 when
+/// `a_negative`) to the half that keeps it, g being `g_x` at x in [a, b].
+fn narrow_bracket(a: ptr<function, f32>, b: ptr<function, f32>, x: f32, g_x: f32, a_negative: bool) {
+    if (g_x < 0.0) == a_negative {
+        *a = x;
+    } else {
+        *b = x;
+    }
+}
+
 /// The nearest hit of a bounded shape (every kind but planes) through the
 /// BVH, nearer than best.t. With `any`, stops at the first hit (shadow rays
 /// need no more). The root's box holds every bounded shape, so a ray that
@@ -119,18 +146,7 @@ fn hit_bounded_bvh(ray: Ray, best_in: Hit, any: bool) -> Hit {
             continue;
         }
         if node.count == 0u {
-            // Visit the nearer child first: push it last.
-            let e = node.bounds_max - node.bounds_min;
-            var axis = 2u;
-            if e.x >= e.y && e.x >= e.z {
-                axis = 0u;
-            } else if e.y >= e.z {
-                axis = 1u;
-            }
-            let near_first = ray.dir[axis] >= 0.0;
-            stack[top] = select(node.first, node.first + 1u, near_first);
-            stack[top + 1u] = select(node.first + 1u, node.first, near_first);
-            top = min(top + 2u, BVH_STACK);
+            top = push_children(&stack, top, node.first, node.bounds_max - node.bounds_min, ray.dir);
             continue;
         }
         for (var i = node.first; i < node.first + node.count; i++) {

@@ -1,6 +1,6 @@
 //! Property tests of the intersection routines over wide ranges: the f32
 //! port of the shader (`stress::f32_intersect`, robust) and the f64
-//! reference (`reference::intersect`), each judged against the exact answer
+//! reference (`reference::shapes`), each judged against the exact answer
 //! for its own inputs (double-double, `support/exact.rs`).
 //!
 //! Scenes from 1e-3 to 1e6 in size, moved up to 1e3 of their size away from
@@ -22,11 +22,17 @@ mod support;
 
 use glam::{DMat3, DVec3, Mat3, Vec3};
 use proptest::prelude::*;
-use raysandbox::reference::intersect as r64;
 use raysandbox::reference::ray::offset_ray as offset64;
 use raysandbox::stress::f32_intersect as r32;
 use support::cases::*;
 use support::exact;
+
+/// The f64 reference's hit tests of the kinds these properties cover.
+mod r64 {
+    pub use raysandbox::reference::shapes::cube::{Cube, hit_cube};
+    pub use raysandbox::reference::shapes::plane::{Plane, hit_plane};
+    pub use raysandbox::reference::shapes::sphere::{Sphere, hit_sphere};
+}
 
 const EPS32: f64 = f32::EPSILON as f64 / 2.0;
 const EPS64: f64 = f64::EPSILON / 2.0;

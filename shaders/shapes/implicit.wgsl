@@ -39,11 +39,7 @@ fn implicit_bisect(s: Implicit, l: LocalRay, a_in: f32, b_in: f32, a_negative: b
         if gm == 0.0 {
             return mid;
         }
-        if (gm < 0.0) == a_negative {
-            a = mid;
-        } else {
-            b = mid;
-        }
+        narrow_bracket(&a, &b, mid, gm, a_negative);
     }
     return 0.5 * (a + b);
 }

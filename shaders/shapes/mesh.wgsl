@@ -172,16 +172,7 @@ fn hit_mesh(ray: Ray, m: Mesh, index: u32, best: Hit) -> Hit {
         let count = hi.w;
         if count == 0u {
             let e = bitcast<vec3<f32>>(hi.xyz) - bitcast<vec3<f32>>(lo.xyz);
-            var axis = 2u;
-            if e.x >= e.y && e.x >= e.z {
-                axis = 0u;
-            } else if e.y >= e.z {
-                axis = 1u;
-            }
-            let near_first = local.dir[axis] >= 0.0;
-            stack[top] = select(first, first + 1u, near_first);
-            stack[top + 1u] = select(first + 1u, first, near_first);
-            top = min(top + 2u, BVH_STACK);
+            top = push_children(&stack, top, first, e, local.dir);
             continue;
         }
         for (var k = first; k < first + count; k++) {

@@ -75,11 +75,7 @@ fn quartic_bracketed(k: Quartic, slope: bool, a_in: f32, b_in: f32) -> f32 {
         if gm == 0.0 {
             return mid;
         }
-        if (gm < 0.0) == a_negative {
-            a = mid;
-        } else {
-            b = mid;
-        }
+        narrow_bracket(&a, &b, mid, gm, a_negative);
     }
     return b;
 }
@@ -314,11 +310,7 @@ fn quartic_newton(k: Quartic, piece: Piece) -> f32 {
         if g == 0.0 {
             return x;
         }
-        if (g < 0.0) == a_negative {
-            a = x;
-        } else {
-            b = x;
-        }
+        narrow_bracket(&a, &b, x, g, a_negative);
         var next = x - g / quartic_at(k, true, x);
         if !(next > a && next < b) {
             next = 0.5 * (a + b);

@@ -252,30 +252,8 @@ pub fn median<T: PartialOrd>(values: impl IntoIterator<Item = T>) -> T {
 /// radii shrinking as 1 / sqrt(n): the picture covers about the same part
 /// of the screen at every n, so only the number of shapes changes.
 pub fn sphere_field(n: usize) -> Scene {
-    let mut scene = Scene::from_toml_str(
-        r#"
-        [render]
-        max_depth = 2
-        background = [0.6, 0.7, 0.9]
-        [camera]
-        from = [0, 7, 11]
-        to = [0, 0, 0]
-        fov = 45
-        [[lights]]
-        position = [5, 12, 6]
-        [materials.floor]
-        color = [0.8, 0.8, 0.8]
-        [materials.ball]
-        color = [0.8, 0.3, 0.2]
-        specular = 0.3
-        [[planes]]
-        point = [0, 0, 0]
-        normal = [0, 1, 0]
-        material = "floor"
-        "#,
-        None,
-    )
-    .expect("the field scene is valid");
+    let mut scene = Scene::from_toml_str(include_str!("sphere_field.toml"), None)
+        .expect("the field scene is valid");
     let side = (n as f64).sqrt().ceil().max(1.0) as usize;
     let spacing = 10.0 / side as f64;
     let radius = 0.35 * spacing;

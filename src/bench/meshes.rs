@@ -36,34 +36,7 @@ pub(super) const MESHES: [(&str, &str); 6] = [
 /// The stage every mesh is shown on: a checker floor, one light casting
 /// the mesh's shadow, the camera framing a unit box on the floor. The mesh
 /// is scaled so that its largest extent is 1 and set on the floor.
-const STAGE: &str = r#"
-[render]
-max_depth = 2
-background = [0.55, 0.7, 0.9]
-ambient = [0.12, 0.12, 0.12]
-
-[camera]
-from = [1.5, 1.1, 2.4]
-to = [0, 0.35, 0]
-fov = 35
-
-[[lights]]
-position = [-3, 5, 3]
-
-[materials.floor]
-color = [0.9, 0.88, 0.8]
-checker = { color = [0.4, 0.45, 0.55], size = 0.25 }
-
-[materials.clay]
-color = [0.8, 0.55, 0.4]
-specular = 0.3
-shininess = 40
-
-[[planes]]
-point = [0, 0, 0]
-normal = [0, 1, 0]
-material = "floor"
-"#;
+const STAGE: &str = include_str!("stage.toml");
 
 /// The project folder: the meshes are read from there.
 pub(super) fn project() -> &'static Path {

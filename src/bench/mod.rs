@@ -546,6 +546,16 @@ fn psnr_of(rmse: f64) -> f64 {
     -20.0 * rmse.log10()
 }
 
+/// A CSV file's text: the header `columns`, then one line per row.
+fn csv_of<T>(columns: &str, rows: &[T], line: impl Fn(&T) -> String) -> String {
+    let mut csv = format!("{columns}\n");
+    for r in rows {
+        csv += &line(r);
+        csv.push('\n');
+    }
+    csv
+}
+
 fn write_outputs(
     out: &Path,
     env: &Environment,
@@ -562,42 +572,34 @@ fn write_outputs(
         let path = out.join(name);
         std::fs::write(&path, text).map_err(|e| fail(&path, e))
     };
-    let mut csv = format!("{ERROR_COLUMNS}\n");
-    for r in errors {
+    let csv = csv_of(ERROR_COLUMNS, errors, |r| {
         let p = r.point;
-        let _ = writeln!(
-            csv,
+        format!(
             "{},{},{},{},{},{:.4},{:.6},{:.3}",
             r.scene, p.spp, p.depth, p.min_weight, p.scale, r.time_ms, r.rmse, r.psnr
-        );
-    }
+        )
+    });
     write("time_vs_error.csv", csv)?;
-    let mut csv = format!("{REFERENCE_COLUMNS}\n");
-    for r in references {
-        let _ = writeln!(
-            csv,
+    let csv = csv_of(REFERENCE_COLUMNS, references, |r| {
+        format!(
             "{},{},{:.6},{:.6}",
             r.scene, r.spp, r.halves_rmse, r.noise_floor
-        );
-    }
+        )
+    });
     write("reference.csv", csv)?;
-    let mut csv = format!("{PIPELINE_COLUMNS}\n");
-    for r in pipelines {
-        let _ = writeln!(
-            csv,
+    let csv = csv_of(PIPELINE_COLUMNS, pipelines, |r| {
+        format!(
             "{},{:.4},{:.4},{:.4}",
             r.scene, r.specialized_ms, r.generic_ms, r.ratio
-        );
-    }
+        )
+    });
     write("specialized_vs_generic.csv", csv)?;
-    let mut csv = format!("{SCALING_COLUMNS}\n");
-    for r in scaling {
-        let _ = writeln!(
-            csv,
+    let csv = csv_of(SCALING_COLUMNS, scaling, |r| {
+        format!(
             "{},{:.4},{:.4},{:.4}",
             r.spheres, r.bvh_ms, r.loop_ms, r.build_ms
-        );
-    }
+        )
+    });
     write("scaling.csv", csv)?;
 
     let mut md = String::new();

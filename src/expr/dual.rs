@@ -8,8 +8,8 @@ use std::ops::{Add, Div, Mul, Sub};
 
 use glam::DVec3;
 
-use super::Scalar;
 use super::ops::Unary;
+use super::{Scalar, wgsl_sign};
 
 /// A value and its gradient with respect to (x, y, z).
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -97,15 +97,7 @@ pub fn derivative(f: Unary, x: f64, fx: f64) -> f64 {
         Unary::Log => 1.0 / x,
         Unary::Sqrt => 0.5 / fx,
         // 0 at 0, as WGSL's sign().
-        Unary::Abs => {
-            if x > 0.0 {
-                1.0
-            } else if x < 0.0 {
-                -1.0
-            } else {
-                0.0
-            }
-        }
+        Unary::Abs => wgsl_sign(x),
         Unary::Floor => 0.0,
     }
 }

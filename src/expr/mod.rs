@@ -26,7 +26,7 @@ use glam::DVec3;
 pub use dual::Dual;
 pub use error::ExprError;
 pub use ops::{Binary, Unary};
-pub use scalar::Scalar;
+pub use scalar::{Scalar, wgsl_sign};
 use tree::Node;
 
 /// The names `f` may call, with their number of arguments, as

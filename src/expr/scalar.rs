@@ -71,3 +71,15 @@ macro_rules! real_scalar {
 
 real_scalar!(f64);
 real_scalar!(f32);
+
+/// WGSL's `sign`: -1, 0 or +1 (Rust's `signum` gives +1 for +0): the
+/// derivative of `abs`, and the sign of a box's normal in both renderers.
+pub fn wgsl_sign<T: num_traits::Float>(x: T) -> T {
+    if x > T::zero() {
+        T::one()
+    } else if x < T::zero() {
+        -T::one()
+    } else {
+        T::zero()
+    }
+}

@@ -58,19 +58,14 @@ pub fn pass(
     bind_groups: &[&wgpu::BindGroup],
     target: &wgpu::TextureView,
 ) {
-    encode(
-        encoder,
-        pipeline,
-        bind_groups,
-        target,
-        wgpu::LoadOp::Clear(wgpu::Color::BLACK),
-        &[],
-    );
+    pass_rects(encoder, pipeline, bind_groups, target, &[], true);
 }
 
 /// Like [`pass`], limited to the scissor rectangles `rects` (`[x, y,
-/// width, height]`, disjoint): the other pixels keep what the target holds,
-/// unless `clear` (then they are black).
+/// width, height]`, disjoint; none: the whole target): the other pixels
+/// keep what the target holds, unless `clear` (then they are black). Not
+/// cleared, the pixels the fragment shader discards keep their colour too
+/// (the selection outline over the traced image).
 pub fn pass_rects(
     encoder: &mut wgpu::CommandEncoder,
     pipeline: &wgpu::RenderPipeline,
@@ -84,36 +79,6 @@ pub fn pass_rects(
     } else {
         wgpu::LoadOp::Load
     };
-    encode(encoder, pipeline, bind_groups, target, load, rects);
-}
-
-/// Like [`pass`], but drawing over what `target` holds: the pixels the
-/// fragment shader discards keep their colour (e.g. the selection outline
-/// over the traced image).
-pub fn pass_over(
-    encoder: &mut wgpu::CommandEncoder,
-    pipeline: &wgpu::RenderPipeline,
-    bind_groups: &[&wgpu::BindGroup],
-    target: &wgpu::TextureView,
-) {
-    encode(
-        encoder,
-        pipeline,
-        bind_groups,
-        target,
-        wgpu::LoadOp::Load,
-        &[],
-    );
-}
-
-fn encode(
-    encoder: &mut wgpu::CommandEncoder,
-    pipeline: &wgpu::RenderPipeline,
-    bind_groups: &[&wgpu::BindGroup],
-    target: &wgpu::TextureView,
-    load: wgpu::LoadOp<wgpu::Color>,
-    scissors: &[[u32; 4]],
-) {
     let mut pass = encoder.begin_render_pass(&wgpu::RenderPassDescriptor {
         label: None,
         color_attachments: &[Some(wgpu::RenderPassColorAttachment {
@@ -134,10 +99,10 @@ fn encode(
     for (group, bind_group) in bind_groups.iter().enumerate() {
         pass.set_bind_group(group as u32, *bind_group, &[]);
     }
-    if scissors.is_empty() {
+    if rects.is_empty() {
         pass.draw(0..3, 0..1);
     }
-    for &[x, y, w, h] in scissors {
+    for &[x, y, w, h] in rects {
         pass.set_scissor_rect(x, y, w, h);
         pass.draw(0..3, 0..1);
     }

@@ -14,7 +14,7 @@ use super::offscreen::read_texels;
 use super::outline::{ID_FORMAT, id_pipeline};
 use super::shaders::ShaderSource;
 use super::shapes::glue::ALL_KINDS_BOUND;
-use super::texture::render_target;
+use super::texture::readback_target;
 use super::tracer::{PipelineError, SceneBuffers, scene_layout_entries};
 use crate::scene::{Scene, ShapeId};
 
@@ -109,13 +109,7 @@ impl IdRenderer {
             None,
         )?;
         let bind_group = &scene.bind_group;
-        let target = render_target(
-            device,
-            "first hits",
-            (width, height),
-            ID_FORMAT,
-            wgpu::TextureUsages::COPY_SRC,
-        );
+        let target = readback_target(device, "first hits", (width, height), ID_FORMAT);
         let view = target.create_view(&Default::default());
         let mut encoder = device.create_command_encoder(&Default::default());
         fullscreen::pass(&mut encoder, &self.pipeline, &[bind_group], &view);

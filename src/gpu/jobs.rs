@@ -30,11 +30,10 @@ const MAX_BUDGET: Duration = Duration::from_millis(200);
 const BINS: usize = 64;
 
 /// Pixels of the first job on an image whose costs are unknown: few, since
-/// on a slow adapter one pixel of a glass scene can take milliseconds (the
-/// glass bunny's take about 2 ms on SwiftShader, docs/performance.md,
-/// "Short GPU jobs"); the jobs double from there, so a cheap scene reaches
-/// the budget within a few jobs. In the browser [`min_pixels`] makes the
-/// first job a row all the same.
+/// on a slow adapter one pixel of a glass scene can take milliseconds
+/// (docs/performance.md, "Short GPU jobs", has the times); the jobs double
+/// from there, so a cheap scene reaches the budget within a few jobs. In
+/// the browser [`min_pixels`] makes the first job a row all the same.
 const FIRST_PIXELS: u32 = 64;
 
 /// Over pixels whose cost is unknown, a job takes at most this many times

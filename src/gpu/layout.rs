@@ -373,6 +373,7 @@ mod tests {
     }
 
     use super::*;
+    use crate::scene::test_scenes::{FULL, NEAR_THE_ORIGIN};
     use std::mem::{offset_of, size_of};
 
     /// (field name, offset) of each field, in declaration order.
@@ -504,28 +505,15 @@ mod tests {
 
     #[test]
     fn materials_are_indexed_default_first_then_in_file_order() {
-        let text = r#"
-            [camera]
-            from = [0, 0, 5]
-            to = [0, 0, 0]
-            [materials.b]
-            color = [0, 0, 1]
-            [materials.a]
-            color = [1, 0, 0]
-            [[spheres]]
-            center = [0, 0, 0]
-            radius = 1
-            material = "a"
-            [[spheres]]
-            center = [0, 0, 0]
-            radius = 1
-        "#;
-        let scene = Scene::from_toml_str(text, None).expect("valid scene");
+        let scene = Scene::from_toml_str(FULL, None).expect("valid scene");
         let packed = PackedScene::new(&scene, 4, 3);
-        assert_eq!(packed.materials[1].color, [0.0, 0.0, 1.0]);
-        assert_eq!(packed.materials[2].color, [1.0, 0.0, 0.0]);
-        assert_eq!(packed.shapes_of::<scene::Sphere>()[0].material, 2);
+        // glass, floor, "brushed steel": the file's order, not the alphabet's.
+        assert_eq!(packed.materials[1].color, [1.0, 1.0, 1.0]);
+        assert_eq!(packed.materials[2].color, [0.9, 0.9, 0.9]);
+        assert_eq!(packed.shapes_of::<scene::Sphere>()[0].material, 1);
         assert_eq!(packed.shapes_of::<scene::Sphere>()[1].material, 0);
+        assert_eq!(packed.shapes_of::<scene::Plane>()[0].material, 2);
+        assert_eq!(packed.shapes_of::<scene::Cube>()[0].material, 3);
         assert_eq!(packed.materials[0].color, [0.8, 0.8, 0.8]);
     }
 
@@ -555,26 +543,7 @@ mod tests {
     /// the same scene; the checker's phase keeps its world cells.
     #[test]
     fn positions_are_packed_relative_to_the_target() {
-        let text = r#"
-            [camera]
-            from = [0.4, 1.7, 6.5]
-            to = [0, 0.6, 0]
-            [materials.floor]
-            checker = { color = [0, 0, 0], size = 0.5 }
-            [[lights]]
-            position = [-4, 6, 5]
-            [[planes]]
-            point = [0, 0, 0]
-            normal = [0, 1, 0]
-            material = "floor"
-            [[spheres]]
-            center = [0.9, 0.7, 1]
-            radius = 0.7
-            [[cubes]]
-            center = [1.8, 0.5, -1]
-            size = 1
-        "#;
-        let scene = Scene::from_toml_str(text, None).expect("valid scene");
+        let scene = Scene::from_toml_str(NEAR_THE_ORIGIN, None).expect("valid scene");
         let offset = DVec3::new(-1e6, 1e6, -1e6);
         let near = PackedScene::new(&scene, 4, 3);
         let far = PackedScene::new(&scene.translated(offset), 4, 3);

@@ -7,7 +7,7 @@ use super::features::ShaderOptions;
 use super::layout::PackedScene;
 use super::limits::BufferLimitError;
 use super::shaders::ShaderSource;
-use super::texture::render_target;
+use super::texture::readback_target;
 use super::timer::{GpuTimer, Timing};
 use super::tracer::{
     Accumulator, FrameTarget, PipelineError, Pipelines, SceneBuffers, encode_frame,
@@ -75,13 +75,7 @@ impl OffscreenRenderer {
             PackedScene::new(scene, width, height),
         )?;
         let accum = Accumulator::new(device, &pipelines, width, height);
-        let target = render_target(
-            device,
-            "offscreen image",
-            (width, height),
-            OUTPUT_FORMAT,
-            wgpu::TextureUsages::COPY_SRC,
-        );
+        let target = readback_target(device, "offscreen image", (width, height), OUTPUT_FORMAT);
         Ok(OffscreenRenderer {
             pipelines,
             scene,

@@ -207,7 +207,9 @@ impl Outline {
             fullscreen::pass(encoder, &pipelines.id, &[scene], &image.view);
             image.current = true;
         }
-        fullscreen::pass_over(encoder, outline, &[scene, &image.bind_group], target.0);
+        // Over the traced image, which the pixels the outline discards keep.
+        let groups = [scene, &image.bind_group];
+        fullscreen::pass_rects(encoder, outline, &groups, target.0, &[], false);
     }
 
     fn id_image(

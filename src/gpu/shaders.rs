@@ -11,7 +11,7 @@ use std::path::{Path, PathBuf};
 use super::features::MAX_STACK_SIZE;
 use super::layout::fixed_arrays;
 use super::shapes::glue::{ALL_KINDS_BOUND, shape_glue};
-use super::shapes::{KindInfo, implicit, kinds};
+use super::shapes::{KindInfo, kinds};
 
 /// The shader files in the order they are joined, before the shape kinds'
 /// `shapes/<kind>.wgsl` (see `gpu::shapes`). WGSL resolves names at module
@@ -133,6 +133,15 @@ fn generated_part(stack_size: u32, bound_kinds: u32) -> (String, String) {
     )
 }
 
+/// The parts the shape kinds write from the scene's `functions`
+/// ([`super::shapes::PackShape::generated`]).
+fn generated_parts(functions: &[String]) -> Vec<(String, String)> {
+    kinds()
+        .iter()
+        .filter_map(|k| (k.generated)(functions))
+        .collect()
+}
+
 impl ShaderSource {
     /// The shader files compiled into the binary.
     pub fn embedded() -> Self {
@@ -147,7 +156,7 @@ impl ShaderSource {
             std::iter::once(generated_part(MAX_STACK_SIZE, ALL_KINDS_BOUND))
                 .chain(files)
                 .chain(shapes)
-                .chain([implicit::functions_part(&[])]),
+                .chain(generated_parts(&[])),
         )
     }
 
@@ -198,7 +207,7 @@ impl ShaderSource {
         Ok(Self::join(
             std::iter::once(generated_part(MAX_STACK_SIZE, ALL_KINDS_BOUND))
                 .chain(files)
-                .chain([implicit::functions_part(&[])]),
+                .chain(generated_parts(&[])),
         ))
     }
 
@@ -206,13 +215,17 @@ impl ShaderSource {
     /// functions, `scene::implicit::functions`) compiled to WGSL in
     /// place of the previous ones.
     pub fn with_functions(&self, functions: &[String]) -> Self {
+        let previous: Vec<String> = generated_parts(&[])
+            .into_iter()
+            .map(|(name, _)| name)
+            .collect();
         let files = self
             .parts()
-            .filter(|(name, _)| *name != implicit::FUNCTIONS);
+            .filter(|(name, _)| !previous.iter().any(|p| p == name));
         Self::join(
             files
                 .map(|(name, text)| (name.to_string(), text.to_string()))
-                .chain([implicit::functions_part(functions)]),
+                .chain(generated_parts(functions)),
         )
     }
 

@@ -26,3 +26,14 @@ pub fn render_target(
         view_formats: &[],
     })
 }
+
+/// A [`render_target`] that the CPU reads back (`COPY_SRC`): the images of
+/// the headless renders, screenshots and id passes.
+pub fn readback_target(
+    device: &wgpu::Device,
+    label: &str,
+    size: (u32, u32),
+    format: wgpu::TextureFormat,
+) -> wgpu::Texture {
+    render_target(device, label, size, format, wgpu::TextureUsages::COPY_SRC)
+}

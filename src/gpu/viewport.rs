@@ -14,7 +14,7 @@ use super::jobs::{JOB_BUDGET, JobPlanner};
 use super::layout::PackedScene;
 use super::limits::BufferLimitError;
 use super::outline::Outline;
-use super::texture::render_target;
+use super::texture::readback_target;
 use super::timer::{GpuTimer, Timing};
 use super::tracer::{
     Accumulator, FrameTarget, Pipelines, SceneBuffers, encode_display, encode_frame, encode_job,
@@ -439,13 +439,7 @@ impl Viewport {
     /// on top, as 8-bit sRGB (for screenshots and tests).
     pub fn capture(&mut self, gpu: &Gpu) -> Result<image::RgbaImage, GpuWaitError> {
         let size = self.accum.size();
-        let texture = render_target(
-            &gpu.device,
-            "screenshot",
-            size,
-            EXPORT_FORMAT,
-            wgpu::TextureUsages::COPY_SRC,
-        );
+        let texture = readback_target(&gpu.device, "screenshot", size, EXPORT_FORMAT);
         let view = texture.create_view(&Default::default());
         let mut encoder = gpu.device.create_command_encoder(&Default::default());
         encode_frame(

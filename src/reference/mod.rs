@@ -96,9 +96,10 @@ pub struct PreparedScene {
     /// The robust routines or the textbook ones, the triangle test and the
     /// pixel angle.
     options: ReferenceOptions,
-    /// Whether a Julia set grows its epsilon with the pixel footprint: then
-    /// each render sets `options.pixel_angle` for its image height.
-    uses_footprint: bool,
+    /// Whether a shape's hit depends on the pixel angle (a Julia set that
+    /// grows its epsilon with the pixel footprint): then each render sets
+    /// `options.pixel_angle` for its image height.
+    uses_pixel_angle: bool,
 }
 
 /// Variants of the reference, the twin of the shader's `gpu::ShaderOptions`.
@@ -145,7 +146,9 @@ impl PreparedScene {
         let materials = std::iter::once(Material::default())
             .chain(scene.materials.values().cloned())
             .collect();
+        let shapes = shapes::Shapes::new(scene);
         Self {
+            uses_pixel_angle: shapes.use_pixel_angle(),
             frame_origin,
             bvh: Bvh::build(scene),
             camera: Camera::new(&scene.camera),
@@ -158,7 +161,7 @@ impl PreparedScene {
                 })
                 .collect(),
             materials,
-            shapes: shapes::Shapes::new(scene),
+            shapes,
             unbounded: scene.unbounded_shapes(),
             background: scene.render.background,
             ambient: scene.render.ambient,
@@ -169,7 +172,6 @@ impl PreparedScene {
             refraction: scene.render.refraction,
             exposure: scene.render.exposure,
             options: *options,
-            uses_footprint: scene.julias.iter().any(|j| j.footprint),
         }
     }
 
@@ -177,7 +179,7 @@ impl PreparedScene {
     /// angle of that height when a Julia set needs it (a copy), else itself.
     fn sized(&self, height: u32) -> std::borrow::Cow<'_, PreparedScene> {
         let pixel_angle = self.camera.film_height / f64::from(height.max(1));
-        if !self.uses_footprint || self.options.pixel_angle == pixel_angle {
+        if !self.uses_pixel_angle || self.options.pixel_angle == pixel_angle {
             return std::borrow::Cow::Borrowed(self);
         }
         let mut sized = self.clone();
@@ -326,6 +328,7 @@ pub fn pick(
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::scene::test_scenes::{FULL, NEAR_THE_ORIGIN};
 
     /// Camera on +z looking at the origin; 5 x 5 pixels put pixel (2, 2)'s
     /// centre on the axis. Extra TOML is appended.
@@ -672,28 +675,7 @@ mod tests {
     /// coordinates.
     #[test]
     fn a_translated_scene_renders_the_same_image() {
-        let s: Scene = toml::from_str(
-            r#"
-            [camera]
-            from = [0.4, 1.7, 6.5]
-            to = [0, 0.6, 0]
-            [materials.floor]
-            checker = { color = [0.1, 0.1, 0.1], size = 0.5 }
-            [[lights]]
-            position = [-4, 6, 5]
-            [[planes]]
-            point = [0, 0, 0]
-            normal = [0, 1, 0]
-            material = "floor"
-            [[spheres]]
-            center = [0.9, 0.7, 1]
-            radius = 0.7
-            [[cubes]]
-            center = [-1.2, 0.5, -1]
-            size = 1
-            "#,
-        )
-        .unwrap();
+        let s: Scene = toml::from_str(NEAR_THE_ORIGIN).unwrap();
         let offset = DVec3::new(-1e6, 1e6, -1e6);
         let far = s.translated(offset);
         let a = render_linear(&PreparedScene::new(&s), 24, 16, 1);
@@ -740,41 +722,9 @@ mod tests {
     }
 
     #[test]
-    fn showcase_scene_has_no_nan() {
-        // The rendering model's example scene, with a camera straight above as well.
-        let text = r#"
-            [render]
-            max_depth = 8
-            [camera]
-            from = [0, 1.5, 6]
-            to = [0, 1, 0]
-            [[lights]]
-            position = [5, 8, 5]
-            [materials.glass]
-            color = [1, 1, 1]
-            diffuse = 0.0
-            specular = 0.6
-            shininess = 200
-            transparency = 0.95
-            [materials.floor]
-            color = [0.9, 0.9, 0.9]
-            checker = { color = [0.15, 0.15, 0.15], size = 1.0 }
-            mirror = 0.2
-            [[spheres]]
-            center = [0, 1, 0]
-            radius = 1
-            material = "glass"
-            [[planes]]
-            point = [0, 0, 0]
-            normal = [0, 1, 0]
-            material = "floor"
-            [[cubes]]
-            center = [2.2, 0.5, 0]
-            size = 1
-            rotation = [0, 30, 0]
-            material = "glass"
-        "#;
-        let mut s: Scene = toml::from_str(text).unwrap();
+    fn full_scene_has_no_nan() {
+        // The scene with every feature of the format, with a camera straight above as well.
+        let mut s: Scene = toml::from_str(FULL).unwrap();
         for from in [DVec3::new(0.0, 1.5, 6.0), DVec3::new(0.0, 9.0, 0.0)] {
             s.camera.from = from;
             let linear = render_linear(&PreparedScene::new(&s), 40, 30, 2);

@@ -10,7 +10,8 @@ use super::channels::{self, CHANNELS};
 use super::compose::Compiled;
 use super::uniforms::{FRAME_UNIFORMS_SIZE, FrameUniforms};
 use crate::gpu::{
-    EXPORT_FORMAT, Gpu, GpuWaitError, fullscreen, read_texels, read_texture, render_target,
+    EXPORT_FORMAT, Gpu, GpuWaitError, fullscreen, read_texels, read_texture, readback_target,
+    render_target,
 };
 use crate::shader_params::ParamSet;
 
@@ -623,13 +624,7 @@ impl Canvas {
         gpu: &Gpu,
         sandbox: &SandboxGpu,
     ) -> Result<image::RgbaImage, GpuWaitError> {
-        let texture = render_target(
-            &gpu.device,
-            "sandbox export",
-            self.size(),
-            EXPORT_FORMAT,
-            wgpu::TextureUsages::COPY_SRC,
-        );
+        let texture = readback_target(&gpu.device, "sandbox export", self.size(), EXPORT_FORMAT);
         let view = texture.create_view(&Default::default());
         let mut encoder = gpu.device.create_command_encoder(&Default::default());
         self.show(sandbox, &mut encoder, &view, EXPORT_FORMAT);

@@ -65,12 +65,7 @@ pub fn define_before_use(module: &mut naga::Module) {
         new_handle[f] = Some(module.functions.append(function, span));
     }
     let renumber = |h: Handle<Function>| new_handle[h.index()].expect("every function placed");
-    let functions = module
-        .functions
-        .iter_mut()
-        .map(|(_, f)| f)
-        .chain(module.entry_points.iter_mut().map(|e| &mut e.function));
-    for function in functions {
+    for function in every_function(module) {
         for (_, expression) in function.expressions.iter_mut() {
             if let Expression::CallResult(callee) = expression {
                 *callee = renumber(*callee);
@@ -78,6 +73,15 @@ pub fn define_before_use(module: &mut naga::Module) {
         }
         renumber_calls(&mut function.body, &renumber);
     }
+}
+
+/// Every function of `module`, its entry points' included.
+fn every_function(module: &mut naga::Module) -> impl Iterator<Item = &mut Function> {
+    module
+        .functions
+        .iter_mut()
+        .map(|(_, f)| f)
+        .chain(module.entry_points.iter_mut().map(|e| &mut e.function))
 }
 
 /// The indices of the functions called in `block`.
@@ -185,12 +189,7 @@ pub fn spill_pointer_arguments(module: &mut naga::Module) {
                 .collect()
         })
         .collect();
-    let functions = module
-        .functions
-        .iter_mut()
-        .map(|(_, f)| f)
-        .chain(module.entry_points.iter_mut().map(|e| &mut e.function));
-    for function in functions {
+    for function in every_function(module) {
         let body = std::mem::take(&mut function.body);
         function.body = spill_block(body, function, &params);
     }

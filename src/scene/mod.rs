@@ -14,6 +14,8 @@ mod named;
 mod parse;
 mod shapes;
 #[cfg(test)]
+pub mod test_scenes;
+#[cfg(test)]
 mod tests;
 mod validate;
 mod write;

@@ -5,76 +5,11 @@ use std::path::{Path, PathBuf};
 
 use glam::DVec3;
 
+use super::test_scenes::FULL;
 use super::{CubeSize, Material, Placement, RenderSettings, Scale, Scene, SceneError};
 
 /// A valid camera, for tests about other sections. Three lines long.
 const CAMERA: &str = "[camera]\nfrom = [0, 1, 5]\nto = [0, 0, 0]\n";
-
-/// A scene that uses every feature of the format, with materials out of
-/// alphabetical order and both forms of cube size.
-const FULL: &str = r#"
-[render]
-max_depth = 7
-min_weight = 0.01
-background = [0.1, 0.2, 0.3]
-ambient = [0.05, 0.05, 0.05]
-exposure = 1.5
-
-[camera]
-from = [0, 1.5, 6]
-to = [0, 1, 0]
-up = [0, 1, 0]
-fov = 40
-aperture = 0.05
-focus_distance = 6.0
-
-[[lights]]
-position = [5, 8, 5]
-color = [1, 0.9, 0.8]
-intensity = 0.8
-
-[[lights]]
-position = [-5, 8, 5]
-
-[materials.glass]
-color = [1, 1, 1]
-diffuse = 0.0
-specular = 0.6
-shininess = 200
-transparency = 0.95
-ior = 1.5
-
-[materials.floor]
-color = [0.9, 0.9, 0.9]
-checker = { color = [0.15, 0.15, 0.15], size = 1.0 }
-
-[materials."brushed steel"]
-mirror = 0.7
-
-[[spheres]]
-center = [0, 1, 0]
-radius = 1
-material = "glass"
-
-[[spheres]]
-center = [-2, 0.5, 1]
-radius = 0.5
-
-[[planes]]
-point = [0, 0, 0]
-normal = [0, 2, 0]
-material = "floor"
-
-[[cubes]]
-center = [2.2, 0.5, 0]
-size = 1
-rotation = [0, 30, 0]
-material = "brushed steel"
-
-[[cubes]]
-center = [-2.2, 1, -1]
-size = [1, 2, 3]
-"#;
 
 /// Loads `text` as `test.toml`, with [`CAMERA`] after it unless `text` has
 /// its own camera. (After, so that lines keep their numbers and top-level
@@ -816,20 +751,14 @@ fn no_input_makes_the_loader_panic() {
 
 #[test]
 fn render_defaults_follow_the_spec() {
-    let scene = loads("");
-    assert_eq!(
-        scene.render,
-        RenderSettings {
-            max_depth: 5,
-            min_weight: 0.0,
-            background: DVec3::ZERO,
-            ambient: DVec3::splat(0.1),
-            exposure: 1.0,
-            shadows: true,
-            reflection: true,
-            refraction: true,
-        }
+    // docs/scene-format.md's defaults, written out in the file's own words.
+    let spec = loads(
+        "[render]\nmax_depth = 5\nmin_weight = 0\nbackground = [0, 0, 0]\n\
+         ambient = [0.1, 0.1, 0.1]\nexposure = 1\n\
+         shadows = true\nreflection = true\nrefraction = true\n",
     );
+    assert_eq!(loads("").render, spec.render);
+    assert_eq!(RenderSettings::default(), spec.render);
     assert_eq!(loads("[render]\nexposure = 2\n").render.max_depth, 5);
 }
 
@@ -869,16 +798,13 @@ fn light_defaults_follow_the_spec() {
 #[test]
 fn material_defaults_follow_the_spec() {
     let scene = loads("[materials.m]\n");
-    let want = Material {
-        color: DVec3::splat(0.8),
-        diffuse: 1.0,
-        specular: 0.0,
-        shininess: 32.0,
-        mirror: 0.0,
-        transparency: 0.0,
-        ior: 1.5,
-        checker: None,
-    };
+    // docs/scene-format.md's defaults, written out in the file's own words.
+    let spec = loads(
+        "[materials.m]\ncolor = [0.8, 0.8, 0.8]\ndiffuse = 1\nspecular = 0\n\
+         shininess = 32\nmirror = 0\ntransparency = 0\nior = 1.5\n",
+    );
+    let want = spec.materials["m"].clone();
+    assert_eq!(want.checker, None);
     assert_eq!(scene.materials["m"], want);
     assert_eq!(Material::default(), want);
     let scene = loads("[[spheres]]\ncenter = [0, 0, 0]\nradius = 1\n");

@@ -74,6 +74,24 @@ pub struct Comment<'a> {
     pub own_line: bool,
 }
 
+/// The indices of the tokens at brace depth 0 (outside every `{ }`, a
+/// closing brace back at 0 included): where a shader's top-level
+/// declarations start.
+pub fn top_level(tokens: &[Token]) -> impl Iterator<Item = usize> {
+    tokens
+        .iter()
+        .enumerate()
+        .scan(0i32, |depth, (i, t)| {
+            match t.text {
+                "{" => *depth += 1,
+                "}" => *depth -= 1,
+                _ => {}
+            }
+            Some((*depth == 0).then_some(i))
+        })
+        .flatten()
+}
+
 /// The scanned text.
 #[derive(Debug)]
 pub struct Scan<'a> {

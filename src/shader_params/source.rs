@@ -14,7 +14,7 @@
 
 use std::ops::Range;
 
-use super::scan::{Kind, Scan};
+use super::scan::{Kind, Scan, top_level};
 use super::{ParamSet, ParamSpec, ParamType, Scalar, parse_annotation, parse_number};
 use crate::gpu::{ShaderError, ShaderSource};
 
@@ -43,14 +43,9 @@ impl SourceParams {
         for (part, (name, text)) in source.parts().enumerate() {
             let scan = Scan::new(text);
             let tokens = &scan.tokens;
-            let mut depth = 0i32;
-            for (i, t) in tokens.iter().enumerate() {
-                match t.text {
-                    "{" => depth += 1,
-                    "}" => depth -= 1,
-                    _ => {}
-                }
-                if depth != 0 || !(t.is("const") || t.is("override")) {
+            for i in top_level(tokens) {
+                let t = &tokens[i];
+                if !(t.is("const") || t.is("override")) {
                     continue;
                 }
                 let Some(decl_name) = tokens.get(i + 1).filter(|n| n.kind == Kind::Ident) else {

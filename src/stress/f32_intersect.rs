@@ -12,6 +12,9 @@
 
 use glam::{Mat3, Vec3};
 
+use crate::reference::shapes::cube::naive_slab;
+use crate::reference::shapes::sphere::naive_root;
+
 /// The shader's `T_FAR`: no ray parameter is ever larger.
 pub const T_FAR: f32 = 1e38;
 /// The shader's `GAMMA3`: pbrt-v4's gamma(3) for f32 (eps = 2^-24).
@@ -64,17 +67,6 @@ pub struct Hit {
 
 fn max3(v: Vec3) -> f32 {
     v.x.max(v.y.max(v.z))
-}
-
-/// WGSL's `sign`: -1, 0 or 1.
-fn wgsl_sign(x: f32) -> f32 {
-    if x > 0.0 {
-        1.0
-    } else if x < 0.0 {
-        -1.0
-    } else {
-        0.0
-    }
 }
 
 /// The shader's `foot`: the foot of the perpendicular from `anchor` to the
@@ -157,17 +149,7 @@ pub fn hit_sphere_naive(ray: &Ray, s: &Sphere, t_max: f32) -> Option<Hit> {
     let a = ray.dir.dot(ray.dir);
     let b = 2.0 * f.dot(ray.dir);
     let c = f.dot(f) - s.radius * s.radius;
-    let disc = b * b - 4.0 * a * c;
-    if disc < 0.0 {
-        return None;
-    }
-    let mut t = (-b - disc.sqrt()) / (2.0 * a);
-    if t <= 0.0 {
-        t = (-b + disc.sqrt()) / (2.0 * a);
-    }
-    if t <= 0.0 || t >= t_max {
-        return None;
-    }
+    let t = naive_root(a, b, c, t_max)?;
     let p = ray.origin + t * ray.dir;
     Some(Hit {
         t,
@@ -288,37 +270,9 @@ pub fn hit_cube_naive(ray: &Ray, cube: &Cube, t_max: f32) -> Option<Hit> {
     let to_local = cube.rotation.transpose();
     let o = to_local * (ray.origin - cube.center);
     let d = to_local * ray.dir;
-    let h = cube.half_size;
-    let inv = Vec3::ONE / d;
-    let ta = (-h - o) * inv;
-    let tb = (h - o) * inv;
-    let lo = ta.min(tb);
-    let hi = ta.max(tb);
-    let (mut t_near, mut near_axis) = (lo.x, 0);
-    for i in 1..3 {
-        if lo[i] > t_near {
-            (t_near, near_axis) = (lo[i], i);
-        }
-    }
-    let (mut t_far, mut far_axis) = (hi.x, 0);
-    for i in 1..3 {
-        if hi[i] < t_far {
-            (t_far, far_axis) = (hi[i], i);
-        }
-    }
-    if t_near > t_far {
-        return None;
-    }
-    let (t, axis, side) = if t_near <= 0.0 {
-        (t_far, far_axis, 1.0)
-    } else {
-        (t_near, near_axis, -1.0)
-    };
-    if t <= 0.0 || t >= t_max {
-        return None;
-    }
+    let (t, axis, n) = naive_slab(o.to_array(), d.to_array(), cube.half_size.to_array(), t_max)?;
     let mut n_local = Vec3::ZERO;
-    n_local[axis] = side * wgsl_sign(d[axis]);
+    n_local[axis] = n;
     Some(Hit {
         t,
         point: ray.origin + t * ray.dir,

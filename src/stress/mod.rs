@@ -20,7 +20,7 @@ use image::{RgbImage, RgbaImage};
 use crate::gpu::{
     Accumulator, FirstHit, FrameTarget, Gpu, IdRenderer, PipelineError, Pipelines, RenderError,
     SceneBuffers, ShaderOptions, ShaderSource, encode_frame, layout::PackedScene, read_texture,
-    render_target,
+    readback_target,
 };
 use crate::reference::{self, PreparedScene, ReferenceOptions};
 use crate::scene::Scene;
@@ -121,35 +121,22 @@ impl GpuVariant {
     ) -> Result<GpuRender, RenderError> {
         // A scene with its own functions needs pipelines with them compiled in.
         let functions = crate::scene::implicit::functions(scene);
-        if !functions.is_empty() {
-            let own = Self::with_functions(gpu, &self.source, self.robust, functions)?;
-            return own.render_with_these_pipelines(gpu, scene, width, height);
-        }
-        self.render_with_these_pipelines(gpu, scene, width, height)
-    }
-
-    fn render_with_these_pipelines(
-        &self,
-        gpu: &Gpu,
-        scene: &Scene,
-        width: u32,
-        height: u32,
-    ) -> Result<GpuRender, RenderError> {
+        let own;
+        let variant = if functions.is_empty() {
+            self
+        } else {
+            own = Self::with_functions(gpu, &self.source, self.robust, functions)?;
+            &own
+        };
         let device = &gpu.device;
-        let packed = if self.robust {
+        let packed = if variant.robust {
             PackedScene::new(scene, width, height)
         } else {
             PackedScene::in_world(scene, width, height)
         };
-        let buffers = SceneBuffers::new((device, &gpu.queue), &self.pipelines, packed)?;
-        let mut accum = Accumulator::new(device, &self.pipelines, width, height);
-        let texture = render_target(
-            device,
-            "stress image",
-            (width, height),
-            IMAGE_FORMAT,
-            wgpu::TextureUsages::COPY_SRC,
-        );
+        let buffers = SceneBuffers::new((device, &gpu.queue), &variant.pipelines, packed)?;
+        let mut accum = Accumulator::new(device, &variant.pipelines, width, height);
+        let texture = readback_target(device, "stress image", (width, height), IMAGE_FORMAT);
         let view = texture.create_view(&Default::default());
         let target = FrameTarget {
             view: &view,
@@ -160,7 +147,7 @@ impl GpuVariant {
         encode_frame(
             &gpu.queue,
             &mut encoder,
-            &self.pipelines,
+            &variant.pipelines,
             &buffers,
             &mut accum,
             1,
@@ -169,7 +156,7 @@ impl GpuVariant {
         gpu.queue.submit([encoder.finish()]);
         Ok(GpuRender {
             image: read_texture(gpu, &texture)?,
-            first_hits: self.ids.render(gpu, scene, width, height)?,
+            first_hits: variant.ids.render(gpu, scene, width, height)?,
         })
     }
 }

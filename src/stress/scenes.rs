@@ -166,17 +166,19 @@ pub fn round_to_f32(scene: &Scene) -> Scene {
         plane.point = at(plane.point);
         plane.normal = v(plane.normal);
     }
-    for cube in &mut s.cubes {
-        let p = &mut cube.placement;
-        p.translate = at(p.translate);
-        p.scale = CubeSize::PerAxis(v(p.scale.edges()));
-        p.rotation = v(p.rotation);
-    }
     let placement = |p: &mut Placement| {
         p.translate = at(p.translate);
         p.scale = r(p.scale);
         p.rotation = v(p.rotation);
     };
+    let per_axis = |p: &mut Placement<CubeSize>| {
+        p.translate = at(p.translate);
+        p.scale = CubeSize::PerAxis(v(p.scale.edges()));
+        p.rotation = v(p.rotation);
+    };
+    for cube in &mut s.cubes {
+        per_axis(&mut cube.placement);
+    }
     for t in &mut s.tori {
         placement(&mut t.placement);
         t.major_radius = r(t.major_radius);
@@ -193,10 +195,7 @@ pub fn round_to_f32(scene: &Scene) -> Scene {
         j.epsilon = r(j.epsilon);
     }
     for m in &mut s.meshes {
-        let p = &mut m.placement;
-        p.translate = at(p.translate);
-        p.scale = CubeSize::PerAxis(v(p.scale.edges()));
-        p.rotation = v(p.rotation);
+        per_axis(&mut m.placement);
         // The GPU gets the vertices in the mesh's own coordinates, in f32.
         let g = &m.geometry.0;
         let rounded = Geometry {

@@ -194,6 +194,6 @@ pub fn cube32(case: &BoxCase) -> r32::Cube {
     }
 }
 
-pub fn cube64(case: &BoxCase) -> raysandbox::reference::intersect::Cube {
-    raysandbox::reference::intersect::Cube::new(case.centre, 2.0 * case.half, case.rotation)
+pub fn cube64(case: &BoxCase) -> raysandbox::reference::shapes::cube::Cube {
+    raysandbox::reference::shapes::cube::Cube::new(case.centre, 2.0 * case.half, case.rotation)
 }

@@ -1,7 +1,6 @@
 //! A user's implicit surface as `shaders/shapes/implicit.wgsl` reads it,
 //! and the scene's distinct functions (`scene::implicit::functions`) as
-//! generated WGSL ([`functions_part`], joined to the source by
-//! `src/gpu/shaders.rs`).
+//! generated WGSL ([`functions_part`], the kind's `PackShape::generated`).
 
 use bytemuck::Zeroable;
 
@@ -27,14 +26,14 @@ packed_struct! {
 }
 
 /// Name of the part that holds the implicit surfaces' functions.
-pub(in crate::gpu) const FUNCTIONS: &str = "(generated) implicit functions";
+const FUNCTIONS: &str = "(generated) implicit functions";
 
 /// The scene's functions of x, y, z as WGSL (`src/expr`): `implicit_<i>`
 /// and its dual twin per function, and the two functions
 /// `shaders/shapes/implicit.wgsl` calls, which pick one by index. A function
 /// that does not parse (a scene that failed validation never gets here)
 /// becomes the constant 1: no surface.
-pub(in crate::gpu) fn functions_part(functions: &[String]) -> (String, String) {
+fn functions_part(functions: &[String]) -> (String, String) {
     let mut text = String::from(
         "// The scene's implicit functions, written by raysandbox (src/gpu/shapes/implicit.rs).\n",
     );
@@ -67,6 +66,10 @@ pub(in crate::gpu) fn functions_part(functions: &[String]) -> (String, String) {
 impl PackShape for scene::Implicit {
     type Packed = Implicit;
     const WGSL: &'static str = include_str!("../../../shaders/shapes/implicit.wgsl");
+
+    fn generated(functions: &[String]) -> Option<(String, String)> {
+        Some(functions_part(functions))
+    }
 
     fn pack(
         scene: &Scene,

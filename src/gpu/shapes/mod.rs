@@ -121,6 +121,15 @@ pub trait PackShape: ShapeList {
         Vec::new()
     }
 
+    /// WGSL the kind writes from the scene's user functions
+    /// (`ShaderOptions::functions`: an implicit surface's `f`), as a named
+    /// part joined after the shader files (`src/gpu/shaders.rs`), if it
+    /// writes any. Called with no functions, it gives the part's name and
+    /// the WGSL that stands in until a scene brings its own.
+    fn generated(_functions: &[String]) -> Option<(String, String)> {
+        None
+    }
+
     /// Packs every shape of the kind and the second buffer's contents
     /// (empty without [`PackShape::DATA`]); by default each shape alone.
     fn pack_kind(scene: &Scene, frame: &Frame) -> (Vec<Self::Packed>, Words) {
@@ -177,6 +186,8 @@ pub struct KindInfo {
     pub occludes: bool,
     /// Its pipeline constants for given options ([`PackShape::constants`]).
     pub constants: fn(&ShaderOptions) -> Vec<(&'static str, u32)>,
+    /// The WGSL it writes from the scene's functions ([`PackShape::generated`]).
+    pub generated: fn(&[String]) -> Option<(String, String)>,
     /// The packed struct's fields and offsets ([`Layout`]).
     pub fields: &'static [(&'static str, usize)],
     /// The packed struct's fields' Rust types ([`Layout`]).
@@ -214,6 +225,7 @@ pub fn kinds() -> Vec<KindInfo> {
                 data: <crate::scene::$kind as PackShape>::DATA,
                 occludes: <crate::scene::$kind as PackShape>::OCCLUDES,
                 constants: <crate::scene::$kind as PackShape>::constants,
+                generated: <crate::scene::$kind as PackShape>::generated,
                 fields: <<crate::scene::$kind as PackShape>::Packed as Layout>::FIELDS,
                 types: <<crate::scene::$kind as PackShape>::Packed as Layout>::TYPES,
                 size: size_of::<<crate::scene::$kind as PackShape>::Packed>(),

@@ -1,8 +1,10 @@
 //! A rotated box for the f64 tracer (docs/rendering-model.md, "Shapes").
 
 use glam::{DMat3, DVec3};
+use num_traits::Float;
 
-use super::{Prepare, Trace};
+use super::{Prepare, Trace, robust_or_naive};
+use crate::expr::wgsl_sign;
 use crate::reference::ReferenceOptions;
 use crate::reference::hit::{Hit, foot};
 use crate::reference::ray::Ray;
@@ -51,11 +53,7 @@ impl Prepare for scene::Cube {
 
 impl Trace for Cube {
     fn hit(&self, ray: &Ray, t_max: f64, options: &ReferenceOptions) -> Option<Hit> {
-        if options.robust {
-            hit_cube(self, ray, t_max)
-        } else {
-            hit_cube_naive(self, ray, t_max)
-        }
+        robust_or_naive(options, hit_cube, hit_cube_naive)(self, ray, t_max)
     }
 }
 
@@ -152,55 +150,191 @@ pub fn hit_cube(cube: &Cube, ray: &Ray, t_max: f64) -> Option<Hit> {
     ))
 }
 
-/// WGSL's `sign`: -1, 0 or +1 (Rust's `signum` gives +1 for +0).
-fn wgsl_sign(x: f64) -> f64 {
-    if x > 0.0 {
-        1.0
-    } else if x < 0.0 {
-        -1.0
-    } else {
-        0.0
-    }
-}
-
 /// The plain slab test as usually taught (the naive variant, the shader's
 /// `hit_cube_naive`): `inv = 1 / d'_i`, the entry and exit of every slab with
 /// no special case for `d'_i = 0` (IEEE gives inf and, for an origin on a
-/// slab plane, `0 * inf = NaN`, which `f64::min`/`max` then skip), no
+/// slab plane, `0 * inf = NaN`, which the minima and maxima of
+/// [`naive_slab`] drop or keep by the order of their operands), no
 /// widening of the far bound, and the hit point `o + t d`, not re-projected.
 pub fn hit_cube_naive(cube: &Cube, ray: &Ray, t_max: f64) -> Option<Hit> {
     let o = cube.inverse * (ray.origin - cube.center);
     let d = cube.inverse * ray.dir;
-    let h = cube.half;
-    let inv = DVec3::ONE / d;
-    let ta = (-h - o) * inv;
-    let tb = (h - o) * inv;
-    let lo = ta.min(tb);
-    let hi = ta.max(tb);
-    let (mut t_near, mut near_axis) = (lo.x, 0);
-    for i in 1..3 {
-        if lo[i] > t_near {
-            (t_near, near_axis) = (lo[i], i);
+    let (t, axis, n) = naive_slab(o.to_array(), d.to_array(), cube.half.to_array(), t_max)?;
+    let mut n_local = DVec3::ZERO;
+    n_local[axis] = n;
+    Some(Hit::new(t, ray.at(t), cube.rotation * n_local, 0.0))
+}
+
+/// The naive slab test in the box's frame (`o`, `d`: the ray there; `h`:
+/// the half edges) in any float type (f64 here, f32 in the port of the
+/// shader, `src/stress/f32_intersect.rs`): the hit's `t`, the axis of the
+/// face it is on and the sign of the outward normal along that axis.
+pub fn naive_slab<T: Float>(o: [T; 3], d: [T; 3], h: [T; 3], t_max: T) -> Option<(T, usize, T)> {
+    let zero = T::zero();
+    let ta: [T; 3] = std::array::from_fn(|i| (-h[i] - o[i]) * (T::one() / d[i]));
+    let tb: [T; 3] = std::array::from_fn(|i| (h[i] - o[i]) * (T::one() / d[i]));
+    // Minimum and maximum by one comparison, as glam's: with a NaN, the
+    // second operand.
+    let lo: [T; 3] = std::array::from_fn(|i| if ta[i] < tb[i] { ta[i] } else { tb[i] });
+    let hi: [T; 3] = std::array::from_fn(|i| if ta[i] > tb[i] { ta[i] } else { tb[i] });
+    let (mut t_near, mut near_axis) = (lo[0], 0);
+    for (i, &x) in lo.iter().enumerate().skip(1) {
+        if x > t_near {
+            (t_near, near_axis) = (x, i);
         }
     }
-    let (mut t_far, mut far_axis) = (hi.x, 0);
-    for i in 1..3 {
-        if hi[i] < t_far {
-            (t_far, far_axis) = (hi[i], i);
+    let (mut t_far, mut far_axis) = (hi[0], 0);
+    for (i, &x) in hi.iter().enumerate().skip(1) {
+        if x < t_far {
+            (t_far, far_axis) = (x, i);
         }
     }
     if t_near > t_far {
         return None;
     }
-    let (t, axis, side) = if t_near <= 0.0 {
-        (t_far, far_axis, 1.0)
+    let (t, axis, side) = if t_near <= zero {
+        (t_far, far_axis, T::one())
     } else {
-        (t_near, near_axis, -1.0)
+        (t_near, near_axis, -T::one())
     };
-    if t <= 0.0 || t >= t_max {
+    if t <= zero || t >= t_max {
         return None;
     }
-    let mut n_local = DVec3::ZERO;
-    n_local[axis] = side * wgsl_sign(d[axis]);
-    Some(Hit::new(t, ray.at(t), cube.rotation * n_local, 0.0))
+    Some((t, axis, side * wgsl_sign(d[axis])))
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::reference::shapes::test_rays::{close, ray};
+    use proptest::prelude::*;
+
+    fn cube(center: [f64; 3], size: [f64; 3], rotation_deg: [f64; 3]) -> Cube {
+        let rotation = scene::rotation_degrees(DVec3::from(rotation_deg));
+        Cube::new(DVec3::from(center), DVec3::from(size), rotation)
+    }
+
+    #[test]
+    fn axis_aligned_box_each_face() {
+        let b = cube([1.0, 2.0, 3.0], [2.0, 4.0, 6.0], [0.0; 3]);
+        let c = b.center;
+        for axis in 0..3 {
+            for sign in [-1.0, 1.0] {
+                let mut e = DVec3::ZERO;
+                e[axis] = sign;
+                // These directions have two zero components.
+                let hit = hit_cube(&b, &Ray::new(c + 10.0 * e, -e), f64::INFINITY).unwrap();
+                assert_eq!(hit.t, 10.0 - b.half[axis], "axis {axis} sign {sign}");
+                assert_eq!(hit.p, c + b.half[axis] * e);
+                assert_eq!(hit.n, e);
+            }
+        }
+    }
+
+    #[test]
+    fn box_misses() {
+        let b = cube([1.0, 2.0, 3.0], [2.0, 4.0, 6.0], [0.0; 3]);
+        // d_y = 0 with o_y outside the y slab.
+        assert!(hit_cube(&b, &ray([1.0, 4.5, 13.0], [0.0, 0.0, -1.0]), f64::INFINITY).is_none());
+        // Passing beside it.
+        assert!(hit_cube(&b, &ray([3.0, 2.0, 13.0], [0.0, 0.3, -1.0]), f64::INFINITY).is_none());
+        // Behind.
+        assert!(hit_cube(&b, &ray([1.0, 2.0, 13.0], [0.0, 0.0, 1.0]), f64::INFINITY).is_none());
+        // Beyond t_max.
+        assert!(hit_cube(&b, &ray([1.0, 2.0, 13.0], [0.0, 0.0, -1.0]), 7.0).is_none());
+    }
+
+    #[test]
+    fn box_from_inside_hits_the_exit_face() {
+        let b = cube([1.0, 2.0, 3.0], [2.0, 4.0, 6.0], [0.0; 3]);
+        let hit = hit_cube(&b, &ray([1.0, 2.0, 3.0], [1.0, 0.0, 0.0]), f64::INFINITY).unwrap();
+        assert!((hit.t - 1.0).abs() < 1e-15);
+        assert_eq!(hit.n, DVec3::X, "outward, along the ray");
+        // Diagonal: the x slab (half 1) is left first, at t = sqrt(3).
+        let hit = hit_cube(&b, &ray([1.0, 2.0, 3.0], [1.0, 1.0, 1.0]), f64::INFINITY).unwrap();
+        assert!((hit.t - 3f64.sqrt()).abs() < 1e-14);
+        assert_eq!(hit.n, DVec3::X);
+        let hit = hit_cube(&b, &ray([1.0, 2.0, 3.0], [0.0, 0.0, -1.0]), f64::INFINITY).unwrap();
+        assert_eq!(hit.n, -DVec3::Z);
+    }
+
+    #[test]
+    fn box_ray_starting_on_a_slab_plane() {
+        let b = cube([1.0, 2.0, 3.0], [2.0, 4.0, 6.0], [0.0; 3]);
+        // On the -x face going in: t_near = 0 is rejected, the +x face is hit.
+        let hit = hit_cube(&b, &ray([0.0, 2.0, 3.0], [1.0, 0.0, 0.0]), f64::INFINITY).unwrap();
+        assert!((hit.t - 2.0).abs() < 1e-14);
+        assert_eq!(hit.n, DVec3::X);
+        // On the -x face going out: nothing.
+        assert!(hit_cube(&b, &ray([0.0, 2.0, 3.0], [-1.0, 0.0, 0.0]), f64::INFINITY).is_none());
+        // In the plane of the top face (|o_y| = h_y, d_y = 0): still inside
+        // the closed slab, so the +x face is hit, grazing along the top.
+        let hit = hit_cube(&b, &ray([5.0, 4.0, 3.0], [-1.0, 0.0, 0.0]), f64::INFINITY).unwrap();
+        assert_eq!((hit.t, hit.n), (3.0, DVec3::X));
+    }
+
+    #[test]
+    fn box_edge_tie_prefers_the_lowest_axis() {
+        // Through the edge x = 1, z = 1 along (-1, 0, -1): both slabs are
+        // entered at the same t; x wins.
+        let b = cube([0.0; 3], [2.0; 3], [0.0; 3]);
+        let hit = hit_cube(&b, &ray([3.0, 0.0, 3.0], [-1.0, 0.0, -1.0]), f64::INFINITY).unwrap();
+        assert!((hit.t - 2.0 * 2f64.sqrt()).abs() < 1e-14);
+        assert_eq!(hit.n, DVec3::X);
+    }
+
+    #[test]
+    fn rz_90_maps_x_to_y() {
+        let b = cube([0.0; 3], [2.0, 0.5, 0.5], [0.0, 0.0, 90.0]);
+        assert!(close(b.rotation * DVec3::X, DVec3::Y));
+        // The long local x axis now lies along world y.
+        let hit = hit_cube(&b, &ray([0.0, 5.0, 0.0], [0.0, -1.0, 0.0]), f64::INFINITY).unwrap();
+        assert!((hit.t - 4.0).abs() < 1e-14);
+        assert!(close(hit.n, DVec3::Y));
+        let hit = hit_cube(&b, &ray([5.0, 0.0, 0.0], [-1.0, 0.0, 0.0]), f64::INFINITY).unwrap();
+        assert!((hit.t - 4.75).abs() < 1e-14);
+        assert!(close(hit.n, DVec3::X));
+    }
+
+    #[test]
+    fn rotated_box_hit_point_and_normal() {
+        // A 2 x 2 x 2 cube turned 45 degrees about y: Ry(45) maps local +z to
+        // (s, 0, s) and +x to (s, 0, -s), s = 1/sqrt(2). The local +z face is
+        // the plane x + z = sqrt(2); a ray along -x at z = 0.3 meets it at
+        // x = sqrt(2) - 0.3 (the +x face plane, x - z = sqrt(2), is farther).
+        let b = cube([0.0; 3], [2.0; 3], [0.0, 45.0, 0.0]);
+        let hit = hit_cube(&b, &ray([5.0, 0.0, 0.3], [-1.0, 0.0, 0.0]), f64::INFINITY).unwrap();
+        let x = 2f64.sqrt() - 0.3;
+        assert!((hit.t - (5.0 - x)).abs() < 1e-14);
+        assert!(close(hit.p, DVec3::new(x, 0.0, 0.3)));
+        let s = std::f64::consts::FRAC_1_SQRT_2;
+        assert!(close(hit.n, DVec3::new(s, 0.0, s)));
+        // And at z = -0.3 the +x face.
+        let hit = hit_cube(&b, &ray([5.0, 0.0, -0.3], [-1.0, 0.0, 0.0]), f64::INFINITY).unwrap();
+        assert!(close(hit.n, DVec3::new(s, 0.0, -s)));
+    }
+
+    proptest! {
+        /// Rays from outside aimed at a point inside a randomly rotated box
+        /// hit its surface, with a unit normal facing the ray.
+        #[test]
+        fn rotated_box_hits_lie_on_the_surface(
+            rot in prop::array::uniform3(-180.0..180.0f64),
+            size in prop::array::uniform3(0.1..4.0f64),
+            target in prop::array::uniform3(-0.49..0.49f64),
+            dir in prop::array::uniform3(-1.0..1.0f64),
+        ) {
+            let dir = DVec3::from(dir);
+            prop_assume!(dir.length() > 0.1);
+            let b = cube([0.5, -1.0, 2.0], size, rot);
+            let aim = b.center + b.rotation * (DVec3::from(target) * b.half * 2.0);
+            let r = Ray::new(aim - 20.0 * dir.normalize(), dir);
+            let hit = hit_cube(&b, &r, f64::INFINITY).unwrap();
+            let local = b.inverse * (hit.p - b.center);
+            let on_face = (local.abs() - b.half).max_element();
+            prop_assert!(on_face.abs() < 1e-12, "{local} {}", b.half);
+            prop_assert!((hit.n.length() - 1.0).abs() < 1e-12);
+            prop_assert!(hit.n.dot(r.dir) < 0.0);
+        }
+    }
 }

@@ -53,6 +53,10 @@ impl Trace for Julia {
     fn hit(&self, ray: &Ray, t_max: f64, options: &ReferenceOptions) -> Option<Hit> {
         hit_julia(self, ray, t_max, options.pixel_angle)
     }
+
+    fn uses_pixel_angle(&self) -> bool {
+        self.footprint
+    }
 }
 
 /// `z^2` for the quaternion `z = (a, v)`: `(a^2 - v.v, 2 a v)`.

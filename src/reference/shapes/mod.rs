@@ -33,6 +33,27 @@ pub trait Trace: Debug + Clone {
     /// (docs/implementation.md) or, with `options.robust = false`, the
     /// lecture's; triangles by `options.triangles`.
     fn hit(&self, ray: &Ray, t_max: f64, options: &ReferenceOptions) -> Option<Hit>;
+
+    /// Whether the hit depends on `options.pixel_angle`, which a render
+    /// then sets for its image height (a Julia set whose epsilon grows with
+    /// the pixel footprint).
+    fn uses_pixel_angle(&self) -> bool {
+        false
+    }
+}
+
+/// A hit test of one kind: the shape, the ray, `t_max`.
+pub type HitTest<S> = fn(&S, &Ray, f64) -> Option<Hit>;
+
+/// `robust` or, with `options.robust = false`, the lecture's `naive` test
+/// (docs/implementation.md, "The naive variant"), for the kinds that have
+/// both.
+pub fn robust_or_naive<S>(
+    options: &ReferenceOptions,
+    robust: HitTest<S>,
+    naive: HitTest<S>,
+) -> HitTest<S> {
+    if options.robust { robust } else { naive }
 }
 
 /// A prepared shape and the slot of its material in
@@ -70,6 +91,11 @@ macro_rules! prepared_shapes {
                 }
             }
 
+            /// Whether any shape's hit depends on `options.pixel_angle`.
+            pub fn use_pixel_angle(&self) -> bool {
+                false $(|| self.$field.iter().any(|p| p.traced.uses_pixel_angle()))*
+            }
+
             /// The material slot of shape `id`.
             pub fn material(&self, id: ShapeId) -> usize {
                 match id {
@@ -80,3 +106,21 @@ macro_rules! prepared_shapes {
     };
 }
 crate::scene::for_each_shape_kind!(prepared_shapes);
+
+/// What the tests of the kinds' hit tests share.
+#[cfg(test)]
+pub mod test_rays {
+    use glam::DVec3;
+
+    use super::Ray;
+
+    /// The ray from `o` along `d` (normalised).
+    pub fn ray(o: [f64; 3], d: [f64; 3]) -> Ray {
+        Ray::new(DVec3::from(o), DVec3::from(d))
+    }
+
+    /// Equal to 1e-12.
+    pub fn close(a: DVec3, b: DVec3) -> bool {
+        (a - b).length() < 1e-12
+    }
+}

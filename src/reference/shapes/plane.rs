@@ -2,7 +2,7 @@
 
 use glam::DVec3;
 
-use super::{Prepare, Trace};
+use super::{Prepare, Trace, robust_or_naive};
 use crate::reference::ReferenceOptions;
 use crate::reference::hit::{Hit, foot};
 use crate::reference::ray::Ray;
@@ -41,11 +41,7 @@ impl Prepare for scene::Plane {
 
 impl Trace for Plane {
     fn hit(&self, ray: &Ray, t_max: f64, options: &ReferenceOptions) -> Option<Hit> {
-        if options.robust {
-            hit_plane(self, ray, t_max)
-        } else {
-            hit_plane_naive(self, ray, t_max)
-        }
+        robust_or_naive(options, hit_plane, hit_plane_naive)(self, ray, t_max)
     }
 }
 
@@ -96,4 +92,45 @@ pub fn hit_plane_naive(plane: &Plane, ray: &Ray, t_max: f64) -> Option<Hit> {
         return None;
     }
     Some(Hit::new(t, ray.at(t), n, 0.0))
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::reference::shapes::test_rays::ray;
+
+    fn floor_plane() -> Plane {
+        Plane::new(DVec3::new(0.0, -1.0, 0.0), DVec3::Y)
+    }
+
+    #[test]
+    fn plane_hit_from_either_side() {
+        let p = floor_plane();
+        let hit = hit_plane(&p, &ray([0.0; 3], [0.0, -1.0, 0.0]), f64::INFINITY).unwrap();
+        assert_eq!((hit.t, hit.p, hit.n), (1.0, -DVec3::Y, DVec3::Y));
+        // From behind: the normal is still the declared (outward) one.
+        let hit = hit_plane(&p, &ray([2.0, -3.0, 0.0], [0.0, 1.0, 0.0]), f64::INFINITY).unwrap();
+        assert_eq!(
+            (hit.t, hit.p, hit.n),
+            (2.0, DVec3::new(2.0, -1.0, 0.0), DVec3::Y)
+        );
+        // Oblique: 45 degrees down, t = sqrt(2).
+        let hit = hit_plane(&p, &ray([0.0; 3], [1.0, -1.0, 0.0]), f64::INFINITY).unwrap();
+        assert!((hit.t - 2f64.sqrt()).abs() < 1e-15);
+        assert_eq!(hit.p.y, -1.0, "re-projected exactly onto the plane");
+    }
+
+    #[test]
+    fn plane_misses() {
+        let p = floor_plane();
+        // Parallel, above and inside the plane.
+        assert!(hit_plane(&p, &ray([0.0; 3], [1.0, 0.0, 0.0]), f64::INFINITY).is_none());
+        assert!(hit_plane(&p, &ray([0.0, -1.0, 0.0], [1.0, 0.0, 1.0]), f64::INFINITY).is_none());
+        // Nearly parallel: t would exceed 1e38.
+        assert!(hit_plane(&p, &ray([0.0; 3], [1.0, -1e-39, 0.0]), f64::INFINITY).is_none());
+        // Going away.
+        assert!(hit_plane(&p, &ray([0.0; 3], [0.0, 1.0, 0.0]), f64::INFINITY).is_none());
+        // Beyond t_max.
+        assert!(hit_plane(&p, &ray([0.0; 3], [0.0, -1.0, 0.0]), 1.0).is_none());
+    }
 }

@@ -1,8 +1,9 @@
 //! A sphere for the f64 tracer (docs/rendering-model.md, "Shapes").
 
 use glam::DVec3;
+use num_traits::Float;
 
-use super::{Prepare, Trace};
+use super::{Prepare, Trace, robust_or_naive};
 use crate::reference::ReferenceOptions;
 use crate::reference::hit::{Hit, foot, major_axis};
 use crate::reference::ray::Ray;
@@ -31,11 +32,7 @@ impl Prepare for scene::Sphere {
 
 impl Trace for Sphere {
     fn hit(&self, ray: &Ray, t_max: f64, options: &ReferenceOptions) -> Option<Hit> {
-        if options.robust {
-            hit_sphere(self, ray, t_max)
-        } else {
-            hit_sphere_naive(self, ray, t_max)
-        }
+        robust_or_naive(options, hit_sphere, hit_sphere_naive)(self, ray, t_max)
     }
 }
 
@@ -131,17 +128,135 @@ pub fn hit_sphere_naive(sphere: &Sphere, ray: &Ray, t_max: f64) -> Option<Hit> {
     let a = d.dot(d);
     let b = 2.0 * f.dot(d);
     let c = f.dot(f) - sphere.radius * sphere.radius;
-    let disc = b * b - 4.0 * a * c;
-    if disc < 0.0 {
-        return None;
-    }
-    let mut t = (-b - disc.sqrt()) / (2.0 * a);
-    if t <= 0.0 {
-        t = (-b + disc.sqrt()) / (2.0 * a);
-    }
-    if t <= 0.0 || t >= t_max {
-        return None;
-    }
+    let t = naive_root(a, b, c, t_max)?;
     let p = ray.at(t);
     Some(Hit::new(t, p, (p - sphere.center) / sphere.radius, 0.0))
+}
+
+/// The naive sphere's root of `a t^2 + b t + c` in any float type (f64
+/// here, f32 in the port of the shader, `src/stress/f32_intersect.rs`):
+/// `(-b - sqrt(disc)) / 2a`, else `(-b + sqrt(disc)) / 2a`, if in
+/// `(0, t_max)`.
+pub fn naive_root<T: Float>(a: T, b: T, c: T, t_max: T) -> Option<T> {
+    let (zero, two) = (T::zero(), T::one() + T::one());
+    let disc = b * b - (two + two) * a * c;
+    if disc < zero {
+        return None;
+    }
+    let mut t = (-b - disc.sqrt()) / (two * a);
+    if t <= zero {
+        t = (-b + disc.sqrt()) / (two * a);
+    }
+    if t <= zero || t >= t_max {
+        return None;
+    }
+    Some(t)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::reference::shapes::test_rays::{close, ray};
+    use proptest::prelude::*;
+
+    fn unit_sphere_at(c: [f64; 3]) -> Sphere {
+        Sphere::new(DVec3::from(c), 1.0)
+    }
+
+    #[test]
+    fn sphere_from_outside() {
+        let s = unit_sphere_at([0.0, 0.0, -5.0]);
+        let hit = hit_sphere(&s, &ray([0.0; 3], [0.0, 0.0, -1.0]), f64::INFINITY).unwrap();
+        assert_eq!(hit.t, 4.0);
+        assert_eq!(hit.p, DVec3::new(0.0, 0.0, -4.0));
+        assert_eq!(hit.n, DVec3::Z);
+        // Off centre: x = 0.6 meets the sphere where z = -5 + 0.8.
+        let hit = hit_sphere(&s, &ray([0.6, 0.0, 0.0], [0.0, 0.0, -1.0]), 10.0).unwrap();
+        assert!((hit.t - 4.2).abs() < 1e-14);
+        assert!(close(hit.n, DVec3::new(0.6, 0.0, 0.8)));
+        // Nearer than t_max only.
+        assert!(hit_sphere(&s, &ray([0.0; 3], [0.0, 0.0, -1.0]), 4.0).is_none());
+    }
+
+    #[test]
+    fn sphere_from_inside_hits_the_far_side() {
+        let s = unit_sphere_at([1.0, 2.0, 3.0]);
+        let hit = hit_sphere(&s, &ray([1.0, 2.0, 3.0], [1.0, 0.0, 0.0]), f64::INFINITY).unwrap();
+        assert_eq!(hit.t, 1.0);
+        assert_eq!(hit.n, DVec3::X, "outward, along the ray");
+        let hit = hit_sphere(&s, &ray([1.0, 2.0, 2.5], [0.0, 0.0, 1.0]), f64::INFINITY).unwrap();
+        assert!((hit.t - 1.5).abs() < 1e-15);
+        assert!(close(hit.p, DVec3::new(1.0, 2.0, 4.0)));
+    }
+
+    #[test]
+    fn sphere_tangent_ish() {
+        let s = unit_sphere_at([0.0, 0.0, -5.0]);
+        let y: f64 = 1.0 - 1e-9;
+        let hit = hit_sphere(&s, &ray([0.0, y, 0.0], [0.0, 0.0, -1.0]), f64::INFINITY).unwrap();
+        // z^2 = 1 - y^2 = (1 - y)(1 + y), the near root at t = 5 - |z|.
+        let z = ((1.0 - y) * (1.0 + y)).sqrt();
+        // Near tangency t is ill-conditioned: 1 - y^2 has a relative error
+        // of ~1e-16 / 2e-9, and z of half that.
+        assert!(
+            (hit.t - (5.0 - z)).abs() < 1e-10,
+            "{} vs {}",
+            hit.t,
+            5.0 - z
+        );
+        assert!(hit.n.y > 0.999_999 && (hit.n.length() - 1.0).abs() < 1e-15);
+        assert!(
+            hit_sphere(
+                &s,
+                &ray([0.0, 1.0 + 1e-9, 0.0], [0.0, 0.0, -1.0]),
+                f64::INFINITY
+            )
+            .is_none()
+        );
+    }
+
+    #[test]
+    fn sphere_behind_the_ray_is_missed() {
+        let s = unit_sphere_at([0.0, 0.0, 5.0]);
+        assert!(hit_sphere(&s, &ray([0.0; 3], [0.0, 0.0, -1.0]), f64::INFINITY).is_none());
+        // Starting on the surface and leaving: the root at t = 0 is rejected.
+        let s = unit_sphere_at([0.0, 0.0, -1.0]);
+        assert!(hit_sphere(&s, &ray([0.0; 3], [0.0, 0.0, 1.0]), f64::INFINITY).is_none());
+    }
+
+    #[test]
+    fn small_sphere_far_away() {
+        // The textbook b^2 - c loses every digit here; r^2 - |f - b d|^2 does not.
+        let s = Sphere::new(DVec3::new(0.0, 0.0, -1e6), 1e-3);
+        let hit = hit_sphere(&s, &ray([0.0, 5e-4, 0.0], [0.0, 0.0, -1.0]), f64::INFINITY).unwrap();
+        let z = (1e-6_f64 - 25e-8).sqrt();
+        // Points near z = -1e6 are only known to ~1e-10 (an ulp), which
+        // limits t and, over a radius of 1e-3, the normal.
+        assert!((hit.t - (1e6 - z)).abs() < 1e-9);
+        let n = DVec3::new(0.0, 0.5, 0.75f64.sqrt());
+        assert!((hit.n - n).length() < 1e-6);
+    }
+
+    proptest! {
+        /// Rays from anywhere that hit a sphere, from outside or from inside,
+        /// hit its surface, with a unit normal facing the ray from outside.
+        #[test]
+        fn sphere_hits_lie_on_the_surface(
+            origin in prop::array::uniform3(-10.0..10.0f64),
+            dir in prop::array::uniform3(-1.0..1.0f64),
+            radius in 0.01..5.0f64,
+        ) {
+            let dir = DVec3::from(dir);
+            prop_assume!(dir.length() > 0.1);
+            let s = Sphere::new(DVec3::new(1.0, 2.0, 3.0), radius);
+            let r = Ray::new(DVec3::from(origin), dir);
+            if let Some(hit) = hit_sphere(&s, &r, f64::INFINITY) {
+                prop_assert!(hit.t > 0.0);
+                prop_assert!(((hit.p - s.center).length() - radius).abs() < 1e-12 * 10.0);
+                prop_assert!((r.at(hit.t) - hit.p).length() < 1e-9);
+                let inside = (r.origin - s.center).length() < radius;
+                prop_assert_eq!(hit.n.dot(r.dir) > 0.0, inside);
+            }
+        }
+    }
 }

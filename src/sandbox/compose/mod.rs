@@ -34,7 +34,7 @@ use std::path::{Path, PathBuf};
 use super::include::{self, Expanded, include_target};
 use crate::gpu::{ShaderError, ShaderSource};
 use crate::shader_params::ParamSet;
-use crate::shader_params::scan::{Scan, Token};
+use crate::shader_params::scan::{Scan, Token, top_level};
 use glsl::{GLSL_DEFINES, compile_glsl};
 pub use silent_zeros::{Warning, WarningKind};
 use wgsl::compile_wgsl;
@@ -340,18 +340,7 @@ fn at_end_of_file(name: &str, scan: &Scan, message: String) -> ShaderError {
 
 /// Index of the first token `a` directly followed by `b`, at brace depth 0.
 fn find_pair(tokens: &[Token], a: &str, b: &str) -> Option<usize> {
-    let mut depth = 0i32;
-    for (i, t) in tokens.iter().enumerate() {
-        match t.text {
-            "{" => depth += 1,
-            "}" => depth -= 1,
-            _ => {}
-        }
-        if depth == 0 && t.is(a) && tokens.get(i + 1).is_some_and(|n| n.is(b)) {
-            return Some(i);
-        }
-    }
-    None
+    top_level(tokens).find(|&i| tokens[i].is(a) && tokens.get(i + 1).is_some_and(|n| n.is(b)))
 }
 
 #[cfg(test)]
@@ -561,6 +550,19 @@ void main() {
         compile(file, text).expect_err("an error")
     }
 
+    /// The error of `text` as the file `file`, asserted to be in that file
+    /// at `line` and `column`.
+    #[track_caller]
+    fn error_in(file: &str, text: &str, line: u32, column: u32) -> ShaderError {
+        let e = error(file, text);
+        assert_eq!(
+            (e.file.as_str(), e.line, e.column),
+            (file, line, column),
+            "{e}"
+        );
+        e
+    }
+
     #[test]
     fn main_image_defined_through_a_macro_is_shadertoy_style() {
         let text = "#define Main void mainImage(out vec4 Q, vec2 U)\n\
@@ -599,39 +601,30 @@ void main() {
         assert_eq!((wgsl.file.as_str(), wgsl.line), ("m.wgsl", 3), "{wgsl}");
         // A sandbox macro misused (`gl_FragCoord` as a parameter name): naga
         // places it in the prelude; it is reported at the user's use.
-        let misused = error(
+        let misused = error_in(
             "p.frag",
             "uniform vec2 resolution;\nvoid main(gl_FragCoord.xy / resolution) {\n    gl_FragColor = vec4(1.0);\n}\n",
-        );
-        assert_eq!(
-            (misused.file.as_str(), misused.line, misused.column),
-            ("p.frag", 2, 11),
-            "{misused}"
+            2,
+            11,
         );
         assert!(misused.message.contains("before your file"), "{misused}");
     }
 
     #[test]
     fn errors_are_at_the_users_line_and_column() {
-        let wgsl = error(
+        // naga finds the missing `;` at `return`; it is reported after `1.0`.
+        let wgsl = error_in(
             "w.wgsl",
             "fn main_image(p: vec2<f32>) -> vec4<f32> {\n    let x = 1.0\n    return vec4(x);\n}\n",
-        );
-        // naga finds the missing `;` at `return`; it is reported after `1.0`.
-        assert_eq!(
-            (wgsl.file.as_str(), wgsl.line, wgsl.column),
-            ("w.wgsl", 2, 16),
-            "{wgsl}"
+            2,
+            16,
         );
         assert_eq!(wgsl.source_line, "    let x = 1.0");
-        let sandbox = error(
+        let sandbox = error_in(
             "s.frag",
             "#version 100\nuniform float time;\nvoid main() {\n    gl_FragColor = vec4(time, y, 0.0, 1.0);\n}\n",
-        );
-        assert_eq!(
-            (sandbox.file.as_str(), sandbox.line, sandbox.column),
-            ("s.frag", 4, 31),
-            "{sandbox}"
+            4,
+            31,
         );
         assert_eq!(
             sandbox.source_line,
@@ -642,14 +635,11 @@ void main() {
             "// comment\n\nvoid mainImage(out vec4 c, in vec2 p) {\n    c = vec4(iTime)\n}\n",
         );
         assert_eq!((toy.file.as_str(), toy.line), ("t.glsl", 4), "{toy}");
-        let annotation = error(
+        error_in(
             "a.frag",
             "uniform float a; // @slidr(0, 1)\nvoid main() { gl_FragColor = vec4(a); }\n",
-        );
-        assert_eq!(
-            (annotation.line, annotation.column),
-            (1, 21),
-            "{annotation}"
+            1,
+            21,
         );
         let missing = error("m.wgsl", "fn f() {}\n");
         assert!(missing.message.contains("main_image"), "{missing}");
