@@ -42,8 +42,9 @@
 //!   `((x) * (1.0 - (a)) + (y) * (a))`.
 //!
 //! The rewrites of names and calls (not `dot`) also apply inside the body
-//! of a `#define`, so that a macro expands to what naga takes. `dot(` in
-//! the declaration of a global `const` (a constant expression, where naga
+//! of a `#define`, and `const in` there (`#define _in(T) const in T`, for
+//! parameter lists) loses its `const`, so that a macro expands to what
+//! naga takes. `dot(` in the declaration of a global `const` (a constant expression, where naga
 //! takes no call of a function), is left as it is.
 //!
 //! Blanking keeps every offset. An insertion moves the rest of its line to
@@ -280,6 +281,11 @@ fn define_body_rewrites(
     // From the macro's name on (its parameters are names too).
     for i in 1..tokens.len() {
         if tokens[i].is("dot") {
+            continue;
+        }
+        // `#define _in(T) const in T`, for parameter lists.
+        if tokens[i].is("const") && tokens.get(i + 1).is_some_and(|n| n.is("in")) {
+            scan::blank(text, tokens[i].start..tokens[i].end());
             continue;
         }
         let used = rewrite_token(&tokens, i, text, insertions);
@@ -796,7 +802,7 @@ mod tests {
     #[test]
     fn rewrites_reach_into_define_bodies_but_dot_stays_in_constants() {
         let (b, _) = bridged(
-            "#define R(v) mat2(v)\n#define T(uv) texture2D(c, uv)\n#define sample 0.5\n#define D dot(a, b)\nconst float d = dot(a, a);\nvoid f() { float e = dot(a, b); }",
+            "#define R(v) mat2(v)\n#define T(uv) texture2D(c, uv)\n#define sample 0.5\n#define D dot(a, b)\nconst float d = dot(a, a);\nvoid f() { float e = dot(a, b); }\n#define _in(T) const in T\n#define K const int",
         );
         assert_eq!(
             b.text.lines().collect::<Vec<_>>(),
@@ -807,6 +813,8 @@ mod tests {
                 "#define D dot(a, b)",
                 "const float d = dot(a, a);",
                 "void f() { float e = rsb_dot(a, b); }",
+                "#define _in(T)       in T",
+                "#define K const int",
             ]
         );
         assert_eq!(b.overloads, [MAT2_OVERLOADS, DOT_OVERLOADS]);
