@@ -8,7 +8,6 @@
 use std::path::Path;
 
 use super::editor::Problem;
-use super::sandbox_page::shader_problem;
 use crate::gpu::Gpu;
 use crate::sandbox::multipass::compile::CompiledPass;
 use crate::sandbox::multipass::gpu::{Buffers, pass_builder};
@@ -92,11 +91,7 @@ impl PageMulti {
         frame: &FrameUniforms,
         canvas: &mut Canvas,
     ) {
-        let size = canvas.size();
-        let buffers = self.buffers.get_or_insert_with(|| Buffers::new(gpu, size));
-        if buffers.size() != size {
-            buffers.resize(gpu, size);
-        }
+        let (buffers, _) = Buffers::at_size(&mut self.buffers, gpu, canvas.size());
         if !self.prepared {
             // Cannot fail here: the page has no image files, its channels
             // read noise (see the module's comment).
@@ -125,14 +120,8 @@ pub async fn build(builder: PipelineBuilder, pending: Pending) -> MultiBuilt {
 /// code, a string inside the JSON, so no line of the document is marked:
 /// the message names the pass (`shader.json [Buffer A]:12:5: ...`).
 fn reload_problem(e: &ReloadError) -> Problem {
-    match e {
-        ReloadError::Shader(e) => Problem {
-            line: None,
-            ..shader_problem(e)
-        },
-        other => Problem {
-            message: other.to_string(),
-            line: None,
-        },
+    Problem {
+        message: e.to_string(),
+        line: None,
     }
 }

@@ -60,9 +60,7 @@ impl Multi {
     }
 
     pub(super) fn resize(&mut self, gpu: &Gpu, size: (u32, u32)) {
-        let buffers = self.buffers.get_or_insert_with(|| Buffers::new(gpu, size));
-        if buffers.size() != size {
-            buffers.resize(gpu, size);
+        if Buffers::at_size(&mut self.buffers, gpu, size).1 {
             self.drawn_frame = None;
         }
     }

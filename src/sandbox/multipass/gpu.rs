@@ -174,6 +174,20 @@ impl Buffers {
         self.size
     }
 
+    /// The buffers kept in `slot` at `size`: made on first use, cleared
+    /// when the size changed. Returns whether they start empty.
+    pub fn at_size<'a>(
+        slot: &'a mut Option<Buffers>,
+        gpu: &Gpu,
+        size: (u32, u32),
+    ) -> (&'a mut Buffers, bool) {
+        let made = slot.is_none();
+        let buffers = slot.get_or_insert_with(|| Buffers::new(gpu, size));
+        let resized = buffers.size() != size;
+        buffers.resize(gpu, size);
+        (buffers, made || resized)
+    }
+
     /// The keyboard's state for the next frame.
     pub fn set_keyboard(&self, gpu: &Gpu, keyboard: &Keyboard) {
         keyboard.write(&gpu.queue, &self.keyboard);
