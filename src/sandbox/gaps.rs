@@ -12,7 +12,8 @@
 //! - WebGL's texture functions (`texture2D(`, `texture2DLod(`, ...):
 //!   GLSL 4.50's (`texture  (`, `textureLod  (`), padded with spaces;
 //! - a float literal too big for a float (`1e39`, which WebGL reads as
-//!   infinity and naga rejects): the largest float, `3.4028235e38`;
+//!   infinity and naga rejects), or a positive one divided by a zero
+//!   literal (`1.0 / 0.0`): the largest float, `3.4028235e38`;
 //! - `dot(`, which naga lacks for two floats: `rsb_dot(`, overloads the
 //!   prelude adds for floats and float vectors;
 //! - `matrixCompMult(`, which naga lacks: `rsb_matrixCompMult(`, overloads
@@ -239,6 +240,17 @@ fn rewrite_token(
                 COMP_MULT_OVERLOADS
             });
         }
+        // `1.0 / 0.0`, infinity in WebGL, which naga's constant evaluator
+        // refuses: the largest float.
+        number
+            if t.kind == Kind::Number
+                && tokens.get(i + 1).is_some_and(|n| n.is("/"))
+                && tokens.get(i + 2).is_some_and(is_zero_literal)
+                && number.parse::<f64>().is_ok_and(|v| v > 0.0) =>
+        {
+            overwrite(text, t.start..tokens[i + 2].end(), "");
+            insertions.push((t.start, LARGEST_FLOAT.to_string()));
+        }
         number if t.kind == Kind::Number && is_infinite_float(number) => {
             overwrite(text, t.start..t.end(), "");
             insertions.push((t.start, LARGEST_FLOAT.to_string()));
@@ -459,6 +471,12 @@ fn is_infinite_float(literal: &str) -> bool {
     let digits = literal.trim_end_matches(['f', 'F']);
     let float = digits.contains(['.', 'e', 'E']) && !digits.starts_with("0x");
     float && digits.parse::<f64>().is_ok_and(|v| v > f64::from(f32::MAX))
+}
+
+/// A float literal that is zero (`0.0`, `0.`, `0e0`).
+fn is_zero_literal(t: &Token) -> bool {
+    let digits = t.text.trim_end_matches(['f', 'F']);
+    t.kind == Kind::Number && digits.contains(['.', 'e', 'E']) && digits.parse::<f64>() == Ok(0.0)
 }
 
 /// Writes `new` over `range` of `text`, padded with spaces to its length.
@@ -732,6 +750,11 @@ mod tests {
             "float far = 3.4028235e38    ; float d = rsb_dot(a, b) + 1.5e3 + rsb_dot (c, c);"
         );
         assert_eq!(b.overloads, [DOT_OVERLOADS]);
+        let (inf, _) = bridged("const float inf = 1.0 / 0.0; float h = 0.0 / 0.0, k = x / 0.0;");
+        assert_eq!(
+            inf.text,
+            "const float inf = 3.4028235e38         ; float h = 0.0 / 0.0, k = x / 0.0;"
+        );
         let (m, _) = bridged("mat3 m = matrixCompMult(a, b);");
         assert_eq!(m.text, "mat3 m = rsb_matrixCompMult(a, b);");
         assert_eq!(m.overloads, [COMP_MULT_OVERLOADS]);
