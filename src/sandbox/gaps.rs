@@ -246,7 +246,7 @@ fn rewrite_token(
             if t.kind == Kind::Number
                 && tokens.get(i + 1).is_some_and(|n| n.is("/"))
                 && tokens.get(i + 2).is_some_and(is_zero_literal)
-                && number.parse::<f64>().is_ok_and(|v| v > 0.0) =>
+                && float_value(number).is_some_and(|v| v > 0.0) =>
         {
             overwrite(text, t.start..tokens[i + 2].end(), "");
             insertions.push((t.start, LARGEST_FLOAT.to_string()));
@@ -466,17 +466,22 @@ fn declarators(tokens: &[Token], from: usize) -> Option<(Vec<usize>, bool)> {
     None
 }
 
-/// A float literal beyond the largest float (`1e39`, `1e100`).
-fn is_infinite_float(literal: &str) -> bool {
+/// The value of a float literal (`1.5`, `2e3`, `0.f`); `None` for an
+/// integer or hexadecimal one.
+fn float_value(literal: &str) -> Option<f64> {
     let digits = literal.trim_end_matches(['f', 'F']);
     let float = digits.contains(['.', 'e', 'E']) && !digits.starts_with("0x");
-    float && digits.parse::<f64>().is_ok_and(|v| v > f64::from(f32::MAX))
+    float.then(|| digits.parse().ok()).flatten()
+}
+
+/// A float literal beyond the largest float (`1e39`, `1e100`).
+fn is_infinite_float(literal: &str) -> bool {
+    float_value(literal).is_some_and(|v| v > f64::from(f32::MAX))
 }
 
 /// A float literal that is zero (`0.0`, `0.`, `0e0`).
 fn is_zero_literal(t: &Token) -> bool {
-    let digits = t.text.trim_end_matches(['f', 'F']);
-    t.kind == Kind::Number && digits.contains(['.', 'e', 'E']) && digits.parse::<f64>() == Ok(0.0)
+    t.kind == Kind::Number && float_value(t.text) == Some(0.0)
 }
 
 /// Writes `new` over `range` of `text`, padded with spaces to its length.
