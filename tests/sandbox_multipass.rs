@@ -2,7 +2,8 @@
 //! progressive average in Buffer A converges, a cycle Buffer A <- Buffer B
 //! <- Buffer A reads as on Shadertoy, reset clears the buffers, and both
 //! input forms (a folder, a JSON export) bind what they say; errors name
-//! the file and the key or line.
+//! the file and the key or line; the bundled path tracer converges and the
+//! window's watchdog lets it run.
 
 mod common;
 
@@ -11,6 +12,7 @@ use std::path::{Path, PathBuf};
 use raysandbox::gpu::Gpu;
 use raysandbox::sandbox::multipass::headless::MultipassOffscreen;
 use raysandbox::sandbox::multipass::{Input, PassKind, Project, compile_project};
+use raysandbox::sandbox::watchdog::Probe;
 use raysandbox::sandbox::{FrameUniforms, NanColor};
 
 fn shaders() -> PathBuf {
@@ -90,6 +92,61 @@ fn a_progressive_average_in_buffer_a_converges_to_pi_over_4() {
     // Standard error of the mean: sqrt(variance / (256 * 2304)) = 0.00049.
     let sigma = (variance / (256.0 * last.len() as f64)).sqrt();
     assert!((mean - p).abs() < 5.0 * sigma, "mean {mean}, pi/4 {p}");
+}
+
+/// The bundled path tracer (assets/shaders/pathtracer) averages one path
+/// per pixel per frame in Buffer A: its noise shrinks as 1/sqrt(N), so the
+/// change from frame N to 2N halves when N grows four times; the lamp seen
+/// directly is white in every frame and the open front of the box black.
+#[test]
+fn the_bundled_path_tracer_converges_at_the_monte_carlo_rate() {
+    let Some(gpu) = common::gpu() else { return };
+    let size = (64, 36);
+    let folder = Path::new(env!("CARGO_MANIFEST_DIR")).join("assets/shaders/pathtracer");
+    let mut o = offscreen(&gpu, &folder, size);
+    let mut at = std::collections::BTreeMap::new();
+    for frame in 0..256 {
+        draw(&gpu, &mut o, frame, size);
+        let texels = o.texels(&gpu).unwrap();
+        let (lamp, corner) = (texels[5 * 64 + 32], texels[0]);
+        assert_eq!(lamp[..3], [1.0; 3], "frame {frame}: the lamp");
+        assert_eq!(corner[..3], [0.0; 3], "frame {frame}: outside the box");
+        if [8, 16, 32, 64, 128, 256].contains(&(frame + 1)) {
+            let channels = texels.iter().flat_map(|t| t[..3].to_vec());
+            at.insert(frame + 1, channels.map(f64::from).collect::<Vec<_>>());
+        }
+    }
+    let change = |n: u32| rms(&at[&n], |i| at[&(2 * n)][i]);
+    for n in [8, 16, 32] {
+        let ratio = change(n) / change(4 * n);
+        eprintln!(
+            "rms change {n} -> {}: {:.4}, ratio to 4N: {ratio:.2}",
+            2 * n,
+            change(n)
+        );
+        assert!(
+            (1.5..2.7).contains(&ratio),
+            "N {n}: ratio {ratio}, expected 2"
+        );
+    }
+}
+
+/// The window's watchdog times a trial frame to refuse shaders that would
+/// freeze it; the first frame of a pipeline also pays for the driver's
+/// compilation, which alone made it refuse the path tracer at 480x270. Its
+/// frames take milliseconds: each pass is let run at 640x360.
+#[test]
+fn the_watchdog_lets_the_bundled_path_tracer_run_in_the_window() {
+    let Some(_gpu) = common::gpu() else { return };
+    let folder = Path::new(env!("CARGO_MANIFEST_DIR")).join("assets/shaders/pathtracer");
+    let project = Project::load(&folder).unwrap();
+    let compiled = compile_project(&project).unwrap_or_else(|e| panic!("{e}"));
+    let mut probe = Probe::default();
+    for pass in &compiled.passes {
+        probe
+            .check(&pass.compiled, (640, 360))
+            .unwrap_or_else(|e| panic!("{e}"));
+    }
 }
 
 /// cycle.json: Buffer A = Buffer B's previous frame + 1, Buffer B = Buffer
