@@ -80,6 +80,35 @@ fn the_page_renders_the_whitted_scene_like_the_reference() {
     assert_like_reference("whitted", &page.capture_picture(), &whitted().1);
 }
 
+/// With the panel shown, each job of refinement waits in the browser's
+/// queue behind a frame's display and UI passes. Timed by its own pass
+/// (WebGPU's `timestamp-query`, which Chromium's SwiftShader has), a job is
+/// sized from its GPU time, not from that wait: the whitted scene's first
+/// sample takes far fewer jobs than it has rows (timed from submission to
+/// done they shrank to a row each; docs/web.md, "The status line").
+#[test]
+fn with_the_panel_jobs_are_timed_by_their_own_pass_not_one_row_each() {
+    let start = Instant::now();
+    let Some((_display, mut page)) = browser::open_page("?samples=1") else {
+        return;
+    };
+    let ready = page.wait_for("ready");
+    eprintln!(
+        "the first sample done {:.1} s after Chromium started: ready {ready}",
+        start.elapsed().as_secs_f64()
+    );
+    let field = |name: &str| {
+        ready
+            .split_whitespace()
+            .find_map(|f| f.strip_prefix(name)?.strip_prefix('='))
+            .unwrap_or_else(|| panic!("no {name} in 'ready {ready}'"))
+            .to_string()
+    };
+    assert_eq!(field("timing"), "timestamps", "ready {ready}");
+    let jobs: u32 = field("jobs").parse().unwrap();
+    assert!(jobs < SIZE.1 / 4, "{jobs} jobs for {} rows", SIZE.1);
+}
+
 /// A bundled scene's text as the native program reads it: mesh files
 /// relative to the folder of the bundled mesh scenes (the other scenes name
 /// none).

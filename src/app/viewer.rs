@@ -765,7 +765,7 @@ impl Viewer {
             && !dragging
             && !fitted
             && self.deferred.is_none();
-        let jobs = ready.then(|| gfx.viewport.take_longest_job());
+        let jobs = ready.then(|| (gfx.viewport.take_longest_job(), gfx.viewport.timing()));
         if status == FrameStatus::Presented && samples > 0 && !self.presented {
             self.presented = true;
             let (w, h) = resolution;
@@ -783,11 +783,12 @@ impl Viewer {
         // Ready once the view rests with all its samples. A drag whose
         // moving frames were already at full scale leaves nothing to refine
         // with one sample per pixel: the release itself makes it ready.
-        if let Some((jobs, longest)) = jobs {
+        if let Some(((jobs, longest), timing)) = jobs {
             self.settled = true;
             self.event(&format!(
-                "ready samples={samples} jobs={jobs} longest_job_ms={:.1}",
-                longest.as_secs_f64() * 1e3
+                "ready samples={samples} jobs={jobs} longest_job_ms={:.1} timing={}",
+                longest.as_secs_f64() * 1e3,
+                timing.name()
             ));
         }
         if delay < Duration::from_secs(5) {

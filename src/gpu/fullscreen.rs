@@ -58,14 +58,15 @@ pub fn pass(
     bind_groups: &[&wgpu::BindGroup],
     target: &wgpu::TextureView,
 ) {
-    pass_rects(encoder, pipeline, bind_groups, target, &[], true);
+    pass_rects(encoder, pipeline, bind_groups, target, &[], true, None);
 }
 
 /// Like [`pass`], limited to the scissor rectangles `rects` (`[x, y,
 /// width, height]`, disjoint; none: the whole target): the other pixels
 /// keep what the target holds, unless `clear` (then they are black). Not
 /// cleared, the pixels the fragment shader discards keep their colour too
-/// (the selection outline over the traced image).
+/// (the selection outline over the traced image). `timestamp_writes`
+/// times the pass (`GpuTimer::pass_writes`).
 pub fn pass_rects(
     encoder: &mut wgpu::CommandEncoder,
     pipeline: &wgpu::RenderPipeline,
@@ -73,6 +74,7 @@ pub fn pass_rects(
     target: &wgpu::TextureView,
     rects: &[[u32; 4]],
     clear: bool,
+    timestamp_writes: Option<wgpu::RenderPassTimestampWrites>,
 ) {
     let load = if clear {
         wgpu::LoadOp::Clear(wgpu::Color::BLACK)
@@ -91,7 +93,7 @@ pub fn pass_rects(
             },
         })],
         depth_stencil_attachment: None,
-        timestamp_writes: None,
+        timestamp_writes,
         occlusion_query_set: None,
         multiview_mask: None,
     });

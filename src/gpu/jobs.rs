@@ -32,8 +32,8 @@ const BINS: usize = 64;
 /// Pixels of the first job on an image whose costs are unknown: few, since
 /// on a slow adapter one pixel of a glass scene can take milliseconds
 /// (docs/performance.md, "Short GPU jobs", has the times); the jobs double
-/// from there, so a cheap scene reaches the budget within a few jobs. In
-/// the browser [`min_pixels`] makes the first job a row all the same.
+/// from there, so a cheap scene reaches the budget within a few jobs. Jobs
+/// [`JobPlanner::in_whole_rows`] make the first job a row all the same.
 const FIRST_PIXELS: u32 = 64;
 
 /// Over pixels whose cost is unknown, a job takes at most this many times
@@ -44,21 +44,6 @@ const GROWTH: u32 = 2;
 /// (llvmpipe: 4 x 4 blocks, 8 lanes at once), so a thinner piece of a row
 /// would cost nearly as much as this many pixels.
 const MIN_PIXELS: u32 = 16;
-
-/// The fewest pixels of a job in an image `width` pixels wide: natively
-/// [`MIN_PIXELS`]; in the browser a whole row. There a job's time is
-/// measured from its submission to the GPU's "work done", which includes
-/// the display and UI passes of the frames queued before it (hundreds of
-/// milliseconds on SwiftShader with the panel shown): pieces of 16 pixels
-/// each measured at that queue's length made the page's first sample take
-/// over 20 minutes (docs/performance.md, "Short GPU jobs").
-fn min_pixels(width: u32) -> u32 {
-    if cfg!(target_arch = "wasm32") {
-        width
-    } else {
-        MIN_PIXELS
-    }
-}
 
 /// Plans the pixels of each job from the times the last ones took. A job
 /// is a range of pixel indices in row-major order (`y * width + x`) of the
@@ -86,6 +71,8 @@ pub struct JobPlanner {
     /// averaged ([`JobPlanner::cycle`]).
     last_time: Duration,
     overhead: Option<Duration>,
+    /// A job is at least a row ([`JobPlanner::in_whole_rows`]).
+    whole_rows: bool,
 }
 
 impl JobPlanner {
@@ -101,7 +88,26 @@ impl JobPlanner {
             jobs: 0,
             last_time: Duration::ZERO,
             overhead: None,
+            whole_rows: false,
         }
+    }
+
+    /// Jobs of a row at least, never a piece of one: for job times that
+    /// include more than the job. In the browser without timestamp queries
+    /// a job is timed from its submission to the GPU's "work done", which
+    /// includes the display and UI passes of the frames queued before it
+    /// (hundreds of milliseconds on SwiftShader with the panel shown):
+    /// pieces of 16 pixels each measured at that queue's length made the
+    /// page's first sample take over 20 minutes (docs/performance.md,
+    /// "Short GPU jobs").
+    pub fn in_whole_rows(mut self) -> Self {
+        self.whole_rows = true;
+        self
+    }
+
+    /// The fewest pixels of a job in an image `width` pixels wide.
+    fn min_pixels(&self, width: u32) -> u32 {
+        if self.whole_rows { width } else { MIN_PIXELS }
     }
 
     /// The wall time from the start of one job to the start of the next:
@@ -123,7 +129,7 @@ impl JobPlanner {
 
     /// The pixels of the next job, from pixel `start` of an image of
     /// `size` pixels: as many as the remembered costs say fit in the budget
-    /// (at least [`min_pixels`], or what is left), growing at most
+    /// (at least [`Self::min_pixels`], or what is left), growing at most
     /// [`GROWTH`] times over pixels never measured. A job ends inside a
     /// row only where the budget ends there.
     pub fn next(&mut self, start: u32, (width, height): (u32, u32)) -> Range<u32> {
@@ -157,7 +163,7 @@ impl JobPlanner {
                 break;
             }
         }
-        let span = start..end.max(start + min_pixels(width)).min(total);
+        let span = start..end.max(start + self.min_pixels(width)).min(total);
         self.pending = Some((span.clone(), (width, height)));
         span
     }
@@ -355,6 +361,16 @@ mod tests {
             jobs[1..].iter().all(|&(pixels, _)| pixels < WIDTH),
             "{jobs:?}"
         );
+    }
+
+    /// Where job times include the queue before them, the same costly rows
+    /// are never cut: each job is whole rows, from the first one on.
+    #[test]
+    fn in_whole_rows_a_costly_row_is_one_job() {
+        let mut planner = JobPlanner::new(Duration::from_millis(30)).in_whole_rows();
+        let jobs = run(&mut planner, |_| 100.0, 20);
+        assert_eq!(jobs.len(), 20, "{jobs:?}");
+        assert!(jobs.iter().all(|&(pixels, _)| pixels == WIDTH), "{jobs:?}");
     }
 
     /// However a span starts and ends, its rectangles cover each of its

@@ -209,7 +209,7 @@ impl Outline {
         }
         // Over the traced image, which the pixels the outline discards keep.
         let groups = [scene, &image.bind_group];
-        fullscreen::pass_rects(encoder, outline, &groups, target.0, &[], false);
+        fullscreen::pass_rects(encoder, outline, &groups, target.0, &[], false, None);
     }
 
     fn id_image(

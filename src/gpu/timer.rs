@@ -1,5 +1,8 @@
 //! GPU time of a stretch of commands, from timestamp queries where the
-//! adapter has them (`TIMESTAMP_QUERY` and `TIMESTAMP_QUERY_INSIDE_ENCODERS`).
+//! adapter has them: around several passes where timestamps may be written
+//! inside an encoder (`TIMESTAMP_QUERY_INSIDE_ENCODERS`, native drivers),
+//! or at the start and end of one render pass (`TIMESTAMP_QUERY` alone,
+//! which WebGPU in the browser has too).
 
 use std::time::Duration;
 
@@ -15,6 +18,14 @@ pub enum Timing {
 }
 
 impl Timing {
+    /// One word, for the viewer's `ready` event.
+    pub fn name(self) -> &'static str {
+        match self {
+            Timing::GpuTimestamps => "timestamps",
+            Timing::SubmitToDone => "wall",
+        }
+    }
+
     pub fn describe(self) -> &'static str {
         match self {
             Timing::GpuTimestamps => "GPU timestamps",
@@ -33,11 +44,26 @@ pub struct GpuTimer {
 }
 
 impl GpuTimer {
-    /// `None` when the device lacks timestamp queries inside encoders.
+    /// For [`Self::begin`] and [`Self::end`] around several passes; `None`
+    /// when the device lacks timestamp queries inside encoders.
     pub fn new(gpu: &Gpu) -> Option<GpuTimer> {
-        if !gpu.device.features().contains(TIMER_FEATURES) {
-            return None;
-        }
+        gpu.device
+            .features()
+            .contains(TIMER_FEATURES)
+            .then(|| Self::made(gpu))
+    }
+
+    /// For one render pass ([`Self::pass_writes`]); `None` when the device
+    /// lacks timestamp queries. The browser has these: there a job's time
+    /// is its pass's own, not the queue's wait for the frames before it.
+    pub fn for_passes(gpu: &Gpu) -> Option<GpuTimer> {
+        gpu.device
+            .features()
+            .contains(wgpu::Features::TIMESTAMP_QUERY)
+            .then(|| Self::made(gpu))
+    }
+
+    fn made(gpu: &Gpu) -> GpuTimer {
         let size = 2 * wgpu::QUERY_SIZE as u64;
         let buffer = |label, usage| {
             gpu.device.create_buffer(&wgpu::BufferDescriptor {
@@ -47,7 +73,7 @@ impl GpuTimer {
                 mapped_at_creation: false,
             })
         };
-        Some(GpuTimer {
+        GpuTimer {
             queries: gpu.device.create_query_set(&wgpu::QuerySetDescriptor {
                 label: Some("frame timer"),
                 ty: wgpu::QueryType::Timestamp,
@@ -62,7 +88,17 @@ impl GpuTimer {
                 wgpu::BufferUsages::COPY_DST | wgpu::BufferUsages::MAP_READ,
             ),
             period: f64::from(gpu.queue.get_timestamp_period()),
-        })
+        }
+    }
+
+    /// Timestamps at the start and the end of a render pass; then
+    /// [`Self::resolve`] after the pass.
+    pub fn pass_writes(&self) -> wgpu::RenderPassTimestampWrites<'_> {
+        wgpu::RenderPassTimestampWrites {
+            query_set: &self.queries,
+            beginning_of_pass_write_index: Some(0),
+            end_of_pass_write_index: Some(1),
+        }
     }
 
     /// Marks the start of the timed commands.
@@ -73,6 +109,12 @@ impl GpuTimer {
     /// Marks their end and copies the timestamps where [`Self::read`] finds them.
     pub fn end(&self, encoder: &mut wgpu::CommandEncoder) {
         encoder.write_timestamp(&self.queries, 1);
+        self.resolve(encoder);
+    }
+
+    /// Copies the two timestamps where [`Self::read`] and
+    /// [`Self::read_later`] find them.
+    pub fn resolve(&self, encoder: &mut wgpu::CommandEncoder) {
         encoder.resolve_query_set(&self.queries, 0..2, &self.resolved, 0);
         encoder.copy_buffer_to_buffer(&self.resolved, 0, &self.readback, 0, self.resolved.size());
     }
@@ -83,12 +125,34 @@ impl GpuTimer {
         let slice = self.readback.slice(..);
         slice.map_async(wgpu::MapMode::Read, |_| {});
         gpu.device.poll(wgpu::PollType::wait_indefinitely()).ok()?;
+        Self::take_time(&self.readback, self.period)
+    }
+
+    /// The same without waiting (the browser cannot): `done` gets the time
+    /// once the GPU has finished the frame and the buffer is mapped, `None`
+    /// if it could not be read. Submit no other frame timed by this timer
+    /// before `done` is called: its buffer is in use until then.
+    pub fn read_later(&self, done: impl FnOnce(Option<Duration>) + wgpu::WasmNotSend + 'static) {
+        let (readback, period) = (self.readback.clone(), self.period);
+        self.readback
+            .slice(..)
+            .map_async(wgpu::MapMode::Read, move |mapped| {
+                done(
+                    mapped
+                        .ok()
+                        .and_then(|()| Self::take_time(&readback, period)),
+                );
+            });
+    }
+
+    /// Reads the mapped timestamps and unmaps the buffer.
+    fn take_time(readback: &wgpu::Buffer, period: f64) -> Option<Duration> {
         let ticks = {
-            let data = slice.get_mapped_range().ok()?;
+            let data = readback.slice(..).get_mapped_range().ok()?;
             let stamps: &[u64] = bytemuck::cast_slice(&data);
             stamps[1].saturating_sub(stamps[0])
         };
-        self.readback.unmap();
-        Some(Duration::from_nanos((ticks as f64 * self.period) as u64))
+        readback.unmap();
+        Some(Duration::from_nanos((ticks as f64 * period) as u64))
     }
 }

@@ -553,13 +553,15 @@ pub fn encode_frame(
 /// sample (one sample per pixel), continuing where the last call stopped: a
 /// sample cut into short GPU jobs (docs/performance.md, "Short GPU jobs").
 /// The sample counts once its last pixel is traced. The globals are written
-/// through `queue`: submit before encoding anything else.
+/// through `queue`: submit before encoding anything else. `timestamp_writes`
+/// times the job's pass.
 pub fn encode_job(
     queue: &wgpu::Queue,
     encoder: &mut wgpu::CommandEncoder,
     (pipelines, scene): (&Pipelines, &SceneBuffers),
     accum: &mut Accumulator,
     span: std::ops::Range<u32>,
+    timestamp_writes: Option<wgpu::RenderPassTimestampWrites>,
 ) {
     let (width, height) = accum.size;
     let total = width * height;
@@ -580,6 +582,7 @@ pub fn encode_job(
         &accum.views[back],
         &span_rects(&span, width),
         clear,
+        timestamp_writes,
     );
     accum.pixels_done = span.end;
     if span.end == total {

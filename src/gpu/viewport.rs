@@ -99,6 +99,15 @@ impl Viewport {
         let scene = SceneBuffers::new((&gpu.device, &gpu.queue), &pipelines, empty)
             .expect("a scene without shapes fits any GPU's buffers");
         let accum = Accumulator::new(&gpu.device, &pipelines, size.0.max(1), size.1.max(1));
+        let timer = GpuTimer::for_passes(gpu);
+        let jobs = JobPlanner::new(JOB_BUDGET);
+        // Natively a job is waited for alone; in the browser only its
+        // timestamps leave out the frames queued before it.
+        let jobs = if cfg!(target_arch = "wasm32") && timer.is_none() {
+            jobs.in_whole_rows()
+        } else {
+            jobs
+        };
         Viewport {
             surface,
             config,
@@ -107,12 +116,12 @@ impl Viewport {
             accum,
             scale: 1.0,
             job_time: Arc::default(),
-            jobs: JobPlanner::new(JOB_BUDGET),
+            jobs,
             last_job_start: None,
             job_in_flight: false,
             whole_frame: false,
             whole_frame_time: None,
-            timer: GpuTimer::new(gpu),
+            timer,
             outline: Outline::new(&gpu.device),
         }
     }
@@ -345,21 +354,19 @@ impl Viewport {
         }
     }
 
-    /// Encodes the trace of the pixels `span` of the next sample, between
-    /// the timer's queries where the adapter has timestamps.
+    /// Encodes the trace of the pixels `span` of the next sample, its pass
+    /// timed where the adapter has timestamps.
     fn trace_job(&mut self, gpu: &Gpu, encoder: &mut wgpu::CommandEncoder, span: Range<u32>) {
-        if let Some(timer) = &self.timer {
-            timer.begin(encoder);
-        }
         encode_job(
             &gpu.queue,
             encoder,
             (&self.pipelines, &self.scene),
             &mut self.accum,
             span,
+            self.timer.as_ref().map(GpuTimer::pass_writes),
         );
         if let Some(timer) = &self.timer {
-            timer.end(encoder);
+            timer.resolve(encoder);
         }
     }
 
@@ -367,21 +374,25 @@ impl Viewport {
     /// also keeps input latency low: frames are only drawn on demand, so
     /// nothing else waits for us), in the browser, which cannot wait, when
     /// the GPU reports the work done ([`Self::record_job_time`] then finds
-    /// it at a later frame).
+    /// it at a later frame). With timestamps the time is the job's pass
+    /// alone; without, from submission until done, which in the browser
+    /// also holds the frames queued before the job (docs/web.md, "Short
+    /// GPU jobs in the page").
     fn submit_timed(&mut self, gpu: &Gpu, encoder: wgpu::CommandEncoder) {
         let start = Instant::now();
         gpu.queue.submit([encoder.finish()]);
-        if self.timer.is_none() {
-            let slot = Arc::clone(&self.job_time);
-            gpu.queue.on_submitted_work_done(move || {
-                *slot.lock().unwrap_or_else(PoisonError::into_inner) = Some(start.elapsed());
-            });
+        let slot = Arc::clone(&self.job_time);
+        let store = move |time: Option<Duration>| {
+            let time = time.unwrap_or_else(|| start.elapsed());
+            *slot.lock().unwrap_or_else(PoisonError::into_inner) = Some(time);
+        };
+        match &self.timer {
+            Some(timer) if cfg!(target_arch = "wasm32") => timer.read_later(store),
+            Some(timer) => store(timer.read(gpu)),
+            None => gpu.queue.on_submitted_work_done(move || store(None)),
         }
         let _ = gpu.device.poll(wgpu::PollType::wait_indefinitely());
         self.job_in_flight = cfg!(target_arch = "wasm32");
-        if let Some(timer) = &self.timer {
-            *self.job_time.lock().unwrap_or_else(PoisonError::into_inner) = timer.read(gpu);
-        }
     }
 
     /// Takes the time of the last job, once it is known: the frame time of
