@@ -816,7 +816,7 @@ impl Viewer {
                     .as_ref()
                     .map(|o| o.triangles)
                     .unwrap_or_default(),
-                ..Default::default()
+                ..reference::ReferenceOptions::of(&scene)
             };
             let size = gfx.viewport.traced_resolution();
             match gfx.viewport.read_sums(&gfx.gpu) {

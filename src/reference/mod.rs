@@ -127,12 +127,23 @@ impl Default for ReferenceOptions {
     }
 }
 
+impl ReferenceOptions {
+    /// The variant `scene` asks for: its `intersections`
+    /// (docs/rendering-model.md, "Lecture switches"), else the defaults.
+    pub fn of(scene: &Scene) -> Self {
+        ReferenceOptions {
+            robust: scene.render.intersections.is_robust(),
+            ..ReferenceOptions::default()
+        }
+    }
+}
+
 impl PreparedScene {
-    /// Prepares a validated scene. (A material name that validation would
-    /// have rejected falls back to the default material instead of
-    /// panicking.)
+    /// Prepares a validated scene, with the intersections it asks for. (A
+    /// material name that validation would have rejected falls back to the
+    /// default material instead of panicking.)
     pub fn new(scene: &Scene) -> Self {
-        Self::with_options(scene, &ReferenceOptions::default())
+        Self::with_options(scene, &ReferenceOptions::of(scene))
     }
 
     /// Prepares a validated scene for the variant `options` chooses.
