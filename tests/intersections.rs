@@ -42,6 +42,48 @@ fn describe(what: &str, d: &ImageDiff) -> String {
     )
 }
 
+/// The GPU's and the reference's pictures of the stress scene `name`,
+/// robust and textbook, compared (and printed).
+struct Differences {
+    /// The GPU's robust picture against its textbook one.
+    switched: ImageDiff,
+    /// The reference's robust picture against its textbook one.
+    switched_reference: ImageDiff,
+    /// The GPU against the reference, both textbook.
+    textbook: ImageDiff,
+    /// The GPU against the reference, both robust.
+    robust: ImageDiff,
+}
+
+fn differences(gpu: &Gpu, name: &str) -> Differences {
+    let scene = scenes::load(name);
+    let (robust, robust_reference) = pictures(gpu, &scene, Intersections::Robust);
+    let (textbook, textbook_reference) = pictures(gpu, &scene, Intersections::Textbook);
+    let d = Differences {
+        switched: diff_images(&robust, &textbook),
+        switched_reference: diff_images(&robust_reference, &textbook_reference),
+        textbook: diff_images(&textbook, &textbook_reference),
+        robust: diff_images(&robust, &robust_reference),
+    };
+    println!("{name}:");
+    println!("{}", describe("GPU robust against textbook", &d.switched));
+    println!(
+        "{}",
+        describe("reference robust against textbook", &d.switched_reference)
+    );
+    println!(
+        "{}",
+        describe("textbook: GPU against reference", &d.textbook)
+    );
+    println!("{}", describe("robust: GPU against reference", &d.robust));
+    assert!(
+        within_budget(&d.robust),
+        "{}",
+        describe("robust", &d.robust)
+    );
+    d
+}
+
 /// `scale_1e-3`: the base scene 1000 times smaller, where the textbook
 /// offset of 1e-3 exceeds the glass sphere's radius: refracted rays start
 /// beyond it and contact shadows come loose, in f64 as in f32. The GPU's
@@ -50,28 +92,16 @@ fn describe(what: &str, d: &ImageDiff) -> String {
 #[test]
 fn textbook_offsets_leak_alike_on_the_gpu_and_in_the_reference() {
     let Some(gpu) = common::gpu() else { return };
-    let scene = scenes::load("scale_1e-3");
-    let (robust, robust_reference) = pictures(&gpu, &scene, Intersections::Robust);
-    let (textbook, textbook_reference) = pictures(&gpu, &scene, Intersections::Textbook);
-    let switched = diff_images(&robust, &textbook);
-    let agree = diff_images(&textbook, &textbook_reference);
-    let robust_agree = diff_images(&robust, &robust_reference);
-    println!("{}", describe("GPU robust against textbook", &switched));
-    println!("{}", describe("textbook: GPU against reference", &agree));
-    println!(
+    let d = differences(&gpu, "scale_1e-3");
+    assert!(
+        d.switched.frac_over_8 > 0.01,
         "{}",
-        describe("robust: GPU against reference", &robust_agree)
+        describe("the switch changed too little", &d.switched)
     );
     assert!(
-        switched.frac_over_8 > 0.01,
+        within_budget(&d.textbook),
         "{}",
-        describe("the switch changed too little", &switched)
-    );
-    assert!(within_budget(&agree), "{}", describe("textbook", &agree));
-    assert!(
-        within_budget(&robust_agree),
-        "{}",
-        describe("robust", &robust_agree)
+        describe("textbook", &d.textbook)
     );
 }
 
@@ -82,30 +112,15 @@ fn textbook_offsets_leak_alike_on_the_gpu_and_in_the_reference() {
 #[test]
 fn the_textbook_discriminant_fails_in_f32_only() {
     let Some(gpu) = common::gpu() else { return };
-    let scene = scenes::load("small_sphere_1e3");
-    let (robust, robust_reference) = pictures(&gpu, &scene, Intersections::Robust);
-    let (textbook, textbook_reference) = pictures(&gpu, &scene, Intersections::Textbook);
-    let exact = diff_images(&robust_reference, &textbook_reference);
-    let f32_failure = diff_images(&textbook, &textbook_reference);
-    let robust_agree = diff_images(&robust, &robust_reference);
-    println!("{}", describe("reference robust against textbook", &exact));
-    println!(
-        "{}",
-        describe("textbook: GPU against reference", &f32_failure)
-    );
-    println!(
-        "{}",
-        describe("robust: GPU against reference", &robust_agree)
-    );
-    assert!(within_budget(&exact), "{}", describe("f64", &exact));
+    let d = differences(&gpu, "small_sphere_1e3");
     assert!(
-        within_budget(&robust_agree),
+        within_budget(&d.switched_reference),
         "{}",
-        describe("robust", &robust_agree)
+        describe("f64", &d.switched_reference)
     );
     assert!(
-        f32_failure.frac_over_8 > 0.01,
+        d.textbook.frac_over_8 > 0.01,
         "{}",
-        describe("the f32 failure is missing", &f32_failure)
+        describe("the f32 failure is missing", &d.textbook)
     );
 }

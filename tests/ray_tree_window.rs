@@ -202,14 +202,9 @@ fn shift_click_shows_a_pixels_ray_tree_which_stays_in_the_scene_while_orbiting()
     // Shift+click on the glass sphere (the middle of the right half). The
     // window needs the keyboard focus to see Shift held.
     viewer.xdotool(&["windowfocus", "--sync", &viewer.id]);
-    let (x, y) = area.at(0.45, 0.45);
-    let (x, y) = (x.to_string(), y.to_string());
-    viewer.xdotool(&["mousemove", "--window", &viewer.id, &x, &y]);
-    viewer.xdotool(&["keydown", "shift", "click", "1", "keyup", "shift"]);
-    let asked = viewer.wait_for("ray-tree-asked");
-    let (px, py) = asked.split_once(',').expect("X,Y");
-    let pixel: (u32, u32) = (px.parse().unwrap(), py.parse().unwrap());
-    assert_eq!(pixel, (x.parse().unwrap(), y.parse().unwrap()));
+    let at = area.at(0.45, 0.45);
+    let pixel = shift_click(&mut viewer, at);
+    assert_eq!(pixel, at);
     // The GPU's tree, traced on the worker thread, has as many rays.
     let answered = viewer.wait_for("ray-tree ");
     println!("{answered}");

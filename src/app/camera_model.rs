@@ -70,8 +70,15 @@ pub fn select(selected: &mut Vec<(u32, u32)>, pixel: (u32, u32)) {
 /// observer orbits (the BVH of a large mesh takes a while to build).
 #[derive(Default)]
 pub struct PixelRays {
-    traced_for: Option<(Scene, Vec<(u32, u32)>, (u32, u32))>,
+    traced_for: Option<Traced>,
     segments: Vec<Segment>,
+}
+
+/// What the pixel rays were traced for.
+struct Traced {
+    scene: Scene,
+    pixels: Vec<(u32, u32)>,
+    size: (u32, u32),
 }
 
 impl PixelRays {
@@ -85,10 +92,14 @@ impl PixelRays {
         let traced = self
             .traced_for
             .as_ref()
-            .is_some_and(|(s, p, z)| s == scene && p == pixels && *z == size);
+            .is_some_and(|t| t.scene == *scene && t.pixels == pixels && t.size == size);
         if !traced {
             self.segments = pixel_rays(scene, pixels, size);
-            self.traced_for = Some((scene.clone(), pixels.to_vec(), size));
+            self.traced_for = Some(Traced {
+                scene: scene.clone(),
+                pixels: pixels.to_vec(),
+                size,
+            });
         }
         &self.segments
     }
