@@ -4,7 +4,8 @@
 //! draws its rays over the picture where they project; they stay in the
 //! scene while the camera orbits, and Esc clears them. `C` shows the
 //! scene's camera from an observer's view, which follows the panel's
-//! camera fields and orbits without moving the scene's camera.
+//! camera fields and orbits without moving the scene's camera, and draws
+//! the camera rays of the pixels Shift+clicked.
 
 mod common;
 
@@ -13,6 +14,7 @@ use std::path::{Path, PathBuf};
 use common::xwindow::{Display, Rect, Window};
 use glam::DVec3;
 use image::{Rgba, RgbaImage};
+use raysandbox::app::camera_model;
 use raysandbox::gpu::{DEFAULT_MIN_WEIGHT, project};
 use raysandbox::reference::{self, PreparedScene, RayKind};
 use raysandbox::scene::{Camera, Scene};
@@ -80,8 +82,7 @@ fn saved(viewer: &mut Window, path: &Path) -> Scene {
 }
 
 /// The refracted rays of the tree of `pixel` of `scene`, projected with
-/// `camera` into the window: segments in window pixels, cut where they pass
-/// behind the eye (as the GPU clips them).
+/// `camera` into the window.
 fn projected_refracted(scene: &Scene, pixel: (u32, u32), camera: &Camera) -> Vec<[(f64, f64); 2]> {
     let mut scene = scene.clone();
     scene.render.min_weight = scene.render.min_weight.max(DEFAULT_MIN_WEIGHT);
@@ -92,6 +93,24 @@ fn projected_refracted(scene: &Scene, pixel: (u32, u32), camera: &Camera) -> Vec
         pixel.0,
         pixel.1,
     );
+    let rays: Vec<[DVec3; 2]> = tree
+        .rays
+        .iter()
+        .filter(|r| r.kind == RayKind::Refracted)
+        .map(|r| {
+            // A ray that misses is drawn some way on: all of it lies on
+            // this far longer segment.
+            let far = r.origin + 1e3 * scene.view_scale() * r.dir;
+            [r.origin, r.end().unwrap_or(far)]
+        })
+        .collect();
+    projected(&rays, camera)
+}
+
+/// World segments projected with `camera` into the window: segments in
+/// window pixels, cut where they pass behind the eye (as the GPU clips
+/// them).
+fn projected(segments: &[[DVec3; 2]], camera: &Camera) -> Vec<[(f64, f64); 2]> {
     let aspect = f64::from(SIZE.0) / f64::from(SIZE.1);
     let clip = |p: DVec3| project(camera, aspect, p).map(f64::from);
     let to_window = |c: [f64; 4]| {
@@ -101,14 +120,9 @@ fn projected_refracted(scene: &Scene, pixel: (u32, u32), camera: &Camera) -> Vec
         )
     };
     let near = 0.01 * (camera.from - camera.to).length();
-    tree.rays
+    segments
         .iter()
-        .filter(|r| r.kind == RayKind::Refracted)
-        .filter_map(|r| {
-            // A ray that misses is drawn some way on: all of it lies on
-            // this far longer segment.
-            let far = r.origin + 1e3 * scene.view_scale() * r.dir;
-            let (mut a, mut b) = (r.origin, r.end().unwrap_or(far));
+        .filter_map(|&[mut a, mut b]| {
             let (wa, wb) = (clip(a)[3], clip(b)[3]);
             if wa < near && wb < near {
                 return None;
@@ -138,30 +152,38 @@ fn distance((px, py): (f64, f64), [a, b]: [(f64, f64); 2]) -> f64 {
 /// The green pixels of `image`'s view `area`, all on the projected
 /// refracted rays (within the lines' width).
 fn on_the_rays(image: &RgbaImage, area: Rect, rays: &[[(f64, f64); 2]]) -> Vec<(i32, i32)> {
-    let green = green_pixels(image, area);
-    let off: Vec<_> = green
+    on_the_lines(image, area, rays, refracted_colour, "refracted ray")
+}
+
+/// The pixels of `image`'s view `area` in `colour`: at least 20, all on
+/// the projected `lines` (within the lines' width).
+fn on_the_lines(
+    image: &RgbaImage,
+    area: Rect,
+    lines: &[[(f64, f64); 2]],
+    colour: fn(&Rgba<u8>) -> bool,
+    what: &str,
+) -> Vec<(i32, i32)> {
+    let found = pixels(image, area, colour);
+    let off: Vec<_> = found
         .iter()
         .filter(|&&(x, y)| {
             let centre = (f64::from(x) + 0.5, f64::from(y) + 0.5);
-            rays.iter().all(|&s| distance(centre, s) > 3.0)
+            lines.iter().all(|&s| distance(centre, s) > 3.0)
         })
         .collect();
     println!(
-        "{} green pixels, {} off the projected rays {rays:?}",
-        green.len(),
+        "{} {what} pixels, {} off the projected lines {lines:?}",
+        found.len(),
         off.len()
     );
+    assert!(found.len() >= 20, "too few {what} pixels: {}", found.len());
     assert!(
-        green.len() >= 20,
-        "too few refracted ray pixels: {}",
-        green.len()
-    );
-    assert!(
-        off.len() * 50 <= green.len(),
-        "green pixels off the refracted rays: {:?}",
+        off.len() * 50 <= found.len(),
+        "{what} pixels off the lines: {:?}",
         &off[..off.len().min(20)]
     );
-    green
+    found
 }
 
 #[test]
@@ -180,14 +202,9 @@ fn shift_click_shows_a_pixels_ray_tree_which_stays_in_the_scene_while_orbiting()
     // Shift+click on the glass sphere (the middle of the right half). The
     // window needs the keyboard focus to see Shift held.
     viewer.xdotool(&["windowfocus", "--sync", &viewer.id]);
-    let (x, y) = area.at(0.45, 0.45);
-    let (x, y) = (x.to_string(), y.to_string());
-    viewer.xdotool(&["mousemove", "--window", &viewer.id, &x, &y]);
-    viewer.xdotool(&["keydown", "shift", "click", "1", "keyup", "shift"]);
-    let asked = viewer.wait_for("ray-tree-asked");
-    let (px, py) = asked.split_once(',').expect("X,Y");
-    let pixel: (u32, u32) = (px.parse().unwrap(), py.parse().unwrap());
-    assert_eq!(pixel, (x.parse().unwrap(), y.parse().unwrap()));
+    let at = area.at(0.45, 0.45);
+    let pixel = shift_click(&mut viewer, at);
+    assert_eq!(pixel, at);
     // The GPU's tree, traced on the worker thread, has as many rays.
     let answered = viewer.wait_for("ray-tree ");
     println!("{answered}");
@@ -301,4 +318,79 @@ fn the_observer_sees_the_scene_camera_follow_the_panel_and_orbits_alone() {
     viewer.wait_for("observer off");
     viewer.wait_for("ready");
     assert!(film_pixels(&viewer.capture(), area).is_empty(), "film left");
+}
+
+/// The selected pixels' camera rays (`COLOURS.pixel_ray` in
+/// src/app/camera_model.rs): lime, which neither the Whitted scene's
+/// picture nor the other lines have.
+fn pixel_ray_colour(p: &Rgba<u8>) -> bool {
+    (110..190).contains(&p[0]) && p[1] > 215 && p[2] < 40
+}
+
+/// Shift+click on the window point `at`; returns the pixel asked for.
+fn shift_click(viewer: &mut Window, at: (u32, u32)) -> (u32, u32) {
+    let (x, y) = (at.0.to_string(), at.1.to_string());
+    viewer.xdotool(&["mousemove", "--window", &viewer.id, &x, &y]);
+    viewer.xdotool(&["keydown", "shift", "click", "1", "keyup", "shift"]);
+    let asked = viewer.wait_for("ray-tree-asked");
+    let (px, py) = asked.split_once(',').expect("X,Y");
+    (px.parse().unwrap(), py.parse().unwrap())
+}
+
+#[test]
+fn the_camera_model_draws_the_selected_pixels_rays_and_they_follow_the_observer() {
+    let Some(display) = Display::start() else {
+        return;
+    };
+    let (mut viewer, path) = open_whitted(&display, "pixel-rays");
+    let scene = Scene::load(&path).unwrap();
+    // Two pixels: on the glass sphere and on the floor, each once the
+    // panel shows the previous tree (which widens it).
+    viewer.xdotool(&["windowfocus", "--sync", &viewer.id]);
+    let at = view(&viewer).at(0.45, 0.45);
+    let first = shift_click(&mut viewer, at);
+    viewer.wait_for("ray-tree ");
+    // Later than egui's double-click delay (0.3 s): a second click sooner
+    // is a double click, which orbits around the point instead.
+    std::thread::sleep(std::time::Duration::from_millis(600));
+    let at = view(&viewer).at(0.8, 0.85);
+    let second = shift_click(&mut viewer, at);
+    let selected = [first, second];
+    viewer.wait_for("ray-tree ");
+    let area = view(&viewer);
+    assert!(
+        pixels(&viewer.capture(), area, pixel_ray_colour).is_empty(),
+        "pixel rays drawn outside the camera model"
+    );
+
+    viewer.key("c");
+    viewer.wait_for("observer on");
+    viewer.wait_for("ready");
+    let image = capture_kept(&viewer, &path, "pixel-rays.png");
+    let rays = camera_model::pixel_rays(&scene, &selected, SIZE);
+    assert_eq!(rays.len(), 2, "a pinhole: one ray per pixel");
+    let world: Vec<[DVec3; 2]> = rays.iter().map(|s| [s.a, s.b]).collect();
+    let observer = camera_model::observer_for(&scene.camera);
+    let lines = projected(&world, &observer);
+    let first = on_the_lines(&image, area, &lines, pixel_ray_colour, "pixel ray");
+
+    // The observer orbits: the rays stay in the scene, so they move on the
+    // screen.
+    viewer.drag("1", area.at(0.5, 0.85), area.at(0.8, 0.85));
+    viewer.wait_for("ready");
+    let image = capture_kept(&viewer, &path, "pixel-rays-orbited.png");
+    let orbited = pixels(&image, area, pixel_ray_colour);
+    println!("{} pixel ray pixels after the orbit", orbited.len());
+    assert!(
+        orbited.len() >= 20 && orbited != first,
+        "the rays moved with the observer"
+    );
+
+    // Esc forgets the pixels with the tree.
+    viewer.key("Escape");
+    viewer.wait_for("ray-tree-cleared");
+    assert!(
+        pixels(&viewer.capture(), area, pixel_ray_colour).is_empty(),
+        "pixel rays left after Esc"
+    );
 }

@@ -4,12 +4,15 @@
 //! a thin lens, the lens disc and the plane in focus), the film at unit
 //! distance in front of the eye with the grid of the image's pixels, and
 //! the frustum through the film's corners. The segments are in world
-//! coordinates, drawn by the line overlay as the ray tree's are.
+//! coordinates, drawn by the line overlay as the ray tree's are. The
+//! camera rays of the selected pixels (Shift+click or `T` adds one) go from
+//! the eye through their cell of the film to the first hit.
 
-use glam::DVec3;
+use glam::{DVec2, DVec3};
 
 use crate::gpu::Segment;
-use crate::scene::Camera;
+use crate::reference::{self, PreparedScene};
+use crate::scene::{Camera, Scene};
 
 /// The colours (sRGB) of the parts drawn, apart from the picture's.
 pub struct Colours {
@@ -21,6 +24,10 @@ pub struct Colours {
     pub eye: [u8; 3],
     /// The plane in focus of a thin lens.
     pub focus: [u8; 3],
+    /// The camera rays of the selected pixels: lime, which neither the
+    /// ray tree's colours nor the bundled scenes' pictures have (a test
+    /// finds it, tests/ray_tree_window.rs).
+    pub pixel_ray: [u8; 3],
 }
 
 pub const COLOURS: Colours = Colours {
@@ -28,7 +35,106 @@ pub const COLOURS: Colours = Colours {
     frustum: [170, 120, 255],
     eye: [255, 255, 255],
     focus: [0, 160, 255],
+    pixel_ray: [150, 255, 0],
 };
+
+/// At most this many selected pixels: the oldest goes when another is
+/// added, so that the drawing stays readable and cheap to trace.
+pub const MAX_PIXELS: usize = 8;
+
+/// Points of the lens's rim that a thin lens's pixel rays leave from,
+/// besides its centre: they meet again on the plane in focus.
+const LENS_POINTS: [DVec2; 4] = [
+    DVec2::new(1.0, 0.0),
+    DVec2::new(0.0, 1.0),
+    DVec2::new(-1.0, 0.0),
+    DVec2::new(0.0, -1.0),
+];
+
+/// How long a pixel ray that misses everything is drawn, in eye-target
+/// distances (the ray tree's misses are as long).
+const MISS_LENGTH: f64 = 1.5;
+
+/// Adds `pixel` to the `selected` ones (at most [`MAX_PIXELS`], the oldest
+/// dropped; selecting one again makes it the newest).
+pub fn select(selected: &mut Vec<(u32, u32)>, pixel: (u32, u32)) {
+    selected.retain(|&p| p != pixel);
+    selected.push(pixel);
+    if selected.len() > MAX_PIXELS {
+        selected.remove(0);
+    }
+}
+
+/// The camera rays of the selected pixels, traced by the reference when the
+/// scene, the pixels or the image size changed, and kept while the
+/// observer orbits (the BVH of a large mesh takes a while to build).
+#[derive(Default)]
+pub struct PixelRays {
+    traced_for: Option<Traced>,
+    segments: Vec<Segment>,
+}
+
+/// What the pixel rays were traced for.
+struct Traced {
+    scene: Scene,
+    pixels: Vec<(u32, u32)>,
+    size: (u32, u32),
+}
+
+impl PixelRays {
+    /// The segments of `pixels` of a `size` image of `scene`.
+    pub fn segments(
+        &mut self,
+        scene: &Scene,
+        pixels: &[(u32, u32)],
+        size: (u32, u32),
+    ) -> &[Segment] {
+        let traced = self
+            .traced_for
+            .as_ref()
+            .is_some_and(|t| t.scene == *scene && t.pixels == pixels && t.size == size);
+        if !traced {
+            self.segments = pixel_rays(scene, pixels, size);
+            self.traced_for = Some(Traced {
+                scene: scene.clone(),
+                pixels: pixels.to_vec(),
+                size,
+            });
+        }
+        &self.segments
+    }
+}
+
+/// The camera ray of each of `pixels` (of an image of `size`) through its
+/// centre, from the eye through the film to its first hit; for a thin lens
+/// also the rays from four points of the lens's rim, which cross on the
+/// plane in focus.
+pub fn pixel_rays(scene: &Scene, pixels: &[(u32, u32)], size: (u32, u32)) -> Vec<Segment> {
+    if pixels.is_empty() || size.0 == 0 || size.1 == 0 {
+        return Vec::new();
+    }
+    let prepared = PreparedScene::new(scene);
+    let miss = MISS_LENGTH * scene.view_scale();
+    let lens_points: &[DVec2] = if scene.camera.aperture > 0.0 {
+        &LENS_POINTS
+    } else {
+        &[]
+    };
+    let mut out = Vec::new();
+    for &(x, y) in pixels {
+        let centre = (f64::from(x) + 0.5, f64::from(y) + 0.5);
+        for &lens in std::iter::once(&DVec2::ZERO).chain(lens_points) {
+            let (ray, hit) = reference::lens_ray(&prepared, size.0, size.1, centre, lens);
+            let end = hit.map_or(ray.origin + miss * ray.dir, |(_, p)| p);
+            out.push(Segment {
+                a: ray.origin,
+                b: end,
+                colour: COLOURS.pixel_ray,
+            });
+        }
+    }
+    out
+}
 
 /// At most this many grid cells along a side of the film: a grid line
 /// every `grid_step` pixels (every pixel of a small image).
@@ -172,5 +278,68 @@ mod tests {
             c[3] > 0.0 && (0.0..1.0).contains(&x) && y.abs() < 1.0,
             "{c:?}"
         );
+    }
+
+    fn whitted(aperture: f64) -> Scene {
+        let text = crate::scene::bundled::text("whitted").unwrap();
+        let mut scene = Scene::from_toml_str(text, None).unwrap();
+        scene.camera.aperture = aperture;
+        scene
+    }
+
+    /// A pixel's ray goes from the eye through the film point of the
+    /// pixel's centre, where the grid draws its cell, to the first hit.
+    #[test]
+    fn a_pixel_ray_runs_from_the_eye_through_its_cell_to_the_hit() {
+        let scene = whitted(0.0);
+        let size = (80, 45);
+        let rays = pixel_rays(&scene, &[(50, 20)], size);
+        assert_eq!(rays.len(), 1);
+        let ray = rays[0];
+        assert_eq!(ray.colour, COLOURS.pixel_ray);
+        assert!((ray.a - scene.camera.from).length() < 1e-12);
+        let prepared = PreparedScene::new(&scene);
+        let (_, hit) = reference::pick(&prepared, 80, 45, 50.5, 20.5).unwrap();
+        assert!((ray.b - hit).length() < 1e-9, "{} {hit}", ray.b);
+        // The film point of the pixel's centre, as `segments` places it.
+        let film = scene.camera.film();
+        let (film_w, film_h) = (film.height * 80.0 / 45.0, film.height);
+        let cell = scene.camera.from
+            + film_w * (50.5 / 80.0 - 0.5) * film.u
+            + film_h * (0.5 - 20.5 / 45.0) * film.v
+            - film.w;
+        let along = (ray.b - ray.a).normalize();
+        assert!((along - (cell - ray.a).normalize()).length() < 1e-9);
+    }
+
+    /// A thin lens adds four rays from its rim; all five cross on the plane
+    /// in focus. Selecting keeps at most `MAX_PIXELS`, the newest last.
+    #[test]
+    fn lens_rays_cross_in_focus_and_the_selection_is_bounded() {
+        let scene = whitted(0.3);
+        let rays = pixel_rays(&scene, &[(30, 30), (10, 5)], (80, 45));
+        assert_eq!(rays.len(), 10);
+        let w = scene.camera.film().w;
+        let focus = scene.camera.focus_distance();
+        let in_focus = |s: &Segment| {
+            let along = (s.b - s.a).normalize();
+            let t = ((s.a - scene.camera.from).dot(w) + focus) / -along.dot(w);
+            s.a + t * along
+        };
+        for pixel in rays.chunks(5) {
+            let meet = in_focus(&pixel[0]);
+            for ray in &pixel[1..] {
+                assert!(((ray.a - scene.camera.from).length() - 0.3).abs() < 1e-9);
+                assert!((in_focus(ray) - meet).length() < 1e-9);
+            }
+        }
+        let mut selected = Vec::new();
+        for x in 0..10 {
+            select(&mut selected, (x, 0));
+        }
+        select(&mut selected, (4, 0));
+        assert_eq!(selected.len(), MAX_PIXELS);
+        assert_eq!(selected.first(), Some(&(2, 0)));
+        assert_eq!(selected.last(), Some(&(4, 0)));
     }
 }

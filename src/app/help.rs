@@ -20,7 +20,8 @@ pub const MOUSE: &[(&str, &str)] = &[
     ("Click / double-click", "select an object / orbit around it"),
     (
         "Shift+click / T",
-        "that pixel's ray tree (the one under the mouse for T): panel and 3D rays",
+        "that pixel's ray tree (the one under the mouse for T): panel and 3D rays; \
+         adds the pixel to those whose camera rays C shows (up to 8)",
     ),
 ];
 
@@ -37,7 +38,8 @@ pub const WINDOW: Help = Help {
             ),
             (
                 "C",
-                "the camera model: an observer's view of the scene's camera",
+                "the camera model: an observer's view of the scene's camera and the \
+                 selected pixels' rays",
             ),
             ("Ctrl+S", "save the scene"),
             (
@@ -46,7 +48,7 @@ pub const WINDOW: Help = Help {
             ),
             (
                 "F11 / Esc",
-                "fullscreen / clear the ray tree, then leave fullscreen",
+                "fullscreen / clear the ray tree and pixels, then leave fullscreen",
             ),
             ("F1 / Ctrl+Q", "this help / quit"),
         ],

@@ -9,7 +9,7 @@
 // clock's controls): no warnings for those in the wasm build.
 #![cfg_attr(target_arch = "wasm32", allow(dead_code))]
 
-mod camera_model;
+pub mod camera_model;
 mod controls;
 pub(crate) mod document;
 mod error_view;

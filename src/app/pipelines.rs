@@ -184,4 +184,35 @@ mod tests {
         cache.finished(stale).unwrap();
         assert!(cache.built.is_empty());
     }
+
+    /// The scene's `intersections` are part of the key: flipping them
+    /// builds once each way, flipping back uses the pipelines kept.
+    #[test]
+    fn switching_intersections_back_uses_the_cached_pipelines() {
+        use crate::scene::{Intersections, Scene, bundled};
+        let mut scene = Scene::from_toml_str(bundled::text("whitted").unwrap(), None).unwrap();
+        let robust = ShaderOptions::for_scene(&scene);
+        scene.render.intersections = Intersections::Textbook;
+        let textbook = ShaderOptions::for_scene(&scene);
+        assert!(robust.robust && !textbook.robust);
+        let mut cache = PipelineCache::new(ShaderSource::embedded(), robust.clone(), 0);
+        let mut spawned = 0;
+        assert_eq!(
+            cache.get_or_build(textbook.clone(), |_, _| spawned += 1),
+            None
+        );
+        let generation = cache.generation();
+        let built = Built {
+            generation,
+            options: textbook.clone(),
+            result: Ok(1),
+        };
+        cache.finished(built).unwrap();
+        assert_eq!(cache.get_or_build(robust, |_, _| spawned += 1), Some(0));
+        assert_eq!(cache.get_or_build(textbook, |_, _| spawned += 1), Some(1));
+        assert_eq!(
+            spawned, 1,
+            "one build for the textbook pipelines, none back"
+        );
+    }
 }

@@ -40,6 +40,10 @@ pub struct Editor {
     /// The pixel's ray tree shown in the panel and drawn over the picture
     /// (docs/ray-tree.md); Esc or "Clear" forgets it.
     pub ray_tree: Option<PixelTree>,
+    /// The pixels whose camera rays the camera model draws: each pixel
+    /// asked for a ray tree, the newest last, at most
+    /// `camera_model::MAX_PIXELS`; Esc or "Clear" forgets them with the tree.
+    pub pixels: Vec<(u32, u32)>,
     /// The observer's camera while `C` shows the scene's camera from
     /// outside (docs/ray-tree.md, "The camera model"); not saved.
     pub observer: Option<Camera>,
@@ -60,6 +64,7 @@ impl Default for Editor {
             message: None,
             message_age: MessageAge::default(),
             ray_tree: None,
+            pixels: Vec::new(),
             observer: None,
         }
     }
@@ -186,6 +191,7 @@ pub fn draw(
                         && panel::ray_tree_section(ui, tree)
                     {
                         editor.ray_tree = None;
+                        editor.pixels.clear();
                     }
                     let actions = panel::show(
                         ui,
@@ -340,9 +346,14 @@ fn shortcuts(ui: &mut egui::Ui, editor: &mut Editor, camera: &Camera) -> Vec<Com
         if plain(i, Key::F11) {
             commands.push(Command::ToggleFullscreen);
         }
-        // Esc forgets a ray tree first, a second Esc leaves fullscreen.
-        if plain(i, Key::Escape) && editor.ray_tree.take().is_none() {
-            commands.push(Command::LeaveFullscreen);
+        // Esc forgets a ray tree and the selected pixels first, a second
+        // Esc leaves fullscreen.
+        if plain(i, Key::Escape) {
+            let selected = editor.ray_tree.take().is_some() || !editor.pixels.is_empty();
+            editor.pixels.clear();
+            if !selected {
+                commands.push(Command::LeaveFullscreen);
+            }
         }
     });
     commands

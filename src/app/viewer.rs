@@ -121,6 +121,8 @@ pub struct Viewer {
     trees_asked: u64,
     /// What the line overlay holds ([`Lines`]); `None`: nothing.
     lines_for: Option<Lines>,
+    /// The selected pixels' camera rays in the camera model.
+    pixel_rays: camera_model::PixelRays,
     /// The GPU's answer for the tree shown came in this frame: told once
     /// the frame is on screen.
     tree_answered: bool,
@@ -130,12 +132,14 @@ pub struct Viewer {
 }
 
 /// What the line overlay draws: the ray tree `tree` and, from an
-/// observer's view, the camera model of `model`, projected with `picture`
-/// (the camera the picture is traced from) for a window of `size`.
+/// observer's view, the camera model of `model` with the camera rays of
+/// `pixels`, projected with `picture` (the camera the picture is traced
+/// from) for a window of `size`.
 #[derive(Clone, PartialEq)]
 struct Lines {
     tree: Option<u64>,
     model: Option<Camera>,
+    pixels: Vec<(u32, u32)>,
     picture: Camera,
     size: (u32, u32),
 }
@@ -183,6 +187,7 @@ impl Viewer {
             error_view: ErrorView::default(),
             trees_asked: 0,
             lines_for: None,
+            pixel_rays: camera_model::PixelRays::default(),
             tree_answered: false,
             #[cfg(not(target_arch = "wasm32"))]
             tree_worker: Default::default(),
@@ -565,6 +570,7 @@ impl Viewer {
         self.editor.message = Some(tree.summary());
         self.event(&format!("ray-tree-asked {},{}", pixel.0, pixel.1));
         self.editor.ray_tree = Some(tree);
+        camera_model::select(&mut self.editor.pixels, pixel);
     }
 
     /// Takes the worker's answer for the tree shown (one for a tree
@@ -604,6 +610,7 @@ impl Viewer {
         let wanted = (tree.is_some() || model.is_some()).then(|| Lines {
             tree: tree.map(|t| t.number),
             model: model.clone(),
+            pixels: self.editor.pixels.clone(),
             picture: picture.unwrap_or(&self.doc.scene.camera).clone(),
             size,
         });
@@ -613,6 +620,8 @@ impl Viewer {
         let mut segments = tree.map(|t| t.segments.clone()).unwrap_or_default();
         if let Some(model) = &model {
             segments.extend(camera_model::segments(model, size));
+            let scene = &self.doc.scene;
+            segments.extend(self.pixel_rays.segments(scene, &self.editor.pixels, size));
         }
         let width = (RAY_WIDTH * gfx.window.scale_factor()).round() as u32;
         let camera = picture.unwrap_or(&self.doc.scene.camera);
@@ -817,7 +826,7 @@ impl Viewer {
                     .as_ref()
                     .map(|o| o.triangles)
                     .unwrap_or_default(),
-                ..Default::default()
+                ..reference::ReferenceOptions::of(&scene)
             };
             let size = gfx.viewport.traced_resolution();
             match gfx.viewport.read_sums(&gfx.gpu) {

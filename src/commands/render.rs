@@ -99,7 +99,7 @@ fn show_error(
     let start = Instant::now();
     let options = reference::ReferenceOptions {
         triangles: args.triangles,
-        ..Default::default()
+        ..reference::ReferenceOptions::of(scene)
     };
     let prepared = reference::PreparedScene::with_options(scene, &options);
     let image = reference::ErrorImage::traced(&prepared, args.width, args.height);
@@ -148,7 +148,7 @@ pub fn run(args: &Args) -> Result<(), Failure> {
         );
         let options = reference::ReferenceOptions {
             triangles: args.triangles,
-            ..Default::default()
+            ..reference::ReferenceOptions::of(&scene)
         };
         let prepared = reference::PreparedScene::with_options(&scene, &options);
         reference::render_prepared_rgba8(&prepared, args.width, args.height, spp)

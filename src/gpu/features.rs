@@ -99,7 +99,9 @@ pub const MAX_STACK_SIZE: u32 = crate::scene::MAX_DEPTH + 1;
 #[derive(Debug, Clone, PartialEq, Eq, Hash)]
 pub struct ShaderOptions {
     /// The robust intersection and offset routines (true) or the lecture's
-    /// textbook versions (false), to show what the robust ones fix.
+    /// textbook versions (false), to show what the robust ones fix: the
+    /// scene's `intersections` (docs/rendering-model.md, "Lecture
+    /// switches").
     pub robust: bool,
     pub features: Features,
     /// Entries of the ray-tree stack: the scene's `max_depth + 1`, or 1 when
@@ -182,21 +184,22 @@ impl Default for ShaderOptions {
 }
 
 impl ShaderOptions {
-    /// Robust and generic, with `scene`'s implicit functions (which no
-    /// pipeline can do without: they are the scene's own code).
+    /// Generic, with `scene`'s implicit functions (which no pipeline can
+    /// do without: they are the scene's own code) and intersections.
     pub fn generic(scene: &Scene) -> Self {
         ShaderOptions {
+            robust: scene.render.intersections.is_robust(),
             functions: crate::scene::implicit::functions(scene),
             rays: Rays::of(scene),
             ..ShaderOptions::default()
         }
     }
 
-    /// The robust pipeline specialised for `scene`.
+    /// The pipeline specialised for `scene`, with its intersections.
     pub fn for_scene(scene: &Scene) -> Self {
         let features = Features::of(scene);
         ShaderOptions {
-            robust: true,
+            robust: scene.render.intersections.is_robust(),
             features,
             stack_size: features.stack_size(scene.render.max_depth),
             triangles: TriangleTest::default(),

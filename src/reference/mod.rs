@@ -127,12 +127,23 @@ impl Default for ReferenceOptions {
     }
 }
 
+impl ReferenceOptions {
+    /// The variant `scene` asks for: its `intersections`
+    /// (docs/rendering-model.md, "Lecture switches"), else the defaults.
+    pub fn of(scene: &Scene) -> Self {
+        ReferenceOptions {
+            robust: scene.render.intersections.is_robust(),
+            ..ReferenceOptions::default()
+        }
+    }
+}
+
 impl PreparedScene {
-    /// Prepares a validated scene. (A material name that validation would
-    /// have rejected falls back to the default material instead of
-    /// panicking.)
+    /// Prepares a validated scene, with the intersections it asks for. (A
+    /// material name that validation would have rejected falls back to the
+    /// default material instead of panicking.)
     pub fn new(scene: &Scene) -> Self {
-        Self::with_options(scene, &ReferenceOptions::default())
+        Self::with_options(scene, &ReferenceOptions::of(scene))
     }
 
     /// Prepares a validated scene for the variant `options` chooses.
@@ -321,8 +332,28 @@ pub fn pick(
     if width == 0 || height == 0 {
         return None;
     }
-    let ray = camera_ray(&scene.camera, width, height, x, y, DVec2::ZERO);
-    nearest_hit(scene, &ray).map(|(shape, hit)| (shape, hit.p + scene.frame_origin))
+    lens_ray(scene, width, height, (x, y), DVec2::ZERO).1
+}
+
+/// The camera ray through pixel coordinates `(x, y)` (as [`pick`]'s) and
+/// the point `lens` of the unit disc (the lens centre is `(0, 0)`), in
+/// world coordinates, with the shape it hits first and where: the camera
+/// model draws these (docs/ray-tree.md, "The camera model"). The image
+/// must not be empty.
+pub fn lens_ray(
+    scene: &PreparedScene,
+    width: u32,
+    height: u32,
+    (x, y): (f64, f64),
+    lens: DVec2,
+) -> (ray::Ray, Option<(ShapeId, DVec3)>) {
+    let ray = camera_ray(&scene.camera, width, height, x, y, lens);
+    let hit = nearest_hit(scene, &ray).map(|(shape, hit)| (shape, hit.p + scene.frame_origin));
+    let world = ray::Ray {
+        origin: ray.origin + scene.frame_origin,
+        dir: ray.dir,
+    };
+    (world, hit)
 }
 
 #[cfg(test)]

@@ -296,6 +296,34 @@ pub struct RenderSettings {
     pub reflection: bool,
     #[serde(skip_serializing_if = "is_on")]
     pub refraction: bool,
+    /// The intersection and offset routines both renderers use: the robust
+    /// ones, or the lecture's textbook ones, to show the leaks and acne
+    /// they cause (docs/rendering-model.md, "Lecture switches"). Written to
+    /// a file only when textbook.
+    #[serde(skip_serializing_if = "Intersections::is_robust")]
+    pub intersections: Intersections,
+}
+
+crate::named_option! {
+    /// `intersections` in `[render]`: which intersection routines trace
+    /// the scene (docs/accuracy.md compares them).
+    #[derive(Serialize, Deserialize)]
+    #[serde(rename_all = "lowercase")]
+    pub enum Intersections {
+        /// The robust routines (docs/implementation.md): camera-relative
+        /// positions, stable roots, offsets that scale with the scene.
+        #[default]
+        Robust = "robust",
+        /// The lecture's: the naive quadratic, the plain slab test, world
+        /// coordinates and a fixed offset of 1e-3.
+        Textbook = "textbook",
+    }
+}
+
+impl Intersections {
+    pub fn is_robust(&self) -> bool {
+        *self == Intersections::Robust
+    }
 }
 
 /// A lecture switch left at its default, on: not written to the file.
@@ -314,6 +342,7 @@ impl Default for RenderSettings {
             shadows: true,
             reflection: true,
             refraction: true,
+            intersections: Intersections::Robust,
         }
     }
 }

@@ -6,7 +6,9 @@ use std::path::{Path, PathBuf};
 use glam::DVec3;
 
 use super::test_scenes::FULL;
-use super::{CubeSize, Material, Placement, RenderSettings, Scale, Scene, SceneError};
+use super::{
+    CubeSize, Intersections, Material, Placement, RenderSettings, Scale, Scene, SceneError,
+};
 
 /// A valid camera, for tests about other sections. Three lines long.
 const CAMERA: &str = "[camera]\nfrom = [0, 1, 5]\nto = [0, 0, 0]\n";
@@ -755,7 +757,8 @@ fn render_defaults_follow_the_spec() {
     let spec = loads(
         "[render]\nmax_depth = 5\nmin_weight = 0\nbackground = [0, 0, 0]\n\
          ambient = [0.1, 0.1, 0.1]\nexposure = 1\n\
-         shadows = true\nreflection = true\nrefraction = true\n",
+         shadows = true\nreflection = true\nrefraction = true\n\
+         intersections = \"robust\"\n",
     );
     assert_eq!(loads("").render, spec.render);
     assert_eq!(RenderSettings::default(), spec.render);
@@ -774,6 +777,25 @@ fn lecture_switches_load_and_only_an_off_one_is_written() {
     assert!(written.contains("shadows = false") && written.contains("refraction = false"));
     assert!(!written.contains("reflection"), "{written}");
     assert_eq!(loads(&written).render, scene.render);
+}
+
+#[test]
+fn textbook_intersections_round_trip_and_a_bad_name_is_refused() {
+    let scene = loads("[render]\nintersections = \"textbook\"\n");
+    assert_eq!(scene.render.intersections, Intersections::Textbook);
+    let written = scene.to_toml_string();
+    assert!(
+        written.contains("intersections = \"textbook\""),
+        "{written}"
+    );
+    assert_eq!(loads(&written).render, scene.render);
+    let robust = loads("[render]\nintersections = \"robust\"\n").to_toml_string();
+    assert!(!robust.contains("intersections"), "{robust}");
+    rejects_with(
+        "[render]\nintersections = \"naive\"\n",
+        "render.intersections",
+        "`textbook`",
+    );
 }
 
 #[test]
@@ -1016,8 +1038,8 @@ mod properties {
     use proptest::sample::Index;
 
     use super::super::{
-        Camera, Centered, Checker, Cube, CubeSize, Implicit, Instance, Julia, Light, Material,
-        Placement, Plane, RenderSettings, Scene, Sphere, Torus, Unplaced,
+        Camera, Centered, Checker, Cube, CubeSize, Implicit, Instance, Intersections, Julia, Light,
+        Material, Placement, Plane, RenderSettings, Scene, Sphere, Torus, Unplaced,
     };
     use super::FULL;
 
@@ -1049,7 +1071,7 @@ mod properties {
             background in vec3(non_negative()),
             ambient in vec3(non_negative()),
             exposure in positive(),
-            switches in 0..8u32,
+            switches in 0..16u32,
         ) -> RenderSettings {
             RenderSettings {
                 max_depth,
@@ -1060,6 +1082,11 @@ mod properties {
                 shadows: switches & 1 != 0,
                 reflection: switches & 2 != 0,
                 refraction: switches & 4 != 0,
+                intersections: if switches & 8 != 0 {
+                    Intersections::Textbook
+                } else {
+                    Intersections::Robust
+                },
             }
         }
     }

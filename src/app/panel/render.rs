@@ -4,12 +4,13 @@
 use super::widgets::{MIN_POSITIVE, VALUE_LIMIT, color_row, slider};
 use super::{ViewSettings, field};
 use crate::gpu::MIN_SCALE;
-use crate::scene::RenderSettings;
-use egui::{Grid, Slider, Ui};
+use crate::scene::{Intersections, NamedOption, RenderSettings};
+use egui::{ComboBox, Grid, Slider, Ui};
 
 pub(super) fn render_section(ui: &mut Ui, render: &mut RenderSettings, view: &mut ViewSettings) {
     Grid::new("render").num_columns(2).show(ui, |ui| {
         super::view_menu::lecture_switches(ui, render);
+        intersections_row(ui, &mut render.intersections);
         field(
             ui,
             "max depth",
@@ -112,4 +113,26 @@ pub(super) fn render_section(ui: &mut Ui, render: &mut RenderSettings, view: &mu
         ui.add(Slider::new(&mut view.min_weight, 0.0..=0.1).logarithmic(true));
         ui.end_row();
     });
+}
+
+/// The intersection routines, a lecture switch saved with the scene
+/// (docs/rendering-model.md, "Lecture switches"): the textbook ones show
+/// their leaks and acne in the error, normals and cost views.
+fn intersections_row(ui: &mut Ui, intersections: &mut Intersections) {
+    field(
+        ui,
+        "intersections",
+        "Robust (camera-relative, stable roots, scaled offsets) or the lecture's \
+         textbook routines (naive quadratic, world coordinates, offset 1e-3), saved \
+         with the scene: the error, normals and cost views show the leaks and acne \
+         of the textbook ones far from the origin or at small scales",
+    );
+    ComboBox::from_id_salt("intersections")
+        .selected_text(intersections.name())
+        .show_ui(ui, |ui| {
+            for i in Intersections::ALL {
+                ui.selectable_value(intersections, i, i.name());
+            }
+        });
+    ui.end_row();
 }
