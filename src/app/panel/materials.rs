@@ -1,6 +1,6 @@
 //! The panel's Materials section: add, rename, remove, and every field.
 
-use super::widgets::{MIN_POSITIVE, VALUE_LIMIT, color_row, number, slider};
+use super::widgets::{MIN_POSITIVE, VALUE_LIMIT, color_row, length_row, slider};
 use super::{PanelState, Rename, edit, field};
 use crate::scene::{Material, Scene};
 use egui::{CollapsingHeader, Grid, Key, TextEdit, Ui};
@@ -174,12 +174,7 @@ pub(super) fn checker_rows(ui: &mut Ui, m: &mut Material, scale: f64) {
         color_row(ui, &mut checker.color);
         ui.end_row();
 
-        field(ui, "  size", "Edge length of a cell");
-        ui.add(number(
-            &mut checker.size,
-            0.002 * scale,
-            MIN_POSITIVE..=VALUE_LIMIT,
-        ));
-        ui.end_row();
+        let size = "Edge length of a cell";
+        length_row(ui, "  size", size, &mut checker.size, 0.002 * scale);
     }
 }
