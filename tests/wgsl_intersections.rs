@@ -107,7 +107,7 @@ fn test_intersections(@builtin(global_invocation_id) id: vec3<u32>) {
             h = hit_plane(ray, Plane(c.a, 0u, c.b), 0u, h);
         }
         default: {
-            h = hit_cube(ray, Cube(mat3x3<f32>(c.r0, c.r1, c.r2), c.a, 0u, c.b), 0u, h);
+            h = hit_cube(ray, Cube(c.a, 0u, mat3x3<f32>(c.r0, c.r1, c.r2), c.b), 0u, h);
         }
     }
     var out: TestResult;

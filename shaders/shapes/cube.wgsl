@@ -8,9 +8,9 @@
 
 /// A box: world = center + rotation * local, local in [-half_size, half_size].
 struct Cube {
-    rotation: mat3x3<f32>,   // Rz Ry Rx, columns are the box's local axes in the world
     center: vec3<f32>,
     material: u32,
+    rotation: mat3x3<f32>,   // Rz Ry Rx, columns are the box's local axes in the world
     half_size: vec3<f32>,
 }
 
