@@ -196,16 +196,9 @@ impl ShaderOptions {
     pub fn for_scene(scene: &Scene) -> Self {
         let features = Features::of(scene);
         ShaderOptions {
-            robust: true,
             features,
             stack_size: features.stack_size(scene.render.max_depth),
-            triangles: TriangleTest::default(),
-            torus: TorusMethod::default(),
-            functions: crate::scene::implicit::functions(scene),
-            count_rays: false,
-            ray_tree: false,
-            view: View::Shaded,
-            rays: Rays::of(scene),
+            ..ShaderOptions::generic(scene)
         }
     }
 }
