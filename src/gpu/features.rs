@@ -29,10 +29,9 @@ pub struct Features {
 /// From this many bounded shapes (every kind but planes) on, a specialised
 /// pipeline traverses the BVH; below it, it loops over them, since the
 /// traversal stack has a fixed cost on lavapipe. The value was chosen from
-/// an earlier run of `raysandbox bench`; the run in docs/performance.md,
-/// "Scaling with the number of spheres", puts the crossing lower, between
-/// 16 and 64 spheres, so scenes of 64 to 127 shapes would be drawn faster
-/// with the BVH.
+/// an earlier run of `raysandbox bench`; where the loop and the BVH cross
+/// in the latest run is in docs/performance.md, "Scaling with the number
+/// of spheres".
 pub const BVH_MIN_SHAPES: usize = 128;
 
 impl Features {
