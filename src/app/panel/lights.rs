@@ -1,6 +1,6 @@
 //! The panel's Lights section.
 
-use super::widgets::{VALUE_LIMIT, color_row, position_row, slider};
+use super::widgets::{VALUE_LIMIT, colour_field, position_row, slider};
 use super::{edit, field};
 use crate::scene::{Light, Scene};
 use egui::{Grid, Ui};
@@ -44,9 +44,7 @@ pub(super) fn light_grid(ui: &mut Ui, light: &mut Light, scale: f64) {
             scale,
         );
 
-        field(ui, "colour", "Light colour (linear RGB)");
-        color_row(ui, &mut light.color);
-        ui.end_row();
+        colour_field(ui, "colour", "Light colour (linear RGB)", &mut light.color);
 
         field(
             ui,

@@ -70,6 +70,14 @@ pub(super) fn position_row(ui: &mut Ui, name: &str, tooltip: &str, v: &mut DVec3
     ui.end_row();
 }
 
+/// A grid row of a colour: its label with `tooltip`, and the colour's row
+/// ([`color_row`]).
+pub(super) fn colour_field(ui: &mut Ui, name: &str, tooltip: &str, color: &mut DVec3) {
+    super::field(ui, name, tooltip);
+    color_row(ui, color);
+    ui.end_row();
+}
+
 /// A grid row of a length (> 0): its label with `tooltip`, and the number
 /// dragged by `speed`.
 pub(super) fn length_row(ui: &mut Ui, name: &str, tooltip: &str, value: &mut f64, speed: f64) {
