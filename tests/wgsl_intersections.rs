@@ -101,13 +101,13 @@ fn test_intersections(@builtin(global_invocation_id) id: vec3<u32>) {
     var h = no_hit(T_FAR);
     switch c.kind {
         case 1u: {
-            h = hit_sphere(ray, Sphere(c.a, c.radius, 0u, 0u, 0u, 0u), 0u, h);
+            h = hit_sphere(ray, Sphere(c.a, c.radius, 0u), 0u, h);
         }
         case 2u: {
-            h = hit_plane(ray, Plane(c.a, 0u, c.b, 0u), 0u, h);
+            h = hit_plane(ray, Plane(c.a, 0u, c.b), 0u, h);
         }
         default: {
-            h = hit_cube(ray, Cube(c.a, 0u, c.b, 0u, mat3x3<f32>(c.r0, c.r1, c.r2)), 0u, h);
+            h = hit_cube(ray, Cube(c.a, 0u, mat3x3<f32>(c.r0, c.r1, c.r2), c.b), 0u, h);
         }
     }
     var out: TestResult;

@@ -10,9 +10,8 @@
 struct Cube {
     center: vec3<f32>,
     material: u32,
-    half_size: vec3<f32>,
-    _pad: u32,
     rotation: mat3x3<f32>,   // Rz Ry Rx, columns are the box's local axes in the world
+    half_size: vec3<f32>,
 }
 
 /// Box: the slab test (Williams et al. 2005) in the box's own frame. From an

@@ -16,9 +16,6 @@ struct Implicit {
     bounds_max: vec3<f32>,
     steps: u32,
     material: u32,
-    _pad0: u32,
-    _pad1: u32,
-    _pad2: u32,
 }
 
 /// The root is known to 1e-6 of the segment (the rendering model).

@@ -14,9 +14,6 @@ struct Julia {
     epsilon: f32,            // local units
     material: u32,
     footprint: u32,          // 1: epsilon grows with the pixel footprint
-    _pad0: u32,
-    _pad1: u32,
-    _pad2: u32,
 }
 
 /// The distance estimate at local point p: z <- z^2 + c from z = (p, slice),

@@ -11,7 +11,6 @@ struct Plane {
     point: vec3<f32>,
     material: u32,
     normal: vec3<f32>,
-    _pad: u32,
 }
 
 /// Infinite plane: t = ((point - o).n) / (d.n). A ray (numerically)

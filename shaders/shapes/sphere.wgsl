@@ -10,9 +10,6 @@ struct Sphere {
     center: vec3<f32>,
     radius: f32,
     material: u32,
-    _pad0: u32,
-    _pad1: u32,
-    _pad2: u32,
 }
 
 /// Sphere, with the two precision fixes of Ray Tracing Gems ch. 7

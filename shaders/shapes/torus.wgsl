@@ -15,9 +15,6 @@ struct Torus {
     axis: vec3<f32>,         // unit length
     minor: f32,
     material: u32,
-    _pad0: u32,
-    _pad1: u32,
-    _pad2: u32,
 }
 
 /// u^4 + b u^2 + c u + e: the torus's quartic along a ray measured from the

@@ -27,7 +27,7 @@ use super::layout::LayoutReport;
 use super::memory;
 use super::shell::{self, EguiLayer, EventLog};
 use super::watch;
-use super::window::open_gpu_window;
+use super::window::{open_gpu_window, run_until_closed};
 use crate::gpu::{EXPORT_FORMAT, Gpu, GpuTimer, Viewport};
 use crate::sandbox::channels::CHANNELS;
 use crate::sandbox::clock::{Clock, Tick};
@@ -144,13 +144,8 @@ fn open_window(
         channels: ChannelPanel { paths, images },
         layout: LayoutReport::default(),
     };
-    event_loop
-        .run_app(&mut app)
-        .map_err(|e| ViewerError::NoDisplay(e.to_string()))?;
-    match app.fatal {
-        Some(error) => Err(error),
-        None => Ok(()),
-    }
+    run_until_closed(event_loop, &mut app)?;
+    app.fatal.map_or(Ok(()), Err)
 }
 
 /// The window, its surface and what draws into it.

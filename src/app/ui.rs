@@ -445,34 +445,47 @@ fn overlays(ctx: &egui::Context, editor: &mut Editor, commands: &mut Vec<Command
         &mut editor.gpu_error,
     );
     if editor.pending_reload.is_some() {
-        egui::Modal::new(egui::Id::unique("reload dialog")).show(ctx, |ui| {
-            ui.heading("The scene file changed on disk");
-            ui.label("You have unsaved edits. Replace them with the file's new content?");
-            ui.horizontal(|ui| {
-                if ui.button("Reload from disk").clicked() {
-                    commands.push(Command::AcceptReload);
-                }
-                if ui.button("Keep my edits").clicked() {
-                    commands.push(Command::KeepEdits);
-                }
-            });
-        });
+        let question = "You have unsaved edits. Replace them with the file's new content?";
+        let answers = ["Reload from disk", "Keep my edits"];
+        let heading = "The scene file changed on disk";
+        match ask(ctx, "reload dialog", heading, question, &answers) {
+            Some(0) => commands.push(Command::AcceptReload),
+            Some(_) => commands.push(Command::KeepEdits),
+            None => {}
+        }
     }
     if editor.confirm_quit {
-        egui::Modal::new(egui::Id::unique("quit dialog")).show(ctx, |ui| {
-            ui.heading("Unsaved changes");
-            ui.label("Save the scene before quitting?");
-            ui.horizontal(|ui| {
-                if ui.button("Save and quit").clicked() {
-                    commands.push(Command::SaveAndQuit);
-                }
-                if ui.button("Quit without saving").clicked() {
-                    commands.push(Command::QuitNow);
-                }
-                if ui.button("Cancel").clicked() {
-                    editor.confirm_quit = false;
-                }
-            });
-        });
+        let answers = ["Save and quit", "Quit without saving", "Cancel"];
+        let question = "Save the scene before quitting?";
+        match ask(ctx, "quit dialog", "Unsaved changes", question, &answers) {
+            Some(0) => commands.push(Command::SaveAndQuit),
+            Some(1) => commands.push(Command::QuitNow),
+            Some(_) => editor.confirm_quit = false,
+            None => {}
+        }
     }
+}
+
+/// A modal dialog that asks `question` under `heading` with a button per
+/// answer, side by side: the number of the answer clicked this frame.
+fn ask(
+    ctx: &egui::Context,
+    id: &str,
+    heading: &str,
+    question: &str,
+    answers: &[&str],
+) -> Option<usize> {
+    let mut clicked = None;
+    egui::Modal::new(egui::Id::unique(id)).show(ctx, |ui| {
+        ui.heading(heading);
+        ui.label(question);
+        ui.horizontal(|ui| {
+            for (i, answer) in answers.iter().enumerate() {
+                if ui.button(*answer).clicked() {
+                    clicked = Some(i);
+                }
+            }
+        });
+    });
+    clicked
 }

@@ -135,13 +135,19 @@ pub fn run(options: ViewerOptions) -> Result<(), ViewerError> {
         fatal: None,
         title: String::new(),
     };
+    run_until_closed(event_loop, &mut app)?;
+    app.fatal.map_or(Ok(()), Err)
+}
+
+/// Runs `app` until its window closes. The app keeps the error that closed
+/// it (`fatal`) itself; this is the error of a display that could not run.
+pub(super) fn run_until_closed<T: 'static>(
+    event_loop: EventLoop<T>,
+    app: &mut impl ApplicationHandler<T>,
+) -> Result<(), ViewerError> {
     event_loop
-        .run_app(&mut app)
-        .map_err(|e| ViewerError::NoDisplay(e.to_string()))?;
-    match app.fatal {
-        Some(error) => Err(error),
-        None => Ok(()),
-    }
+        .run_app(app)
+        .map_err(|e| ViewerError::NoDisplay(e.to_string()))
 }
 
 /// A thread that turns SIGUSR1 into [`UserEvent::LoseDevice`]

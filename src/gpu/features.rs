@@ -29,10 +29,9 @@ pub struct Features {
 /// From this many bounded shapes (every kind but planes) on, a specialised
 /// pipeline traverses the BVH; below it, it loops over them, since the
 /// traversal stack has a fixed cost on lavapipe. The value was chosen from
-/// an earlier run of `raysandbox bench`; the run in docs/performance.md,
-/// "Scaling with the number of spheres", puts the crossing lower, between
-/// 16 and 64 spheres, so scenes of 64 to 127 shapes would be drawn faster
-/// with the BVH.
+/// an earlier run of `raysandbox bench`; where the loop and the BVH cross
+/// in the latest run is in docs/performance.md, "Scaling with the number
+/// of spheres".
 pub const BVH_MIN_SHAPES: usize = 128;
 
 impl Features {
@@ -199,16 +198,9 @@ impl ShaderOptions {
     pub fn for_scene(scene: &Scene) -> Self {
         let features = Features::of(scene);
         ShaderOptions {
-            robust: scene.render.intersections.is_robust(),
             features,
             stack_size: features.stack_size(scene.render.max_depth),
-            triangles: TriangleTest::default(),
-            torus: TorusMethod::default(),
-            functions: crate::scene::implicit::functions(scene),
-            count_rays: false,
-            ray_tree: false,
-            view: View::Shaded,
-            rays: Rays::of(scene),
+            ..ShaderOptions::generic(scene)
         }
     }
 }

@@ -1,6 +1,6 @@
 //! The panel's Lights section.
 
-use super::widgets::{COORDINATES, VALUE_LIMIT, color_row, slider, vec3_row};
+use super::widgets::{VALUE_LIMIT, colour_field, position_row, slider};
 use super::{edit, field};
 use crate::scene::{Light, Scene};
 use egui::{Grid, Ui};
@@ -36,13 +36,15 @@ pub(super) fn lights_section(ui: &mut Ui, scene: &mut Scene, scale: f64) {
 
 pub(super) fn light_grid(ui: &mut Ui, light: &mut Light, scale: f64) {
     Grid::new("light").num_columns(2).show(ui, |ui| {
-        field(ui, "position", "A point light (x, y, z)");
-        vec3_row(ui, &mut light.position, 0.005 * scale, COORDINATES);
-        ui.end_row();
+        position_row(
+            ui,
+            "position",
+            "A point light (x, y, z)",
+            &mut light.position,
+            scale,
+        );
 
-        field(ui, "colour", "Light colour (linear RGB)");
-        color_row(ui, &mut light.color);
-        ui.end_row();
+        colour_field(ui, "colour", "Light colour (linear RGB)", &mut light.color);
 
         field(
             ui,

@@ -1,6 +1,6 @@
 //! The panel's Materials section: add, rename, remove, and every field.
 
-use super::widgets::{MIN_POSITIVE, VALUE_LIMIT, color_row, number, slider};
+use super::widgets::{MIN_POSITIVE, VALUE_LIMIT, colour_field, length_row, slider};
 use super::{PanelState, Rename, edit, field};
 use crate::scene::{Material, Scene};
 use egui::{CollapsingHeader, Grid, Key, TextEdit, Ui};
@@ -118,9 +118,8 @@ pub(super) fn material_buttons(
 /// typed values: the rendering model only asks for >= 0.
 pub(super) fn material_grid(ui: &mut Ui, m: &mut Material, scale: f64) {
     Grid::new("material").num_columns(2).show(ui, |ui| {
-        field(ui, "colour", "Albedo; also tints light passing through (linear RGB)");
-        color_row(ui, &mut m.color);
-        ui.end_row();
+        let albedo = "Albedo; also tints light passing through (linear RGB)";
+        colour_field(ui, "colour", albedo, &mut m.color);
 
         let weights = [
             ("diffuse", "kd: Lambert (matte) weight, also of the ambient light", &mut m.diffuse),
@@ -170,16 +169,10 @@ pub(super) fn checker_rows(ui: &mut Ui, m: &mut Material, scale: f64) {
     }
     ui.end_row();
     if let Some(checker) = &mut m.checker {
-        field(ui, "  colour", "Colour of the odd cells (linear RGB)");
-        color_row(ui, &mut checker.color);
-        ui.end_row();
+        let odd = "Colour of the odd cells (linear RGB)";
+        colour_field(ui, "  colour", odd, &mut checker.color);
 
-        field(ui, "  size", "Edge length of a cell");
-        ui.add(number(
-            &mut checker.size,
-            0.002 * scale,
-            MIN_POSITIVE..=VALUE_LIMIT,
-        ));
-        ui.end_row();
+        let size = "Edge length of a cell";
+        length_row(ui, "  size", size, &mut checker.size, 0.002 * scale);
     }
 }

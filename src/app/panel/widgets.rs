@@ -62,6 +62,30 @@ pub(super) fn vec3_row(
     edit
 }
 
+/// A grid row of a position: its label with `tooltip`, and x, y, z dragged
+/// by a two-hundredth of the scene `scale`.
+pub(super) fn position_row(ui: &mut Ui, name: &str, tooltip: &str, v: &mut DVec3, scale: f64) {
+    super::field(ui, name, tooltip);
+    vec3_row(ui, v, 0.005 * scale, COORDINATES);
+    ui.end_row();
+}
+
+/// A grid row of a colour: its label with `tooltip`, and the colour's row
+/// ([`color_row`]).
+pub(super) fn colour_field(ui: &mut Ui, name: &str, tooltip: &str, color: &mut DVec3) {
+    super::field(ui, name, tooltip);
+    color_row(ui, color);
+    ui.end_row();
+}
+
+/// A grid row of a length (> 0): its label with `tooltip`, and the number
+/// dragged by `speed`.
+pub(super) fn length_row(ui: &mut Ui, name: &str, tooltip: &str, value: &mut f64, speed: f64) {
+    super::field(ui, name, tooltip);
+    ui.add(number(value, speed, MIN_POSITIVE..=VALUE_LIMIT));
+    ui.end_row();
+}
+
 /// A number field with a finite range that does not touch values already
 /// outside it (a loaded scene must not count as edited just by being shown).
 pub(super) fn number(value: &mut f64, speed: f64, range: RangeInclusive<f64>) -> DragValue<'_> {

@@ -8,20 +8,13 @@ use super::{Frame, PackShape, f32x3, packed_struct, placement};
 use crate::scene::{self, Instance, Scene};
 
 packed_struct! {
-    pub struct Implicit {
-        pub center: [f32; 3],
-        pub scale: f32,
-        /// `mat3x3<f32>`: three columns, each padded to 16 bytes.
-        pub rotation: [[f32; 4]; 3],
+    pub struct Implicit for scene::Implicit, "../../../shaders/shapes/implicit.wgsl", placed {
         pub bounds_min: [f32; 3],
         /// Index into the scene's [`scene::implicit::functions`].
         pub function: u32,
         pub bounds_max: [f32; 3],
         pub steps: u32,
         pub material: u32,
-        pub _pad0: u32,
-        pub _pad1: u32,
-        pub _pad2: u32,
     }
 }
 
@@ -64,9 +57,6 @@ fn functions_part(functions: &[String]) -> (String, String) {
 }
 
 impl PackShape for scene::Implicit {
-    type Packed = Implicit;
-    const WGSL: &'static str = include_str!("../../../shaders/shapes/implicit.wgsl");
-
     fn generated(functions: &[String]) -> Option<(String, String)> {
         Some(functions_part(functions))
     }

@@ -1,14 +1,12 @@
 //! A quaternion Julia set as `shaders/shapes/julia.wgsl` reads it.
 
+use bytemuck::Zeroable;
+
 use super::{Frame, PackShape, packed_struct, placement};
 use crate::scene::{self, Instance, Scene};
 
 packed_struct! {
-    pub struct Julia {
-        pub center: [f32; 3],
-        pub scale: f32,
-        /// `mat3x3<f32>`: three columns, each padded to 16 bytes.
-        pub rotation: [[f32; 4]; 3],
+    pub struct Julia for scene::Julia, "../../../shaders/shapes/julia.wgsl", placed {
         pub c: [f32; 4],
         pub slice: f32,
         pub iterations: u32,
@@ -16,16 +14,10 @@ packed_struct! {
         pub material: u32,
         /// 1: epsilon grows with the pixel footprint.
         pub footprint: u32,
-        pub _pad0: u32,
-        pub _pad1: u32,
-        pub _pad2: u32,
     }
 }
 
 impl PackShape for scene::Julia {
-    type Packed = Julia;
-    const WGSL: &'static str = include_str!("../../../shaders/shapes/julia.wgsl");
-
     fn pack(_: &Scene, frame: &Frame, j: &Instance<scene::Julia>, material: u32) -> Julia {
         let (center, scale, rotation) = placement::pack(frame, &j.placement);
         Julia {
@@ -38,9 +30,7 @@ impl PackShape for scene::Julia {
             epsilon: j.epsilon as f32,
             material,
             footprint: u32::from(j.footprint),
-            _pad0: 0,
-            _pad1: 0,
-            _pad2: 0,
+            ..Zeroable::zeroed()
         }
     }
 }

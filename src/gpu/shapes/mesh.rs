@@ -6,6 +6,8 @@
 
 use std::sync::Arc;
 
+use bytemuck::Zeroable;
+
 use super::placement::columns;
 use super::{Frame, PackShape, Words, material_slot, packed_struct, round_out};
 use crate::bvh::mesh_bvh;
@@ -13,7 +15,7 @@ use crate::gpu::ShaderOptions;
 use crate::scene::{self, Geometry, Instance, PerGeometry, Scene};
 
 packed_struct! {
-    pub struct Mesh {
+    pub struct Mesh for scene::Mesh, "../../../shaders/shapes/mesh.wgsl" {
         /// `mat3x3<f32>`: three columns, each padded to 16 bytes.
         pub to_local: [[f32; 4]; 3],
         pub origin: [f32; 3],
@@ -28,8 +30,6 @@ packed_struct! {
 }
 
 impl PackShape for scene::Mesh {
-    type Packed = Mesh;
-    const WGSL: &'static str = include_str!("../../../shaders/shapes/mesh.wgsl");
     const DATA: Option<&'static str> = Some("mesh_data");
 
     fn constants(options: &ShaderOptions) -> Vec<(&'static str, u32)> {
@@ -55,6 +55,7 @@ impl PackShape for scene::Mesh {
             tri_start: 0,
             normal_start: 0,
             error_scale: error_scale as f32,
+            ..Zeroable::zeroed()
         }
     }
 

@@ -36,11 +36,49 @@ macro_rules! packed_struct {
     ($(#[$meta:meta])* pub struct $name:ident {
         $($(#[$field_meta:meta])* pub $field:ident: $ty:ty,)*
     }) => {
+        $crate::packed_struct!(@struct $(#[$meta])* $name { $($(#[$field_meta])* $field: $ty,)* } []);
+    };
+    // A shape kind's struct, named with the scene kind it packs and the
+    // WGSL file that declares its twin. WGSL rounds a struct with a vector
+    // up to a whole 16 bytes without naming the padding; `_tail`, not among
+    // the listed fields, does the same here (set it with
+    // `..Zeroable::zeroed()`).
+    ($(#[$meta:meta])* pub struct $name:ident for $kind:ty, $wgsl:literal {
+        $($(#[$field_meta:meta])* pub $field:ident: $ty:ty,)*
+    }) => {
+        $crate::packed_struct!(@struct $(#[$meta])* $name { $($(#[$field_meta])* $field: $ty,)* } [
+            pub _tail: [u32; $crate::gpu::shapes::tail_words(&[$(size_of::<$ty>()),*])],
+        ]);
+
+        impl $crate::gpu::shapes::PackedKind for $kind {
+            type Packed = $name;
+            const WGSL: &'static str = include_str!($wgsl);
+        }
+    };
+    // A placed kind's struct starts with the fields `center`, `scale` and
+    // `rotation` that `placement::pack` fills, as its WGSL struct does.
+    ($(#[$meta:meta])* pub struct $name:ident for $kind:ty, $wgsl:literal, placed {
+        $($(#[$field_meta:meta])* pub $field:ident: $ty:ty,)*
+    }) => {
+        $crate::packed_struct! {
+            $(#[$meta])* pub struct $name for $kind, $wgsl {
+                pub center: [f32; 3],
+                pub scale: f32,
+                /// `mat3x3<f32>`: three columns, each padded to 16 bytes.
+                pub rotation: [[f32; 4]; 3],
+                $($(#[$field_meta])* pub $field: $ty,)*
+            }
+        }
+    };
+    (@struct $(#[$meta:meta])* $name:ident {
+        $($(#[$field_meta:meta])* $field:ident: $ty:ty,)*
+    } [$($tail:tt)*]) => {
         $(#[$meta])*
         #[repr(C)]
         #[derive(Debug, Clone, Copy, PartialEq, bytemuck::Pod, bytemuck::Zeroable)]
         pub struct $name {
             $($(#[$field_meta])* pub $field: $ty,)*
+            $($tail)*
         }
 
         impl $crate::gpu::shapes::Layout for $name {
@@ -51,11 +89,34 @@ macro_rules! packed_struct {
 }
 pub use packed_struct;
 
+/// The `u32` words that pad fields of `field_bytes` (all of 4-byte
+/// alignment, so none between them) to a multiple of 16 bytes.
+pub const fn tail_words(field_bytes: &[usize]) -> usize {
+    let mut bytes = 0;
+    let mut i = 0;
+    while i < field_bytes.len() {
+        bytes += field_bytes[i];
+        i += 1;
+    }
+    (16 - bytes % 16) % 16 / 4
+}
+
 /// The fields of a struct the shader reads, in declaration order, with
 /// their byte offsets and their Rust types (`[f32; 3]`, `u32`, ...).
 pub trait Layout: Pod {
     const FIELDS: &[(&str, usize)];
     const TYPES: &[&str];
+}
+
+/// A scene kind's packed struct and WGSL, declared together
+/// (`packed_struct! { pub struct X for scene::X, "x.wgsl" { ... } }`).
+pub trait PackedKind: ShapeList {
+    /// The twin of the kind's WGSL struct, of the same name.
+    type Packed: Layout;
+
+    /// The kind's WGSL: its struct and `hit_<kind>` (embedded; hot reload
+    /// reads `shapes/<kind>.wgsl` of the shader folder instead).
+    const WGSL: &'static str;
 }
 
 /// The frame that packed positions are measured in. Positions are made
@@ -90,14 +151,7 @@ impl Frame {
 
 /// How the shapes of one scene kind reach the GPU: implemented on the
 /// scene's kind in the kind's file of this module.
-pub trait PackShape: ShapeList {
-    /// The twin of the kind's WGSL struct, of the same name.
-    type Packed: Layout;
-
-    /// The kind's WGSL: its struct and `hit_<kind>` (embedded; hot reload
-    /// reads `shapes/<kind>.wgsl` of the shader folder instead).
-    const WGSL: &'static str;
-
+pub trait PackShape: PackedKind {
     /// Packs `shape` with the slot of its material (looked up once for
     /// every kind); `scene` has what a kind's shapes share (an implicit's
     /// function list), `frame` says where positions are measured from.
@@ -221,14 +275,14 @@ pub fn kinds() -> Vec<KindInfo> {
             vec![$(KindInfo {
                 kind: ShapeKind::$kind,
                 wgsl_struct: stringify!($kind),
-                wgsl: <crate::scene::$kind as PackShape>::WGSL,
+                wgsl: <crate::scene::$kind as PackedKind>::WGSL,
                 data: <crate::scene::$kind as PackShape>::DATA,
                 occludes: <crate::scene::$kind as PackShape>::OCCLUDES,
                 constants: <crate::scene::$kind as PackShape>::constants,
                 generated: <crate::scene::$kind as PackShape>::generated,
-                fields: <<crate::scene::$kind as PackShape>::Packed as Layout>::FIELDS,
-                types: <<crate::scene::$kind as PackShape>::Packed as Layout>::TYPES,
-                size: size_of::<<crate::scene::$kind as PackShape>::Packed>(),
+                fields: <<crate::scene::$kind as PackedKind>::Packed as Layout>::FIELDS,
+                types: <<crate::scene::$kind as PackedKind>::Packed as Layout>::TYPES,
+                size: size_of::<<crate::scene::$kind as PackedKind>::Packed>(),
             }),*]
         };
     }

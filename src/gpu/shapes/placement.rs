@@ -16,8 +16,9 @@ pub fn rotation_columns(placement: &Placement) -> [[f32; 4]; 3] {
     columns(placement.rotation_matrix())
 }
 
-/// The fields `center`, `scale` and `rotation` that every packed implicit
-/// surface starts with: the centre relative to the frame origin, in f32.
+/// The fields `center`, `scale` and `rotation` that a placed kind's struct
+/// starts with (`packed_struct!`'s `placed`): the centre relative to the
+/// frame origin, in f32.
 pub fn pack(frame: &Frame, placement: &Placement) -> ([f32; 3], f32, [[f32; 4]; 3]) {
     (
         frame.point(placement.translate),

@@ -6,20 +6,14 @@ use super::{Frame, PackShape, packed_struct};
 use crate::scene::{self, Instance, Scene};
 
 packed_struct! {
-    pub struct Sphere {
+    pub struct Sphere for scene::Sphere, "../../../shaders/shapes/sphere.wgsl" {
         pub center: [f32; 3],
         pub radius: f32,
         pub material: u32,
-        pub _pad0: u32,
-        pub _pad1: u32,
-        pub _pad2: u32,
     }
 }
 
 impl PackShape for scene::Sphere {
-    type Packed = Sphere;
-    const WGSL: &'static str = include_str!("../../../shaders/shapes/sphere.wgsl");
-
     fn pack(_: &Scene, frame: &Frame, s: &Instance<scene::Sphere>, material: u32) -> Sphere {
         Sphere {
             center: frame.point(s.center),

@@ -12,7 +12,7 @@ packed_struct! {
     /// its axis and its two radii (turning it about its own axis changes
     /// nothing), so the shader reads 8 numbers instead of a whole placement
     /// (docs/implementation.md, "Torus").
-    pub struct Torus {
+    pub struct Torus for scene::Torus, "../../../shaders/shapes/torus.wgsl" {
         pub center: [f32; 3],
         /// R, the ring's radius, times the scale.
         pub major: f32,
@@ -21,15 +21,10 @@ packed_struct! {
         /// r, the tube's radius, times the scale.
         pub minor: f32,
         pub material: u32,
-        pub _pad0: u32,
-        pub _pad1: u32,
-        pub _pad2: u32,
     }
 }
 
 impl PackShape for scene::Torus {
-    type Packed = Torus;
-    const WGSL: &'static str = include_str!("../../../shaders/shapes/torus.wgsl");
     const OCCLUDES: bool = true;
 
     fn constants(options: &ShaderOptions) -> Vec<(&'static str, u32)> {

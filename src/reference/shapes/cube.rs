@@ -3,9 +3,8 @@
 use glam::{DMat3, DVec3};
 use num_traits::Float;
 
-use super::{Prepare, Trace, robust_or_naive};
+use super::{Prepare, traced_by};
 use crate::expr::wgsl_sign;
-use crate::reference::ReferenceOptions;
 use crate::reference::hit::{Hit, foot};
 use crate::reference::ray::Ray;
 use crate::scene::{self, Instance};
@@ -23,6 +22,8 @@ pub struct Cube {
     /// `|center|_max + |half|`, see [`Hit::error_scale`].
     pub error_scale: f64,
 }
+
+traced_by!(Cube: hit_cube, hit_cube_naive);
 
 impl Cube {
     /// A box of edge lengths `edges` turned by the rotation matrix `rotation`.
@@ -48,12 +49,6 @@ impl Prepare for scene::Cube {
             shape.placement.scale.edges(),
             shape.placement.rotation_matrix(),
         )
-    }
-}
-
-impl Trace for Cube {
-    fn hit(&self, ray: &Ray, t_max: f64, options: &ReferenceOptions) -> Option<Hit> {
-        robust_or_naive(options, hit_cube, hit_cube_naive)(self, ray, t_max)
     }
 }
 

@@ -8,9 +8,8 @@ use std::sync::Arc;
 use glam::DVec3;
 
 use super::placement::{LocalRay, Placed};
-use super::{Prepare, Trace};
+use super::{Prepare, traced_by};
 use crate::expr::Function;
-use crate::reference::ReferenceOptions;
 use crate::reference::hit::Hit;
 use crate::reference::ray::{Ray, offset_ray_scale};
 use crate::scene::{self, Instance};
@@ -23,6 +22,8 @@ pub struct Implicit {
     pub bounds: [DVec3; 2],
     pub steps: u32,
 }
+
+traced_by!(Implicit: hit_implicit);
 
 /// The refined root is within this fraction of the segment's length of the
 /// true one (the rendering model's 1e-6).
@@ -40,12 +41,6 @@ impl Prepare for scene::Implicit {
             bounds: shape.bounds,
             steps: shape.steps,
         }
-    }
-}
-
-impl Trace for Implicit {
-    fn hit(&self, ray: &Ray, t_max: f64, _options: &ReferenceOptions) -> Option<Hit> {
-        hit_implicit(self, ray, t_max)
     }
 }
 

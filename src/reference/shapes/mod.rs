@@ -56,6 +56,28 @@ pub fn robust_or_naive<S>(
     if options.robust { robust } else { naive }
 }
 
+/// `Trace` for a prepared shape `$traced` whose hit is `$robust(shape, ray,
+/// t_max)`: in both variants, or with the lecture's `$naive` for
+/// `options.robust = false` ([`robust_or_naive`]).
+macro_rules! traced_by {
+    ($traced:ty: $robust:path) => {
+        $crate::reference::shapes::traced_by!($traced: $robust, $robust);
+    };
+    ($traced:ty: $robust:path, $naive:path) => {
+        impl $crate::reference::shapes::Trace for $traced {
+            fn hit(
+                &self,
+                ray: &$crate::reference::ray::Ray,
+                t_max: f64,
+                options: &$crate::reference::ReferenceOptions,
+            ) -> Option<$crate::reference::hit::Hit> {
+                $crate::reference::shapes::robust_or_naive(options, $robust, $naive)(self, ray, t_max)
+            }
+        }
+    };
+}
+pub(crate) use traced_by;
+
 /// A prepared shape and the slot of its material in
 /// `PreparedScene::materials`, kept beside it for every kind alike.
 #[derive(Debug, Clone)]

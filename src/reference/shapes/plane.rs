@@ -2,8 +2,7 @@
 
 use glam::DVec3;
 
-use super::{Prepare, Trace, robust_or_naive};
-use crate::reference::ReferenceOptions;
+use super::{Prepare, traced_by};
 use crate::reference::hit::{Hit, foot};
 use crate::reference::ray::Ray;
 use crate::scene::{self, Instance};
@@ -16,6 +15,8 @@ pub struct Plane {
     /// `|point|_max`, see [`Hit::error_scale`].
     pub error_scale: f64,
 }
+
+traced_by!(Plane: hit_plane, hit_plane_naive);
 
 impl Plane {
     /// `normal` is normalised here; a zero normal (which validation rejects)
@@ -36,12 +37,6 @@ impl Prepare for scene::Plane {
     /// for scenes built by hand.
     fn prepare(shape: &Instance<Self>) -> Plane {
         Plane::new(shape.point, shape.normal)
-    }
-}
-
-impl Trace for Plane {
-    fn hit(&self, ray: &Ray, t_max: f64, options: &ReferenceOptions) -> Option<Hit> {
-        robust_or_naive(options, hit_plane, hit_plane_naive)(self, ray, t_max)
     }
 }
 

@@ -3,8 +3,7 @@
 use glam::DVec3;
 use num_traits::Float;
 
-use super::{Prepare, Trace, robust_or_naive};
-use crate::reference::ReferenceOptions;
+use super::{Prepare, traced_by};
 use crate::reference::hit::{Hit, foot, major_axis};
 use crate::reference::ray::Ray;
 use crate::scene::{self, Instance};
@@ -15,6 +14,8 @@ pub struct Sphere {
     pub center: DVec3,
     pub radius: f64,
 }
+
+traced_by!(Sphere: hit_sphere, hit_sphere_naive);
 
 impl Sphere {
     pub fn new(center: DVec3, radius: f64) -> Self {
@@ -27,12 +28,6 @@ impl Prepare for scene::Sphere {
 
     fn prepare(shape: &Instance<Self>) -> Sphere {
         Sphere::new(shape.center, shape.radius)
-    }
-}
-
-impl Trace for Sphere {
-    fn hit(&self, ray: &Ray, t_max: f64, options: &ReferenceOptions) -> Option<Hit> {
-        robust_or_naive(options, hit_sphere, hit_sphere_naive)(self, ray, t_max)
     }
 }
 

@@ -4,8 +4,7 @@
 use glam::DVec3;
 
 use super::placement::{LocalRay, Placed};
-use super::{Prepare, Trace};
-use crate::reference::ReferenceOptions;
+use super::{Prepare, traced_by};
 use crate::reference::hit::Hit;
 use crate::reference::ray::Ray;
 use crate::scene::{self, Instance};
@@ -19,6 +18,9 @@ pub struct Torus {
     pub minor: f64,
 }
 
+// One method for both variants: the textbook has no torus to compare with.
+traced_by!(Torus: hit_torus);
+
 impl Prepare for scene::Torus {
     type Traced = Torus;
 
@@ -28,13 +30,6 @@ impl Prepare for scene::Torus {
             major: shape.major_radius,
             minor: shape.minor_radius,
         }
-    }
-}
-
-impl Trace for Torus {
-    /// One method for both variants: the textbook has no torus to compare with.
-    fn hit(&self, ray: &Ray, t_max: f64, _options: &ReferenceOptions) -> Option<Hit> {
-        hit_torus(self, ray, t_max)
     }
 }
 

@@ -17,7 +17,7 @@ use super::{
 };
 use crate::gpu::{ShaderError, ShaderSource};
 use crate::sandbox::{gaps, repair};
-use crate::shader_params::scan::{self, Kind, Scan, Token};
+use crate::shader_params::scan::{self, Kind, Scan, Token, top_level};
 
 /// Whether `word` occurs in `text` as a whole identifier.
 fn has_word(text: &str, word: &str) -> bool {
@@ -43,7 +43,6 @@ fn defines_entry(tokens: &[Token], entry: &str) -> bool {
     if find_pair(tokens, entry, "(").is_some() {
         return true;
     }
-    let mut depth = 0i32;
     let macros: Vec<&str> = tokens
         .iter()
         .filter(|t| t.kind == Kind::Directive)
@@ -57,14 +56,7 @@ fn defines_entry(tokens: &[Token], entry: &str) -> bool {
             }
         })
         .collect();
-    tokens.iter().any(|t| {
-        match t.text {
-            "{" => depth += 1,
-            "}" => depth -= 1,
-            _ => {}
-        }
-        depth == 0 && t.kind == Kind::Ident && macros.contains(&t.text)
-    })
+    top_level(tokens).any(|i| tokens[i].kind == Kind::Ident && macros.contains(&tokens[i].text))
 }
 
 /// Macros defined before the user's GLSL, as WebGL defines them: shaders

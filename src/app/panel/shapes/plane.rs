@@ -6,7 +6,7 @@ use glam::DVec3;
 
 use super::{EditShape, InView};
 use crate::app::panel::field;
-use crate::app::panel::widgets::{COORDINATES, VALUE_LIMIT, vec3_row};
+use crate::app::panel::widgets::{VALUE_LIMIT, position_row, vec3_row};
 use crate::scene::{Instance, Plane, Unplaced};
 
 /// How far from 1 the squared length of a normal may be for it to count as
@@ -43,9 +43,8 @@ impl EditShape for Plane {
     /// While the user drags or types a component of the normal the raw
     /// numbers stay, so the field does not jump under the cursor.
     fn edit(&mut self, ui: &mut Ui, scale: f64) -> bool {
-        field(ui, "point", "Any point on the plane (x, y, z)");
-        vec3_row(ui, &mut self.point, 0.005 * scale, COORDINATES);
-        ui.end_row();
+        let point = "Any point on the plane (x, y, z)";
+        position_row(ui, "point", point, &mut self.point, scale);
         field(
             ui,
             "normal",

@@ -5,8 +5,7 @@ use egui::Ui;
 use glam::DVec3;
 
 use super::{EditShape, InView};
-use crate::app::panel::field;
-use crate::app::panel::widgets::{COORDINATES, MIN_POSITIVE, VALUE_LIMIT, number, vec3_row};
+use crate::app::panel::widgets::{length_row, position_row};
 use crate::scene::{Instance, Sphere, Unplaced};
 
 impl EditShape for Sphere {
@@ -25,16 +24,14 @@ impl EditShape for Sphere {
     }
 
     fn edit(&mut self, ui: &mut Ui, scale: f64) -> bool {
-        field(ui, "center", "Centre (x, y, z)");
-        vec3_row(ui, &mut self.center, 0.005 * scale, COORDINATES);
-        ui.end_row();
-        field(ui, "radius", "Radius (> 0)");
-        ui.add(number(
+        position_row(ui, "center", "Centre (x, y, z)", &mut self.center, scale);
+        length_row(
+            ui,
+            "radius",
+            "Radius (> 0)",
             &mut self.radius,
             0.002 * scale,
-            MIN_POSITIVE..=VALUE_LIMIT,
-        ));
-        ui.end_row();
+        );
         false
     }
 }

@@ -2,7 +2,7 @@
 
 use super::{EditShape, InView};
 use crate::app::panel::field;
-use crate::app::panel::widgets::{MIN_POSITIVE, VALUE_LIMIT, number};
+use crate::app::panel::widgets::{MIN_POSITIVE, length_row, number};
 use crate::scene::{Instance, Placement, Torus};
 use egui::Ui;
 use glam::DVec3;
@@ -27,13 +27,14 @@ impl EditShape for Torus {
     }
 
     fn edit(&mut self, ui: &mut Ui, scale: f64) -> bool {
-        field(ui, "major_radius", "Radius R of the ring (> r)");
-        ui.add(number(
+        let major = "Radius R of the ring (> r)";
+        length_row(
+            ui,
+            "major_radius",
+            major,
             &mut self.major_radius,
             0.002 * scale,
-            MIN_POSITIVE..=VALUE_LIMIT,
-        ));
-        ui.end_row();
+        );
         field(ui, "minor_radius", "Radius r of the tube (0 < r < R)");
         ui.add(number(
             &mut self.minor_radius,
