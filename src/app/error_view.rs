@@ -1,17 +1,37 @@
 //! The error view in the viewer (docs/views.md, "The error view"): the f64
-//! reference is traced on a worker thread (and the rayon pool), coarse to
-//! fine, while the window keeps drawing; each level's errors replace the
-//! last on screen. A generation counter cancels a stale reference: an
-//! edit, a camera move, a resize or another view starts a new one, and the
-//! old one stops within a few thousand pixels. The web page has no threads
-//! to spare: there the view says it is not available.
+//! reference is traced coarse to fine while the picture stays live; each
+//! level's errors replace the last on screen. Natively a worker thread
+//! (and the rayon pool) traces it; the web page has no thread to spare, so
+//! there it is traced in slices of a few milliseconds after each frame.
+//! Both run the same [`Refinement`]. A generation counter cancels a stale
+//! reference: an edit, a camera move, a resize or another view starts a
+//! new one, and the old one stops within a slice.
 
 use std::sync::Arc;
 use std::sync::atomic::{AtomicU64, Ordering};
 use std::sync::mpsc::{Receiver, Sender, channel};
 
-use crate::reference::ReferenceOptions;
+use web_time::Duration;
+
+use crate::gpu::TexelRead;
+use crate::reference::{ErrorImage, PreparedScene, ReferenceOptions};
 use crate::scene::Scene;
+
+/// Pixels the worker traces between two looks at the generation: a few
+/// milliseconds of work, so that a camera move stops a stale reference at
+/// once.
+#[cfg(not(target_arch = "wasm32"))]
+const CHUNK: usize = 2048;
+
+/// Pixels the page traces between two looks at the clock: well under a
+/// millisecond on the bundled scenes.
+#[cfg(target_arch = "wasm32")]
+const SLICE_CHUNK: usize = 64;
+
+/// How long the page traces after each frame: short enough that input and
+/// drawing stay smooth, long enough that the reference gets on.
+#[cfg(target_arch = "wasm32")]
+const SLICE: Duration = Duration::from_millis(12);
 
 /// A level of a reference, traced: its errors, ready to show.
 struct Level {
@@ -22,17 +42,62 @@ struct Level {
     quantities: Vec<f32>,
 }
 
+/// A reference being traced against the GPU's radiance: what the worker
+/// thread and the page's slices share.
+struct Refinement {
+    generation: u64,
+    image: ErrorImage,
+    /// The GPU's radiance at the pixel centres, four floats per pixel.
+    gpu: Vec<f32>,
+}
+
+impl Refinement {
+    fn new(generation: u64, scene: &PreparedScene, (w, h): (u32, u32), gpu: Vec<f32>) -> Self {
+        Refinement {
+            generation,
+            image: ErrorImage::new(scene, w, h),
+            gpu,
+        }
+    }
+
+    /// Traces up to `budget` pixels: the level they finished, if any.
+    fn step(&mut self, budget: usize) -> Option<Level> {
+        self.image.refine_some(budget).then(|| Level {
+            generation: self.generation,
+            stride: self.image.stride().unwrap_or(1),
+            quantities: self.image.quantities(&self.gpu),
+        })
+    }
+}
+
+/// The GPU's radiance on its way back, and the reference to trace
+/// against it once it is here.
+struct Awaited {
+    sums: TexelRead,
+    scene: PreparedScene,
+    size: (u32, u32),
+}
+
 /// The reference of the error view being traced, and what came of it.
 pub struct ErrorView {
-    /// Bumped by every start and cancel; a worker stops when it differs
-    /// from its own.
+    /// Bumped by every start and cancel; a refinement stops when it
+    /// differs from its own.
     generation: Arc<AtomicU64>,
     sender: Sender<Level>,
     levels: Receiver<Level>,
     /// The stride of the level on screen, `None` before the first.
     shown: Option<u32>,
-    /// A reference of the current generation is being traced.
+    /// The picture's radiance being read back, before its reference.
+    awaited: Option<Awaited>,
+    /// A reference of the current generation is being traced (or its
+    /// radiance read back).
     running: bool,
+    /// The share of the pixels traced, as the page's last slice left it.
+    #[cfg(target_arch = "wasm32")]
+    fraction: f64,
+    /// The page's reference, traced a slice per frame.
+    #[cfg(target_arch = "wasm32")]
+    slices: Option<Refinement>,
     /// The stride of a level handed out by [`Self::poll`] and not yet
     /// reported as drawn.
     handed_out: Option<u32>,
@@ -46,7 +111,12 @@ impl Default for ErrorView {
             sender,
             levels,
             shown: None,
+            awaited: None,
             running: false,
+            #[cfg(target_arch = "wasm32")]
+            fraction: 0.0,
+            #[cfg(target_arch = "wasm32")]
+            slices: None,
             handed_out: None,
         }
     }
@@ -59,52 +129,76 @@ impl ErrorView {
     pub fn cancel(&mut self) {
         self.generation.fetch_add(1, Ordering::Relaxed);
         while self.levels.try_recv().is_ok() {}
+        self.awaited = None;
         self.running = false;
         self.shown = None;
         self.handed_out = None;
+        #[cfg(target_arch = "wasm32")]
+        {
+            self.slices = None;
+            self.fraction = 0.0;
+        }
     }
 
-    /// Starts tracing the reference of `scene` at `size` pixels, whose
-    /// errors are against `gpu`, the GPU's radiance at the same pixel
-    /// centres (four floats per pixel); cancels the last one.
+    /// Starts the reference of `scene` at `size` pixels, whose errors are
+    /// against `sums`, the GPU's radiance at the same pixel centres (four
+    /// floats per pixel) on its way back; cancels the last one. It is
+    /// traced once the radiance is here ([`Self::poll`]).
     pub fn start(
         &mut self,
         scene: &Scene,
         options: &ReferenceOptions,
         size: (u32, u32),
-        gpu: Vec<f32>,
+        sums: TexelRead,
     ) {
         self.cancel();
+        self.awaited = Some(Awaited {
+            sums,
+            scene: PreparedScene::with_options(scene, options),
+            size,
+        });
+        self.running = true;
+    }
+
+    /// Starts tracing the awaited reference once the GPU's radiance is
+    /// back: on the worker natively, in slices in the page.
+    fn take_sums(&mut self) {
+        let Some(result) = self.awaited.as_ref().and_then(|a| a.sums.try_take()) else {
+            return;
+        };
+        let Some(awaited) = self.awaited.take() else {
+            return;
+        };
+        let gpu: Vec<f32> = match result {
+            Ok(texels) => bytemuck::pod_collect_to_vec(&texels),
+            Err(e) => {
+                log::error!("error view: reading the picture back: {e}");
+                self.running = false;
+                return;
+            }
+        };
+        let generation = self.generation.load(Ordering::Relaxed);
+        let refinement = Refinement::new(generation, &awaited.scene, awaited.size, gpu);
         #[cfg(not(target_arch = "wasm32"))]
-        self.spawn(scene, options, size, gpu);
+        self.spawn(refinement);
         #[cfg(target_arch = "wasm32")]
-        let _ = (scene, options, size, gpu);
+        {
+            self.slices = Some(refinement);
+        }
     }
 
     /// The worker: one level after the other, each sent when done.
     #[cfg(not(target_arch = "wasm32"))]
-    fn spawn(
-        &mut self,
-        scene: &Scene,
-        options: &ReferenceOptions,
-        (width, height): (u32, u32),
-        gpu: Vec<f32>,
-    ) {
-        use crate::reference::{ErrorImage, PreparedScene};
-        let generation = self.generation.load(Ordering::Relaxed);
+    fn spawn(&mut self, mut refinement: Refinement) {
         let current = Arc::clone(&self.generation);
         let sender = self.sender.clone();
-        let prepared = PreparedScene::with_options(scene, options);
         let work = move || {
-            let mut image = ErrorImage::new(&prepared, width, height);
+            let generation = refinement.generation;
             let cancelled = || current.load(Ordering::Relaxed) != generation;
-            while image.refine(&cancelled) {
-                let level = Level {
-                    generation,
-                    stride: image.stride().unwrap_or(1),
-                    quantities: image.quantities(&gpu),
-                };
-                if sender.send(level).is_err() {
+            while !refinement.image.finished() && !cancelled() {
+                if let Some(level) = refinement.step(CHUNK)
+                    && sender.send(level).is_err()
+                {
                     return;
                 }
             }
@@ -113,14 +207,41 @@ impl ErrorView {
             .name("error view reference".into())
             .spawn(work)
         {
-            Ok(_) => self.running = true,
-            Err(e) => log::error!("error view: no thread for the reference: {e}"),
+            Ok(_) => {}
+            Err(e) => {
+                log::error!("error view: no thread for the reference: {e}");
+                self.running = false;
+            }
+        }
+    }
+
+    /// The page's share of the work: traces the reference for [`SLICE`]
+    /// after a frame, and sends the levels finished as the worker does.
+    #[cfg(target_arch = "wasm32")]
+    fn trace_slice(&mut self) {
+        let Some(refinement) = &mut self.slices else {
+            return;
+        };
+        let deadline = web_time::Instant::now() + SLICE;
+        while !refinement.image.finished() && web_time::Instant::now() < deadline {
+            if let Some(level) = refinement.step(SLICE_CHUNK) {
+                // The receiver is ours: sending cannot fail.
+                let _ = self.sender.send(level);
+            }
+        }
+        self.fraction = refinement.image.fraction();
+        if refinement.image.finished() {
+            self.slices = None;
         }
     }
 
     /// The errors of the newest level of the current reference, when one
-    /// came since the last call (older generations' are dropped).
+    /// came since the last call (older generations' are dropped). In the
+    /// page, traces the next slice first.
     pub fn poll(&mut self) -> Option<Vec<f32>> {
+        self.take_sums();
+        #[cfg(target_arch = "wasm32")]
+        self.trace_slice();
         let generation = self.generation.load(Ordering::Relaxed);
         let mut newest = None;
         while let Ok(level) = self.levels.try_recv() {
@@ -141,25 +262,41 @@ impl ErrorView {
         self.handed_out.take()
     }
 
-    /// Whether the reference is still being traced: the viewer looks again
-    /// soon, though nothing else asks for a frame.
-    pub fn busy(&self) -> bool {
-        self.running
+    /// When the viewer should look again while the reference is still
+    /// being traced (though nothing else asks for a frame): `None` once it
+    /// is done. The worker's levels are looked for every tenth of a
+    /// second; the page traces its next slice after the next frame.
+    pub fn look_again(&self) -> Option<Duration> {
+        let wait = if cfg!(target_arch = "wasm32") {
+            Duration::ZERO
+        } else {
+            Duration::from_millis(100)
+        };
+        self.running.then_some(wait)
     }
 
     /// What the status line adds to the view's legend: how far the
     /// reference has come.
     pub fn progress(&self) -> String {
-        if cfg!(target_arch = "wasm32") {
-            return "not available in the page: the f64 reference needs worker threads; \
-                    use the native viewer or `raysandbox render --view error`"
-                .into();
-        }
+        let traced = self.traced_percent();
         match (self.shown, self.running) {
             (Some(1), _) => "reference at every pixel".into(),
-            (Some(s), _) => format!("reference at every {s}th pixel of every {s}th row, refining"),
-            (None, true) => "tracing the f64 reference (the GPU's picture dimmed meanwhile)".into(),
+            (Some(s), _) => {
+                format!("reference at every {s}th pixel of every {s}th row, refining{traced}")
+            }
+            (None, true) => {
+                format!("tracing the f64 reference{traced} (the GPU's picture dimmed meanwhile)")
+            }
             (None, false) => "waiting for the picture".into(),
         }
+    }
+
+    /// The page's count of the pixels traced, for the status line (the
+    /// worker's levels say how far it has come).
+    fn traced_percent(&self) -> String {
+        #[cfg(target_arch = "wasm32")]
+        return format!(" ({:.0} % of the pixels traced)", 100.0 * self.fraction);
+        #[cfg(not(target_arch = "wasm32"))]
+        String::new()
     }
 }

@@ -802,7 +802,7 @@ impl Viewer {
     /// a picture just `traced` at rest starts its reference against the
     /// GPU's radiance, read back; a level of the reference that came in
     /// replaces the last on screen; while one is traced, the viewer looks
-    /// again a tenth of a second later.
+    /// again soon (`ErrorView::look_again`).
     fn error_view_frame(&mut self, traced: bool) {
         if let Some(stride) = self.error_view.take_drawn() {
             self.event(&format!("error-level stride={stride}"));
@@ -819,18 +819,21 @@ impl Viewer {
                 ..Default::default()
             };
             let size = gfx.viewport.traced_resolution();
-            match gfx.viewport.read_sums(&gfx.gpu) {
-                Ok(sums) => self.error_view.start(&scene, &options, size, sums),
-                Err(e) => log::error!("error view: {e}"),
+            let sums = gfx.viewport.start_read_sums(&gfx.gpu);
+            // Natively this maps the copy at once; in the page it does
+            // nothing, and a later frame takes the radiance.
+            if let Err(e) = gfx.gpu.wait() {
+                log::error!("error view: {e}");
             }
+            self.error_view.start(&scene, &options, size, sums);
         }
         if let Some(errors) = self.error_view.poll() {
             self.editor.view.colour_bar = gfx.viewport.show_quantities(&gfx.gpu, &errors);
             gfx.window.request_redraw();
         }
         self.editor.view.progress = Some(self.error_view.progress());
-        if self.error_view.busy() {
-            let soon = Instant::now() + Duration::from_millis(100);
+        if let Some(wait) = self.error_view.look_again() {
+            let soon = Instant::now() + wait;
             self.repaint_at = Some(self.repaint_at.map_or(soon, |at| at.min(soon)));
         }
     }

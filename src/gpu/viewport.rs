@@ -12,6 +12,7 @@ use super::id_pass::FirstHit;
 use super::interaction::MIN_SCALE;
 use super::jobs::{JOB_BUDGET, JobPlanner};
 use super::layout::PackedScene;
+use super::offscreen::TexelRead;
 use super::limits::BufferLimitError;
 use super::outline::Outline;
 use super::texture::readback_target;
@@ -421,11 +422,12 @@ impl Viewport {
         super::offscreen::fit_colour_bar(gpu, &mut self.scene, &self.accum)
     }
 
-    /// The view's quantities of the image traced, four floats per pixel,
-    /// row by row (waited for): the error view compares them with the
-    /// reference.
-    pub fn read_sums(&self, gpu: &Gpu) -> Result<Vec<f32>, GpuWaitError> {
-        super::offscreen::read_sums(gpu, &self.accum)
+    /// The view's quantities of the image traced, on their way back to
+    /// the CPU (four floats per pixel, row by row, once taken): the error
+    /// view compares them with the reference. Not waited for: the page
+    /// takes them a frame later.
+    pub fn start_read_sums(&self, gpu: &Gpu) -> TexelRead {
+        TexelRead::start(gpu, self.accum.sum())
     }
 
     /// Shows `quantities` in place of the view's own (the error view's
