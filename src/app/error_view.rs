@@ -2,7 +2,7 @@
 //! reference is traced coarse to fine while the picture stays live; each
 //! level's errors replace the last on screen. Natively a worker thread
 //! (and the rayon pool) traces it; the web page has no thread to spare, so
-//! there it is traced in slices of a few milliseconds after each frame.
+//! there it is traced in slices of some milliseconds after each frame.
 //! Both run the same [`Refinement`]. A generation counter cancels a stale
 //! reference: an edit, a camera move, a resize or another view starts a
 //! new one, and the old one stops within a slice.
@@ -28,10 +28,13 @@ const CHUNK: usize = 2048;
 #[cfg(target_arch = "wasm32")]
 const SLICE_CHUNK: usize = 64;
 
-/// How long the page traces after each frame: short enough that input and
-/// drawing stay smooth, long enough that the reference gets on.
+/// How long the page traces after each frame: as long as the frame took
+/// (since the last slice), so that the reference gets half of the page's
+/// time however slow its GPU, but within these bounds, so that input and
+/// drawing never wait long.
 #[cfg(target_arch = "wasm32")]
-const SLICE: Duration = Duration::from_millis(12);
+const SLICE: std::ops::RangeInclusive<Duration> =
+    Duration::from_millis(10)..=Duration::from_millis(40);
 
 /// A level of a reference, traced: its errors, ready to show.
 struct Level {
@@ -78,6 +81,20 @@ struct Awaited {
     size: (u32, u32),
 }
 
+/// The page's reference, traced in slices after the frames.
+#[cfg(target_arch = "wasm32")]
+#[derive(Default)]
+struct Slices {
+    refinement: Option<Refinement>,
+    /// When the last slice ended.
+    last_end: Option<web_time::Instant>,
+    /// The share of the pixels traced, as the last slice left it.
+    fraction: f64,
+    /// Slices traced, and their time, for the status line.
+    count: u32,
+    tracing: Duration,
+}
+
 /// The reference of the error view being traced, and what came of it.
 pub struct ErrorView {
     /// Bumped by every start and cancel; a refinement stops when it
@@ -92,12 +109,8 @@ pub struct ErrorView {
     /// A reference of the current generation is being traced (or its
     /// radiance read back).
     running: bool,
-    /// The share of the pixels traced, as the page's last slice left it.
     #[cfg(target_arch = "wasm32")]
-    fraction: f64,
-    /// The page's reference, traced a slice per frame.
-    #[cfg(target_arch = "wasm32")]
-    slices: Option<Refinement>,
+    slices: Slices,
     /// The stride of a level handed out by [`Self::poll`] and not yet
     /// reported as drawn.
     handed_out: Option<u32>,
@@ -114,9 +127,7 @@ impl Default for ErrorView {
             awaited: None,
             running: false,
             #[cfg(target_arch = "wasm32")]
-            fraction: 0.0,
-            #[cfg(target_arch = "wasm32")]
-            slices: None,
+            slices: Slices::default(),
             handed_out: None,
         }
     }
@@ -135,8 +146,7 @@ impl ErrorView {
         self.handed_out = None;
         #[cfg(target_arch = "wasm32")]
         {
-            self.slices = None;
-            self.fraction = 0.0;
+            self.slices = Slices::default();
         }
     }
 
@@ -183,7 +193,7 @@ impl ErrorView {
         self.spawn(refinement);
         #[cfg(target_arch = "wasm32")]
         {
-            self.slices = Some(refinement);
+            self.slices.refinement = Some(refinement);
         }
     }
 
@@ -215,23 +225,33 @@ impl ErrorView {
         }
     }
 
-    /// The page's share of the work: traces the reference for [`SLICE`]
-    /// after a frame, and sends the levels finished as the worker does.
+    /// The page's share of the work: traces the reference for a slice of
+    /// time ([`SLICE`]) after a frame, and sends the levels finished as
+    /// the worker does.
     #[cfg(target_arch = "wasm32")]
     fn trace_slice(&mut self) {
-        let Some(refinement) = &mut self.slices else {
+        let slices = &mut self.slices;
+        let Some(refinement) = &mut slices.refinement else {
             return;
         };
-        let deadline = web_time::Instant::now() + SLICE;
-        while !refinement.image.finished() && web_time::Instant::now() < deadline {
+        let start = web_time::Instant::now();
+        let slice = slices
+            .last_end
+            .map_or(*SLICE.start(), |end| start - end)
+            .clamp(*SLICE.start(), *SLICE.end());
+        while !refinement.image.finished() && start.elapsed() < slice {
             if let Some(level) = refinement.step(SLICE_CHUNK) {
                 // The receiver is ours: sending cannot fail.
                 let _ = self.sender.send(level);
             }
         }
-        self.fraction = refinement.image.fraction();
+        let end = web_time::Instant::now();
+        slices.last_end = Some(end);
+        slices.count += 1;
+        slices.tracing += end - start;
+        slices.fraction = refinement.image.fraction();
         if refinement.image.finished() {
-            self.slices = None;
+            slices.refinement = None;
         }
     }
 
@@ -278,25 +298,37 @@ impl ErrorView {
     /// What the status line adds to the view's legend: how far the
     /// reference has come.
     pub fn progress(&self) -> String {
-        let traced = self.traced_percent();
+        let note = self.page_note();
         match (self.shown, self.running) {
-            (Some(1), _) => "reference at every pixel".into(),
+            (Some(1), _) => format!("reference at every pixel{note}"),
             (Some(s), _) => {
-                format!("reference at every {s}th pixel of every {s}th row, refining{traced}")
+                format!("reference at every {s}th pixel of every {s}th row, refining{note}")
             }
             (None, true) => {
-                format!("tracing the f64 reference{traced} (the GPU's picture dimmed meanwhile)")
+                format!("tracing the f64 reference{note} (the GPU's picture dimmed meanwhile)")
             }
             (None, false) => "waiting for the picture".into(),
         }
     }
 
-    /// The page's count of the pixels traced, for the status line (the
-    /// worker's levels say how far it has come).
-    fn traced_percent(&self) -> String {
+    /// What the page adds to the status line: the share of the pixels
+    /// traced, and once all are, how long the slices took. The worker's
+    /// levels say how far it has come.
+    fn page_note(&self) -> String {
         #[cfg(target_arch = "wasm32")]
-        return format!(" ({:.0} % of the pixels traced)", 100.0 * self.fraction);
-        #[cfg(not(target_arch = "wasm32"))]
+        {
+            let slices = &self.slices;
+            if self.shown == Some(1) {
+                return format!(
+                    " (traced in {} slices after the frames, {:.1} s in all)",
+                    slices.count,
+                    slices.tracing.as_secs_f64()
+                );
+            }
+            if self.running {
+                return format!(" ({:.0} % of the pixels traced)", 100.0 * slices.fraction);
+            }
+        }
         String::new()
     }
 }

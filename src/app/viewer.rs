@@ -806,6 +806,7 @@ impl Viewer {
     fn error_view_frame(&mut self, traced: bool) {
         if let Some(stride) = self.error_view.take_drawn() {
             self.event(&format!("error-level stride={stride}"));
+            self.event(&format!("error-status {}", self.error_view.progress()));
         }
         let scene = traced.then(|| self.shown_scene());
         let Some(gfx) = &mut self.gfx else { return };

@@ -259,8 +259,11 @@ pub fn read_texture(gpu: &Gpu, texture: &wgpu::Texture) -> Result<image::RgbaIma
 pub fn read_texels(gpu: &Gpu, texture: &wgpu::Texture) -> Result<Vec<u8>, GpuWaitError> {
     let read = TexelRead::start(gpu, texture);
     gpu.wait()?;
-    read.try_take()
-        .unwrap_or_else(|| Err(GpuWaitError::Lost("the readback buffer was never mapped".into())))
+    read.try_take().unwrap_or_else(|| {
+        Err(GpuWaitError::Lost(
+            "the readback buffer was never mapped".into(),
+        ))
+    })
 }
 
 /// A copy of a texture on its way back to the CPU, without waiting: in
@@ -305,9 +308,11 @@ impl TexelRead {
         );
         gpu.queue.submit([encoder.finish()]);
         let (sender, mapped) = std::sync::mpsc::channel();
-        buffer.slice(..).map_async(wgpu::MapMode::Read, move |result| {
-            let _ = sender.send(result);
-        });
+        buffer
+            .slice(..)
+            .map_async(wgpu::MapMode::Read, move |result| {
+                let _ = sender.send(result);
+            });
         TexelRead {
             buffer,
             mapped,
