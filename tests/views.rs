@@ -600,3 +600,78 @@ fn the_error_view_refines_in_the_window() {
     let headless = renderer.read_image(&gpu).unwrap_or_else(|e| panic!("{e}"));
     assert_window_shows(&mut viewer, &headless, "error view");
 }
+
+/// FLIP per pixel of the GPU's picture against the reference's, as
+/// `render --view error-flip` shows it: one per pixel, row by row.
+fn flips(gpu: &Gpu, scene: &Scene, change: impl FnOnce(&mut ShaderOptions)) -> Vec<f32> {
+    let renderer = rendered(gpu, scene, View::Error, change, (WIDTH, HEIGHT));
+    let radiance = renderer.read_sums(gpu).unwrap_or_else(|e| panic!("{e}"));
+    let image = reference::ErrorImage::traced(&PreparedScene::new(scene), WIDTH, HEIGHT);
+    let (quantities, mean) =
+        raysandbox::stress::metrics::flip_quantities(&image.rgba8(), &image.gpu_rgba8(&radiance));
+    let flips: Vec<f32> = quantities.chunks_exact(4).map(|q| q[0]).collect();
+    let from_pixels = flips.iter().map(|&f| f64::from(f)).sum::<f64>() / flips.len() as f64;
+    assert!((mean - from_pixels).abs() < 1e-3, "{mean} vs {from_pixels}");
+    flips
+}
+
+/// The `error-flip` view (docs/views.md, "The error view"): FLIP per
+/// pixel is near 0 where the error in levels is 0 (on the Whitted scene,
+/// almost every pixel), and high on the phantom sphere of the textbook
+/// quadratic (`small_sphere_1e3`), where the GPU sees a sphere and the
+/// reference the background.
+#[test]
+fn the_flip_view_is_near_zero_where_the_error_is_and_high_on_the_textbook_failure() {
+    let Some(gpu) = common::gpu() else { return };
+    let whitted = scene("whitted.toml");
+    let levels = errors(&gpu, &whitted, |_| {});
+    let flip = flips(&gpu, &whitted, |_| {});
+    let agreeing: Vec<f32> = flip
+        .iter()
+        .zip(&levels)
+        .filter(|(_, e)| **e == 0.0)
+        .map(|(f, _)| *f)
+        .collect();
+    let share_over =
+        |v: &[f32], x: f32| v.iter().filter(|&&f| f > x).count() as f64 / v.len() as f64;
+    let mean = |v: &[f32]| v.iter().map(|&f| f64::from(f)).sum::<f64>() / v.len() as f64;
+    println!(
+        "whitted: FLIP where the error is 0 ({} pixels): mean {:.5}, above 0.05: {:.4}, largest {}",
+        agreeing.len(),
+        mean(&agreeing),
+        share_over(&agreeing, 0.05),
+        agreeing.iter().copied().fold(0.0, f32::max)
+    );
+    // Measured (96 x 54, lavapipe): 5182 pixels at 0, FLIP there mean
+    // 0.00044, 3 above 0.05 (beside a silhouette), largest 0.059.
+    assert!(agreeing.len() * 100 >= levels.len() * 99);
+    assert!(mean(&agreeing) < 0.01, "{}", mean(&agreeing));
+    assert!(share_over(&agreeing, 0.05) < 0.01);
+
+    let scene = raysandbox::stress::scenes::load("small_sphere_1e3");
+    let hits = reference::first_hits(&PreparedScene::new(&scene), WIDTH, HEIGHT);
+    let textbook = |o: &mut ShaderOptions| o.robust = false;
+    let naive_ids = quantities(&gpu, &scene, View::Id, textbook);
+    let naive = flips(&gpu, &scene, textbook);
+    let robust = flips(&gpu, &scene, |_| {});
+    let phantom: Vec<f32> = hits
+        .iter()
+        .zip(&naive_ids)
+        .zip(&naive)
+        .filter(|((hit, id), _)| hit.is_none() && id[3] == 1.0)
+        .map(|(_, f)| *f)
+        .collect();
+    println!(
+        "small_sphere_1e3: FLIP on the textbook phantom ({} pixels): mean {:.4}, above 0.2: {:.4}; \
+         robust: mean {:.5} over the image",
+        phantom.len(),
+        mean(&phantom),
+        share_over(&phantom, 0.2),
+        mean(&robust)
+    );
+    // Measured: 3208 phantom pixels, FLIP mean 0.547, 98.5 % above 0.2;
+    // the robust pipeline's mean 0.00000.
+    assert!(phantom.len() * 10 > hits.len());
+    assert!(mean(&phantom) > 0.2, "{}", mean(&phantom));
+    assert!(mean(&robust) < 0.01, "{}", mean(&robust));
+}

@@ -5,7 +5,10 @@
 //! there it is traced in slices of some milliseconds after each frame.
 //! Both run the same [`Refinement`]. A generation counter cancels a stale
 //! reference: an edit, a camera move, a resize or another view starts a
-//! new one, and the old one stops within a slice.
+//! new one, and the old one stops within a slice. The `error-flip` view
+//! shows the levels until the last, and then FLIP per pixel, computed on
+//! the worker (FLIP's filters need the whole image); `nv-flip` is C++,
+//! built natively only, so the page says it has no FLIP.
 
 use std::sync::Arc;
 use std::sync::atomic::{AtomicU64, Ordering};
@@ -43,6 +46,8 @@ struct Level {
     stride: u32,
     /// Four floats per pixel (`ErrorImage::quantities`).
     quantities: Vec<f32>,
+    /// The mean FLIP when the quantities are FLIP per pixel.
+    flip_mean: Option<f64>,
 }
 
 /// A reference being traced against the GPU's radiance: what the worker
@@ -69,7 +74,23 @@ impl Refinement {
             generation: self.generation,
             stride: self.image.stride().unwrap_or(1),
             quantities: self.image.quantities(&self.gpu),
+            flip_mean: None,
         })
+    }
+
+    /// FLIP per pixel of the GPU's picture against the reference's, once
+    /// the reference is at every pixel.
+    #[cfg(not(target_arch = "wasm32"))]
+    fn flip_level(&self) -> Level {
+        let reference = self.image.rgba8();
+        let gpu = self.image.gpu_rgba8(&self.gpu);
+        let (quantities, mean) = crate::stress::metrics::flip_quantities(&reference, &gpu);
+        Level {
+            generation: self.generation,
+            stride: 1,
+            quantities,
+            flip_mean: Some(mean),
+        }
     }
 }
 
@@ -79,6 +100,15 @@ struct Awaited {
     sums: TexelRead,
     scene: PreparedScene,
     size: (u32, u32),
+}
+
+/// What the view shows once the reference is at every pixel.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum Metric {
+    /// |GPU - reference| in 8-bit levels, as every level before.
+    Levels,
+    /// FLIP per pixel (natively; the page keeps the levels and says so).
+    Flip,
 }
 
 /// The page's reference, traced in slices after the frames.
@@ -104,6 +134,10 @@ pub struct ErrorView {
     levels: Receiver<Level>,
     /// The stride of the level on screen, `None` before the first.
     shown: Option<u32>,
+    /// What the view asked for.
+    metric: Metric,
+    /// The mean FLIP of the FLIP on screen.
+    flip_mean: Option<f64>,
     /// The picture's radiance being read back, before its reference.
     awaited: Option<Awaited>,
     /// A reference of the current generation is being traced (or its
@@ -111,9 +145,9 @@ pub struct ErrorView {
     running: bool,
     #[cfg(target_arch = "wasm32")]
     slices: Slices,
-    /// The stride of a level handed out by [`Self::poll`] and not yet
-    /// reported as drawn.
-    handed_out: Option<u32>,
+    /// The level handed out by [`Self::poll`] and not yet reported as
+    /// drawn ([`Self::take_drawn`]).
+    handed_out: Option<String>,
 }
 
 impl Default for ErrorView {
@@ -124,6 +158,8 @@ impl Default for ErrorView {
             sender,
             levels,
             shown: None,
+            metric: Metric::Levels,
+            flip_mean: None,
             awaited: None,
             running: false,
             #[cfg(target_arch = "wasm32")]
@@ -143,6 +179,7 @@ impl ErrorView {
         self.awaited = None;
         self.running = false;
         self.shown = None;
+        self.flip_mean = None;
         self.handed_out = None;
         #[cfg(target_arch = "wasm32")]
         {
@@ -153,15 +190,18 @@ impl ErrorView {
     /// Starts the reference of `scene` at `size` pixels, whose errors are
     /// against `sums`, the GPU's radiance at the same pixel centres (four
     /// floats per pixel) on its way back; cancels the last one. It is
-    /// traced once the radiance is here ([`Self::poll`]).
+    /// traced once the radiance is here ([`Self::poll`]), and then shown
+    /// as `metric`.
     pub fn start(
         &mut self,
         scene: &Scene,
         options: &ReferenceOptions,
         size: (u32, u32),
         sums: TexelRead,
+        metric: Metric,
     ) {
         self.cancel();
+        self.metric = metric;
         self.awaited = Some(Awaited {
             sums,
             scene: PreparedScene::with_options(scene, options),
@@ -200,6 +240,7 @@ impl ErrorView {
     /// The worker: one level after the other, each sent when done.
     #[cfg(not(target_arch = "wasm32"))]
     fn spawn(&mut self, mut refinement: Refinement) {
+        let flip = self.metric == Metric::Flip;
         let current = Arc::clone(&self.generation);
         let sender = self.sender.clone();
         let work = move || {
@@ -211,6 +252,9 @@ impl ErrorView {
                 {
                     return;
                 }
+            }
+            if flip && !cancelled() {
+                let _ = sender.send(refinement.flip_level());
             }
         };
         match std::thread::Builder::new()
@@ -268,17 +312,28 @@ impl ErrorView {
             if level.generation != generation {
                 continue;
             }
-            self.running &= level.stride > 1;
             self.shown = Some(level.stride);
-            self.handed_out = Some(level.stride);
+            self.flip_mean = level.flip_mean;
+            self.running &= !self.complete();
+            self.handed_out = Some(match level.flip_mean {
+                Some(_) => "flip".into(),
+                None => format!("stride={}", level.stride),
+            });
             newest = Some(level.quantities);
         }
         newest
     }
 
-    /// The stride of the level the last [`Self::poll`] handed out, once:
-    /// called after the next frame, it is on screen then.
-    pub fn take_drawn(&mut self) -> Option<u32> {
+    /// Whether what is on screen is the last that comes: every pixel, as
+    /// FLIP when FLIP was asked for and can be computed.
+    fn complete(&self) -> bool {
+        let flip_due = self.metric == Metric::Flip && cfg!(not(target_arch = "wasm32"));
+        self.shown == Some(1) && (!flip_due || self.flip_mean.is_some())
+    }
+
+    /// What the last [`Self::poll`] handed out (`stride=N`, or `flip`),
+    /// once: called after the next frame, it is on screen then.
+    pub fn take_drawn(&mut self) -> Option<String> {
         self.handed_out.take()
     }
 
@@ -299,7 +354,10 @@ impl ErrorView {
     /// reference has come.
     pub fn progress(&self) -> String {
         let note = self.page_note();
-        match (self.shown, self.running) {
+        if let Some(mean) = self.flip_mean {
+            return format!("FLIP at every pixel, mean {mean:.4}");
+        }
+        let levels = match (self.shown, self.running) {
             (Some(1), _) => format!("reference at every pixel{note}"),
             (Some(s), _) => {
                 format!("reference at every {s}th pixel of every {s}th row, refining{note}")
@@ -308,6 +366,14 @@ impl ErrorView {
                 format!("tracing the f64 reference{note} (the GPU's picture dimmed meanwhile)")
             }
             (None, false) => "waiting for the picture".into(),
+        };
+        match self.metric {
+            Metric::Levels => levels,
+            Metric::Flip if cfg!(target_arch = "wasm32") => format!(
+                "{levels}; FLIP is not available in the page (nv-flip is C++, built natively \
+                 only): |difference| in levels shown, FLIP in the native viewer"
+            ),
+            Metric::Flip => format!("{levels}; |difference| in levels until FLIP at every pixel"),
         }
     }
 

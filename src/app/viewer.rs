@@ -11,7 +11,7 @@ use web_time::{Duration, Instant};
 use winit::window::Window;
 
 use super::document::Document;
-use super::error_view::ErrorView;
+use super::error_view::{ErrorView, Metric};
 use super::layout::{self, Layout, LayoutReport};
 use super::pipelines::{self, PipelineCache};
 use super::ray_tree::{GpuAnswer, PixelTree};
@@ -205,7 +205,7 @@ impl Viewer {
     /// ones, for the view shown (docs/views.md).
     fn wanted_options(&self) -> ShaderOptions {
         ShaderOptions {
-            view: self.editor.view.shown,
+            view: self.editor.view.shown.traced(),
             ..ShaderOptions::for_scene(&self.doc.scene)
         }
     }
@@ -750,7 +750,7 @@ impl Viewer {
         }
         self.sample_clock.update(samples, Instant::now());
         let fitted = shown.scalar() && traced && !dragging && samples > 0;
-        if fitted && shown != View::Error {
+        if fitted && !shown.is_error() {
             // The colour bar of the image just traced, shown by the next frame.
             match gfx.viewport.fit_colour_bar(&gfx.gpu) {
                 Ok(bar) => self.editor.view.colour_bar = bar,
@@ -793,7 +793,7 @@ impl Viewer {
         if delay < Duration::from_secs(5) {
             self.repaint_at = Some(Instant::now() + delay);
         }
-        if shown == View::Error {
+        if shown.is_error() {
             self.error_view_frame(fitted);
         }
     }
@@ -804,8 +804,8 @@ impl Viewer {
     /// replaces the last on screen; while one is traced, the viewer looks
     /// again soon (`ErrorView::look_again`).
     fn error_view_frame(&mut self, traced: bool) {
-        if let Some(stride) = self.error_view.take_drawn() {
-            self.event(&format!("error-level stride={stride}"));
+        if let Some(level) = self.error_view.take_drawn() {
+            self.event(&format!("error-level {level}"));
             self.event(&format!("error-status {}", self.error_view.progress()));
         }
         let scene = traced.then(|| self.shown_scene());
@@ -826,7 +826,11 @@ impl Viewer {
             if let Err(e) = gfx.gpu.wait() {
                 log::error!("error view: {e}");
             }
-            self.error_view.start(&scene, &options, size, sums);
+            let metric = match self.editor.view.shown {
+                View::ErrorFlip => Metric::Flip,
+                _ => Metric::Levels,
+            };
+            self.error_view.start(&scene, &options, size, sums, metric);
         }
         if let Some(errors) = self.error_view.poll() {
             self.editor.view.colour_bar = gfx.viewport.show_quantities(&gfx.gpu, &errors);

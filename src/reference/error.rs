@@ -146,6 +146,17 @@ impl ErrorImage {
         super::output::to_rgba8(&self.radiance, self.width, self.height, self.scene.exposure)
     }
 
+    /// The GPU's picture as `render` encodes it, from its radiance at the
+    /// pixel centres (four floats per pixel, the view's read-back): what
+    /// FLIP compares with [`Self::rgba8`].
+    pub fn gpu_rgba8(&self, gpu: &[f32]) -> image::RgbaImage {
+        let radiance: Vec<DVec3> = gpu
+            .chunks_exact(4)
+            .map(|q| DVec3::new(q[0].into(), q[1].into(), q[2].into()))
+            .collect();
+        super::output::to_rgba8(&radiance, self.width, self.height, self.scene.exposure)
+    }
+
     /// The error view's quantities: four floats per pixel, row by row, the
     /// error of [`pixel_error`] first and 1 last; `gpu` holds the GPU's
     /// radiance at the same pixel centres, four floats per pixel (the
