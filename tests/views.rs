@@ -484,7 +484,7 @@ fn error_view(
     let reference = reference::ErrorImage::traced(&PreparedScene::new(scene), width, height);
     let computed = reference.quantities(&radiance);
     let bar = renderer
-        .show_quantities(gpu, &computed)
+        .show_quantities(gpu, &computed, None)
         .unwrap_or_else(|e| panic!("{e}"));
     assert!(bar.is_some(), "no colour bar");
     let shown = renderer.read_sums(gpu).unwrap_or_else(|e| panic!("{e}"));
@@ -604,15 +604,31 @@ fn the_error_view_refines_in_the_window() {
 /// FLIP per pixel of the GPU's picture against the reference's, as
 /// `render --view error-flip` shows it: one per pixel, row by row.
 fn flips(gpu: &Gpu, scene: &Scene, change: impl FnOnce(&mut ShaderOptions)) -> Vec<f32> {
-    let renderer = rendered(gpu, scene, View::Error, change, (WIDTH, HEIGHT));
+    flip_view(gpu, scene, change, (WIDTH, HEIGHT)).1
+}
+
+/// The `error-flip` view of `scene` at `size`, as `render --view
+/// error-flip` makes it: the renderer showing it, and FLIP per pixel.
+fn flip_view(
+    gpu: &Gpu,
+    scene: &Scene,
+    change: impl FnOnce(&mut ShaderOptions),
+    (width, height): (u32, u32),
+) -> (OffscreenRenderer, Vec<f32>) {
+    let mut renderer = rendered(gpu, scene, View::Error, change, (width, height));
     let radiance = renderer.read_sums(gpu).unwrap_or_else(|e| panic!("{e}"));
-    let image = reference::ErrorImage::traced(&PreparedScene::new(scene), WIDTH, HEIGHT);
+    let image = reference::ErrorImage::traced(&PreparedScene::new(scene), width, height);
     let (quantities, mean) =
         raysandbox::stress::metrics::flip_quantities(&image.rgba8(), &image.gpu_rgba8(&radiance));
     let flips: Vec<f32> = quantities.chunks_exact(4).map(|q| q[0]).collect();
     let from_pixels = flips.iter().map(|&f| f64::from(f)).sum::<f64>() / flips.len() as f64;
     assert!((mean - from_pixels).abs() < 1e-3, "{mean} vs {from_pixels}");
-    flips
+    let range = Some(raysandbox::stress::metrics::FLIP_RANGE);
+    let bar = renderer
+        .show_quantities(gpu, &quantities, range)
+        .unwrap_or_else(|e| panic!("{e}"));
+    assert_eq!(bar.map(|b| b.range), range);
+    (renderer, flips)
 }
 
 /// The `error-flip` view (docs/views.md, "The error view"): FLIP per
@@ -674,4 +690,36 @@ fn the_flip_view_is_near_zero_where_the_error_is_and_high_on_the_textbook_failur
     assert!(phantom.len() * 10 > hits.len());
     assert!(mean(&phantom) > 0.2, "{}", mean(&phantom));
     assert!(mean(&robust) < 0.01, "{}", mean(&robust));
+}
+
+/// The `error-flip` view in the window: the levels of the reference come
+/// in as in the error view, then FLIP per pixel, computed on the worker;
+/// the status line says FLIP's mean, and the window shows what `render
+/// --view error-flip` renders headless.
+#[test]
+fn the_flip_view_refines_in_the_window_and_ends_with_flip() {
+    let Some(display) = Display::start() else {
+        return;
+    };
+    let mut viewer = whitted_window(&display, &["--view", "error-flip"]);
+    // Off the window, as in `the_error_view_refines_in_the_window`.
+    viewer.xdotool(&["mousemove", "1000", "700"]);
+    let mut levels = Vec::new();
+    while levels.last().map(String::as_str) != Some("flip") {
+        levels.push(viewer.wait_for("error-level "));
+    }
+    let status = viewer.wait_for("error-status ");
+    println!("levels drawn: {levels:?}; status: {status}");
+    // The levels before FLIP (two may come in one look and show as one).
+    let (flip, before) = levels.split_last().unwrap();
+    assert!(flip == "flip" && !before.is_empty(), "{levels:?}");
+    assert!(
+        before.iter().all(|l| l.starts_with("stride=")),
+        "{levels:?}"
+    );
+    assert!(status.starts_with("FLIP at every pixel: mean "), "{status}");
+    let gpu = common::gpu().unwrap();
+    let (renderer, _) = flip_view(&gpu, &scene("whitted.toml"), |_| {}, WINDOW);
+    let headless = renderer.read_image(&gpu).unwrap_or_else(|e| panic!("{e}"));
+    assert_window_shows(&mut viewer, &headless, "error-flip view");
 }

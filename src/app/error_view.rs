@@ -46,8 +46,10 @@ struct Level {
     stride: u32,
     /// Four floats per pixel (`ErrorImage::quantities`).
     quantities: Vec<f32>,
-    /// The mean FLIP when the quantities are FLIP per pixel.
-    flip_mean: Option<f64>,
+    /// FLIP's mean and largest when the quantities are FLIP per pixel.
+    flip: Option<(f64, f32)>,
+    /// The colour bar's range, `None` to fit it to the quantities.
+    range: Option<[f32; 2]>,
 }
 
 /// A reference being traced against the GPU's radiance: what the worker
@@ -74,7 +76,8 @@ impl Refinement {
             generation: self.generation,
             stride: self.image.stride().unwrap_or(1),
             quantities: self.image.quantities(&self.gpu),
-            flip_mean: None,
+            flip: None,
+            range: None,
         })
     }
 
@@ -85,11 +88,13 @@ impl Refinement {
         let reference = self.image.rgba8();
         let gpu = self.image.gpu_rgba8(&self.gpu);
         let (quantities, mean) = crate::stress::metrics::flip_quantities(&reference, &gpu);
+        let largest = quantities.iter().step_by(4).copied().fold(0.0, f32::max);
         Level {
             generation: self.generation,
             stride: 1,
             quantities,
-            flip_mean: Some(mean),
+            flip: Some((mean, largest)),
+            range: Some(crate::stress::metrics::FLIP_RANGE),
         }
     }
 }
@@ -136,8 +141,8 @@ pub struct ErrorView {
     shown: Option<u32>,
     /// What the view asked for.
     metric: Metric,
-    /// The mean FLIP of the FLIP on screen.
-    flip_mean: Option<f64>,
+    /// FLIP's mean and largest, when FLIP is on screen.
+    flip: Option<(f64, f32)>,
     /// The picture's radiance being read back, before its reference.
     awaited: Option<Awaited>,
     /// A reference of the current generation is being traced (or its
@@ -159,7 +164,7 @@ impl Default for ErrorView {
             levels,
             shown: None,
             metric: Metric::Levels,
-            flip_mean: None,
+            flip: None,
             awaited: None,
             running: false,
             #[cfg(target_arch = "wasm32")]
@@ -179,7 +184,7 @@ impl ErrorView {
         self.awaited = None;
         self.running = false;
         self.shown = None;
-        self.flip_mean = None;
+        self.flip = None;
         self.handed_out = None;
         #[cfg(target_arch = "wasm32")]
         {
@@ -300,9 +305,10 @@ impl ErrorView {
     }
 
     /// The errors of the newest level of the current reference, when one
-    /// came since the last call (older generations' are dropped). In the
-    /// page, traces the next slice first.
-    pub fn poll(&mut self) -> Option<Vec<f32>> {
+    /// came since the last call (older generations' are dropped), and the
+    /// range of their colour bar (`None`: fitted to them). In the page,
+    /// traces the next slice first.
+    pub fn poll(&mut self) -> Option<(Vec<f32>, Option<[f32; 2]>)> {
         self.take_sums();
         #[cfg(target_arch = "wasm32")]
         self.trace_slice();
@@ -313,13 +319,13 @@ impl ErrorView {
                 continue;
             }
             self.shown = Some(level.stride);
-            self.flip_mean = level.flip_mean;
+            self.flip = level.flip;
             self.running &= !self.complete();
-            self.handed_out = Some(match level.flip_mean {
+            self.handed_out = Some(match level.flip {
                 Some(_) => "flip".into(),
                 None => format!("stride={}", level.stride),
             });
-            newest = Some(level.quantities);
+            newest = Some((level.quantities, level.range));
         }
         newest
     }
@@ -328,7 +334,7 @@ impl ErrorView {
     /// FLIP when FLIP was asked for and can be computed.
     fn complete(&self) -> bool {
         let flip_due = self.metric == Metric::Flip && cfg!(not(target_arch = "wasm32"));
-        self.shown == Some(1) && (!flip_due || self.flip_mean.is_some())
+        self.shown == Some(1) && (!flip_due || self.flip.is_some())
     }
 
     /// What the last [`Self::poll`] handed out (`stride=N`, or `flip`),
@@ -354,8 +360,8 @@ impl ErrorView {
     /// reference has come.
     pub fn progress(&self) -> String {
         let note = self.page_note();
-        if let Some(mean) = self.flip_mean {
-            return format!("FLIP at every pixel, mean {mean:.4}");
+        if let Some((mean, largest)) = self.flip {
+            return format!("FLIP at every pixel: mean {mean:.4}, largest {largest:.3}");
         }
         let levels = match (self.shown, self.running) {
             (Some(1), _) => format!("reference at every pixel{note}"),

@@ -832,8 +832,8 @@ impl Viewer {
             };
             self.error_view.start(&scene, &options, size, sums, metric);
         }
-        if let Some(errors) = self.error_view.poll() {
-            self.editor.view.colour_bar = gfx.viewport.show_quantities(&gfx.gpu, &errors);
+        if let Some((errors, range)) = self.error_view.poll() {
+            self.editor.view.colour_bar = gfx.viewport.show_quantities(&gfx.gpu, &errors, range);
             gfx.window.request_redraw();
         }
         self.editor.view.progress = Some(self.error_view.progress());

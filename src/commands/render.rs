@@ -113,12 +113,14 @@ fn show_error(
     let (flip, flip_mean) =
         crate::stress::metrics::flip_quantities(&image.rgba8(), &image.gpu_rgba8(&gpu_radiance));
     println!("FLIP of the GPU's picture against the reference's (mean): {flip_mean:.4}");
-    let shown = if args.view == View::ErrorFlip {
-        flip
+    let (shown, range) = if args.view == View::ErrorFlip {
+        (flip, Some(crate::stress::metrics::FLIP_RANGE))
     } else {
-        image.quantities(&gpu_radiance)
+        (image.quantities(&gpu_radiance), None)
     };
-    renderer.show_quantities(gpu, &shown).map_err(gpu_failure)
+    renderer
+        .show_quantities(gpu, &shown, range)
+        .map_err(gpu_failure)
 }
 
 /// The GPU did not deliver the image.

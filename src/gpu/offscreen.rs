@@ -170,15 +170,17 @@ impl OffscreenRenderer {
     }
 
     /// Shows `quantities` (four floats per pixel, row by row) in place of
-    /// the view's own, with a colour bar fitted to them: the error view's
-    /// errors ([`crate::reference::ErrorImage::quantities`]). Returns the
-    /// bar, `None` when nothing was shown (no quantities, another size).
+    /// the view's own, with a colour bar over `range`, or fitted to them
+    /// for `None`: the error view's errors
+    /// ([`crate::reference::ErrorImage::quantities`]). Returns the bar,
+    /// `None` when nothing was shown (no quantities, another size).
     pub fn show_quantities(
         &mut self,
         gpu: &Gpu,
         quantities: &[f32],
+        range: Option<[f32; 2]>,
     ) -> Result<Option<ColourBar>, GpuWaitError> {
-        let shown = show_quantities(gpu, &mut self.scene, &self.accum, quantities);
+        let shown = show_quantities(gpu, &mut self.scene, &self.accum, quantities, range);
         if shown.is_some() {
             // As in `fit_colour_bar`: this pass copies them and displays.
             self.accumulate(gpu, 1)?;
@@ -227,15 +229,20 @@ pub(super) fn read_sums(gpu: &Gpu, accum: &Accumulator) -> Result<Vec<f32>, GpuW
 }
 
 /// Writes `quantities` into `accum` in place of the traced ones and sets
-/// `scene`'s colour bar to fit them; the next pass encoded shows them.
-/// `None`, and nothing written, where they have no quantity or another size.
+/// `scene`'s colour bar to `range`, or to fit them for `None`; the next
+/// pass encoded shows them. `None`, and nothing written, where they have
+/// no quantity or another size.
 pub(super) fn show_quantities(
     gpu: &Gpu,
     scene: &mut SceneBuffers,
     accum: &Accumulator,
     quantities: &[f32],
+    range: Option<[f32; 2]>,
 ) -> Option<ColourBar> {
-    let bar = colour_bar(quantities)?;
+    let mut bar = colour_bar(quantities)?;
+    if let Some(range) = range {
+        bar.range = range;
+    }
     if !accum.write_sum(&gpu.queue, quantities) {
         return None;
     }

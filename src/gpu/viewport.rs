@@ -431,10 +431,16 @@ impl Viewport {
     }
 
     /// Shows `quantities` in place of the view's own (the error view's
-    /// errors) with a colour bar fitted to them, from the next frame on;
-    /// returns the bar, `None` when nothing was shown.
-    pub fn show_quantities(&mut self, gpu: &Gpu, quantities: &[f32]) -> Option<ColourBar> {
-        super::offscreen::show_quantities(gpu, &mut self.scene, &self.accum, quantities)
+    /// errors) with a colour bar over `range` (`None`: fitted to them),
+    /// from the next frame on; returns the bar, `None` when nothing was
+    /// shown.
+    pub fn show_quantities(
+        &mut self,
+        gpu: &Gpu,
+        quantities: &[f32],
+        range: Option<[f32; 2]>,
+    ) -> Option<ColourBar> {
+        super::offscreen::show_quantities(gpu, &mut self.scene, &self.accum, quantities, range)
     }
 
     /// The current image at the traced resolution, without anything drawn

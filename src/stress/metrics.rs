@@ -88,6 +88,10 @@ pub fn flip(reference: &RgbaImage, test: &RgbaImage) -> (f64, RgbImage) {
     (mean, image)
 }
 
+/// FLIP's scale, the error view's colour bar for it: 0 where the two
+/// pictures look alike, 1 where they differ most.
+pub const FLIP_RANGE: [f32; 2] = [0.0, 1.0];
+
 /// FLIP per pixel as the error view shows it (docs/views.md, "The error
 /// view"): four floats per pixel, row by row, the pixel's FLIP (0 to 1)
 /// first and 1 last; and the mean.
