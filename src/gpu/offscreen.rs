@@ -275,8 +275,9 @@ pub fn read_texels(gpu: &Gpu, texture: &wgpu::Texture) -> Result<Vec<u8>, GpuWai
 
 /// A copy of a texture on its way back to the CPU, without waiting: in
 /// the browser a buffer is mapped only once control has returned to the
-/// page's event loop (docs/web.md, "Nothing blocks"), so a later frame
-/// picks the texels up; natively [`Gpu::wait`] maps it.
+/// page's event loop, so a later frame picks the texels up
+/// (docs/web.md, "Differences from the native program, and why");
+/// natively [`Gpu::wait`] maps it.
 pub struct TexelRead {
     buffer: wgpu::Buffer,
     mapped: std::sync::mpsc::Receiver<Result<(), wgpu::BufferAsyncError>>,
