@@ -1649,12 +1649,4 @@ fn the_error_view_is_traced_in_slices_in_the_page_and_it_stays_responsive() {
         "only {blue} pixels are blue (saved in {})",
         file.display()
     );
-    // The next view, FLIP per pixel, is native only: the page says so.
-    page.key("v");
-    assert_eq!(page.wait_for("view-shown"), "error-flip");
-    let status = page.wait_for("error-status");
-    assert!(
-        status.contains("FLIP is not available in the page"),
-        "{status}"
-    );
 }
