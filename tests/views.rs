@@ -9,6 +9,7 @@ use common::xwindow::{Display, Window, crop};
 use raysandbox::gpu::{Gpu, OffscreenRenderer, ShaderOptions, ShaderSource, View};
 use raysandbox::reference::{self, PreparedScene, ViewHit};
 use raysandbox::scene::{NamedOption, Scene, ShapeKind};
+use raysandbox::stress::metrics;
 
 const WIDTH: u32 = 96;
 const HEIGHT: u32 = 54;
@@ -467,26 +468,38 @@ fn lecture_switches_agree_with_the_reference() {
 /// the errors as the GPU shows them (read back after they were written),
 /// one per pixel, row by row.
 fn errors(gpu: &Gpu, scene: &Scene, change: impl FnOnce(&mut ShaderOptions)) -> Vec<f32> {
-    let (_, errors) = error_view(gpu, scene, change, (WIDTH, HEIGHT));
+    let (_, errors) = error_view(gpu, scene, View::Error, change, (WIDTH, HEIGHT));
     errors
 }
 
-/// The error view of `scene` at `size`, as `render --view error` makes it:
-/// the renderer showing it, and the errors read back.
+/// The error view `view` (`error` or `error-flip`) of `scene` at `size`,
+/// as `render --view` makes it: the renderer showing it, and the errors
+/// (levels or FLIP) read back, one per pixel.
 fn error_view(
     gpu: &Gpu,
     scene: &Scene,
+    view: View,
     change: impl FnOnce(&mut ShaderOptions),
     (width, height): (u32, u32),
 ) -> (OffscreenRenderer, Vec<f32>) {
-    let mut renderer = rendered(gpu, scene, View::Error, change, (width, height));
+    let mut renderer = rendered(gpu, scene, view.traced(), change, (width, height));
     let radiance = renderer.read_sums(gpu).unwrap_or_else(|e| panic!("{e}"));
     let reference = reference::ErrorImage::traced(&PreparedScene::new(scene), width, height);
-    let computed = reference.quantities(&radiance);
+    let (computed, range) = if view == View::ErrorFlip {
+        let (gpu_picture, reference_picture) = (reference.gpu_rgba8(&radiance), reference.rgba8());
+        let (flips, mean) = metrics::flip_quantities(&reference_picture, &gpu_picture);
+        let from_pixels =
+            flips.iter().step_by(4).map(|&f| f64::from(f)).sum::<f64>() / f64::from(width * height);
+        assert!((mean - from_pixels).abs() < 1e-3, "{mean} vs {from_pixels}");
+        (flips, Some(metrics::FLIP_RANGE))
+    } else {
+        (reference.quantities(&radiance), None)
+    };
     let bar = renderer
-        .show_quantities(gpu, &computed)
+        .show_quantities(gpu, &computed, range)
         .unwrap_or_else(|e| panic!("{e}"));
     assert!(bar.is_some(), "no colour bar");
+    assert!(range.is_none_or(|r| bar.is_some_and(|b| b.range == r)));
     let shown = renderer.read_sums(gpu).unwrap_or_else(|e| panic!("{e}"));
     assert_eq!(shown, computed, "the GPU shows other errors than computed");
     (renderer, shown.chunks_exact(4).map(|q| q[0]).collect())
@@ -525,6 +538,24 @@ fn the_error_view_is_zero_where_the_gpu_agrees_with_the_reference() {
     );
 }
 
+/// The reference's first hit per pixel, row by row.
+type FirstHits = Vec<Option<(reference::ShapeId, f64)>>;
+
+/// The textbook sphere quadratic's failure (`small_sphere_1e3`,
+/// docs/accuracy.md) at WIDTH x HEIGHT: the reference's first hits, the
+/// textbook pipeline's id view, and the error view `view` of the textbook
+/// and of the robust pipeline.
+fn textbook_sphere(gpu: &Gpu, view: View) -> (FirstHits, Vec<[f32; 4]>, Vec<f32>, Vec<f32>) {
+    let scene = raysandbox::stress::scenes::load("small_sphere_1e3");
+    let hits = reference::first_hits(&PreparedScene::new(&scene), WIDTH, HEIGHT);
+    let textbook = |o: &mut ShaderOptions| o.robust = false;
+    let naive_ids = quantities(gpu, &scene, View::Id, textbook);
+    let size = (WIDTH, HEIGHT);
+    let naive = error_view(gpu, &scene, view, textbook, size).1;
+    let robust = error_view(gpu, &scene, view, |_| {}, size).1;
+    (hits, naive_ids, naive, robust)
+}
+
 /// The textbook sphere quadratic in f32 (docs/accuracy.md,
 /// `small_sphere_1e3`) draws a sphere far larger than it is: the error view
 /// of the textbook pipeline marks exactly the background pixels where that
@@ -533,12 +564,7 @@ fn the_error_view_is_zero_where_the_gpu_agrees_with_the_reference() {
 #[test]
 fn the_error_view_marks_the_textbook_sphere_failure() {
     let Some(gpu) = common::gpu() else { return };
-    let scene = raysandbox::stress::scenes::load("small_sphere_1e3");
-    let hits = reference::first_hits(&PreparedScene::new(&scene), WIDTH, HEIGHT);
-    let textbook = |o: &mut ShaderOptions| o.robust = false;
-    let naive_ids = quantities(&gpu, &scene, View::Id, textbook);
-    let naive = errors(&gpu, &scene, textbook);
-    let robust = errors(&gpu, &scene, |_| {});
+    let (hits, naive_ids, naive, robust) = textbook_sphere(&gpu, View::Error);
     let marked = |e: f32| e > 2.0;
     let (mut phantom, mut phantom_marked, mut clear_marked, mut clear) = (0, 0, 0, 0);
     for ((hit, id), &e) in hits.iter().zip(&naive_ids).zip(&naive) {
@@ -575,28 +601,117 @@ fn the_error_view_marks_the_textbook_sphere_failure() {
     );
 }
 
+/// The error view `view` in a window on the Whitted scene: the levels it
+/// drew (`stride=N`, `flip`) until `last`, and its status line then; the
+/// window is checked to show what `render --view` renders headless.
+/// `None` only where window tests are skipped explicitly.
+fn error_view_in_the_window(view: View, last: &str) -> Option<(Vec<String>, String)> {
+    let display = Display::start()?;
+    let mut viewer = whitted_window(&display, &["--view", view.name()]);
+    // The pointer off the window (the screen is 1024 x 768): resting over
+    // the status line while the reference is traced, it opens a tooltip
+    // over the picture.
+    viewer.xdotool(&["mousemove", "1000", "700"]);
+    let mut levels = Vec::new();
+    while levels.last().map(String::as_str) != Some(last) {
+        levels.push(viewer.wait_for("error-level "));
+    }
+    let status = viewer.wait_for("error-status ");
+    println!("levels drawn: {levels:?}; status: {status}");
+    let gpu = common::gpu().unwrap();
+    let (renderer, _) = error_view(&gpu, &scene("whitted.toml"), view, |_| {}, WINDOW);
+    let headless = renderer.read_image(&gpu).unwrap_or_else(|e| panic!("{e}"));
+    assert_window_shows(&mut viewer, &headless, view.name());
+    Some((levels, status))
+}
+
 /// The error view in the window (`view --view error`): the reference comes
 /// in on worker threads, coarser grids first, and once it reaches every
 /// pixel the window shows what `render --view error` renders headless.
 #[test]
 fn the_error_view_refines_in_the_window() {
-    let Some(display) = Display::start() else {
+    let Some((levels, status)) = error_view_in_the_window(View::Error, "stride=1") else {
         return;
     };
-    let mut viewer = whitted_window(&display, &["--view", "error"]);
-    // The pointer off the window (the screen is 1024 x 768): resting over
-    // the status line while the reference is traced, it opens a tooltip
-    // over the picture.
-    viewer.xdotool(&["mousemove", "1000", "700"]);
-    let mut strides = Vec::new();
-    while strides.last() != Some(&1) {
-        let level = viewer.wait_for("error-level stride=");
-        strides.push(level.parse::<u32>().unwrap());
-    }
-    println!("levels drawn: strides {strides:?}");
+    let strides: Vec<u32> = levels
+        .iter()
+        .map(|l| l.trim_start_matches("stride=").parse().unwrap())
+        .collect();
     assert!(strides.is_sorted_by(|a, b| a > b), "{strides:?}");
-    let gpu = common::gpu().unwrap();
-    let (renderer, _) = error_view(&gpu, &scene("whitted.toml"), |_| {}, WINDOW);
-    let headless = renderer.read_image(&gpu).unwrap_or_else(|e| panic!("{e}"));
-    assert_window_shows(&mut viewer, &headless, "error view");
+    assert_eq!(status, "reference at every pixel");
+}
+
+/// The `error-flip` view (docs/views.md, "The error view"): FLIP per
+/// pixel is near 0 where the error in levels is 0 (on the Whitted scene,
+/// almost every pixel), and high on the phantom sphere of the textbook
+/// quadratic (`small_sphere_1e3`), where the GPU sees a sphere and the
+/// reference the background.
+#[test]
+fn the_flip_view_is_near_zero_where_the_error_is_and_high_on_the_textbook_failure() {
+    let Some(gpu) = common::gpu() else { return };
+    let whitted = scene("whitted.toml");
+    let levels = errors(&gpu, &whitted, |_| {});
+    let flip = error_view(&gpu, &whitted, View::ErrorFlip, |_| {}, (WIDTH, HEIGHT)).1;
+    let agreeing: Vec<f32> = flip
+        .iter()
+        .zip(&levels)
+        .filter(|(_, e)| **e == 0.0)
+        .map(|(f, _)| *f)
+        .collect();
+    let share_over =
+        |v: &[f32], x: f32| v.iter().filter(|&&f| f > x).count() as f64 / v.len() as f64;
+    let mean = |v: &[f32]| v.iter().map(|&f| f64::from(f)).sum::<f64>() / v.len() as f64;
+    println!(
+        "whitted: FLIP where the error is 0 ({} pixels): mean {:.5}, above 0.05: {:.4}, largest {}",
+        agreeing.len(),
+        mean(&agreeing),
+        share_over(&agreeing, 0.05),
+        agreeing.iter().copied().fold(0.0, f32::max)
+    );
+    // Measured (96 x 54, lavapipe): 5182 pixels at 0, FLIP there mean
+    // 0.00044, 3 above 0.05 (beside a silhouette), largest 0.059.
+    assert!(agreeing.len() * 100 >= levels.len() * 99);
+    assert!(mean(&agreeing) < 0.01, "{}", mean(&agreeing));
+    assert!(share_over(&agreeing, 0.05) < 0.01);
+
+    let (hits, naive_ids, naive, robust) = textbook_sphere(&gpu, View::ErrorFlip);
+    let phantom: Vec<f32> = hits
+        .iter()
+        .zip(&naive_ids)
+        .zip(&naive)
+        .filter(|((hit, id), _)| hit.is_none() && id[3] == 1.0)
+        .map(|(_, f)| *f)
+        .collect();
+    println!(
+        "small_sphere_1e3: FLIP on the textbook phantom ({} pixels): mean {:.4}, above 0.2: {:.4}; \
+         robust: mean {:.5} over the image",
+        phantom.len(),
+        mean(&phantom),
+        share_over(&phantom, 0.2),
+        mean(&robust)
+    );
+    // Measured: 3208 phantom pixels, FLIP mean 0.547, 98.5 % above 0.2;
+    // the robust pipeline's mean 0.00000.
+    assert!(phantom.len() * 10 > hits.len());
+    assert!(mean(&phantom) > 0.2, "{}", mean(&phantom));
+    assert!(mean(&robust) < 0.01, "{}", mean(&robust));
+}
+
+/// The `error-flip` view in the window: the levels of the reference come
+/// in as in the error view, then FLIP per pixel, computed on the worker;
+/// the status line says FLIP's mean, and the window shows what `render
+/// --view error-flip` renders headless.
+#[test]
+fn the_flip_view_refines_in_the_window_and_ends_with_flip() {
+    let Some((levels, status)) = error_view_in_the_window(View::ErrorFlip, "flip") else {
+        return;
+    };
+    // The levels before FLIP (two may come in one look and show as one).
+    let (_, before) = levels.split_last().unwrap();
+    assert!(!before.is_empty(), "{levels:?}");
+    assert!(
+        before.iter().all(|l| l.starts_with("stride=")),
+        "{levels:?}"
+    );
+    assert!(status.starts_with("FLIP at every pixel: mean "), "{status}");
 }

@@ -1592,3 +1592,90 @@ fn the_v_key_cycles_the_views_in_the_page() {
     eprintln!("id view: {} colours", distinct_colors(&ids, 64));
     assert!(distinct_colors(&ids, 64) >= scene.shape_ids().len());
 }
+
+/// The error view in the page (docs/views.md, "The error view"): the page
+/// has no thread for the f64 reference, so it traces it in slices after
+/// each frame, coarse to fine, and shows each level as it comes, until
+/// every pixel. Meanwhile the page answers at once: a script run through
+/// DevTools and a key (Ctrl+= scales the UI) get their answers while the
+/// reference is traced. At the end the heat map is blue (0) where the GPU
+/// and the reference agree: all but a few silhouette pixels of the Whitted
+/// scene.
+#[test]
+fn the_error_view_is_traced_in_slices_in_the_page_and_it_stays_responsive() {
+    let Some((_display, mut page)) = browser::open_page("?samples=1&ui=0") else {
+        return;
+    };
+    page.wait_for("ready");
+    loop {
+        page.key("v");
+        if page.wait_for("view-shown") == "error" {
+            break;
+        }
+    }
+    let shown = Instant::now();
+    let mut strides = Vec::new();
+    let mut script_ms = Vec::new();
+    let mut key_asked = None;
+    let mut key_ms = None;
+    while strides.last() != Some(&1) {
+        let line = page.wait_for("");
+        if line.starts_with("ui-scale") {
+            key_ms = key_asked.map(|at: Instant| at.elapsed().as_secs_f64() * 1e3);
+        }
+        let Some(stride) = line.strip_prefix("error-level stride=") else {
+            continue;
+        };
+        strides.push(stride.parse::<u32>().unwrap());
+        // The first level is on screen and the page traces the rest.
+        if strides.len() == 1 {
+            for _ in 0..10 {
+                let asked = Instant::now();
+                assert_eq!(page.evaluate("6 * 7"), serde_json::json!(42));
+                script_ms.push(asked.elapsed().as_secs_f64() * 1e3);
+            }
+            key_asked = Some(Instant::now());
+            page.key("Control+=");
+        }
+    }
+    let traced = shown.elapsed();
+    // The status line then, as the page logs it with each level.
+    let status = page.wait_for("error-status");
+    assert!(status.starts_with("reference at every pixel"), "{status}");
+    if key_ms.is_none() {
+        page.wait_for("ui-scale");
+        key_ms = key_asked.map(|at| at.elapsed().as_secs_f64() * 1e3);
+    }
+    eprintln!(
+        "error view in the page: levels {strides:?}, every pixel {:.1} s after the view was \
+         shown ({status}); while it refined a script answered in {script_ms:.0?} ms, Ctrl+= \
+         in {key_ms:.0?} ms",
+        traced.as_secs_f64()
+    );
+    assert!(strides.is_sorted_by(|a, b| a > b), "{strides:?}");
+    // Captured until two captures agree (the heat map has too few colours
+    // for `capture_picture`, which waits for a scene's).
+    let deadline = Instant::now() + browser::TIMEOUT;
+    let mut last = page.capture_screen();
+    let picture = loop {
+        std::thread::sleep(Duration::from_millis(500));
+        let screen = page.capture_screen();
+        if screen == last || Instant::now() > deadline {
+            break screen;
+        }
+        last = screen;
+    };
+    let (w, h) = SIZE;
+    let blue = picture
+        .pixels()
+        .filter(|p| p[0] < 8 && p[1] < 8 && p[2] > 247)
+        .count();
+    eprintln!("{blue} of {} pixels are blue (error 0)", (w * h) as usize);
+    let file = std::env::temp_dir().join("web-error-view.png");
+    picture.save(&file).unwrap();
+    assert!(
+        blue * 100 >= (w * h) as usize * 98,
+        "only {blue} pixels are blue (saved in {})",
+        file.display()
+    );
+}

@@ -1,17 +1,43 @@
 //! The error view in the viewer (docs/views.md, "The error view"): the f64
-//! reference is traced on a worker thread (and the rayon pool), coarse to
-//! fine, while the window keeps drawing; each level's errors replace the
-//! last on screen. A generation counter cancels a stale reference: an
-//! edit, a camera move, a resize or another view starts a new one, and the
-//! old one stops within a few thousand pixels. The web page has no threads
-//! to spare: there the view says it is not available.
+//! reference is traced coarse to fine while the picture stays live; each
+//! level's errors replace the last on screen. Natively a worker thread
+//! (and the rayon pool) traces it; the web page has no thread to spare, so
+//! there it is traced in slices of some milliseconds after each frame.
+//! Both run the same [`Refinement`]. A generation counter cancels a stale
+//! reference: an edit, a camera move, a resize or another view starts a
+//! new one, and the old one stops within a slice. The `error-flip` view
+//! shows the levels until the last, and then FLIP per pixel, computed on
+//! the worker (FLIP's filters need the whole image); `nv-flip` is C++,
+//! built natively only, so the page says it has no FLIP.
 
 use std::sync::Arc;
 use std::sync::atomic::{AtomicU64, Ordering};
 use std::sync::mpsc::{Receiver, Sender, channel};
 
-use crate::reference::ReferenceOptions;
+use web_time::Duration;
+
+use crate::gpu::TexelRead;
+use crate::reference::{ErrorImage, PreparedScene, ReferenceOptions};
 use crate::scene::Scene;
+
+/// Pixels the worker traces between two looks at the generation: a few
+/// milliseconds of work, so that a camera move stops a stale reference at
+/// once.
+#[cfg(not(target_arch = "wasm32"))]
+const CHUNK: usize = 2048;
+
+/// Pixels the page traces between two looks at the clock: well under a
+/// millisecond on the bundled scenes.
+#[cfg(target_arch = "wasm32")]
+const SLICE_CHUNK: usize = 64;
+
+/// How long the page traces after each frame: as long as the frame took
+/// (since the last slice), so that the reference gets half of the page's
+/// time however slow its GPU, but within these bounds, so that input and
+/// drawing never wait long.
+#[cfg(target_arch = "wasm32")]
+const SLICE: std::ops::RangeInclusive<Duration> =
+    Duration::from_millis(10)..=Duration::from_millis(40);
 
 /// A level of a reference, traced: its errors, ready to show.
 struct Level {
@@ -20,22 +46,113 @@ struct Level {
     stride: u32,
     /// Four floats per pixel (`ErrorImage::quantities`).
     quantities: Vec<f32>,
+    /// FLIP's mean and largest when the quantities are FLIP per pixel.
+    flip: Option<(f64, f32)>,
+    /// The colour bar's range, `None` to fit it to the quantities.
+    range: Option<[f32; 2]>,
+}
+
+/// A reference being traced against the GPU's radiance: what the worker
+/// thread and the page's slices share.
+struct Refinement {
+    generation: u64,
+    image: ErrorImage,
+    /// The GPU's radiance at the pixel centres, four floats per pixel.
+    gpu: Vec<f32>,
+}
+
+impl Refinement {
+    fn new(generation: u64, scene: &PreparedScene, (w, h): (u32, u32), gpu: Vec<f32>) -> Self {
+        Refinement {
+            generation,
+            image: ErrorImage::new(scene, w, h),
+            gpu,
+        }
+    }
+
+    /// Traces up to `budget` pixels: the level they finished, if any.
+    fn step(&mut self, budget: usize) -> Option<Level> {
+        self.image.refine_some(budget).then(|| Level {
+            generation: self.generation,
+            stride: self.image.stride().unwrap_or(1),
+            quantities: self.image.quantities(&self.gpu),
+            flip: None,
+            range: None,
+        })
+    }
+
+    /// FLIP per pixel of the GPU's picture against the reference's, once
+    /// the reference is at every pixel.
+    #[cfg(not(target_arch = "wasm32"))]
+    fn flip_level(&self) -> Level {
+        let reference = self.image.rgba8();
+        let gpu = self.image.gpu_rgba8(&self.gpu);
+        let (quantities, mean) = crate::stress::metrics::flip_quantities(&reference, &gpu);
+        let largest = quantities.iter().step_by(4).copied().fold(0.0, f32::max);
+        Level {
+            generation: self.generation,
+            stride: 1,
+            quantities,
+            flip: Some((mean, largest)),
+            range: Some(crate::stress::metrics::FLIP_RANGE),
+        }
+    }
+}
+
+/// The GPU's radiance on its way back, and the reference to trace
+/// against it once it is here.
+struct Awaited {
+    sums: TexelRead,
+    scene: PreparedScene,
+    size: (u32, u32),
+}
+
+/// What the view shows once the reference is at every pixel.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum Metric {
+    /// |GPU - reference| in 8-bit levels, as every level before.
+    Levels,
+    /// FLIP per pixel (natively; the page keeps the levels and says so).
+    Flip,
+}
+
+/// The page's reference, traced in slices after the frames.
+#[cfg(target_arch = "wasm32")]
+#[derive(Default)]
+struct Slices {
+    refinement: Option<Refinement>,
+    /// When the last slice ended.
+    last_end: Option<web_time::Instant>,
+    /// The share of the pixels traced, as the last slice left it.
+    fraction: f64,
+    /// Slices traced, and their time, for the status line.
+    count: u32,
+    tracing: Duration,
 }
 
 /// The reference of the error view being traced, and what came of it.
 pub struct ErrorView {
-    /// Bumped by every start and cancel; a worker stops when it differs
-    /// from its own.
+    /// Bumped by every start and cancel; a refinement stops when it
+    /// differs from its own.
     generation: Arc<AtomicU64>,
     sender: Sender<Level>,
     levels: Receiver<Level>,
     /// The stride of the level on screen, `None` before the first.
     shown: Option<u32>,
-    /// A reference of the current generation is being traced.
+    /// What the view asked for.
+    metric: Metric,
+    /// FLIP's mean and largest, when FLIP is on screen.
+    flip: Option<(f64, f32)>,
+    /// The picture's radiance being read back, before its reference.
+    awaited: Option<Awaited>,
+    /// A reference of the current generation is being traced (or its
+    /// radiance read back).
     running: bool,
-    /// The stride of a level handed out by [`Self::poll`] and not yet
-    /// reported as drawn.
-    handed_out: Option<u32>,
+    #[cfg(target_arch = "wasm32")]
+    slices: Slices,
+    /// The level handed out by [`Self::poll`] and not yet reported as
+    /// drawn ([`Self::take_drawn`]).
+    handed_out: Option<String>,
 }
 
 impl Default for ErrorView {
@@ -46,7 +163,12 @@ impl Default for ErrorView {
             sender,
             levels,
             shown: None,
+            metric: Metric::Levels,
+            flip: None,
+            awaited: None,
             running: false,
+            #[cfg(target_arch = "wasm32")]
+            slices: Slices::default(),
             handed_out: None,
         }
     }
@@ -59,107 +181,226 @@ impl ErrorView {
     pub fn cancel(&mut self) {
         self.generation.fetch_add(1, Ordering::Relaxed);
         while self.levels.try_recv().is_ok() {}
+        self.awaited = None;
         self.running = false;
         self.shown = None;
+        self.flip = None;
         self.handed_out = None;
+        #[cfg(target_arch = "wasm32")]
+        {
+            self.slices = Slices::default();
+        }
     }
 
-    /// Starts tracing the reference of `scene` at `size` pixels, whose
-    /// errors are against `gpu`, the GPU's radiance at the same pixel
-    /// centres (four floats per pixel); cancels the last one.
+    /// Starts the reference of `scene` at `size` pixels, whose errors are
+    /// against `sums`, the GPU's radiance at the same pixel centres (four
+    /// floats per pixel) on its way back; cancels the last one. It is
+    /// traced once the radiance is here ([`Self::poll`]), and then shown
+    /// as `metric`.
     pub fn start(
         &mut self,
         scene: &Scene,
         options: &ReferenceOptions,
         size: (u32, u32),
-        gpu: Vec<f32>,
+        sums: TexelRead,
+        metric: Metric,
     ) {
         self.cancel();
+        self.metric = metric;
+        self.awaited = Some(Awaited {
+            sums,
+            scene: PreparedScene::with_options(scene, options),
+            size,
+        });
+        self.running = true;
+    }
+
+    /// Starts tracing the awaited reference once the GPU's radiance is
+    /// back: on the worker natively, in slices in the page.
+    fn take_sums(&mut self) {
+        let Some(result) = self.awaited.as_ref().and_then(|a| a.sums.try_take()) else {
+            return;
+        };
+        let Some(awaited) = self.awaited.take() else {
+            return;
+        };
+        let gpu: Vec<f32> = match result {
+            Ok(texels) => bytemuck::pod_collect_to_vec(&texels),
+            Err(e) => {
+                log::error!("error view: reading the picture back: {e}");
+                self.running = false;
+                return;
+            }
+        };
+        let generation = self.generation.load(Ordering::Relaxed);
+        let refinement = Refinement::new(generation, &awaited.scene, awaited.size, gpu);
         #[cfg(not(target_arch = "wasm32"))]
-        self.spawn(scene, options, size, gpu);
+        self.spawn(refinement);
         #[cfg(target_arch = "wasm32")]
-        let _ = (scene, options, size, gpu);
+        {
+            self.slices.refinement = Some(refinement);
+        }
     }
 
     /// The worker: one level after the other, each sent when done.
     #[cfg(not(target_arch = "wasm32"))]
-    fn spawn(
-        &mut self,
-        scene: &Scene,
-        options: &ReferenceOptions,
-        (width, height): (u32, u32),
-        gpu: Vec<f32>,
-    ) {
-        use crate::reference::{ErrorImage, PreparedScene};
-        let generation = self.generation.load(Ordering::Relaxed);
+    fn spawn(&mut self, mut refinement: Refinement) {
+        let flip = self.metric == Metric::Flip;
         let current = Arc::clone(&self.generation);
         let sender = self.sender.clone();
-        let prepared = PreparedScene::with_options(scene, options);
         let work = move || {
-            let mut image = ErrorImage::new(&prepared, width, height);
+            let generation = refinement.generation;
             let cancelled = || current.load(Ordering::Relaxed) != generation;
-            while image.refine(&cancelled) {
-                let level = Level {
-                    generation,
-                    stride: image.stride().unwrap_or(1),
-                    quantities: image.quantities(&gpu),
-                };
-                if sender.send(level).is_err() {
+            while !refinement.image.finished() && !cancelled() {
+                if let Some(level) = refinement.step(CHUNK)
+                    && sender.send(level).is_err()
+                {
                     return;
                 }
+            }
+            if flip && !cancelled() {
+                let _ = sender.send(refinement.flip_level());
             }
         };
         match std::thread::Builder::new()
             .name("error view reference".into())
             .spawn(work)
         {
-            Ok(_) => self.running = true,
-            Err(e) => log::error!("error view: no thread for the reference: {e}"),
+            Ok(_) => {}
+            Err(e) => {
+                log::error!("error view: no thread for the reference: {e}");
+                self.running = false;
+            }
+        }
+    }
+
+    /// The page's share of the work: traces the reference for a slice of
+    /// time ([`SLICE`]) after a frame, and sends the levels finished as
+    /// the worker does.
+    #[cfg(target_arch = "wasm32")]
+    fn trace_slice(&mut self) {
+        let slices = &mut self.slices;
+        let Some(refinement) = &mut slices.refinement else {
+            return;
+        };
+        let start = web_time::Instant::now();
+        let slice = slices
+            .last_end
+            .map_or(*SLICE.start(), |end| start - end)
+            .clamp(*SLICE.start(), *SLICE.end());
+        while !refinement.image.finished() && start.elapsed() < slice {
+            if let Some(level) = refinement.step(SLICE_CHUNK) {
+                // The receiver is ours: sending cannot fail.
+                let _ = self.sender.send(level);
+            }
+        }
+        let end = web_time::Instant::now();
+        slices.last_end = Some(end);
+        slices.count += 1;
+        slices.tracing += end - start;
+        slices.fraction = refinement.image.fraction();
+        if refinement.image.finished() {
+            slices.refinement = None;
         }
     }
 
     /// The errors of the newest level of the current reference, when one
-    /// came since the last call (older generations' are dropped).
-    pub fn poll(&mut self) -> Option<Vec<f32>> {
+    /// came since the last call (older generations' are dropped), and the
+    /// range of their colour bar (`None`: fitted to them). In the page,
+    /// traces the next slice first.
+    pub fn poll(&mut self) -> Option<(Vec<f32>, Option<[f32; 2]>)> {
+        self.take_sums();
+        #[cfg(target_arch = "wasm32")]
+        self.trace_slice();
         let generation = self.generation.load(Ordering::Relaxed);
         let mut newest = None;
         while let Ok(level) = self.levels.try_recv() {
             if level.generation != generation {
                 continue;
             }
-            self.running &= level.stride > 1;
             self.shown = Some(level.stride);
-            self.handed_out = Some(level.stride);
-            newest = Some(level.quantities);
+            self.flip = level.flip;
+            self.running &= !self.complete();
+            self.handed_out = Some(match level.flip {
+                Some(_) => "flip".into(),
+                None => format!("stride={}", level.stride),
+            });
+            newest = Some((level.quantities, level.range));
         }
         newest
     }
 
-    /// The stride of the level the last [`Self::poll`] handed out, once:
-    /// called after the next frame, it is on screen then.
-    pub fn take_drawn(&mut self) -> Option<u32> {
+    /// Whether what is on screen is the last that comes: every pixel, as
+    /// FLIP when FLIP was asked for and can be computed.
+    fn complete(&self) -> bool {
+        let flip_due = self.metric == Metric::Flip && cfg!(not(target_arch = "wasm32"));
+        self.shown == Some(1) && (!flip_due || self.flip.is_some())
+    }
+
+    /// What the last [`Self::poll`] handed out (`stride=N`, or `flip`),
+    /// once: called after the next frame, it is on screen then.
+    pub fn take_drawn(&mut self) -> Option<String> {
         self.handed_out.take()
     }
 
-    /// Whether the reference is still being traced: the viewer looks again
-    /// soon, though nothing else asks for a frame.
-    pub fn busy(&self) -> bool {
-        self.running
+    /// When the viewer should look again while the reference is still
+    /// being traced (though nothing else asks for a frame): `None` once it
+    /// is done. The worker's levels are looked for every tenth of a
+    /// second; the page traces its next slice after the next frame.
+    pub fn look_again(&self) -> Option<Duration> {
+        let wait = if cfg!(target_arch = "wasm32") {
+            Duration::ZERO
+        } else {
+            Duration::from_millis(100)
+        };
+        self.running.then_some(wait)
     }
 
     /// What the status line adds to the view's legend: how far the
     /// reference has come.
     pub fn progress(&self) -> String {
-        if cfg!(target_arch = "wasm32") {
-            return "not available in the page: the f64 reference needs worker threads; \
-                    use the native viewer or `raysandbox render --view error`"
-                .into();
+        let note = self.page_note();
+        if let Some((mean, largest)) = self.flip {
+            return format!("FLIP at every pixel: mean {mean:.4}, largest {largest:.3}");
         }
-        match (self.shown, self.running) {
-            (Some(1), _) => "reference at every pixel".into(),
-            (Some(s), _) => format!("reference at every {s}th pixel of every {s}th row, refining"),
-            (None, true) => "tracing the f64 reference (the GPU's picture dimmed meanwhile)".into(),
+        let levels = match (self.shown, self.running) {
+            (Some(1), _) => format!("reference at every pixel{note}"),
+            (Some(s), _) => {
+                format!("reference at every {s}th pixel of every {s}th row, refining{note}")
+            }
+            (None, true) => {
+                format!("tracing the f64 reference{note} (the GPU's picture dimmed meanwhile)")
+            }
             (None, false) => "waiting for the picture".into(),
+        };
+        match self.metric {
+            Metric::Levels => levels,
+            Metric::Flip if cfg!(target_arch = "wasm32") => format!(
+                "{levels}; FLIP is not available in the page (nv-flip is C++, built natively \
+                 only): |difference| in levels shown, FLIP in the native viewer"
+            ),
+            Metric::Flip => format!("{levels}; |difference| in levels until FLIP at every pixel"),
         }
+    }
+
+    /// What the page adds to the status line: the share of the pixels
+    /// traced, and once all are, how long the slices took. The worker's
+    /// levels say how far it has come.
+    fn page_note(&self) -> String {
+        #[cfg(target_arch = "wasm32")]
+        {
+            let slices = &self.slices;
+            if self.shown == Some(1) {
+                return format!(
+                    " (traced in {} slices after the frames, {:.1} s in all)",
+                    slices.count,
+                    slices.tracing.as_secs_f64()
+                );
+            }
+            if self.running {
+                return format!(" ({:.0} % of the pixels traced)", 100.0 * slices.fraction);
+            }
+        }
+        String::new()
     }
 }

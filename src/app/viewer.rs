@@ -11,7 +11,7 @@ use web_time::{Duration, Instant};
 use winit::window::Window;
 
 use super::document::Document;
-use super::error_view::ErrorView;
+use super::error_view::{ErrorView, Metric};
 use super::layout::{self, Layout, LayoutReport};
 use super::pipelines::{self, PipelineCache};
 use super::ray_tree::{GpuAnswer, PixelTree};
@@ -210,7 +210,7 @@ impl Viewer {
     /// ones, for the view shown (docs/views.md).
     fn wanted_options(&self) -> ShaderOptions {
         ShaderOptions {
-            view: self.editor.view.shown,
+            view: self.editor.view.shown.traced(),
             ..ShaderOptions::for_scene(&self.doc.scene)
         }
     }
@@ -759,7 +759,7 @@ impl Viewer {
         }
         self.sample_clock.update(samples, Instant::now());
         let fitted = shown.scalar() && traced && !dragging && samples > 0;
-        if fitted && shown != View::Error {
+        if fitted && !shown.is_error() {
             // The colour bar of the image just traced, shown by the next frame.
             match gfx.viewport.fit_colour_bar(&gfx.gpu) {
                 Ok(bar) => self.editor.view.colour_bar = bar,
@@ -803,7 +803,7 @@ impl Viewer {
         if delay < Duration::from_secs(5) {
             self.repaint_at = Some(Instant::now() + delay);
         }
-        if shown == View::Error {
+        if shown.is_error() {
             self.error_view_frame(fitted);
         }
     }
@@ -812,10 +812,11 @@ impl Viewer {
     /// a picture just `traced` at rest starts its reference against the
     /// GPU's radiance, read back; a level of the reference that came in
     /// replaces the last on screen; while one is traced, the viewer looks
-    /// again a tenth of a second later.
+    /// again soon (`ErrorView::look_again`).
     fn error_view_frame(&mut self, traced: bool) {
-        if let Some(stride) = self.error_view.take_drawn() {
-            self.event(&format!("error-level stride={stride}"));
+        if let Some(level) = self.error_view.take_drawn() {
+            self.event(&format!("error-level {level}"));
+            self.event(&format!("error-status {}", self.error_view.progress()));
         }
         let scene = traced.then(|| self.shown_scene());
         let Some(gfx) = &mut self.gfx else { return };
@@ -829,18 +830,25 @@ impl Viewer {
                 ..reference::ReferenceOptions::of(&scene)
             };
             let size = gfx.viewport.traced_resolution();
-            match gfx.viewport.read_sums(&gfx.gpu) {
-                Ok(sums) => self.error_view.start(&scene, &options, size, sums),
-                Err(e) => log::error!("error view: {e}"),
+            let sums = gfx.viewport.start_read_sums(&gfx.gpu);
+            // Natively this maps the copy at once; in the page it does
+            // nothing, and a later frame takes the radiance.
+            if let Err(e) = gfx.gpu.wait() {
+                log::error!("error view: {e}");
             }
+            let metric = match self.editor.view.shown {
+                View::ErrorFlip => Metric::Flip,
+                _ => Metric::Levels,
+            };
+            self.error_view.start(&scene, &options, size, sums, metric);
         }
-        if let Some(errors) = self.error_view.poll() {
-            self.editor.view.colour_bar = gfx.viewport.show_quantities(&gfx.gpu, &errors);
+        if let Some((errors, range)) = self.error_view.poll() {
+            self.editor.view.colour_bar = gfx.viewport.show_quantities(&gfx.gpu, &errors, range);
             gfx.window.request_redraw();
         }
         self.editor.view.progress = Some(self.error_view.progress());
-        if self.error_view.busy() {
-            let soon = Instant::now() + Duration::from_millis(100);
+        if let Some(wait) = self.error_view.look_again() {
+            let soon = Instant::now() + wait;
             self.repaint_at = Some(self.repaint_at.map_or(soon, |at| at.min(soon)));
         }
     }

@@ -88,8 +88,9 @@ fn render_failure(e: RenderError) -> Failure {
 }
 
 /// The error view of a rendered `renderer`: the f64 reference traced at
-/// every pixel centre (docs/views.md, "The error view"), the errors shown
-/// in place of the GPU's radiance. Returns their colour bar.
+/// every pixel centre (docs/views.md, "The error view"), the errors (in
+/// levels, or FLIP per pixel for `error-flip`) shown in place of the GPU's
+/// radiance. Returns their colour bar.
 fn show_error(
     gpu: &Gpu,
     renderer: &mut OffscreenRenderer,
@@ -109,16 +110,16 @@ fn show_error(
         start.elapsed().as_secs_f64() * 1e3
     );
     let gpu_radiance = renderer.read_sums(gpu).map_err(gpu_failure)?;
-    let gpu_picture: Vec<glam::DVec3> = gpu_radiance
-        .chunks_exact(4)
-        .map(|q| glam::DVec3::new(q[0].into(), q[1].into(), q[2].into()))
-        .collect();
-    let gpu_picture =
-        reference::to_rgba8(&gpu_picture, args.width, args.height, scene.render.exposure);
-    let (flip, _) = crate::stress::metrics::flip(&image.rgba8(), &gpu_picture);
-    println!("FLIP of the GPU's picture against the reference's (mean): {flip:.4}");
+    let (flip, flip_mean) =
+        crate::stress::metrics::flip_quantities(&image.rgba8(), &image.gpu_rgba8(&gpu_radiance));
+    println!("FLIP of the GPU's picture against the reference's (mean): {flip_mean:.4}");
+    let (shown, range) = if args.view == View::ErrorFlip {
+        (flip, Some(crate::stress::metrics::FLIP_RANGE))
+    } else {
+        (image.quantities(&gpu_radiance), None)
+    };
     renderer
-        .show_quantities(gpu, &image.quantities(&gpu_radiance))
+        .show_quantities(gpu, &shown, range)
         .map_err(gpu_failure)
 }
 
@@ -166,7 +167,7 @@ pub fn run(args: &Args) -> Result<(), Failure> {
         }
         options.triangles = args.triangles;
         options.torus = args.torus;
-        options.view = args.view;
+        options.view = args.view.traced();
         let mut renderer =
             OffscreenRenderer::new(&gpu, &source, &options, &scene, args.width, args.height)
                 .map_err(render_failure)?;
@@ -205,7 +206,7 @@ pub fn run(args: &Args) -> Result<(), Failure> {
                 );
             }
         }
-        if args.view == View::Error {
+        if args.view.is_error() {
             let bar = show_error(&gpu, &mut renderer, &scene, args)?;
             println!("view {}", args.view.legend(bar));
         } else if args.view != View::Shaded {

@@ -32,7 +32,9 @@ pub use interaction::MIN_SCALE;
 pub use jobs::JOB_BUDGET;
 pub use limits::{BufferLimitError, check_buffers};
 pub use lines::{LineOverlay, Segment, project};
-pub use offscreen::{OffscreenRenderer, RenderError, read_texels, read_texture, render_image};
+pub use offscreen::{
+    OffscreenRenderer, RenderError, TexelRead, read_texels, read_texture, render_image,
+};
 pub use outline::OUTLINE_COLOR;
 pub use ray_tree::{GpuRayTree, RayTreeRenderer, TREE_MAX};
 pub use shaders::{ShaderError, ShaderSource};

@@ -170,15 +170,17 @@ impl OffscreenRenderer {
     }
 
     /// Shows `quantities` (four floats per pixel, row by row) in place of
-    /// the view's own, with a colour bar fitted to them: the error view's
-    /// errors ([`crate::reference::ErrorImage::quantities`]). Returns the
-    /// bar, `None` when nothing was shown (no quantities, another size).
+    /// the view's own, with a colour bar over `range`, or fitted to them
+    /// for `None`: the error view's errors
+    /// ([`crate::reference::ErrorImage::quantities`]). Returns the bar,
+    /// `None` when nothing was shown (no quantities, another size).
     pub fn show_quantities(
         &mut self,
         gpu: &Gpu,
         quantities: &[f32],
+        range: Option<[f32; 2]>,
     ) -> Result<Option<ColourBar>, GpuWaitError> {
-        let shown = show_quantities(gpu, &mut self.scene, &self.accum, quantities);
+        let shown = show_quantities(gpu, &mut self.scene, &self.accum, quantities, range);
         if shown.is_some() {
             // As in `fit_colour_bar`: this pass copies them and displays.
             self.accumulate(gpu, 1)?;
@@ -227,15 +229,20 @@ pub(super) fn read_sums(gpu: &Gpu, accum: &Accumulator) -> Result<Vec<f32>, GpuW
 }
 
 /// Writes `quantities` into `accum` in place of the traced ones and sets
-/// `scene`'s colour bar to fit them; the next pass encoded shows them.
-/// `None`, and nothing written, where they have no quantity or another size.
+/// `scene`'s colour bar to `range`, or to fit them for `None`; the next
+/// pass encoded shows them. `None`, and nothing written, where they have
+/// no quantity or another size.
 pub(super) fn show_quantities(
     gpu: &Gpu,
     scene: &mut SceneBuffers,
     accum: &Accumulator,
     quantities: &[f32],
+    range: Option<[f32; 2]>,
 ) -> Option<ColourBar> {
-    let bar = colour_bar(quantities)?;
+    let mut bar = colour_bar(quantities)?;
+    if let Some(range) = range {
+        bar.range = range;
+    }
     if !accum.write_sum(&gpu.queue, quantities) {
         return None;
     }
@@ -257,51 +264,96 @@ pub fn read_texture(gpu: &Gpu, texture: &wgpu::Texture) -> Result<image::RgbaIma
 /// that does not finish (see [`Gpu::wait`]) or fails to map the copy is an
 /// error, never a panic: a user's shader can cause it.
 pub fn read_texels(gpu: &Gpu, texture: &wgpu::Texture) -> Result<Vec<u8>, GpuWaitError> {
-    let (width, height) = (texture.width(), texture.height());
-    let texel_bytes = texture
-        .format()
-        .block_copy_size(None)
-        .expect("a colour format");
-    let row_bytes = width * texel_bytes;
-    let padded_row = row_bytes.next_multiple_of(wgpu::COPY_BYTES_PER_ROW_ALIGNMENT);
-    let readback = gpu.device.create_buffer(&wgpu::BufferDescriptor {
-        label: Some("readback"),
-        size: u64::from(padded_row) * u64::from(height),
-        usage: wgpu::BufferUsages::COPY_DST | wgpu::BufferUsages::MAP_READ,
-        mapped_at_creation: false,
-    });
-    let mut encoder = gpu.device.create_command_encoder(&Default::default());
-    encoder.copy_texture_to_buffer(
-        texture.as_image_copy(),
-        wgpu::TexelCopyBufferInfo {
-            buffer: &readback,
-            layout: wgpu::TexelCopyBufferLayout {
-                offset: 0,
-                bytes_per_row: Some(padded_row),
-                rows_per_image: Some(height),
-            },
-        },
-        texture.size(),
-    );
-    gpu.queue.submit([encoder.finish()]);
-    let slice = readback.slice(..);
-    let (sender, mapped) = std::sync::mpsc::channel();
-    slice.map_async(wgpu::MapMode::Read, move |result| {
-        let _ = sender.send(result);
-    });
+    let read = TexelRead::start(gpu, texture);
     gpu.wait()?;
-    mapped
-        .try_recv()
-        .map_err(|_| GpuWaitError::Lost("the readback buffer was never mapped".into()))?
-        .map_err(|e| GpuWaitError::Lost(e.to_string()))?;
-    let data = slice
-        .get_mapped_range()
-        .map_err(|e| GpuWaitError::Lost(e.to_string()))?;
-    let mut texels = Vec::with_capacity((row_bytes * height) as usize);
-    for row in data.chunks(padded_row as usize) {
-        texels.extend_from_slice(&row[..row_bytes as usize]);
+    read.try_take().unwrap_or_else(|| {
+        Err(GpuWaitError::Lost(
+            "the readback buffer was never mapped".into(),
+        ))
+    })
+}
+
+/// A copy of a texture on its way back to the CPU, without waiting: in
+/// the browser a buffer is mapped only once control has returned to the
+/// page's event loop, so a later frame picks the texels up
+/// (docs/web.md, "Differences from the native program, and why");
+/// natively [`Gpu::wait`] maps it.
+pub struct TexelRead {
+    buffer: wgpu::Buffer,
+    mapped: std::sync::mpsc::Receiver<Result<(), wgpu::BufferAsyncError>>,
+    row_bytes: u32,
+    padded_row: u32,
+}
+
+impl TexelRead {
+    /// Submits the copy of `texture` and asks for its buffer to be mapped.
+    pub fn start(gpu: &Gpu, texture: &wgpu::Texture) -> Self {
+        let height = texture.height();
+        let texel_bytes = texture
+            .format()
+            .block_copy_size(None)
+            .expect("a colour format");
+        let row_bytes = texture.width() * texel_bytes;
+        let padded_row = row_bytes.next_multiple_of(wgpu::COPY_BYTES_PER_ROW_ALIGNMENT);
+        let buffer = gpu.device.create_buffer(&wgpu::BufferDescriptor {
+            label: Some("readback"),
+            size: u64::from(padded_row) * u64::from(height),
+            usage: wgpu::BufferUsages::COPY_DST | wgpu::BufferUsages::MAP_READ,
+            mapped_at_creation: false,
+        });
+        let mut encoder = gpu.device.create_command_encoder(&Default::default());
+        encoder.copy_texture_to_buffer(
+            texture.as_image_copy(),
+            wgpu::TexelCopyBufferInfo {
+                buffer: &buffer,
+                layout: wgpu::TexelCopyBufferLayout {
+                    offset: 0,
+                    bytes_per_row: Some(padded_row),
+                    rows_per_image: Some(height),
+                },
+            },
+            texture.size(),
+        );
+        gpu.queue.submit([encoder.finish()]);
+        let (sender, mapped) = std::sync::mpsc::channel();
+        buffer
+            .slice(..)
+            .map_async(wgpu::MapMode::Read, move |result| {
+                let _ = sender.send(result);
+            });
+        TexelRead {
+            buffer,
+            mapped,
+            row_bytes,
+            padded_row,
+        }
     }
-    Ok(texels)
+
+    /// The texels, row by row without padding, once the buffer is mapped;
+    /// `None` before. A copy that failed to map is an error.
+    pub fn try_take(&self) -> Option<Result<Vec<u8>, GpuWaitError>> {
+        let mapped = self.mapped.try_recv().ok()?;
+        Some(
+            mapped
+                .map_err(|e| GpuWaitError::Lost(e.to_string()))
+                .and_then(|()| self.texels()),
+        )
+    }
+
+    /// The mapped buffer's rows without their padding.
+    fn texels(&self) -> Result<Vec<u8>, GpuWaitError> {
+        let data = self
+            .buffer
+            .slice(..)
+            .get_mapped_range()
+            .map_err(|e| GpuWaitError::Lost(e.to_string()))?;
+        let rows = data.chunks(self.padded_row as usize);
+        let mut texels = Vec::with_capacity(rows.len() * self.row_bytes as usize);
+        for row in rows {
+            texels.extend_from_slice(&row[..self.row_bytes as usize]);
+        }
+        Ok(texels)
+    }
 }
 
 /// Renders `scene` once at `spp` samples per pixel with the embedded shader.

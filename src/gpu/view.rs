@@ -40,6 +40,9 @@ crate::named_option! {
         /// How far the GPU's picture is from the f64 reference's, in 8-bit
         /// levels (`reference::ErrorImage`).
         Error = "error",
+        /// The same as FLIP per pixel, once the reference is at every
+        /// pixel (natively only: `nv-flip` is C++).
+        ErrorFlip = "error-flip",
     }
 }
 
@@ -47,6 +50,17 @@ impl View {
     /// The next view, after the last the first: what the cycling key does.
     pub fn next(self) -> View {
         View::ALL[(self as usize + 1) % View::ALL.len()]
+    }
+
+    /// Whether the view compares the GPU with the f64 reference.
+    pub fn is_error(self) -> bool {
+        matches!(self, View::Error | View::ErrorFlip)
+    }
+
+    /// The view the GPU traces: both error views trace the radiance at
+    /// pixel centres, and differ only in what the CPU makes of it.
+    pub fn traced(self) -> View {
+        if self.is_error() { View::Error } else { self }
     }
 
     /// Whether the view is a number per pixel shown as a heat map with a
@@ -79,6 +93,10 @@ impl View {
             View::Bounces => "deepest level of the ray tree (0: the camera ray)",
             View::ShadowRays => "shadow rays cast",
             View::Error => "|GPU - f64 reference| in 8-bit sRGB levels, largest of r g b",
+            View::ErrorFlip => {
+                "FLIP of the GPU's picture against the f64 reference's (0: alike, 1: most \
+                 different) once the reference is at every pixel, |GPU - f64| in levels before"
+            }
         };
         match bar {
             Some(bar) if self.scalar() => {

@@ -13,6 +13,7 @@ use super::interaction::MIN_SCALE;
 use super::jobs::{JOB_BUDGET, JobPlanner};
 use super::layout::PackedScene;
 use super::limits::BufferLimitError;
+use super::offscreen::TexelRead;
 use super::outline::Outline;
 use super::texture::readback_target;
 use super::timer::{GpuTimer, Timing};
@@ -432,18 +433,25 @@ impl Viewport {
         super::offscreen::fit_colour_bar(gpu, &mut self.scene, &self.accum)
     }
 
-    /// The view's quantities of the image traced, four floats per pixel,
-    /// row by row (waited for): the error view compares them with the
-    /// reference.
-    pub fn read_sums(&self, gpu: &Gpu) -> Result<Vec<f32>, GpuWaitError> {
-        super::offscreen::read_sums(gpu, &self.accum)
+    /// The view's quantities of the image traced, on their way back to
+    /// the CPU (four floats per pixel, row by row, once taken): the error
+    /// view compares them with the reference. Not waited for: the page
+    /// takes them a frame later.
+    pub fn start_read_sums(&self, gpu: &Gpu) -> TexelRead {
+        TexelRead::start(gpu, self.accum.sum())
     }
 
     /// Shows `quantities` in place of the view's own (the error view's
-    /// errors) with a colour bar fitted to them, from the next frame on;
-    /// returns the bar, `None` when nothing was shown.
-    pub fn show_quantities(&mut self, gpu: &Gpu, quantities: &[f32]) -> Option<ColourBar> {
-        super::offscreen::show_quantities(gpu, &mut self.scene, &self.accum, quantities)
+    /// errors) with a colour bar over `range` (`None`: fitted to them),
+    /// from the next frame on; returns the bar, `None` when nothing was
+    /// shown.
+    pub fn show_quantities(
+        &mut self,
+        gpu: &Gpu,
+        quantities: &[f32],
+        range: Option<[f32; 2]>,
+    ) -> Option<ColourBar> {
+        super::offscreen::show_quantities(gpu, &mut self.scene, &self.accum, quantities, range)
     }
 
     /// The current image at the traced resolution, without anything drawn

@@ -16,38 +16,49 @@ use super::shade::trace;
 /// holds the coarser ones, so each level traces only the pixels it adds.
 pub const STRIDES: [u32; 4] = [8, 4, 2, 1];
 
-/// Pixels traced between two looks at the cancel flag: a few milliseconds
-/// of work, so that a camera move stops a stale reference at once.
-const CHUNK: usize = 2048;
-
 /// The reference's radiance at the pixel centres of a `width x height`
 /// image, through the lens centre (the ray of the views), level by level.
+/// One refinement serves the viewer's worker thread and the page's slices
+/// between frames: both call [`Self::refine_some`], a few pixels at a
+/// time, and look between calls whether the picture moved on.
 pub struct ErrorImage {
     scene: PreparedScene,
     width: u32,
     height: u32,
-    /// Row-major, top row first; set at the pixels of the levels done.
+    /// Row-major, top row first; set at the pixels of the levels done (and
+    /// at some of the level being traced, which nothing reads yet).
     radiance: Vec<DVec3>,
     /// Levels of [`STRIDES`] traced so far.
     levels: usize,
+    /// The pixels of the level being traced that are not traced yet, the
+    /// next one last.
+    pending: Vec<usize>,
+    /// Pixels traced so far, of all levels.
+    done: usize,
 }
 
 impl ErrorImage {
     /// Nothing traced yet.
     pub fn new(scene: &PreparedScene, width: u32, height: u32) -> Self {
-        ErrorImage {
+        let mut image = ErrorImage {
             scene: scene.sized(height).into_owned(),
             width,
             height,
             radiance: vec![DVec3::ZERO; width as usize * height as usize],
             levels: 0,
-        }
+            pending: Vec::new(),
+            done: 0,
+        };
+        image.pending = image.level_pixels(STRIDES[0]);
+        image
     }
 
     /// The image traced whole, every pixel (the headless renderer's).
     pub fn traced(scene: &PreparedScene, width: u32, height: u32) -> Self {
         let mut image = Self::new(scene, width, height);
-        while image.refine(&|| false) {}
+        while !image.finished() {
+            image.refine_some(usize::MAX);
+        }
         image
     }
 
@@ -57,25 +68,42 @@ impl ErrorImage {
         self.levels.checked_sub(1).map(|l| STRIDES[l])
     }
 
-    /// Traces the next level on the rayon pool, looking at `cancelled`
-    /// every few thousand pixels. Returns whether a level was added: false
-    /// when all are done, or when cancelled (the level is then dropped).
-    pub fn refine(&mut self, cancelled: &(dyn Fn() -> bool + Sync)) -> bool {
-        let Some(&stride) = STRIDES.get(self.levels) else {
+    /// Whether every level is traced.
+    pub fn finished(&self) -> bool {
+        self.levels == STRIDES.len()
+    }
+
+    /// The share of the image's pixels traced so far, 0 to 1: what the
+    /// status line says while a level is being traced.
+    pub fn fraction(&self) -> f64 {
+        self.done as f64 / self.radiance.len().max(1) as f64
+    }
+
+    /// Traces up to `budget` pixels of the level being traced, on the
+    /// rayon pool (on wasm32, without threads, rayon runs them on the
+    /// calling thread). Returns whether that finished the level: a new
+    /// [`Self::stride`] to show. Once all are done it does nothing.
+    pub fn refine_some(&mut self, budget: usize) -> bool {
+        if self.finished() {
             return false;
-        };
-        let pixels = self.level_pixels(stride);
-        let mut traced = Vec::with_capacity(pixels.len());
-        for chunk in pixels.chunks(CHUNK) {
-            if cancelled() {
-                return false;
-            }
-            traced.par_extend(chunk.par_iter().map(|&p| (p, self.centre_radiance(p))));
         }
+        let start = self.pending.len().saturating_sub(budget);
+        let batch = self.pending.split_off(start);
+        let traced: Vec<(usize, DVec3)> = batch
+            .par_iter()
+            .map(|&p| (p, self.centre_radiance(p)))
+            .collect();
+        self.done += traced.len();
         for (p, radiance) in traced {
             self.radiance[p] = radiance;
         }
+        if !self.pending.is_empty() {
+            return false;
+        }
         self.levels += 1;
+        if let Some(&stride) = STRIDES.get(self.levels) {
+            self.pending = self.level_pixels(stride);
+        }
         true
     }
 
@@ -116,6 +144,17 @@ impl ErrorImage {
     /// the pixel centres; black where no level has traced yet).
     pub fn rgba8(&self) -> image::RgbaImage {
         super::output::to_rgba8(&self.radiance, self.width, self.height, self.scene.exposure)
+    }
+
+    /// The GPU's picture as `render` encodes it, from its radiance at the
+    /// pixel centres (four floats per pixel, the view's read-back): what
+    /// FLIP compares with [`Self::rgba8`].
+    pub fn gpu_rgba8(&self, gpu: &[f32]) -> image::RgbaImage {
+        let radiance: Vec<DVec3> = gpu
+            .chunks_exact(4)
+            .map(|q| DVec3::new(q[0].into(), q[1].into(), q[2].into()))
+            .collect();
+        super::output::to_rgba8(&radiance, self.width, self.height, self.scene.exposure)
     }
 
     /// The error view's quantities: four floats per pixel, row by row, the
@@ -189,17 +228,25 @@ mod tests {
     }
 
     #[test]
-    fn refining_ends_at_the_full_image_and_cancelling_keeps_the_last_level() {
+    fn refining_a_few_pixels_at_a_time_ends_at_the_full_image() {
         let scene = whitted();
         let mut image = ErrorImage::new(&scene, 16, 9);
         assert_eq!(image.stride(), None);
         assert!(image.quantities(&[0.0; 4 * 16 * 9]).is_empty());
-        assert!(image.refine(&|| false));
+        // The coarsest grid of 16 x 9 is 2 x 2 pixels.
+        assert!(!image.refine_some(3));
+        assert_eq!((image.stride(), image.fraction()), (None, 3.0 / 144.0));
+        assert!(image.refine_some(3));
         assert_eq!(image.stride(), Some(8));
-        assert!(!image.refine(&|| true));
-        assert_eq!(image.stride(), Some(8));
-        while image.refine(&|| false) {}
-        assert_eq!(image.stride(), Some(1));
+        let mut shown = vec![8];
+        while !image.finished() {
+            if image.refine_some(5) {
+                shown.extend(image.stride());
+            }
+        }
+        assert_eq!(shown, STRIDES);
+        assert_eq!(image.fraction(), 1.0);
+        assert!(!image.refine_some(5));
         let full = ErrorImage::traced(&scene, 16, 9);
         assert_eq!(image.radiance, full.radiance);
         // The GPU's radiance equal to the reference's: no error anywhere.

@@ -82,6 +82,28 @@ pub fn compare(
 /// map of `test` against `reference`, and the map coloured with magma.
 pub fn flip(reference: &RgbaImage, test: &RgbaImage) -> (f64, RgbImage) {
     let (w, h) = reference.dimensions();
+    let (map, mean) = flip_map(reference, test);
+    let colours = map.apply_color_lut(&nv_flip::magma_lut());
+    let image = RgbImage::from_raw(w, h, colours.to_vec()).expect("FLIP map of the image size");
+    (mean, image)
+}
+
+/// FLIP's scale, the error view's colour bar for it: 0 where the two
+/// pictures look alike, 1 where they differ most.
+pub const FLIP_RANGE: [f32; 2] = [0.0, 1.0];
+
+/// FLIP per pixel as the error view shows it (docs/views.md, "The error
+/// view"): four floats per pixel, row by row, the pixel's FLIP (0 to 1)
+/// first and 1 last; and the mean.
+pub fn flip_quantities(reference: &RgbaImage, test: &RgbaImage) -> (Vec<f32>, f64) {
+    let (map, mean) = flip_map(reference, test);
+    let quantities = map.to_vec().into_iter().flat_map(|f| [f, 0.0, 0.0, 1.0]);
+    (quantities.collect(), mean)
+}
+
+/// The FLIP error map of `test` against `reference`, and its mean.
+fn flip_map(reference: &RgbaImage, test: &RgbaImage) -> (nv_flip::FlipImageFloat, f64) {
+    let (w, h) = reference.dimensions();
     let rgb = |img: &RgbaImage| {
         let data: Vec<u8> = img.pixels().flat_map(|p| [p[0], p[1], p[2]]).collect();
         nv_flip::FlipImageRgb8::with_data(w, h, &data)
@@ -92,9 +114,7 @@ pub fn flip(reference: &RgbaImage, test: &RgbaImage) -> (f64, RgbImage) {
         nv_flip::DEFAULT_PIXELS_PER_DEGREE,
     );
     let mean = nv_flip::FlipPool::from_image(&map).mean();
-    let colours = map.apply_color_lut(&nv_flip::magma_lut());
-    let image = RgbImage::from_raw(w, h, colours.to_vec()).expect("FLIP map of the image size");
-    (f64::from(mean), image)
+    (map, f64::from(mean))
 }
 
 /// The shader's kind and index of a reference shape.
