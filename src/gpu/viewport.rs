@@ -377,8 +377,8 @@ impl Viewport {
     /// the GPU reports the work done ([`Self::record_job_time`] then finds
     /// it at a later frame). With timestamps the time is the job's pass
     /// alone; without, from submission until done, which in the browser
-    /// also holds the frames queued before the job (docs/web.md, "Short
-    /// GPU jobs in the page").
+    /// also holds the frames queued before the job (docs/web.md, "The
+    /// status line").
     fn submit_timed(&mut self, gpu: &Gpu, encoder: wgpu::CommandEncoder) {
         let start = Instant::now();
         gpu.queue.submit([encoder.finish()]);

@@ -1,28 +1,13 @@
-// A small path tracer in Buffer A (docs/sandbox.md, "A path tracer that
-// accumulates"): a Cornell box with two diffuse spheres, lit by a square
-// lamp in the ceiling. Buffer A adds one sample per pixel each frame to the
-// running mean of the frames before; Image shows it. Common holds the
-// scene and the tracer, Buffer A the camera and the average.
+// A small path tracer in Buffer A (docs/sandbox.md,
+// "A path tracer that accumulates, against WebGL2"): a Cornell box with
+// two diffuse spheres, lit by a square lamp in the ceiling. Buffer A adds
+// one sample per pixel each frame to the running mean of the frames
+// before; Image shows it. Common holds the scene and the tracer, Buffer A
+// the camera and the average.
 
 const float PI = 3.14159265;
 
-// A 32-bit integer hash (Chris Wellons' lowbias32): every output bit
-// depends on every input bit, and it is exact integer arithmetic, so any
-// GPU draws the same random numbers for the same pixel and frame.
-uint hash(uint x) {
-    x ^= x >> 16u;
-    x *= 0x7feb352du;
-    x ^= x >> 15u;
-    x *= 0x846ca68bu;
-    x ^= x >> 16u;
-    return x;
-}
-
-// A uniform random number in [0, 1), advancing the state.
-float random(inout uint state) {
-    state = hash(state);
-    return float(state >> 8u) / 16777216.0;
-}
+#include "random.glsl"
 
 // The box is [-1, 1] x [0, 2] x [-1, 1], open towards the camera (+z).
 const vec3 BOX_MIN = vec3(-1.0, 0.0, -1.0);
