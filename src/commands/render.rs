@@ -43,9 +43,10 @@ pub struct Args {
     #[arg(long, value_enum, default_value_t = Switch::On)]
     bvh: Switch,
     /// The ray-triangle test of meshes: cramer (Cramer's rule),
-    /// moller-trumbore, or watertight (Woop, Benthin and Wald).
-    #[arg(long, default_value = "watertight", value_parser = TriangleTest::from_name)]
-    triangles: TriangleTest,
+    /// moller-trumbore, or watertight (Woop, Benthin and Wald). Default:
+    /// the scene's `triangles` in `[render]`, else watertight.
+    #[arg(long, value_parser = TriangleTest::from_name)]
+    triangles: Option<TriangleTest>,
     /// How the GPU solves a torus's quartic: bisection, newton (the
     /// slope's zeros in closed form, Newton steps kept inside the bracket),
     /// or closed-form (the quartic's own roots in closed form, one Newton
@@ -99,7 +100,7 @@ fn show_error(
 ) -> Result<Option<crate::gpu::ColourBar>, Failure> {
     let start = Instant::now();
     let options = reference::ReferenceOptions {
-        triangles: args.triangles,
+        triangles: args.triangles.unwrap_or(scene.render.triangles),
         ..reference::ReferenceOptions::of(scene)
     };
     let prepared = reference::PreparedScene::with_options(scene, &options);
@@ -148,7 +149,7 @@ pub fn run(args: &Args) -> Result<(), Failure> {
             rayon::current_num_threads()
         );
         let options = reference::ReferenceOptions {
-            triangles: args.triangles,
+            triangles: args.triangles.unwrap_or(scene.render.triangles),
             ..reference::ReferenceOptions::of(&scene)
         };
         let prepared = reference::PreparedScene::with_options(&scene, &options);
@@ -165,7 +166,9 @@ pub fn run(args: &Args) -> Result<(), Failure> {
         if args.bvh == Switch::Off {
             options.features.bvh = false;
         }
-        options.triangles = args.triangles;
+        if let Some(triangles) = args.triangles {
+            options.triangles = triangles;
+        }
         options.torus = args.torus;
         options.view = args.view.traced();
         let mut renderer =

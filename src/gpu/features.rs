@@ -188,6 +188,7 @@ impl ShaderOptions {
     pub fn generic(scene: &Scene) -> Self {
         ShaderOptions {
             robust: scene.render.intersections.is_robust(),
+            triangles: scene.render.triangles,
             functions: crate::scene::implicit::functions(scene),
             rays: Rays::of(scene),
             ..ShaderOptions::default()
@@ -240,6 +241,27 @@ mod tests {
         .unwrap();
         let f = Features::of(&scene);
         assert!(f.has(ShapeKind::Sphere) && !f.transparency && !f.mirrors && !f.lights);
+    }
+
+    /// The scene's lecture switches reach both pipelines' options, and the
+    /// reference's (docs/rendering-model.md, "Lecture switches").
+    #[test]
+    fn the_scenes_triangle_test_and_intersections_reach_both_renderers() {
+        use crate::reference::ReferenceOptions;
+        use crate::scene::{Intersections, TriangleTest};
+        let mut scene = bundled_scene("whitted");
+        scene.render.triangles = TriangleTest::Cramer;
+        scene.render.intersections = Intersections::Textbook;
+        for options in [
+            ShaderOptions::for_scene(&scene),
+            ShaderOptions::generic(&scene),
+        ] {
+            assert_eq!(options.triangles, TriangleTest::Cramer);
+            assert!(!options.robust);
+        }
+        let reference = ReferenceOptions::of(&scene);
+        assert_eq!(reference.triangles, TriangleTest::Cramer);
+        assert!(!reference.robust);
     }
 
     #[test]

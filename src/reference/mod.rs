@@ -128,11 +128,12 @@ impl Default for ReferenceOptions {
 }
 
 impl ReferenceOptions {
-    /// The variant `scene` asks for: its `intersections`
+    /// The variant `scene` asks for: its `intersections` and `triangles`
     /// (docs/rendering-model.md, "Lecture switches"), else the defaults.
     pub fn of(scene: &Scene) -> Self {
         ReferenceOptions {
             robust: scene.render.intersections.is_robust(),
+            triangles: scene.render.triangles,
             ..ReferenceOptions::default()
         }
     }

@@ -302,6 +302,12 @@ pub struct RenderSettings {
     /// a file only when textbook.
     #[serde(skip_serializing_if = "Intersections::is_robust")]
     pub intersections: Intersections,
+    /// The ray-triangle test of meshes in both renderers: watertight, or
+    /// Cramer's rule or Möller-Trumbore, whose cracks between triangles
+    /// the lecture shows (docs/rendering-model.md, "Lecture switches").
+    /// Written to a file only when not watertight.
+    #[serde(skip_serializing_if = "TriangleTest::is_watertight")]
+    pub triangles: TriangleTest,
 }
 
 crate::named_option! {
@@ -343,6 +349,7 @@ impl Default for RenderSettings {
             reflection: true,
             refraction: true,
             intersections: Intersections::Robust,
+            triangles: TriangleTest::Watertight,
         }
     }
 }

@@ -779,6 +779,27 @@ fn lecture_switches_load_and_only_an_off_one_is_written() {
     assert_eq!(loads(&written).render, scene.render);
 }
 
+/// `triangles` in `[render]` (docs/scene-format.md): written only when not
+/// watertight, read back the same, a name it lacks refused at its key.
+#[test]
+fn a_triangle_test_round_trips_and_a_bad_name_is_refused() {
+    let scene = loads("[render]\ntriangles = \"moller-trumbore\"\n");
+    assert_eq!(scene.render.triangles, super::TriangleTest::MollerTrumbore);
+    let written = scene.to_toml_string();
+    assert!(
+        written.contains("triangles = \"moller-trumbore\""),
+        "{written}"
+    );
+    assert_eq!(loads(&written).render, scene.render);
+    let watertight = loads("[render]\ntriangles = \"watertight\"\n").to_toml_string();
+    assert!(!watertight.contains("triangles ="), "{watertight}");
+    rejects_with(
+        "[render]\ntriangles = \"fast\"\n",
+        "render.triangles",
+        "`watertight`",
+    );
+}
+
 #[test]
 fn textbook_intersections_round_trip_and_a_bad_name_is_refused() {
     let scene = loads("[render]\nintersections = \"textbook\"\n");
@@ -1072,6 +1093,7 @@ mod properties {
             ambient in vec3(non_negative()),
             exposure in positive(),
             switches in 0..16u32,
+            triangles in 0..3usize,
         ) -> RenderSettings {
             RenderSettings {
                 max_depth,
@@ -1087,6 +1109,7 @@ mod properties {
                 } else {
                     Intersections::Robust
                 },
+                triangles: super::super::TriangleTest::ALL[triangles],
             }
         }
     }

@@ -4,13 +4,14 @@
 use super::widgets::{MIN_POSITIVE, VALUE_LIMIT, color_row, slider};
 use super::{ViewSettings, field};
 use crate::gpu::MIN_SCALE;
-use crate::scene::{Intersections, NamedOption, RenderSettings};
+use crate::scene::{Intersections, NamedOption, RenderSettings, TriangleTest};
 use egui::{ComboBox, Grid, Slider, Ui};
 
 pub(super) fn render_section(ui: &mut Ui, render: &mut RenderSettings, view: &mut ViewSettings) {
     Grid::new("render").num_columns(2).show(ui, |ui| {
         super::view_menu::lecture_switches(ui, render);
         intersections_row(ui, &mut render.intersections);
+        triangles_row(ui, &mut render.triangles);
         field(
             ui,
             "max depth",
@@ -119,19 +120,39 @@ pub(super) fn render_section(ui: &mut Ui, render: &mut RenderSettings, view: &mu
 /// (docs/rendering-model.md, "Lecture switches"): the textbook ones show
 /// their leaks and acne in the error, normals and cost views.
 fn intersections_row(ui: &mut Ui, intersections: &mut Intersections) {
-    field(
+    named_row(
         ui,
         "intersections",
         "Robust (camera-relative, stable roots, scaled offsets) or the lecture's \
          textbook routines (naive quadratic, world coordinates, offset 1e-3), saved \
          with the scene: the error, normals and cost views show the leaks and acne \
          of the textbook ones far from the origin or at small scales",
+        intersections,
     );
-    ComboBox::from_id_salt("intersections")
-        .selected_text(intersections.name())
+}
+
+/// The ray-triangle test of meshes, a lecture switch saved with the scene
+/// (docs/rendering-model.md, "Lecture switches").
+fn triangles_row(ui: &mut Ui, triangles: &mut TriangleTest) {
+    named_row(
+        ui,
+        "triangle test",
+        "The ray-triangle test of meshes, saved with the scene: watertight (no ray \
+         slips between two triangles that share an edge), or Cramer's rule or \
+         Möller-Trumbore, the lecture's, whose rounding can let a ray through an \
+         edge (what is behind shows in the crack)",
+        triangles,
+    );
+}
+
+/// A grid row choosing one of a named option's values.
+fn named_row<T: NamedOption + PartialEq>(ui: &mut Ui, label: &str, tooltip: &str, value: &mut T) {
+    field(ui, label, tooltip);
+    ComboBox::from_id_salt(label)
+        .selected_text(value.name())
         .show_ui(ui, |ui| {
-            for i in Intersections::ALL {
-                ui.selectable_value(intersections, i, i.name());
+            for &v in T::all() {
+                ui.selectable_value(value, v, v.name());
             }
         });
     ui.end_row();

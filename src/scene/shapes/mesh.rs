@@ -40,7 +40,10 @@ pub struct Mesh {
 crate::named_option! {
     /// The ray-triangle tests the renderers offer (docs/rendering-model.md,
     /// "Triangle meshes"): the same hits in exact arithmetic, different
-    /// rounding, speed and behaviour on shared edges.
+    /// rounding, speed and behaviour on shared edges. `triangles` in
+    /// `[render]` picks one for both renderers.
+    #[derive(Serialize, Deserialize)]
+    #[serde(rename_all = "kebab-case")]
     pub enum TriangleTest {
         /// Cramer's rule with signed volumes (determinants; Shirley and
         /// Marschner, "Fundamentals of Computer Graphics", 4.4.2).
@@ -51,6 +54,12 @@ crate::named_option! {
         /// two triangles that share an edge.
         #[default]
         Watertight = "watertight",
+    }
+}
+
+impl TriangleTest {
+    pub fn is_watertight(&self) -> bool {
+        *self == TriangleTest::Watertight
     }
 }
 
