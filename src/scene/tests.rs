@@ -779,44 +779,37 @@ fn lecture_switches_load_and_only_an_off_one_is_written() {
     assert_eq!(loads(&written).render, scene.render);
 }
 
-/// `triangles` in `[render]` (docs/scene-format.md): written only when not
-/// watertight, read back the same, a name it lacks refused at its key.
-#[test]
-fn a_triangle_test_round_trips_and_a_bad_name_is_refused() {
-    let scene = loads("[render]\ntriangles = \"moller-trumbore\"\n");
-    assert_eq!(scene.render.triangles, super::TriangleTest::MollerTrumbore);
+/// A named lecture switch of `[render]` (docs/scene-format.md): `key =
+/// value` is written and read back the same, `key = default` is not
+/// written, a name it lacks is refused at its key with the names it has.
+fn named_switch_round_trips(key: &str, value: &str, default: &str, a_name: &str) -> Scene {
+    let scene = loads(&format!("[render]\n{key} = \"{value}\"\n"));
     let written = scene.to_toml_string();
     assert!(
-        written.contains("triangles = \"moller-trumbore\""),
+        written.contains(&format!("{key} = \"{value}\"")),
         "{written}"
     );
     assert_eq!(loads(&written).render, scene.render);
-    let watertight = loads("[render]\ntriangles = \"watertight\"\n").to_toml_string();
-    assert!(!watertight.contains("triangles ="), "{watertight}");
+    let unwritten = loads(&format!("[render]\n{key} = \"{default}\"\n")).to_toml_string();
+    assert!(!unwritten.contains(&format!("{key} =")), "{unwritten}");
     rejects_with(
-        "[render]\ntriangles = \"fast\"\n",
-        "render.triangles",
-        "`watertight`",
+        &format!("[render]\n{key} = \"naive\"\n"),
+        &format!("render.{key}"),
+        &format!("`{a_name}`"),
     );
+    scene
+}
+
+#[test]
+fn a_triangle_test_round_trips_and_a_bad_name_is_refused() {
+    let scene = named_switch_round_trips("triangles", "moller-trumbore", "watertight", "cramer");
+    assert_eq!(scene.render.triangles, super::TriangleTest::MollerTrumbore);
 }
 
 #[test]
 fn textbook_intersections_round_trip_and_a_bad_name_is_refused() {
-    let scene = loads("[render]\nintersections = \"textbook\"\n");
+    let scene = named_switch_round_trips("intersections", "textbook", "robust", "textbook");
     assert_eq!(scene.render.intersections, Intersections::Textbook);
-    let written = scene.to_toml_string();
-    assert!(
-        written.contains("intersections = \"textbook\""),
-        "{written}"
-    );
-    assert_eq!(loads(&written).render, scene.render);
-    let robust = loads("[render]\nintersections = \"robust\"\n").to_toml_string();
-    assert!(!robust.contains("intersections"), "{robust}");
-    rejects_with(
-        "[render]\nintersections = \"naive\"\n",
-        "render.intersections",
-        "`textbook`",
-    );
 }
 
 #[test]
