@@ -11,7 +11,7 @@ mod common;
 
 use std::path::{Path, PathBuf};
 
-use common::xwindow::{Display, Rect, Window};
+use common::xwindow::{Display, Rect, Window, serial};
 use glam::DVec3;
 use image::{Rgba, RgbaImage};
 use raysandbox::app::camera_model;
@@ -188,6 +188,7 @@ fn on_the_lines(
 
 #[test]
 fn shift_click_shows_a_pixels_ray_tree_which_stays_in_the_scene_while_orbiting() {
+    let _serial = serial();
     let Some(display) = Display::start() else {
         return;
     };
@@ -263,6 +264,7 @@ fn film_pixels(image: &RgbaImage, area: Rect) -> Vec<(i32, i32)> {
 
 #[test]
 fn the_observer_sees_the_scene_camera_follow_the_panel_and_orbits_alone() {
+    let _serial = serial();
     let Some(display) = Display::start() else {
         return;
     };
@@ -339,6 +341,7 @@ fn shift_click(viewer: &mut Window, at: (u32, u32)) -> (u32, u32) {
 
 #[test]
 fn the_camera_model_draws_the_selected_pixels_rays_and_they_follow_the_observer() {
+    let _serial = serial();
     let Some(display) = Display::start() else {
         return;
     };

@@ -5,10 +5,9 @@
 mod common;
 
 use std::path::{Path, PathBuf};
-use std::sync::{Mutex, MutexGuard};
 use std::time::Duration;
 
-use common::xwindow::{Display, Rect, Window, crop};
+use common::xwindow::{Display, Rect, Window, crop, serial};
 use raysandbox::compare::diff_images;
 use raysandbox::gpu::{OUTLINE_COLOR, render_image};
 use raysandbox::reference;
@@ -51,14 +50,6 @@ fn in_view(viewer: &Window, (x, y): (u32, u32)) -> (u32, u32) {
         "({x}, {y}) is not in the uncovered image {view:?}"
     );
     (x as u32, y as u32)
-}
-
-/// One viewer at a time: each drives its own X server, but lavapipe's
-/// rendering shares the machine's two cores.
-static SERIAL: Mutex<()> = Mutex::new(());
-
-fn serial() -> MutexGuard<'static, ()> {
-    SERIAL.lock().unwrap_or_else(|e| e.into_inner())
 }
 
 /// `raysandbox view ARGS`, refined to 1 sample per pixel (what a headless

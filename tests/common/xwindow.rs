@@ -15,10 +15,20 @@ use std::path::Path;
 use std::process::{Child, Command, Stdio};
 use std::sync::atomic::{AtomicU32, Ordering};
 use std::sync::mpsc::{Receiver, RecvTimeoutError, channel};
-use std::sync::{Arc, Mutex};
+use std::sync::{Arc, Mutex, MutexGuard};
 use std::time::{Duration, Instant};
 
 use image::RgbaImage;
+
+/// One viewer at a time in a test binary: each test drives its own X
+/// server, but lavapipe's rendering shares the machine's two cores, and a
+/// viewer starved by two others answered too late for the tests' waits.
+static SERIAL: Mutex<()> = Mutex::new(());
+
+/// Held for the whole of a window test ([`SERIAL`]).
+pub fn serial() -> MutexGuard<'static, ()> {
+    SERIAL.lock().unwrap_or_else(|e| e.into_inner())
+}
 
 /// Lavapipe on two cores is slow: refinement can take a while.
 const TIMEOUT: Duration = Duration::from_secs(120);
