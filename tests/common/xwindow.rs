@@ -196,6 +196,8 @@ impl<'d> Window<'d> {
     /// Waits for an event line starting with `prefix`; returns the rest.
     pub fn wait_for(&mut self, prefix: &str) -> String {
         let deadline = Instant::now() + TIMEOUT;
+        // The last lines passed over, for the failure's message.
+        let mut passed: Vec<String> = Vec::new();
         loop {
             let left = deadline.saturating_duration_since(Instant::now());
             match self.events.recv_timeout(left) {
@@ -203,8 +205,14 @@ impl<'d> Window<'d> {
                     if let Some(rest) = line.strip_prefix(&format!("event: {prefix}")) {
                         return rest.trim().to_string();
                     }
+                    passed.push(line);
+                    if passed.len() > 20 {
+                        passed.remove(0);
+                    }
                 }
-                Err(RecvTimeoutError::Timeout) => panic!("no '{prefix}' event within {TIMEOUT:?}"),
+                Err(RecvTimeoutError::Timeout) => panic!(
+                    "no '{prefix}' event within {TIMEOUT:?}; the last lines before: {passed:#?}"
+                ),
                 Err(RecvTimeoutError::Disconnected) => panic!(
                     "the window closed while waiting for '{prefix}': {:?}",
                     self.child.try_wait()
