@@ -1,6 +1,5 @@
-// Random numbers for the path tracer, included by common.glsl; the
-// tests' multipass shaders include it too. See docs/sandbox.md,
-// "A path tracer that accumulates, against WebGL2".
+// Random numbers for the path tracer, included by common.glsl (see
+// docs/sandbox.md, "A path tracer that accumulates, against WebGL2").
 
 // A 32-bit integer hash (Chris Wellons' lowbias32): every output bit
 // depends on every input bit, and it is exact integer arithmetic, so any
