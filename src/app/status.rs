@@ -150,7 +150,7 @@ fn rays_label(rate: f64) -> String {
 }
 
 /// The status line: "F1: help" first, so that it is never pushed off; the
-/// figures wrap, then what a view's colours mean (`legend`); the message on
+/// figures wrap, each one whole, then what a view's colours mean (`legend`); the message on
 /// a row of its own, wrapped.
 pub fn show(
     ui: &mut egui::Ui,
@@ -160,6 +160,10 @@ pub fn show(
     message: Option<&str>,
 ) {
     ui.horizontal_wrapped(|ui| {
+        // A figure moves to the next row whole: broken inside ("0 / 1" on
+        // one row, "spp" on the next) it would make the line's height
+        // change with the numbers.
+        ui.style_mut().wrap_mode = Some(egui::TextWrapMode::Extend);
         ui.label("F1: help");
         ui.separator();
         let (time, how) = timing_label(status);
