@@ -1181,6 +1181,10 @@ fn orbiting_with_the_mouse_changes_the_picture_and_the_address() {
     let mut unmoved = scene.clone();
     unmoved.camera = whitted.camera.clone();
     assert_eq!(unmoved, whitted, "only the camera changed");
+    // The sample after the drag is traced in jobs, its rows not traced yet
+    // black, and a job may take longer than two screenshots: the picture is
+    // taken once the page says the sample is complete.
+    page.wait_for("ready");
     assert_like_reference("orbit", &capture_change(&mut page, &before), &scene);
 }
 
@@ -1607,12 +1611,7 @@ fn the_error_view_is_traced_in_slices_in_the_page_and_it_stays_responsive() {
         return;
     };
     page.wait_for("ready");
-    loop {
-        page.key("v");
-        if page.wait_for("view-shown") == "error" {
-            break;
-        }
-    }
+    show_view(&mut page, "error");
     let shown = Instant::now();
     let mut strides = Vec::new();
     let mut script_ms = Vec::new();
@@ -1677,5 +1676,95 @@ fn the_error_view_is_traced_in_slices_in_the_page_and_it_stays_responsive() {
         blue * 100 >= (w * h) as usize * 98,
         "only {blue} pixels are blue (saved in {})",
         file.display()
+    );
+}
+
+/// Presses V in the page until it shows `view`.
+fn show_view(page: &mut Browser, view: &str) {
+    loop {
+        page.key("v");
+        if page.wait_for("view-shown") == view {
+            return;
+        }
+    }
+}
+
+/// A scalar view in the page gets its colour bar fitted to the picture
+/// traced, as natively: the page cannot wait for the quantities to come
+/// back, so a later frame fits it (docs/views.md). The bar's range is the
+/// native renderer's on the same scene and size, and the picture, drawn
+/// with it, the native one.
+#[test]
+fn the_depth_view_in_the_page_gets_the_colour_bar_of_the_native_renderer() {
+    let Some((_display, mut page)) = browser::open_page("?samples=1&ui=0") else {
+        return;
+    };
+    page.wait_for("ready");
+    show_view(&mut page, "depth");
+    let told = page.wait_for("colour-bar");
+    let range: Vec<f32> = told.split(' ').map(|n| n.parse().unwrap()).collect();
+    page.wait_for("ready");
+    let picture = page.capture_picture();
+
+    let gpu = common::gpu().expect("a GPU adapter for the native render");
+    let (_, scene) = whitted();
+    let options = raysandbox::gpu::ShaderOptions {
+        view: raysandbox::gpu::View::Depth,
+        ..raysandbox::gpu::ShaderOptions::for_scene(&scene)
+    };
+    let source = raysandbox::gpu::ShaderSource::embedded();
+    let mut native =
+        raysandbox::gpu::OffscreenRenderer::new(&gpu, &source, &options, &scene, SIZE.0, SIZE.1)
+            .unwrap_or_else(|e| panic!("{e}"));
+    native.render(&gpu, 1).unwrap_or_else(|e| panic!("{e}"));
+    let bar = native
+        .fit_colour_bar(&gpu)
+        .unwrap_or_else(|e| panic!("{e}"))
+        .expect("the depth view has a colour bar");
+    eprintln!("page's colour bar {range:?}, native {:?}", bar.range);
+    for (page_end, native_end) in range.iter().zip(bar.range) {
+        assert!(
+            (page_end - native_end).abs() <= 1e-3 * native_end.abs().max(1.0),
+            "page {range:?}, native {:?}",
+            bar.range
+        );
+    }
+    let expected = native.read_image(&gpu).unwrap_or_else(|e| panic!("{e}"));
+    let d = diff_images(&picture, &expected);
+    eprintln!("depth view: page vs native: {d:?}");
+    if d.mean_abs > 0.5 || d.frac_over_8 > 0.002 {
+        let out = std::env::temp_dir();
+        picture.save(out.join("web-depth-page.png")).unwrap();
+        expected.save(out.join("web-depth-native.png")).unwrap();
+        panic!(
+            "the page's depth view differs from the native one (both saved in {})",
+            out.display()
+        );
+    }
+}
+
+/// The page has no FLIP (nv-flip is C++, built natively only): the
+/// error-flip view shows the levels and says so in the status line.
+#[test]
+fn the_flip_view_in_the_page_says_flip_is_native_only_and_shows_the_levels() {
+    let Some((_display, mut page)) = browser::open_page("?samples=1&ui=0") else {
+        return;
+    };
+    page.wait_for("ready");
+    show_view(&mut page, "error-flip");
+    // Every event, since `error-level` lines would stop `wait_for`.
+    let status = loop {
+        let line = page.wait_for("");
+        match line.strip_prefix("error-status ") {
+            Some(status) if status.starts_with("reference at every pixel") => {
+                break status.to_string();
+            }
+            _ => {}
+        }
+    };
+    assert!(
+        status.contains("FLIP is not available in the page")
+            && status.contains("|difference| in levels shown"),
+        "{status}"
     );
 }

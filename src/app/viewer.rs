@@ -20,7 +20,8 @@ use super::status::SampleClock;
 use super::ui::{self, Command, Editor, Host, Status, ViewInput};
 use super::{camera_model, orbit, panel};
 use crate::gpu::{
-    FrameStatus, Gpu, LineOverlay, Pipelines, Refine, ShaderOptions, ShaderSource, View, Viewport,
+    ColourBar, FrameStatus, Gpu, LineOverlay, Pipelines, Refine, ShaderOptions, ShaderSource,
+    TexelRead, View, Viewport,
 };
 use crate::reference;
 use crate::scene::{Camera, NamedOption, Scene, SceneError};
@@ -117,6 +118,9 @@ pub struct Viewer {
     drawing: Option<ShaderOptions>,
     /// The error view's f64 reference, traced beside the window.
     error_view: ErrorView,
+    /// A scalar view's quantities on their way back, to fit its colour bar
+    /// to: mapped at once natively, a frame or more later in the page.
+    bar_quantities: Option<TexelRead>,
     /// Ray trees asked for so far (numbers the trees).
     trees_asked: u64,
     /// What the line overlay holds ([`Lines`]); `None`: nothing.
@@ -185,6 +189,7 @@ impl Viewer {
             deferred: None,
             drawing: None,
             error_view: ErrorView::default(),
+            bar_quantities: None,
             trees_asked: 0,
             lines_for: None,
             pixel_rays: camera_model::PixelRays::default(),
@@ -485,6 +490,7 @@ impl Viewer {
         }
         if self.editor.view.shown != start.shown {
             self.editor.view.colour_bar = None;
+            self.bar_quantities = None;
             self.editor.view.progress = None;
             self.error_view.cancel();
             self.event(&format!("view-shown {}", self.editor.view.shown.name()));
@@ -760,21 +766,31 @@ impl Viewer {
         self.sample_clock.update(samples, Instant::now());
         let fitted = shown.scalar() && traced && !dragging && samples > 0;
         if fitted && !shown.is_error() {
-            // The colour bar of the image just traced, shown by the next frame.
-            match gfx.viewport.fit_colour_bar(&gfx.gpu) {
-                Ok(bar) => self.editor.view.colour_bar = bar,
-                Err(e) => log::error!("{e}"),
+            self.bar_quantities = Some(gfx.viewport.start_read_sums(&gfx.gpu));
+            // Natively this maps the copy at once; in the page a later
+            // frame takes the quantities.
+            if let Err(e) = gfx.gpu.wait() {
+                log::error!("colour bar: {e}");
             }
-            gfx.window.request_redraw();
+        }
+        let bar_fitted = take_colour_bar(&mut self.bar_quantities, gfx);
+        if let Some(bar) = bar_fitted {
+            self.editor.view.colour_bar = bar;
         }
         // Not while a scene waits for its pipelines (the picture is the
-        // last scene's), nor before the colour bar is fitted.
+        // last scene's), nor before the colour bar is fitted and shown.
         let ready = !self.settled
             && samples >= max_samples
             && !dragging
             && !fitted
+            && bar_fitted.is_none()
+            && self.bar_quantities.is_none()
             && self.deferred.is_none();
         let jobs = ready.then(|| (gfx.viewport.take_longest_job(), gfx.viewport.timing()));
+        if let Some(Some(bar)) = bar_fitted {
+            let [lo, hi] = bar.range;
+            self.event(&format!("colour-bar {lo} {hi}"));
+        }
         if status == FrameStatus::Presented && samples > 0 && !self.presented {
             self.presented = true;
             let (w, h) = resolution;
@@ -872,4 +888,24 @@ impl Viewer {
 /// Whether two scenes differ at most in camera and render settings.
 fn same_shapes(a: &Scene, b: &Scene) -> bool {
     a.lights == b.lights && a.materials == b.materials && a.same_shapes(b)
+}
+
+/// Fits the colour bar to a scalar view's quantities once they are back
+/// (`read`, then emptied), for the next frame to show; asks for frames
+/// until then. `Some` once it did: the bar, `None` where no pixel has a
+/// quantity.
+fn take_colour_bar(read: &mut Option<TexelRead>, gfx: &mut Graphics) -> Option<Option<ColourBar>> {
+    let pending = read.as_ref()?;
+    gfx.window.request_redraw();
+    let result = pending.try_take()?;
+    *read = None;
+    Some(match result {
+        Ok(texels) => gfx
+            .viewport
+            .fit_colour_bar(&bytemuck::pod_collect_to_vec(&texels)),
+        Err(e) => {
+            log::error!("colour bar: reading the view back: {e}");
+            None
+        }
+    })
 }

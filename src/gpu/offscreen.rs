@@ -211,12 +211,18 @@ pub(super) fn fit_colour_bar(
     scene: &mut SceneBuffers,
     accum: &Accumulator,
 ) -> Result<Option<ColourBar>, GpuWaitError> {
-    let quantities = read_sums(gpu, accum)?;
-    let fitted = colour_bar(&quantities);
+    Ok(fit_colour_bar_to(scene, &read_sums(gpu, accum)?))
+}
+
+/// Sets `scene`'s colour bar to fit a view's `quantities` ([`colour_bar`]);
+/// the next pass encoded shows it. `None`, and nothing set, where no
+/// pixel has one.
+pub(super) fn fit_colour_bar_to(scene: &mut SceneBuffers, quantities: &[f32]) -> Option<ColourBar> {
+    let fitted = colour_bar(quantities);
     if let Some(bar) = fitted {
         scene.set_view_range(bar.range);
     }
-    Ok(fitted)
+    fitted
 }
 
 /// The current sums of `accum`, four floats per pixel, row by row

@@ -4,6 +4,8 @@
 //! or at the start and end of one render pass (`TIMESTAMP_QUERY` alone,
 //! which WebGPU in the browser has too).
 
+use std::sync::Arc;
+use std::sync::atomic::{AtomicBool, Ordering};
 use std::time::Duration;
 
 use super::context::{Gpu, TIMER_FEATURES};
@@ -41,6 +43,10 @@ pub struct GpuTimer {
     readback: wgpu::Buffer,
     /// Nanoseconds per timestamp tick.
     period: f64,
+    /// A [`Self::read_later`] is under way: `readback` is mapped or about
+    /// to be, and a command that copies into it would make its whole
+    /// submission invalid (WebGPU drops it: a job's pixels never drawn).
+    reading: Arc<AtomicBool>,
 }
 
 impl GpuTimer {
@@ -88,6 +94,7 @@ impl GpuTimer {
                 wgpu::BufferUsages::COPY_DST | wgpu::BufferUsages::MAP_READ,
             ),
             period: f64::from(gpu.queue.get_timestamp_period()),
+            reading: Arc::new(AtomicBool::new(false)),
         }
     }
 
@@ -130,19 +137,27 @@ impl GpuTimer {
 
     /// The same without waiting (the browser cannot): `done` gets the time
     /// once the GPU has finished the frame and the buffer is mapped, `None`
-    /// if it could not be read. Submit no other frame timed by this timer
-    /// before `done` is called: its buffer is in use until then.
+    /// if it could not be read. Until then the timer is
+    /// [`Self::reading`]: time nothing else with it.
     pub fn read_later(&self, done: impl FnOnce(Option<Duration>) + wgpu::WasmNotSend + 'static) {
         let (readback, period) = (self.readback.clone(), self.period);
+        let reading = Arc::clone(&self.reading);
+        reading.store(true, Ordering::Release);
         self.readback
             .slice(..)
             .map_async(wgpu::MapMode::Read, move |mapped| {
-                done(
-                    mapped
-                        .ok()
-                        .and_then(|()| Self::take_time(&readback, period)),
-                );
+                let time = mapped
+                    .ok()
+                    .and_then(|()| Self::take_time(&readback, period));
+                reading.store(false, Ordering::Release);
+                done(time);
             });
+    }
+
+    /// Whether a [`Self::read_later`] has not delivered its time yet: a
+    /// pass timed now could not have its timestamps copied back.
+    pub fn reading(&self) -> bool {
+        self.reading.load(Ordering::Acquire)
     }
 
     /// Reads the mapped timestamps and unmaps the buffer.

@@ -286,8 +286,8 @@ impl Viewport {
                 self.jobs.restart();
                 let mut encoder = gpu.device.create_command_encoder(&Default::default());
                 let (width, height) = self.accum.size();
-                self.trace_job(gpu, &mut encoder, 0..width * height);
-                self.submit_timed(gpu, encoder);
+                let timed = self.trace_job(gpu, &mut encoder, 0..width * height);
+                self.submit_timed(gpu, encoder, timed);
                 self.whole_frame = true;
             }
             // Shows what is done while the last job runs (the browser only).
@@ -299,8 +299,8 @@ impl Viewport {
                 }
                 let span = self.jobs.next(self.accum.pixels_done(), self.accum.size());
                 let mut encoder = gpu.device.create_command_encoder(&Default::default());
-                self.trace_job(gpu, &mut encoder, span);
-                self.submit_timed(gpu, encoder);
+                let timed = self.trace_job(gpu, &mut encoder, span);
+                self.submit_timed(gpu, encoder, timed);
                 self.whole_frame = false;
             }
         }
@@ -357,18 +357,29 @@ impl Viewport {
 
     /// Encodes the trace of the pixels `span` of the next sample, its pass
     /// timed where the adapter has timestamps.
-    fn trace_job(&mut self, gpu: &Gpu, encoder: &mut wgpu::CommandEncoder, span: Range<u32>) {
+    /// Encodes the trace of `span`, its pass timed by the timer unless the
+    /// timer still reads the last job's time back (in the page, a moving
+    /// frame follows the last before that is known). Returns whether it is
+    /// timed.
+    fn trace_job(
+        &mut self,
+        gpu: &Gpu,
+        encoder: &mut wgpu::CommandEncoder,
+        span: Range<u32>,
+    ) -> bool {
+        let timer = self.timer.as_ref().filter(|timer| !timer.reading());
         encode_job(
             &gpu.queue,
             encoder,
             (&self.pipelines, &self.scene),
             &mut self.accum,
             span,
-            self.timer.as_ref().map(GpuTimer::pass_writes),
+            timer.map(GpuTimer::pass_writes),
         );
-        if let Some(timer) = &self.timer {
+        if let Some(timer) = timer {
             timer.resolve(encoder);
         }
+        timer.is_some()
     }
 
     /// Submits a job and measures it: natively by waiting for it (which
@@ -379,7 +390,7 @@ impl Viewport {
     /// alone; without, from submission until done, which in the browser
     /// also holds the frames queued before the job (docs/web.md, "The
     /// status line").
-    fn submit_timed(&mut self, gpu: &Gpu, encoder: wgpu::CommandEncoder) {
+    fn submit_timed(&mut self, gpu: &Gpu, encoder: wgpu::CommandEncoder, timed: bool) {
         let start = Instant::now();
         gpu.queue.submit([encoder.finish()]);
         let slot = Arc::clone(&self.job_time);
@@ -387,7 +398,7 @@ impl Viewport {
             let time = time.unwrap_or_else(|| start.elapsed());
             *slot.lock().unwrap_or_else(PoisonError::into_inner) = Some(time);
         };
-        match &self.timer {
+        match self.timer.as_ref().filter(|_| timed) {
             Some(timer) if cfg!(target_arch = "wasm32") => timer.read_later(store),
             Some(timer) => store(timer.read(gpu)),
             None => gpu.queue.on_submitted_work_done(move || store(None)),
@@ -426,17 +437,17 @@ impl Viewport {
         self.jobs.take_longest()
     }
 
-    /// For a scalar view, once a sample is traced: reads the quantities
-    /// back (a copy of the traced image, waited for) and fits the colour
-    /// bar to them; the next frame shows it (docs/views.md).
-    pub fn fit_colour_bar(&mut self, gpu: &Gpu) -> Result<Option<ColourBar>, GpuWaitError> {
-        super::offscreen::fit_colour_bar(gpu, &mut self.scene, &self.accum)
+    /// For a scalar view: fits the colour bar to `quantities`, the ones
+    /// of a traced sample ([`Self::start_read_sums`]); the next frame shows
+    /// it (docs/views.md). `None` where no pixel has a quantity.
+    pub fn fit_colour_bar(&mut self, quantities: &[f32]) -> Option<ColourBar> {
+        super::offscreen::fit_colour_bar_to(&mut self.scene, quantities)
     }
 
     /// The view's quantities of the image traced, on their way back to
-    /// the CPU (four floats per pixel, row by row, once taken): the error
-    /// view compares them with the reference. Not waited for: the page
-    /// takes them a frame later.
+    /// the CPU (four floats per pixel, row by row, once taken): for the
+    /// colour bar, and for the error view to compare with the reference.
+    /// Not waited for: the page takes them a frame later.
     pub fn start_read_sums(&self, gpu: &Gpu) -> TexelRead {
         TexelRead::start(gpu, self.accum.sum())
     }
