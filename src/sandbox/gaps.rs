@@ -40,7 +40,9 @@
 //!
 //! - `mix(x, y, a)` in the declaration of a global `const`, which naga
 //!   cannot evaluate as a constant: its definition in GLSL,
-//!   `((x) * (1.0 - (a)) + (y) * (a))`.
+//!   `((x) * (1.0 - (a)) + (y) * (a))`; also in the body of a `#define`
+//!   that such a declaration uses (`const vec3 c = HSV2RGB(...);`), or
+//!   that a macro it uses does.
 //!
 //! The rewrites of names and calls (not `dot`) also apply inside the body
 //! of a `#define`, and `const in` there (`#define _in(T) const in T`, for
@@ -153,6 +155,7 @@ pub fn bridge(scan: &Scan, mut text: String) -> Bridged {
     // keep the order they are made in.
     sampler_parameters(tokens, &mut text, &mut insertions);
     let mut overloads = Vec::new();
+    let in_constants = macros_in_constants(tokens);
     let (mut braces, mut parens) = (0i32, 0i32);
     // In the declaration of a global `const` (a constant expression).
     let mut global_const = false;
@@ -171,7 +174,8 @@ pub fn bridge(scan: &Scan, mut text: String) -> Bridged {
             ")" => parens -= 1,
             "const" if braces == 0 && parens > 0 => scan::blank(&mut text, t.start..t.end()),
             _ if t.kind == Kind::Directive => {
-                define_body_rewrites(t, &mut text, &mut insertions, &mut overloads);
+                let rewrites = &mut (&mut insertions, &mut overloads);
+                define_body_rewrites(t, &mut text, rewrites, &in_constants);
             }
             "dot" if global_const => {}
             "mix" if global_const => mix_in_constant(tokens, i, &mut text, &mut insertions),
@@ -265,34 +269,88 @@ fn rewrite_token(
     None
 }
 
+/// The name and body of the `#define` directive token `t`: the macro's
+/// tokens, from `define` on, at their offsets in the whole text.
+fn define_tokens<'a>(t: &Token<'a>) -> Option<Vec<Token<'a>>> {
+    let body = t.text.strip_prefix('#')?;
+    let inner = Scan::new(body);
+    if !inner.tokens.first().is_some_and(|d| d.is("define")) {
+        return None;
+    }
+    Some(
+        inner
+            .tokens
+            .iter()
+            .map(|k| Token {
+                start: t.start + 1 + k.start,
+                ..*k
+            })
+            .collect(),
+    )
+}
+
+/// The names of the macros that a global `const`'s declaration uses, or
+/// that such a macro's body uses (their bodies are constant expressions).
+fn macros_in_constants<'a>(tokens: &[Token<'a>]) -> Vec<&'a str> {
+    let mut used: Vec<&str> = Vec::new();
+    let mut macros: Vec<(&str, Vec<&str>)> = Vec::new();
+    let (mut depth, mut global_const) = (0i32, false);
+    for t in tokens {
+        match t.text {
+            "{" | "(" => depth += 1,
+            "}" | ")" => depth -= 1,
+            _ if depth == 0 && (t.is("const") || t.is(";")) => global_const = t.is("const"),
+            _ if t.kind == Kind::Directive => {
+                let Some(body) = t.text.strip_prefix('#') else {
+                    continue;
+                };
+                let words: Vec<&str> = Scan::new(body)
+                    .tokens
+                    .iter()
+                    .filter(|k| k.kind == Kind::Ident)
+                    .map(|k| k.text)
+                    .collect();
+                if let ["define", name, rest @ ..] = words.as_slice() {
+                    macros.push((name, rest.to_vec()));
+                }
+            }
+            word if global_const && t.kind == Kind::Ident => used.push(word),
+            _ => {}
+        }
+    }
+    let mut found: Vec<&str> = Vec::new();
+    while let Some(k) = macros.iter().position(|(name, _)| used.contains(name)) {
+        let (name, body) = macros.swap_remove(k);
+        found.push(name);
+        used.extend(body);
+    }
+    found
+}
+
 /// The rewrites of [`rewrite_token`] inside the body of `#define` (the
 /// directive token `t`), but `dot`: a macro with `dot` is also used in
-/// constant expressions, which take no call of a helper.
+/// constant expressions, which take no call of a helper. In a macro
+/// that a global `const` uses (`in_constants`), `mix` becomes its
+/// definition, as in the constant itself.
 fn define_body_rewrites(
     t: &Token,
     text: &mut String,
-    insertions: &mut Vec<(usize, String)>,
-    overloads: &mut Vec<&'static str>,
+    (insertions, overloads): &mut (&mut Vec<(usize, String)>, &mut Vec<&'static str>),
+    in_constants: &[&str],
 ) {
-    let Some(body) = t.text.strip_prefix('#') else {
+    let Some(tokens) = define_tokens(t) else {
         return;
     };
-    let inner = Scan::new(body);
-    if !inner.tokens.first().is_some_and(|d| d.is("define")) {
-        return;
-    }
-    // The macro's tokens at their offsets in the whole text.
-    let tokens: Vec<Token> = inner
-        .tokens
-        .iter()
-        .map(|k| Token {
-            start: t.start + 1 + k.start,
-            ..*k
-        })
-        .collect();
+    let constant = tokens
+        .get(1)
+        .is_some_and(|n| in_constants.contains(&n.text));
     // From the macro's name on (its parameters are names too).
     for i in 1..tokens.len() {
         if tokens[i].is("dot") {
+            continue;
+        }
+        if constant && tokens[i].is("mix") {
+            mix_in_constant(&tokens, i, text, insertions);
             continue;
         }
         // `#define _in(T) const in T`, for parameter lists.
@@ -859,6 +917,27 @@ mod tests {
             [
                 "const vec3 c =    ((a) * (1.0 - (0.25)) + ( vec3(1.0, 2.0, 3.0)) * ( 0.25));",
                 "void f() { vec3 d = mix(a, b, t); }",
+            ]
+        );
+    }
+
+    #[test]
+    fn mix_in_a_macro_that_a_global_constant_uses_becomes_its_definition() {
+        let (b, _) = bridged(
+            "#define M(c) mix(a, c, 0.5)\n\
+             #define N(c) (M(c) * 2.0)\n\
+             #define F(c) mix(a, c, t)\n\
+             const vec3 k = N(b);\n\
+             void f() { vec3 d = F(b); }",
+        );
+        assert_eq!(
+            b.text.lines().collect::<Vec<_>>(),
+            [
+                "#define M(c)    ((a) * (1.0 - (0.5)) + ( c) * ( 0.5))",
+                "#define N(c) (M(c) * 2.0)",
+                "#define F(c) mix(a, c, t)",
+                "const vec3 k = N(b);",
+                "void f() { vec3 d = F(b); }",
             ]
         );
     }
