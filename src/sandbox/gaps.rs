@@ -24,7 +24,9 @@
 //! - a precision qualifier (`highp vec2 p`), which naga rejects in a
 //!   parameter list: blanked everywhere, it means nothing in Vulkan GLSL;
 //! - a local `const int N = 4;` used as an array size (`float a[N];`),
-//!   which naga does not know as a constant: `[N]` becomes `[4]`.
+//!   which naga does not know as a constant: `[N]` becomes `[4]`; also a
+//!   constant computed from numbers and such constants with `+ - * /`
+//!   and brackets (`const int L = (2*C+1)*(2*C+1);`), written as its value.
 //!
 //! - an array declared without its size and sized by its initializer
 //!   (`float w[] = float[](0.2, 0.5, 0.3);`, `const int[] f = int[](...)`),
@@ -368,7 +370,7 @@ fn define_body_rewrites(
 /// same value).
 fn const_array_sizes(tokens: &[Token], text: &mut String, out: &mut Vec<(usize, String)>) {
     let mut braces = 0i32;
-    let mut constants: Vec<(&str, &str)> = Vec::new();
+    let mut constants: Vec<(&str, i64)> = Vec::new();
     for (i, t) in tokens.iter().enumerate() {
         match t.text {
             "{" => braces += 1,
@@ -379,15 +381,18 @@ fn const_array_sizes(tokens: &[Token], text: &mut String, out: &mut Vec<(usize, 
                 }
             }
             "const" if braces > 0 => {
-                let words: Vec<&Token> = tokens[i + 1..].iter().take(5).collect();
-                if let [ty, name, eq, value, end] = words[..]
+                let words: Vec<&Token> = tokens[i + 1..].iter().take(3).collect();
+                if let [ty, name, eq] = words[..]
                     && ty.is("int")
                     && name.kind == Kind::Ident
                     && eq.is("=")
-                    && value.kind == Kind::Number
-                    && end.is(";")
                 {
-                    constants.push((name.text, value.text));
+                    let mut at = i + 4;
+                    if let Some(value) = int_sum(tokens, &mut at, &constants)
+                        && tokens.get(at).is_some_and(|t| t.is(";"))
+                    {
+                        constants.push((name.text, value));
+                    }
                 }
             }
             word if t.kind == Kind::Ident
@@ -397,11 +402,62 @@ fn const_array_sizes(tokens: &[Token], text: &mut String, out: &mut Vec<(usize, 
             {
                 if let Some((_, value)) = constants.iter().rev().find(|(n, _)| *n == word) {
                     overwrite(text, t.start..t.end(), "");
-                    out.push((t.start, (*value).to_string()));
+                    out.push((t.start, value.to_string()));
                 }
             }
             _ => {}
         }
+    }
+}
+
+/// The value of the integer expression at `tokens[*at..]` (numbers,
+/// `constants`, `+ - * /`, brackets), `*at` moved past it; `None` for
+/// anything else, or a division by zero or an overflow.
+fn int_sum(tokens: &[Token], at: &mut usize, constants: &[(&str, i64)]) -> Option<i64> {
+    let mut sum = int_product(tokens, at, constants)?;
+    while let Some(op) = tokens.get(*at).filter(|t| t.is("+") || t.is("-")) {
+        *at += 1;
+        let term = int_product(tokens, at, constants)?;
+        sum = if op.is("+") {
+            sum.checked_add(term)?
+        } else {
+            sum.checked_sub(term)?
+        };
+    }
+    Some(sum)
+}
+
+fn int_product(tokens: &[Token], at: &mut usize, constants: &[(&str, i64)]) -> Option<i64> {
+    let mut product = int_factor(tokens, at, constants)?;
+    while let Some(op) = tokens.get(*at).filter(|t| t.is("*") || t.is("/")) {
+        *at += 1;
+        let factor = int_factor(tokens, at, constants)?;
+        product = if op.is("*") {
+            product.checked_mul(factor)?
+        } else {
+            product.checked_div(factor)?
+        };
+    }
+    Some(product)
+}
+
+fn int_factor(tokens: &[Token], at: &mut usize, constants: &[(&str, i64)]) -> Option<i64> {
+    let t = tokens.get(*at)?;
+    *at += 1;
+    match t.text {
+        "(" => {
+            let value = int_sum(tokens, at, constants)?;
+            tokens.get(*at).filter(|t| t.is(")"))?;
+            *at += 1;
+            Some(value)
+        }
+        "-" => int_factor(tokens, at, constants)?.checked_neg(),
+        number if t.kind == Kind::Number => number.parse().ok(),
+        name => constants
+            .iter()
+            .rev()
+            .find(|(n, _)| *n == name)
+            .map(|(_, v)| *v),
     }
 }
 
@@ -870,15 +926,18 @@ mod tests {
     #[test]
     fn local_const_int_array_sizes_become_their_value() {
         let (b, _) = bridged(
-            "void f() {\n    const int N = 4;\n    const int M = 16;\n    float a[N]; float b[M]; a[i] = b[K];\n}\nvoid g() { float c[N]; }",
+            "void f() {\n    const int N = 4;\n    const int M = (2*N+1)*(N - -1)/3;\n    float a[N]; float b[M]; a[i] = b[K];\n    const int Z = N / 0;\n    const int X = N * x;\n    float c[Z]; float d[X];\n}\nvoid g() { float c[N]; }",
         );
         assert_eq!(
             b.text.lines().collect::<Vec<_>>(),
             [
                 "void f() {",
                 "    const int N = 4;",
-                "    const int M = 16;",
-                "    float a[4 ]; float b[16 ]; a[i] = b[K];",
+                "    const int M = (2*N+1)*(N - -1)/3;",
+                "    float a[4 ]; float b[15 ]; a[i] = b[K];",
+                "    const int Z = N / 0;",
+                "    const int X = N * x;",
+                "    float c[Z]; float d[X];",
                 "}",
                 "void g() { float c[N]; }",
             ]
