@@ -410,35 +410,38 @@ fn const_array_sizes(tokens: &[Token], text: &mut String, out: &mut Vec<(usize, 
     }
 }
 
+/// The integer operators, lowest precedence first.
+const INT_OPERATORS: [[&str; 2]; 2] = [["+", "-"], ["*", "/"]];
+
 /// The value of the integer expression at `tokens[*at..]` (numbers,
 /// `constants`, `+ - * /`, brackets), `*at` moved past it; `None` for
 /// anything else, or a division by zero or an overflow.
 fn int_sum(tokens: &[Token], at: &mut usize, constants: &[(&str, i64)]) -> Option<i64> {
-    let mut sum = int_product(tokens, at, constants)?;
-    while let Some(op) = tokens.get(*at).filter(|t| t.is("+") || t.is("-")) {
-        *at += 1;
-        let term = int_product(tokens, at, constants)?;
-        sum = if op.is("+") {
-            sum.checked_add(term)?
-        } else {
-            sum.checked_sub(term)?
-        };
-    }
-    Some(sum)
+    int_terms(tokens, at, constants, 0)
 }
 
-fn int_product(tokens: &[Token], at: &mut usize, constants: &[(&str, i64)]) -> Option<i64> {
-    let mut product = int_factor(tokens, at, constants)?;
-    while let Some(op) = tokens.get(*at).filter(|t| t.is("*") || t.is("/")) {
+/// The terms joined by the operators of precedence `level` and above.
+fn int_terms(
+    tokens: &[Token],
+    at: &mut usize,
+    constants: &[(&str, i64)],
+    level: usize,
+) -> Option<i64> {
+    let Some(operators) = INT_OPERATORS.get(level) else {
+        return int_factor(tokens, at, constants);
+    };
+    let mut value = int_terms(tokens, at, constants, level + 1)?;
+    while let Some(op) = tokens.get(*at).filter(|t| operators.contains(&t.text)) {
         *at += 1;
-        let factor = int_factor(tokens, at, constants)?;
-        product = if op.is("*") {
-            product.checked_mul(factor)?
-        } else {
-            product.checked_div(factor)?
-        };
+        let right = int_terms(tokens, at, constants, level + 1)?;
+        value = match op.text {
+            "+" => value.checked_add(right),
+            "-" => value.checked_sub(right),
+            "*" => value.checked_mul(right),
+            _ => value.checked_div(right),
+        }?;
     }
-    Some(product)
+    Some(value)
 }
 
 fn int_factor(tokens: &[Token], at: &mut usize, constants: &[(&str, i64)]) -> Option<i64> {
