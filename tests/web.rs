@@ -836,6 +836,109 @@ fn a_multipass_shadertoy_json_runs_in_the_page_with_its_buffer_feedback() {
     assert_eq!(page.exceptions(), Vec::<String>::new());
 }
 
+/// A Shadertoy JSON of one Image pass whose channel `channel` is an input
+/// of `ctype` (and `src`), with `code`.
+fn image_pass_json(channel: u32, ctype: &str, src: &str, code: &str) -> String {
+    format!(
+        r#"{{"Shader": {{"renderpass": [{{"type": "image", "name": "Image", "code": {code:?},
+          "inputs": [{{"id": "1", "ctype": "{ctype}", "src": "{src}", "channel": {channel}}}],
+          "outputs": [{{"id": "4dfGRr", "channel": 0}}]}}]}}}}
+"#
+    )
+}
+
+/// Shadertoy's keyboard texture in the page: a key pressed over the canvas
+/// flips its row 2 texel, which the Image pass shows as red instead of
+/// green (docs/web.md, "Multipass shaders").
+#[test]
+fn a_multipass_shader_in_the_page_reads_the_keys_pressed_over_the_canvas() {
+    let Some(display) = common::xwindow::Display::start() else {
+        return;
+    };
+    let code = "void mainImage(out vec4 fragColor, in vec2 fragCoord) {\n    \
+                float a = texelFetch(iChannel1, ivec2(65, 2), 0).x;\n    \
+                fragColor = vec4(a, 1.0 - a, 0.0, 1.0);\n}\n";
+    let json = image_pass_json(1, "keyboard", "/presets/tex00.jpg", code);
+    let url = browser::serve(browser::page_dir());
+    let address = format!("{url}?ui=0#{}", link::shader_hash(&json));
+    let mut page = Browser::open(&display, &address);
+    page.wait_for("shader ok");
+    wait_for_picture(&page, "green before any key", |p| middle_is(p, [0, 255, 0]));
+    let on_canvas = (f64::from(SIZE.0) / 2.0, f64::from(SIZE.1) / 2.0);
+    page.click(on_canvas);
+    page.key("a");
+    wait_for_picture(&page, "red once A was pressed", |p| {
+        middle_is(p, [255, 0, 0])
+    });
+    // Another key leaves A's texel as it is; A again flips it back.
+    page.key("b");
+    std::thread::sleep(Duration::from_secs(1));
+    assert!(
+        middle_is(&canvas_beside_editor(&page), [255, 0, 0]),
+        "B changed A's texel"
+    );
+    page.key("a");
+    wait_for_picture(&page, "green once A was pressed again", |p| {
+        middle_is(p, [0, 255, 0])
+    });
+    assert_eq!(page.exceptions(), Vec::<String>::new());
+}
+
+/// A texture channel of a Shadertoy JSON in the page: without its image
+/// the page says which pass and channel read the noise instead; an image
+/// dropped on the canvas is bound to it and the Image pass shows it
+/// (docs/web.md, "Multipass shaders").
+#[test]
+fn a_multipass_shaders_texture_channel_reads_an_image_dropped_on_the_canvas() {
+    let Some(display) = common::xwindow::Display::start() else {
+        return;
+    };
+    let code = "void mainImage(out vec4 fragColor, in vec2 fragCoord) {\n    \
+                fragColor = vec4(texture(iChannel2, vec2(0.5)).rgb, 1.0);\n}\n";
+    let src = "/media/a/0a40562379b63dfb89227e6d172f39fdce9022cba76623f1054a2c83d6c0ba5d.png";
+    let json = image_pass_json(2, "texture", src, code);
+    let url = browser::serve(browser::page_dir());
+    let address = format!("{url}?ui=0&editor#{}", link::shader_hash(&json));
+    let mut page = Browser::open(&display, &address);
+    // Said as the passes are installed, before "shader ok".
+    let missing = page.wait_for("channel");
+    assert!(
+        missing.starts_with(&format!(
+            "Image iChannel2: the texture `{src}` is not in the page: the built-in noise"
+        )),
+        "{missing}"
+    );
+    page.wait_for("shader ok");
+    let message = page
+        .message()
+        .expect("the missing image is shown over the canvas");
+    assert!(message.contains("Image iChannel2"), "{message}");
+    let (status, _) = shown_problem(&mut page, "shader");
+    assert!(status.contains("Image iChannel2: the texture"), "{status}");
+
+    let files = browser::TempDir::new("raysandbox-drop-image");
+    let blue = [30, 144, 255];
+    let photo = files.0.join("photo.png");
+    RgbaImage::from_pixel(8, 8, image::Rgba([blue[0], blue[1], blue[2], 255]))
+        .save(&photo)
+        .unwrap();
+    let on_canvas = (
+        f64::from(CANVAS_BESIDE_EDITOR) / 2.0,
+        f64::from(SIZE.1) / 2.0,
+    );
+    page.drop_file(&photo, on_canvas);
+    assert_eq!(page.wait_for("dropped"), "photo.png");
+    assert_eq!(
+        page.wait_for("channel"),
+        format!("Image iChannel2: the texture `{src}` reads photo.png")
+    );
+    wait_for_picture(&page, "the dropped image", |p| middle_is(p, blue));
+    let (status, _) = shown_problem(&mut page, "shader");
+    assert!(status.ends_with("reads photo.png"), "{status}");
+    assert_eq!(page.message(), None, "the missing image's message went");
+    assert_eq!(page.exceptions(), Vec::<String>::new());
+}
+
 /// Every example shader of the editor's menu compiles in the page and
 /// draws (the browser's WebGPU takes what naga writes for it).
 #[test]

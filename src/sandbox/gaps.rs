@@ -24,7 +24,9 @@
 //! - a precision qualifier (`highp vec2 p`), which naga rejects in a
 //!   parameter list: blanked everywhere, it means nothing in Vulkan GLSL;
 //! - a local `const int N = 4;` used as an array size (`float a[N];`),
-//!   which naga does not know as a constant: `[N]` becomes `[4]`.
+//!   which naga does not know as a constant: `[N]` becomes `[4]`; also a
+//!   constant computed from numbers and such constants with `+ - * /`
+//!   and brackets (`const int L = (2*C+1)*(2*C+1);`), written as its value.
 //!
 //! - an array declared without its size and sized by its initializer
 //!   (`float w[] = float[](0.2, 0.5, 0.3);`, `const int[] f = int[](...)`),
@@ -40,7 +42,9 @@
 //!
 //! - `mix(x, y, a)` in the declaration of a global `const`, which naga
 //!   cannot evaluate as a constant: its definition in GLSL,
-//!   `((x) * (1.0 - (a)) + (y) * (a))`.
+//!   `((x) * (1.0 - (a)) + (y) * (a))`; also in the body of a `#define`
+//!   that such a declaration uses (`const vec3 c = HSV2RGB(...);`), or
+//!   that a macro it uses does.
 //!
 //! The rewrites of names and calls (not `dot`) also apply inside the body
 //! of a `#define`, and `const in` there (`#define _in(T) const in T`, for
@@ -153,6 +157,7 @@ pub fn bridge(scan: &Scan, mut text: String) -> Bridged {
     // keep the order they are made in.
     sampler_parameters(tokens, &mut text, &mut insertions);
     let mut overloads = Vec::new();
+    let in_constants = macros_in_constants(tokens);
     let (mut braces, mut parens) = (0i32, 0i32);
     // In the declaration of a global `const` (a constant expression).
     let mut global_const = false;
@@ -171,7 +176,8 @@ pub fn bridge(scan: &Scan, mut text: String) -> Bridged {
             ")" => parens -= 1,
             "const" if braces == 0 && parens > 0 => scan::blank(&mut text, t.start..t.end()),
             _ if t.kind == Kind::Directive => {
-                define_body_rewrites(t, &mut text, &mut insertions, &mut overloads);
+                let rewrites = &mut (&mut insertions, &mut overloads);
+                define_body_rewrites(t, &mut text, rewrites, &in_constants);
             }
             "dot" if global_const => {}
             "mix" if global_const => mix_in_constant(tokens, i, &mut text, &mut insertions),
@@ -265,34 +271,88 @@ fn rewrite_token(
     None
 }
 
+/// The name and body of the `#define` directive token `t`: the macro's
+/// tokens, from `define` on, at their offsets in the whole text.
+fn define_tokens<'a>(t: &Token<'a>) -> Option<Vec<Token<'a>>> {
+    let body = t.text.strip_prefix('#')?;
+    let inner = Scan::new(body);
+    if !inner.tokens.first().is_some_and(|d| d.is("define")) {
+        return None;
+    }
+    Some(
+        inner
+            .tokens
+            .iter()
+            .map(|k| Token {
+                start: t.start + 1 + k.start,
+                ..*k
+            })
+            .collect(),
+    )
+}
+
+/// The names of the macros that a global `const`'s declaration uses, or
+/// that such a macro's body uses (their bodies are constant expressions).
+fn macros_in_constants<'a>(tokens: &[Token<'a>]) -> Vec<&'a str> {
+    let mut used: Vec<&str> = Vec::new();
+    let mut macros: Vec<(&str, Vec<&str>)> = Vec::new();
+    let (mut depth, mut global_const) = (0i32, false);
+    for t in tokens {
+        match t.text {
+            "{" | "(" => depth += 1,
+            "}" | ")" => depth -= 1,
+            _ if depth == 0 && (t.is("const") || t.is(";")) => global_const = t.is("const"),
+            _ if t.kind == Kind::Directive => {
+                let Some(body) = t.text.strip_prefix('#') else {
+                    continue;
+                };
+                let words: Vec<&str> = Scan::new(body)
+                    .tokens
+                    .iter()
+                    .filter(|k| k.kind == Kind::Ident)
+                    .map(|k| k.text)
+                    .collect();
+                if let ["define", name, rest @ ..] = words.as_slice() {
+                    macros.push((name, rest.to_vec()));
+                }
+            }
+            word if global_const && t.kind == Kind::Ident => used.push(word),
+            _ => {}
+        }
+    }
+    let mut found: Vec<&str> = Vec::new();
+    while let Some(k) = macros.iter().position(|(name, _)| used.contains(name)) {
+        let (name, body) = macros.swap_remove(k);
+        found.push(name);
+        used.extend(body);
+    }
+    found
+}
+
 /// The rewrites of [`rewrite_token`] inside the body of `#define` (the
 /// directive token `t`), but `dot`: a macro with `dot` is also used in
-/// constant expressions, which take no call of a helper.
+/// constant expressions, which take no call of a helper. In a macro
+/// that a global `const` uses (`in_constants`), `mix` becomes its
+/// definition, as in the constant itself.
 fn define_body_rewrites(
     t: &Token,
     text: &mut String,
-    insertions: &mut Vec<(usize, String)>,
-    overloads: &mut Vec<&'static str>,
+    (insertions, overloads): &mut (&mut Vec<(usize, String)>, &mut Vec<&'static str>),
+    in_constants: &[&str],
 ) {
-    let Some(body) = t.text.strip_prefix('#') else {
+    let Some(tokens) = define_tokens(t) else {
         return;
     };
-    let inner = Scan::new(body);
-    if !inner.tokens.first().is_some_and(|d| d.is("define")) {
-        return;
-    }
-    // The macro's tokens at their offsets in the whole text.
-    let tokens: Vec<Token> = inner
-        .tokens
-        .iter()
-        .map(|k| Token {
-            start: t.start + 1 + k.start,
-            ..*k
-        })
-        .collect();
+    let constant = tokens
+        .get(1)
+        .is_some_and(|n| in_constants.contains(&n.text));
     // From the macro's name on (its parameters are names too).
     for i in 1..tokens.len() {
         if tokens[i].is("dot") {
+            continue;
+        }
+        if constant && tokens[i].is("mix") {
+            mix_in_constant(&tokens, i, text, insertions);
             continue;
         }
         // `#define _in(T) const in T`, for parameter lists.
@@ -310,7 +370,7 @@ fn define_body_rewrites(
 /// same value).
 fn const_array_sizes(tokens: &[Token], text: &mut String, out: &mut Vec<(usize, String)>) {
     let mut braces = 0i32;
-    let mut constants: Vec<(&str, &str)> = Vec::new();
+    let mut constants: Vec<(&str, i64)> = Vec::new();
     for (i, t) in tokens.iter().enumerate() {
         match t.text {
             "{" => braces += 1,
@@ -321,15 +381,18 @@ fn const_array_sizes(tokens: &[Token], text: &mut String, out: &mut Vec<(usize, 
                 }
             }
             "const" if braces > 0 => {
-                let words: Vec<&Token> = tokens[i + 1..].iter().take(5).collect();
-                if let [ty, name, eq, value, end] = words[..]
+                let words: Vec<&Token> = tokens[i + 1..].iter().take(3).collect();
+                if let [ty, name, eq] = words[..]
                     && ty.is("int")
                     && name.kind == Kind::Ident
                     && eq.is("=")
-                    && value.kind == Kind::Number
-                    && end.is(";")
                 {
-                    constants.push((name.text, value.text));
+                    let mut at = i + 4;
+                    if let Some(value) = int_sum(tokens, &mut at, &constants)
+                        && tokens.get(at).is_some_and(|t| t.is(";"))
+                    {
+                        constants.push((name.text, value));
+                    }
                 }
             }
             word if t.kind == Kind::Ident
@@ -339,11 +402,65 @@ fn const_array_sizes(tokens: &[Token], text: &mut String, out: &mut Vec<(usize, 
             {
                 if let Some((_, value)) = constants.iter().rev().find(|(n, _)| *n == word) {
                     overwrite(text, t.start..t.end(), "");
-                    out.push((t.start, (*value).to_string()));
+                    out.push((t.start, value.to_string()));
                 }
             }
             _ => {}
         }
+    }
+}
+
+/// The integer operators, lowest precedence first.
+const INT_OPERATORS: [[&str; 2]; 2] = [["+", "-"], ["*", "/"]];
+
+/// The value of the integer expression at `tokens[*at..]` (numbers,
+/// `constants`, `+ - * /`, brackets), `*at` moved past it; `None` for
+/// anything else, or a division by zero or an overflow.
+fn int_sum(tokens: &[Token], at: &mut usize, constants: &[(&str, i64)]) -> Option<i64> {
+    int_terms(tokens, at, constants, 0)
+}
+
+/// The terms joined by the operators of precedence `level` and above.
+fn int_terms(
+    tokens: &[Token],
+    at: &mut usize,
+    constants: &[(&str, i64)],
+    level: usize,
+) -> Option<i64> {
+    let Some(operators) = INT_OPERATORS.get(level) else {
+        return int_factor(tokens, at, constants);
+    };
+    let mut value = int_terms(tokens, at, constants, level + 1)?;
+    while let Some(op) = tokens.get(*at).filter(|t| operators.contains(&t.text)) {
+        *at += 1;
+        let right = int_terms(tokens, at, constants, level + 1)?;
+        value = match op.text {
+            "+" => value.checked_add(right),
+            "-" => value.checked_sub(right),
+            "*" => value.checked_mul(right),
+            _ => value.checked_div(right),
+        }?;
+    }
+    Some(value)
+}
+
+fn int_factor(tokens: &[Token], at: &mut usize, constants: &[(&str, i64)]) -> Option<i64> {
+    let t = tokens.get(*at)?;
+    *at += 1;
+    match t.text {
+        "(" => {
+            let value = int_sum(tokens, at, constants)?;
+            tokens.get(*at).filter(|t| t.is(")"))?;
+            *at += 1;
+            Some(value)
+        }
+        "-" => int_factor(tokens, at, constants)?.checked_neg(),
+        number if t.kind == Kind::Number => number.parse().ok(),
+        name => constants
+            .iter()
+            .rev()
+            .find(|(n, _)| *n == name)
+            .map(|(_, v)| *v),
     }
 }
 
@@ -812,15 +929,18 @@ mod tests {
     #[test]
     fn local_const_int_array_sizes_become_their_value() {
         let (b, _) = bridged(
-            "void f() {\n    const int N = 4;\n    const int M = 16;\n    float a[N]; float b[M]; a[i] = b[K];\n}\nvoid g() { float c[N]; }",
+            "void f() {\n    const int N = 4;\n    const int M = (2*N+1)*(N - -1)/3;\n    float a[N]; float b[M]; a[i] = b[K];\n    const int Z = N / 0;\n    const int X = N * x;\n    float c[Z]; float d[X];\n}\nvoid g() { float c[N]; }",
         );
         assert_eq!(
             b.text.lines().collect::<Vec<_>>(),
             [
                 "void f() {",
                 "    const int N = 4;",
-                "    const int M = 16;",
-                "    float a[4 ]; float b[16 ]; a[i] = b[K];",
+                "    const int M = (2*N+1)*(N - -1)/3;",
+                "    float a[4 ]; float b[15 ]; a[i] = b[K];",
+                "    const int Z = N / 0;",
+                "    const int X = N * x;",
+                "    float c[Z]; float d[X];",
                 "}",
                 "void g() { float c[N]; }",
             ]
@@ -859,6 +979,27 @@ mod tests {
             [
                 "const vec3 c =    ((a) * (1.0 - (0.25)) + ( vec3(1.0, 2.0, 3.0)) * ( 0.25));",
                 "void f() { vec3 d = mix(a, b, t); }",
+            ]
+        );
+    }
+
+    #[test]
+    fn mix_in_a_macro_that_a_global_constant_uses_becomes_its_definition() {
+        let (b, _) = bridged(
+            "#define M(c) mix(a, c, 0.5)\n\
+             #define N(c) (M(c) * 2.0)\n\
+             #define F(c) mix(a, c, t)\n\
+             const vec3 k = N(b);\n\
+             void f() { vec3 d = F(b); }",
+        );
+        assert_eq!(
+            b.text.lines().collect::<Vec<_>>(),
+            [
+                "#define M(c)    ((a) * (1.0 - (0.5)) + ( c) * ( 0.5))",
+                "#define N(c) (M(c) * 2.0)",
+                "#define F(c) mix(a, c, t)",
+                "const vec3 k = N(b);",
+                "void f() { vec3 d = F(b); }",
             ]
         );
     }

@@ -174,14 +174,17 @@ pub fn start() {
     let work = Workbench::new(&text, &doc.scene, move |e| {
         let _ = to_page.send_event(PageEvent::Work(e));
     });
-    if let Some(canvas) = page::canvas() {
-        let to_page = proxy.clone();
-        let listening = drop::listen(&canvas, move |file| {
-            let _ = to_page.send_event(PageEvent::Dropped(file));
-        });
-        if let Err(e) = listening {
-            page::show_error(&e);
-        }
+    let targets: Vec<web_sys::EventTarget> = [page::canvas().map(Into::into), page::message_box()]
+        .into_iter()
+        .flatten()
+        .map(Into::into)
+        .collect();
+    let to_page = proxy.clone();
+    let listening = drop::listen(&targets, move |file| {
+        let _ = to_page.send_event(PageEvent::Dropped(file));
+    });
+    if let Err(e) = listening {
+        page::show_error(&e);
     }
     let to_page = proxy.clone();
     page::listen(None, "hashchange", move || {
@@ -407,8 +410,9 @@ impl ApplicationHandler<PageEvent> for Page {
             page::timing("first-input");
         }
         if self.work.shows_shader() {
-            // The sandbox has the canvas: the pointer is the shader's mouse.
-            self.work.pointer(&event);
+            // The sandbox has the canvas: the pointer is the shader's mouse,
+            // the keys its keyboard texture.
+            self.work.input(&event);
         } else if gfx.egui.state.on_window_event(&gfx.window, &event).repaint {
             gfx.window.request_redraw();
         }
@@ -534,7 +538,8 @@ impl Page {
 
     /// A file dropped on the canvas (docs/web.md, "Dropping files"): a scene
     /// or a shader opens in its editor as if typed there, so the canvas shows
-    /// it; a model is added in front of the camera, as on the native window.
+    /// it; a model is added in front of the camera, as on the native window;
+    /// an image goes to a multipass shader's texture channels.
     /// A file that cannot be used is reported with its name (and line), and
     /// the picture kept.
     fn dropped(&mut self, file: Result<DroppedFile, String>) {
@@ -556,6 +561,10 @@ impl Page {
             }
             Ok((Dropped::Shader(text), _)) => {
                 let outcome = self.work.open(Doc::Shader, &text);
+                self.follow(outcome);
+            }
+            Ok((Dropped::Image(image), name)) => {
+                let outcome = self.work.image_dropped(&name, *image);
                 self.follow(outcome);
             }
             Err(e) => page::show_error(&e),

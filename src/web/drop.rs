@@ -26,6 +26,8 @@ pub enum Dropped {
     Mesh(Box<Mesh>),
     /// A sandbox shader (WGSL, or GLSL in GLSL Sandbox or Shadertoy style).
     Shader(String),
+    /// A PNG or JPEG image, for a multipass shader's texture channels.
+    Image(Box<image::RgbaImage>),
 }
 
 impl Dropped {
@@ -41,18 +43,24 @@ impl Dropped {
             }
             // A Shadertoy JSON export is a multipass shader (docs/web.md).
             Some("wgsl" | "glsl" | "frag" | "json") => text(bytes).map(Dropped::Shader),
+            // Read as `--channel0` reads a file (docs/sandbox.md, "Textures").
+            Some("png" | "jpg" | "jpeg") => image::load_from_memory(&bytes)
+                .map(|image| Dropped::Image(Box::new(image.to_rgba8())))
+                .map_err(|e| format!("{name}: cannot read the image: {e}")),
             _ => Err(format!(
-                "{name}: the page opens scenes (.toml), models (.obj, .ply) and shaders \
-                 (.wgsl, .glsl, .frag, and Shadertoy's .json)"
+                "{name}: the page opens scenes (.toml), models (.obj, .ply), shaders \
+                 (.wgsl, .glsl, .frag, and Shadertoy's .json) and images for a multipass \
+                 shader's channels (.png, .jpg)"
             )),
         }
     }
 }
 
-/// Lets files be dropped on `canvas`; `dropped` gets each one once read.
-/// The listeners live as long as the page.
+/// Lets files be dropped on `targets` (the canvas, and the message box
+/// over it); `dropped` gets each one once read. The listeners live as
+/// long as the page.
 pub fn listen(
-    canvas: &web_sys::HtmlCanvasElement,
+    targets: &[web_sys::EventTarget],
     dropped: impl Fn(Result<DroppedFile, String>) + 'static,
 ) -> Result<(), String> {
     // The browser opens a file dropped on the page unless `dragover` says
@@ -74,10 +82,12 @@ pub fn listen(
             wasm_bindgen_futures::spawn_local(async move { dropped(read(file).await) });
         }
     });
-    for (kind, listener) in [("dragover", &over), ("drop", &drop)] {
-        canvas
-            .add_event_listener_with_callback(kind, listener.as_ref().unchecked_ref())
-            .map_err(|e| format!("cannot listen to {kind} on the canvas: {e:?}"))?;
+    for target in targets {
+        for (kind, listener) in [("dragover", &over), ("drop", &drop)] {
+            target
+                .add_event_listener_with_callback(kind, listener.as_ref().unchecked_ref())
+                .map_err(|e| format!("cannot listen to {kind} on the canvas: {e:?}"))?;
+        }
     }
     over.forget();
     drop.forget();

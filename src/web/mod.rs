@@ -3,13 +3,15 @@
 //! scene and shader editors ([`editor`], [`workbench`]) and the sandbox in
 //! the page ([`sandbox_page`]), and the scene or shader carried in the
 //! page's address ([`link`]), which the native program and the tests can
-//! write too, and the bundled mesh scenes' models the page fetches
-//! ([`meshes`]).
+//! write too, the bundled mesh scenes' models the page fetches
+//! ([`meshes`]), and the images dropped on it for a multipass shader's
+//! texture channels ([`dropped_images`]).
 
 #[cfg(target_arch = "wasm32")]
 mod canvas;
 #[cfg(target_arch = "wasm32")]
 mod drop;
+pub mod dropped_images;
 #[cfg(target_arch = "wasm32")]
 mod editor;
 pub mod link;

@@ -24,6 +24,13 @@ pub fn canvas() -> Option<web_sys::HtmlCanvasElement> {
         .ok()
 }
 
+/// The box of errors and notices over the canvas: files dropped on it go
+/// where files dropped on the canvas go (it may say "drop the image on
+/// the canvas" while covering the canvas's middle).
+pub fn message_box() -> Option<web_sys::Element> {
+    document()?.get_element_by_id(MESSAGE_ID)
+}
+
 /// The value of `key` in the page address's query (`?samples=1`), the
 /// page's options, as the native viewer's command-line options.
 pub fn query(key: &str) -> Option<String> {

@@ -10,8 +10,10 @@ use std::path::Path;
 use web_time::{Duration, Instant};
 use winit::event::{ElementState, MouseButton, MouseScrollDelta, WindowEvent};
 
+use super::dropped_images::DroppedImages;
 use super::editor::Problem;
-use super::multipass_page::{self, MultiBuilt, PageMulti};
+use super::multipass_page::{self, ChannelReport, MultiBuilt, PageMulti};
+use super::page;
 use crate::gpu::{Gpu, ShaderError};
 use crate::sandbox::clock::Clock;
 use crate::sandbox::mouse::Mouse;
@@ -67,6 +69,9 @@ pub struct ShaderView {
     /// The multipass shader, while the document is JSON (docs/web.md,
     /// "Multipass shaders"); else `session`'s shader runs.
     multi: Option<PageMulti>,
+    /// The images dropped on the canvas, for a multipass shader's texture
+    /// channels.
+    images: DroppedImages,
     clock: Clock,
     mouse: Mouse,
     /// Counts texts sent to be built: a build finishing after a newer text
@@ -90,6 +95,7 @@ impl ShaderView {
             canvas,
             session: Session::new(Path::new(SHADER_NAME)),
             multi: None,
+            images: DroppedImages::default(),
             clock: Clock::new(false, Instant::now()),
             mouse: Mouse::default(),
             generation: 0,
@@ -155,7 +161,11 @@ impl ShaderView {
         let (compiled, result) = match built.pipelines {
             Pipelines::Single(compiled, result) => (compiled, result),
             Pipelines::Multi(built) => {
-                return self.multi.as_mut().map(|multi| multi.install(built));
+                let multi = self.multi.as_mut()?;
+                return Some(multi.install(built, &self.images).map(|(status, reports)| {
+                    announce(&reports);
+                    status
+                }));
             }
         };
         Some(match result {
@@ -200,9 +210,14 @@ impl ShaderView {
             let tick = self.clock.tick(Instant::now());
             let uniforms = self.mouse.frame_uniforms(&tick, self.canvas.size());
             match (multi, self.session.pipeline()) {
-                (Some(multi), _) => {
-                    multi.draw(gpu, &self.sandbox, encoder, &uniforms, &mut self.canvas);
-                }
+                (Some(multi), _) => multi.draw(
+                    gpu,
+                    &self.sandbox,
+                    encoder,
+                    &uniforms,
+                    &mut self.canvas,
+                    &self.images,
+                ),
                 (None, Some(pipeline)) => self.canvas.draw(
                     gpu,
                     &self.sandbox,
@@ -218,11 +233,28 @@ impl ShaderView {
         self.canvas.show(&self.sandbox, encoder, target, format);
     }
 
+    /// An image dropped on the canvas: kept for the texture channels; a
+    /// multipass shader running binds it at once. Returns the new line
+    /// under the editor then.
+    pub fn add_image(&mut self, name: &str, image: image::RgbaImage) -> Option<String> {
+        self.images.add(name, image);
+        let multi = self.multi.as_mut().filter(|m| m.runs())?;
+        let reports = multi.bind_images(&self.images);
+        announce(&reports);
+        Some(multi.status(&reports))
+    }
+
     /// The pointer over the canvas, as the shader's mouse uniforms
-    /// (docs/sandbox.md, "The values every shader gets").
-    pub fn pointer(&mut self, event: &WindowEvent) {
+    /// (docs/sandbox.md, "The values every shader gets"), and the keys
+    /// pressed there, as a multipass shader's keyboard texture.
+    pub fn input(&mut self, event: &WindowEvent) {
         let (w, h) = (self.size.0.max(1) as f32, self.size.1.max(1) as f32);
         match event {
+            WindowEvent::KeyboardInput { event, .. } => {
+                if let Some(multi) = &mut self.multi {
+                    multi.key(event);
+                }
+            }
             WindowEvent::CursorMoved { position, .. } => {
                 let at = [position.x as f32, h - position.y as f32];
                 let moved = [at[0] / w - self.mouse.uv[0], at[1] / h - self.mouse.uv[1]];
@@ -270,5 +302,24 @@ pub fn shader_problem(e: &ShaderError) -> Problem {
     Problem {
         message: e.to_string(),
         line: (e.line > 0).then_some(e.line as usize),
+    }
+}
+
+/// Logs what each texture channel of a multipass shader reads, and shows
+/// over the canvas which ones lack their image (never a silent noise);
+/// once every one has its image, that message goes.
+fn announce(reports: &[ChannelReport]) {
+    for report in reports {
+        page::event(&format!("channel {}", report.line));
+    }
+    let missing: Vec<&str> = reports
+        .iter()
+        .filter(|r| r.missing)
+        .map(|r| r.line.as_str())
+        .collect();
+    if !missing.is_empty() {
+        page::show_notice(&missing.join("\n"));
+    } else if !reports.is_empty() {
+        page::hide_message();
     }
 }

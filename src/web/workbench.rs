@@ -291,11 +291,38 @@ impl Workbench {
         }
     }
 
-    /// The pointer over the canvas, for the shader's mouse uniforms.
-    pub fn pointer(&mut self, event: &WindowEvent) {
+    /// The pointer and the keys over the canvas, for the shader's mouse
+    /// uniforms and keyboard texture.
+    pub fn input(&mut self, event: &WindowEvent) {
         if let (true, Some(shader)) = (self.shows_shader(), &mut self.shader) {
-            shader.pointer(event);
+            shader.input(event);
         }
+    }
+
+    /// An image dropped on the canvas: a texture channel of the multipass
+    /// shader shown reads it (docs/web.md, "Multipass shaders"); the line
+    /// under the shader's editor says which, unless the user's own text
+    /// (an error, an edit not yet compiled) is there.
+    pub fn image_dropped(&mut self, name: &str, image: image::RgbaImage) -> Outcome {
+        let Some(shader) = &mut self.shader else {
+            return Outcome::Nothing;
+        };
+        let Some(status) = shader.add_image(name, image) else {
+            page::event(&format!("image-kept {name}"));
+            page::show_notice(&format!(
+                "{name}: kept for the texture channels of a multipass Shadertoy shader \
+                 (a .json); the shader shown has none"
+            ));
+            return Outcome::Nothing;
+        };
+        if let Some(editor) = self
+            .editor
+            .as_ref()
+            .filter(|e| !e.holds_own_text(Doc::Shader))
+        {
+            editor.show_result(Doc::Shader, &editor.applied(Doc::Shader), Ok(status));
+        }
+        Outcome::Redraw
     }
 
     /// Keeps the shown document in the address, so that a copied link

@@ -4,18 +4,17 @@
 //! buffers with the clock, and the keys held reach Shadertoy's keyboard
 //! texture.
 
-use winit::event::{ElementState, KeyEvent};
-use winit::keyboard::{KeyCode, PhysicalKey};
+use winit::event::KeyEvent;
 
 use super::reload::build_checked;
 use super::{SandboxApp, SandboxEvent};
 use crate::gpu::Gpu;
-use crate::sandbox::FrameUniforms;
 use crate::sandbox::multipass::compile::CompiledPass;
 use crate::sandbox::multipass::gpu::{Buffers, pass_builder};
 use crate::sandbox::multipass::keyboard::Keyboard;
 use crate::sandbox::multipass::session::{MultiSession, Pending};
 use crate::sandbox::render::{Canvas, SandboxGpu, ShaderPipeline};
+use crate::sandbox::{FrameUniforms, channels};
 
 /// A multipass shader's state in the window.
 pub(super) struct Multi {
@@ -67,14 +66,7 @@ impl Multi {
 
     /// A key went down or up: its JavaScript code in the keyboard texture.
     pub(super) fn key(&mut self, event: &KeyEvent) {
-        let PhysicalKey::Code(code) = event.physical_key else {
-            return;
-        };
-        let Some(js) = js_key_code(code) else { return };
-        match event.state {
-            ElementState::Pressed => self.keyboard.press(js),
-            ElementState::Released => self.keyboard.release(js),
-        }
+        self.keyboard.key(event);
     }
 
     /// Encodes the passes of one frame, unless the clock is paused on the
@@ -149,7 +141,7 @@ impl SandboxApp {
         let size = gfx.canvas.size();
         multi.resize(&gfx.gpu, size);
         let buffers = multi.buffers.as_mut().expect("made by resize");
-        if let Err(e) = buffers.prepare(&gfx.gpu, &multi.session.bindings()) {
+        if let Err(e) = buffers.prepare(&gfx.gpu, &multi.session.bindings(), &channels::load) {
             error.get_or_insert(crate::sandbox::ReloadError::Project(e));
         }
         multi.drawn_frame = None;
@@ -171,64 +163,5 @@ impl SandboxApp {
         let Some(multi) = &self.multi else { return };
         let files = multi.session.files();
         self.watch_set(None, files);
-    }
-}
-
-/// The JavaScript `keyCode` of a key, as Shadertoy's keyboard texture
-/// indexes it: letters 65 to 90, digits 48 to 57, the arrows 37 to 40,
-/// space 32, and the common controls.
-fn js_key_code(code: KeyCode) -> Option<u8> {
-    use KeyCode::*;
-    let letters = [
-        KeyA, KeyB, KeyC, KeyD, KeyE, KeyF, KeyG, KeyH, KeyI, KeyJ, KeyK, KeyL, KeyM, KeyN, KeyO,
-        KeyP, KeyQ, KeyR, KeyS, KeyT, KeyU, KeyV, KeyW, KeyX, KeyY, KeyZ,
-    ];
-    if let Some(k) = letters.iter().position(|&c| c == code) {
-        return Some(65 + k as u8);
-    }
-    let digits = [
-        Digit0, Digit1, Digit2, Digit3, Digit4, Digit5, Digit6, Digit7, Digit8, Digit9,
-    ];
-    if let Some(k) = digits.iter().position(|&c| c == code) {
-        return Some(48 + k as u8);
-    }
-    let functions = [F1, F2, F3, F4, F5, F6, F7, F8, F9, F10, F11, F12];
-    if let Some(k) = functions.iter().position(|&c| c == code) {
-        return Some(112 + k as u8);
-    }
-    Some(match code {
-        Backspace => 8,
-        Tab => 9,
-        Enter | NumpadEnter => 13,
-        ShiftLeft | ShiftRight => 16,
-        ControlLeft | ControlRight => 17,
-        AltLeft | AltRight => 18,
-        Escape => 27,
-        Space => 32,
-        PageUp => 33,
-        PageDown => 34,
-        End => 35,
-        Home => 36,
-        ArrowLeft => 37,
-        ArrowUp => 38,
-        ArrowRight => 39,
-        ArrowDown => 40,
-        Delete => 46,
-        _ => return None,
-    })
-}
-
-#[cfg(test)]
-mod tests {
-    use super::*;
-
-    #[test]
-    fn keys_get_javascript_codes() {
-        assert_eq!(js_key_code(KeyCode::KeyA), Some(65));
-        assert_eq!(js_key_code(KeyCode::KeyZ), Some(90));
-        assert_eq!(js_key_code(KeyCode::Digit7), Some(55));
-        assert_eq!(js_key_code(KeyCode::ArrowLeft), Some(37));
-        assert_eq!(js_key_code(KeyCode::F12), Some(123));
-        assert_eq!(js_key_code(KeyCode::CapsLock), None);
     }
 }

@@ -5,7 +5,7 @@
 //! gets this frame's content, one reading itself or a later buffer the
 //! previous frame's (docs/sandbox.md, "Multipass").
 
-use std::path::PathBuf;
+use std::path::{Path, PathBuf};
 
 use super::keyboard::Keyboard;
 use super::{BUFFERS, Input, PassKind};
@@ -98,9 +98,16 @@ impl Buffers {
     }
 
     /// Makes the buffers of `project` (the others are dropped; those it
-    /// keeps keep their content) and reads the images its channels name.
-    /// An image that cannot be read is an error naming the file.
-    pub fn prepare(&mut self, gpu: &Gpu, passes: &[Binding]) -> Result<(), String> {
+    /// keeps keep their content) and gets the images its channels name from
+    /// `load` (the window reads files, [`channels::load`]; the page has the
+    /// images dropped on it), each once while it stays named.
+    /// An image that cannot be had is `load`'s error, naming the file.
+    pub fn prepare(
+        &mut self,
+        gpu: &Gpu,
+        passes: &[Binding],
+        load: &dyn Fn(&Path) -> Result<image::RgbaImage, String>,
+    ) -> Result<(), String> {
         let mut images = Vec::new();
         for (_, channels) in passes {
             for input in channels.iter().flatten() {
@@ -113,7 +120,7 @@ impl Buffers {
                 let view = match self.images.iter().find(|(p, _)| p == path) {
                     Some((_, view)) => view.clone(),
                     None => {
-                        let image = channels::load(path)?;
+                        let image = load(path)?;
                         channels::upload(&gpu.device, &gpu.queue, &image)
                             .create_view(&Default::default())
                     }

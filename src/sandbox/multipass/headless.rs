@@ -13,7 +13,7 @@ use crate::sandbox::render::{
     BuildFailed, Canvas, FRAME_LIMIT, NanColor, SandboxGpu, ShaderPipeline, TooSlow,
     build_too_slow, wait_for_frame,
 };
-use crate::sandbox::{CanvasStats, FrameUniforms, SandboxError, ShaderArgs};
+use crate::sandbox::{CanvasStats, FrameUniforms, SandboxError, ShaderArgs, channels};
 
 /// Why [`MultipassOffscreen::new`] gave nothing: a pipeline wgpu refused
 /// (the message at the pass), or one the driver did not finish compiling
@@ -61,7 +61,9 @@ impl MultipassOffscreen {
             .iter()
             .map(|p| (p.kind, &p.channels))
             .collect();
-        buffers.prepare(gpu, &bindings).map_err(Unbuilt::Refused)?;
+        buffers
+            .prepare(gpu, &bindings, &channels::load)
+            .map_err(Unbuilt::Refused)?;
         Ok(MultipassOffscreen {
             canvas: Canvas::new(gpu, &sandbox, size),
             sandbox,

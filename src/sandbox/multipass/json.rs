@@ -7,7 +7,7 @@
 //! the `id` of the pass that draws it. Errors name the file and the key
 //! (`renderpass[2].inputs[0].channel`).
 
-use std::path::Path;
+use std::path::{Path, PathBuf};
 
 use serde_json::Value;
 
@@ -35,8 +35,22 @@ pub fn error_line(message: &str) -> Option<usize> {
     rest.split_whitespace().next()?.parse().ok()
 }
 
-/// What a JSON file holds, read from `text` (the content of `path`).
+/// What a JSON file holds, read from `text` (the content of `path`); a
+/// texture input reads the image found next to the file.
 pub fn parse(path: &Path, text: &str) -> Result<Project, String> {
+    let dir = path.parent().unwrap_or(Path::new(""));
+    parse_finding(path, text, &|src| next_to(dir, src))
+}
+
+/// As [`parse`], each texture input's `src` found by `find`: the image's
+/// path, or `None` for the built-in noise with a warning. The page, which
+/// has no files, keeps every `src` and binds the images dropped on it
+/// (docs/web.md, "Multipass shaders").
+pub fn parse_finding(
+    path: &Path,
+    text: &str,
+    find: &dyn Fn(&str) -> Option<PathBuf>,
+) -> Result<Project, String> {
     let file = path.display().to_string();
     let value: Value = serde_json::from_str(text).map_err(|e| format!("{file}: {e}"))?;
     let shader = shader_object(&value).ok_or_else(|| {
@@ -118,7 +132,6 @@ pub fn parse(path: &Path, text: &str) -> Result<Project, String> {
             "{file}: renderpass: no pass of type \"image\" (the one shown)"
         ));
     }
-    let dir = path.parent().unwrap_or(Path::new(""));
     let kinds: Vec<PassKind> = project.passes.iter().map(|p| p.kind).collect();
     for (i, p) in read {
         let mut channels: [Option<Input>; 4] = Default::default();
@@ -133,7 +146,8 @@ pub fn parse(path: &Path, text: &str) -> Result<Project, String> {
                 Some(k) if k < 4 => k as usize,
                 _ => return Err(format!("{at}.channel: expected a number 0 to 3")),
             };
-            let bound = bind(dir, &at, input, &outputs, &mut project.warnings)?;
+            let reader = format!("{} iChannel{channel}", project.passes[p].kind.title());
+            let bound = bind(find, (&at, &reader), input, &outputs, &mut project.warnings)?;
             if let Some(Input::Buffer(k)) = bound
                 && !kinds.contains(&PassKind::Buffer(k))
             {
@@ -207,10 +221,11 @@ fn buffer_of(name: &str, pass: &Value) -> Option<usize> {
 /// What one input binds: a buffer (by the id of the pass drawing it), the
 /// keyboard, or an image found next to the JSON file. What cannot be shown
 /// (a texture not found, a video, sound) reads noise or black, with a
-/// warning.
+/// warning naming the key and the pass's channel (`reader`, `Image
+/// iChannel0`).
 fn bind(
-    dir: &Path,
-    at: &str,
+    find: &dyn Fn(&str) -> Option<PathBuf>,
+    (at, reader): (&str, &str),
     input: &Value,
     outputs: &[(String, PassKind)],
     warnings: &mut Vec<String>,
@@ -244,30 +259,35 @@ fn bind(
             Ok(Some(Input::Buffer(k)))
         }
         "keyboard" => Ok(Some(Input::Keyboard)),
-        "texture" => {
-            let name = Path::new(&src).file_name().map(Path::new);
-            let candidates = [
-                Some(dir.join(src.trim_start_matches('/'))),
-                name.map(|n| dir.join(n)),
-            ];
-            match candidates.into_iter().flatten().find(|p| p.is_file()) {
-                Some(path) => Ok(Some(Input::Texture(path))),
-                None => {
-                    warnings.push(format!(
-                        "{at}.src: the texture `{src}` is not next to the file: the built-in \
-                         noise instead (put the image there to use it)"
-                    ));
-                    Ok(Some(Input::Noise))
-                }
+        "texture" => match find(&src) {
+            Some(path) => Ok(Some(Input::Texture(path))),
+            None => {
+                warnings.push(format!(
+                    "{at}.src ({reader}): the texture `{src}` is not next to the file: the \
+                     built-in noise instead (put the image there to use it)"
+                ));
+                Ok(Some(Input::Noise))
             }
-        }
+        },
         other => {
             warnings.push(format!(
-                "{at}.ctype: `{other}` inputs are not supported: the channel reads black"
+                "{at}.ctype ({reader}): `{other}` inputs are not supported: the channel reads \
+                 black"
             ));
             Ok(None)
         }
     }
+}
+
+/// The image a texture's `src` names next to the JSON file in `dir`: at
+/// `src` relative to it, or by its file name.
+fn next_to(dir: &Path, src: &str) -> Option<PathBuf> {
+    let name = Path::new(src).file_name().map(Path::new);
+    let candidates = [
+        Some(dir.join(src.trim_start_matches('/'))),
+        name.map(|n| dir.join(n)),
+    ];
+    candidates.into_iter().flatten().find(|p| p.is_file())
 }
 
 #[cfg(test)]

@@ -2,8 +2,11 @@
 //! key code (65 = A, 37 to 40 the arrows, 32 space); row 0 is 1 while the
 //! key is down, row 1 only in the frame the key went down, row 2 flips at
 //! every press. Shaders read it with `texelFetch(iChannel1, ivec2(KEY, 0), 0).x`.
+//! The native window and the web page both feed it winit's key events.
 
 use wgpu::util::DeviceExt;
+use winit::event::{ElementState, KeyEvent};
+use winit::keyboard::{KeyCode, PhysicalKey};
 
 /// Key codes 0 to 255.
 pub const KEYS: usize = 256;
@@ -40,6 +43,20 @@ impl Keyboard {
 
     pub fn release(&mut self, code: u8) {
         self.down[usize::from(code)] = false;
+    }
+
+    /// A key event of the window or the page's canvas, by the key's
+    /// position (`KeyA` whatever the layout types), as Shadertoy's page reads
+    /// `keyCode`; keys without a code here are ignored.
+    pub fn key(&mut self, event: &KeyEvent) {
+        let PhysicalKey::Code(code) = event.physical_key else {
+            return;
+        };
+        let Some(js) = js_key_code(code) else { return };
+        match event.state {
+            ElementState::Pressed => self.press(js),
+            ElementState::Released => self.release(js),
+        }
     }
 
     /// After a frame was drawn: "pressed this frame" is over.
@@ -93,6 +110,50 @@ impl Keyboard {
     }
 }
 
+/// The JavaScript `keyCode` of a key, as Shadertoy's keyboard texture
+/// indexes it: letters 65 to 90, digits 48 to 57, the arrows 37 to 40,
+/// space 32, and the common controls.
+fn js_key_code(code: KeyCode) -> Option<u8> {
+    use KeyCode::*;
+    let letters = [
+        KeyA, KeyB, KeyC, KeyD, KeyE, KeyF, KeyG, KeyH, KeyI, KeyJ, KeyK, KeyL, KeyM, KeyN, KeyO,
+        KeyP, KeyQ, KeyR, KeyS, KeyT, KeyU, KeyV, KeyW, KeyX, KeyY, KeyZ,
+    ];
+    if let Some(k) = letters.iter().position(|&c| c == code) {
+        return Some(65 + k as u8);
+    }
+    let digits = [
+        Digit0, Digit1, Digit2, Digit3, Digit4, Digit5, Digit6, Digit7, Digit8, Digit9,
+    ];
+    if let Some(k) = digits.iter().position(|&c| c == code) {
+        return Some(48 + k as u8);
+    }
+    let functions = [F1, F2, F3, F4, F5, F6, F7, F8, F9, F10, F11, F12];
+    if let Some(k) = functions.iter().position(|&c| c == code) {
+        return Some(112 + k as u8);
+    }
+    Some(match code {
+        Backspace => 8,
+        Tab => 9,
+        Enter | NumpadEnter => 13,
+        ShiftLeft | ShiftRight => 16,
+        ControlLeft | ControlRight => 17,
+        AltLeft | AltRight => 18,
+        Escape => 27,
+        Space => 32,
+        PageUp => 33,
+        PageDown => 34,
+        End => 35,
+        Home => 36,
+        ArrowLeft => 37,
+        ArrowUp => 38,
+        ArrowRight => 39,
+        ArrowDown => 40,
+        Delete => 46,
+        _ => return None,
+    })
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -113,5 +174,15 @@ mod tests {
         let b = k.bytes();
         assert_eq!((b[65], b[KEYS + 65], b[2 * KEYS + 65]), (255, 0, 0));
         assert_eq!(b.len(), 3 * KEYS);
+    }
+
+    #[test]
+    fn keys_get_javascript_codes() {
+        assert_eq!(js_key_code(KeyCode::KeyA), Some(65));
+        assert_eq!(js_key_code(KeyCode::KeyZ), Some(90));
+        assert_eq!(js_key_code(KeyCode::Digit7), Some(55));
+        assert_eq!(js_key_code(KeyCode::ArrowLeft), Some(37));
+        assert_eq!(js_key_code(KeyCode::F12), Some(123));
+        assert_eq!(js_key_code(KeyCode::CapsLock), None);
     }
 }
