@@ -1405,6 +1405,76 @@ fn the_editor_leaves_a_usable_picture_at_1024_x_768_and_f1_shows_help() {
     assert_eq!(page.exceptions(), Vec::<String>::new());
 }
 
+/// The picture's and the editor's rectangles: the canvas and the editor
+/// panel in the page, and the picture egui lays out in the canvas.
+fn split(page: &mut Browser) -> (common::xwindow::Rect, common::xwindow::Rect) {
+    let canvas = page.element("raysandbox").expect("the canvas");
+    let editor = page.element("editor").expect("the editor is open");
+    (canvas, editor)
+}
+
+/// Drags the divider between the picture and the editor to `x`.
+fn drag_divider(page: &mut Browser, x: f64) {
+    let divider = page.element("editor-divider").expect("the divider");
+    page.drag(Button::Left, page_point(divider), (x, 300.0));
+}
+
+/// The divider between the picture and the editor moves the border between
+/// them (the picture egui draws follows the canvas), never leaves the
+/// picture too narrow to use, and the next visit keeps the width; the
+/// editor opens at the top of its text.
+#[test]
+fn dragging_the_divider_resizes_the_editor_and_the_width_is_kept() {
+    let Some((_display, mut page)) = open_on_projector("?samples=1&editor") else {
+        return;
+    };
+    wait_for_layout(&mut page, "the picture", |p| p.contains_key("view"));
+    let inner = page.evaluate("innerWidth").as_i64().unwrap() as i32;
+    let (canvas, editor) = split(&mut page);
+    assert_eq!(
+        (canvas.w, editor.right()),
+        (editor.x, inner),
+        "side by side: {canvas:?} {editor:?}"
+    );
+    drag_divider(&mut page, f64::from(editor.x + 150));
+    let width: i32 = page.wait_for("editor-width").parse().unwrap();
+    let (wider, narrower) = split(&mut page);
+    assert_eq!(width, editor.w - 150, "the drag's width");
+    assert_eq!(narrower.x, editor.x + 150, "the editor's edge moved");
+    assert_eq!(narrower.w, width, "the editor is as wide as told");
+    assert_eq!(wider.w, canvas.w + 150, "the picture took the rest");
+    wait_for_layout(&mut page, "the picture follows the canvas", |p| {
+        p.get("view").is_some_and(|v| v.w == wider.w)
+    });
+
+    drag_divider(&mut page, 20.0);
+    let widest: i32 = page.wait_for("editor-width").parse().unwrap();
+    let (least, _) = split(&mut page);
+    assert_eq!(least.w, 320, "the picture keeps a usable width");
+    assert_eq!(widest, inner - 320);
+
+    drag_divider(&mut page, f64::from(editor.x + 150));
+    page.wait_for("editor-width");
+    let again = page.evaluate("location.href");
+    page.navigate(again.as_str().unwrap());
+    wait_for_layout(&mut page, "the picture after the reload", |p| {
+        p.contains_key("view")
+    });
+    assert_eq!(
+        split(&mut page),
+        (wider, narrower),
+        "the next visit keeps the width"
+    );
+    let at_top = "(() => { const t = document.getElementById('scene-text'); \
+                  return [t.scrollTop, t.selectionStart]; })()";
+    assert_eq!(
+        page.evaluate(at_top),
+        serde_json::json!([0, 0]),
+        "the editor opens at the top of the scene"
+    );
+    assert_eq!(page.exceptions(), Vec::<String>::new());
+}
+
 /// Ctrl+plus scales the panel, the editor and the page's buttons together,
 /// and the browser keeps the scale for the next visit.
 #[test]
