@@ -153,6 +153,114 @@ fn every_bundled_scene_from_a_link_is_drawn_like_the_reference() {
     }
 }
 
+/// How the page refined a scene: its `ready` line, the wall time from the
+/// navigation to the first sample on screen and from there to the last.
+struct Refined {
+    ready: String,
+    to_first: Duration,
+    first_to_last: Duration,
+}
+
+impl Refined {
+    /// A field `name=VALUE` of the `ready` line.
+    fn field(&self, name: &str) -> &str {
+        self.ready
+            .split_whitespace()
+            .find_map(|f| f.strip_prefix(name)?.strip_prefix('='))
+            .unwrap_or_else(|| panic!("no {name} in 'ready {}'", self.ready))
+    }
+}
+
+/// Opens bundled scene `name` from a link with its panel shown and waits
+/// until it has `samples` samples, for as long as `patience`; fails on a
+/// lost device (a GPU process that crashed or a watchdog that fired) or an
+/// error.
+fn refine(page: &mut Browser, url: &str, name: &str, samples: u32, patience: Duration) -> Refined {
+    let text = bundled::text(name).unwrap();
+    let start = Instant::now();
+    page.navigate(&format!(
+        "{url}?samples={samples}&{name}#{}",
+        link::scene_hash(text)
+    ));
+    let deadline = start + patience;
+    let mut lines = Vec::new();
+    let mut first = None;
+    loop {
+        for line in page.events_within(Duration::from_millis(200)) {
+            assert!(
+                !line.starts_with("device-lost") && !line.starts_with("error"),
+                "{name}: {line}, after {lines:?}"
+            );
+            if line.starts_with("first-frame") {
+                first = Some(Instant::now());
+            }
+            if let Some(ready) = line.strip_prefix("ready ") {
+                let first = first.expect("the first frame before 'ready'");
+                return Refined {
+                    ready: ready.to_string(),
+                    to_first: first - start,
+                    first_to_last: first.elapsed(),
+                };
+            }
+            lines.push(line);
+        }
+        assert_eq!(page.exceptions(), Vec::<String>::new());
+        assert!(
+            Instant::now() < deadline,
+            "{name}: no 'ready' within {patience:?}; the page said {lines:?}"
+        );
+    }
+}
+
+/// A number from the environment, for measurements longer than a test.
+fn from_env(name: &str, default: u32) -> u32 {
+    std::env::var(name).map_or(default, |n| n.parse().expect(name))
+}
+
+/// The heaviest bundled scenes (a glass model and a box of mirrors and
+/// triangles), their panel shown, are traced in many short jobs timed by
+/// their own timestamps (src/gpu/jobs.rs), and the device is never lost
+/// to Chromium's GPU watchdog. The longest job is printed, not bounded:
+/// it passes the planner's 200 ms by far on this machine (docs/web.md,
+/// "Heavy scenes"). One sample at the tests' size; `RAYSANDBOX_WEB_SAMPLES=N`
+/// and `RAYSANDBOX_WEB_WIDTH=1280 RAYSANDBOX_WEB_HEIGHT=900` measure more.
+#[test]
+fn the_heaviest_scenes_refine_in_short_jobs_without_losing_the_device() {
+    let Some(display) = common::xwindow::Display::start() else {
+        return;
+    };
+    let samples = from_env("RAYSANDBOX_WEB_SAMPLES", 1);
+    let size = (
+        from_env("RAYSANDBOX_WEB_WIDTH", SIZE.0),
+        from_env("RAYSANDBOX_WEB_HEIGHT", SIZE.1),
+    );
+    let url = browser::serve(browser::page_dir());
+    let options = browser::Options {
+        size,
+        ..Default::default()
+    };
+    let mut page = Browser::start(&display, options);
+    for name in ["glass_bunny", "cornell_dragon"] {
+        let pixels = size.0 * size.1;
+        let patience = browser::TIMEOUT * (1 + samples * pixels / (SIZE.0 * SIZE.1));
+        let refined = refine(&mut page, &url, name, samples, patience);
+        eprintln!(
+            "{name} at {size:?}: the first sample on screen {:.1} s after the \
+             navigation, {samples} in {:.1} s more; ready {}",
+            refined.to_first.as_secs_f64(),
+            refined.first_to_last.as_secs_f64(),
+            refined.ready
+        );
+        assert_eq!(refined.field("timing"), "timestamps", "{name}");
+        // A sample of these scenes takes SwiftShader seconds: many jobs.
+        let jobs: u32 = refined.field("jobs").parse().unwrap();
+        assert!(
+            jobs >= 4 * samples,
+            "{name}: {jobs} jobs for {samples} samples"
+        );
+    }
+}
+
 /// A link made from an edited scene (another sky and camera) reproduces
 /// that scene, not the default one, in a fresh browser.
 #[test]
