@@ -8,9 +8,9 @@
 
 use std::cell::Cell;
 use std::rc::Rc;
+
 use wasm_bindgen::JsCast;
 use wasm_bindgen::prelude::*;
-
 use web_sys::{EventTarget, HtmlElement, PointerEvent};
 
 use super::page;
@@ -42,29 +42,58 @@ pub fn attach() -> Result<(), String> {
     // editor too, which take no pointer events meanwhile (`resizing` in
     // web/editor.css): the canvas's own listeners would see a move with no
     // press.
-    let dragging = Rc::new(Cell::new(false));
-    let pressed = dragging.clone();
+    let drag = Rc::new(Drag::default());
+    let pressed = drag.clone();
     listen(&divider, "pointerdown", move |event| {
-        pressed.set(true);
+        pressed.active.set(true);
         page::set_body_class("resizing", true);
         event.prevent_default();
     })?;
     let window = web_sys::window().ok_or("no window")?;
-    let moving = dragging.clone();
+    let moving = drag.clone();
     listen(&window, "pointermove", move |event| {
-        if moving.get() {
-            set_width(width_at(f64::from(event.client_x())));
-        }
-    })?;
-    listen(&window, "pointerup", move |event| {
-        if dragging.replace(false) {
+        if moving.active.get() {
             let width = width_at(f64::from(event.client_x()));
             set_width(width);
-            page::set_body_class("resizing", false);
+            moving.width.set(Some(width));
+        }
+    })?;
+    let released = drag.clone();
+    listen(&window, "pointerup", move |event| {
+        if released.active.get() {
+            released.end(Some(width_at(f64::from(event.client_x()))));
+        }
+    })?;
+    // A touch taken over by the browser ends the drag where it was.
+    listen(&window, "pointercancel", move |_| {
+        if drag.active.get() {
+            drag.end(drag.width.get());
+        }
+    })
+}
+
+/// A drag of the divider.
+#[derive(Default)]
+struct Drag {
+    /// The button is down on the divider.
+    active: Cell<bool>,
+    /// The width at the last move.
+    width: Cell<Option<f64>>,
+}
+
+impl Drag {
+    /// Ends the drag at `width` (none: where it started), which the browser
+    /// keeps.
+    fn end(&self, width: Option<f64>) {
+        self.active.set(false);
+        self.width.set(None);
+        page::set_body_class("resizing", false);
+        if let Some(width) = width {
+            set_width(width);
             page::store(WIDTH_KEY, &width.to_string());
             page::event(&format!("editor-width {width}"));
         }
-    })
+    }
 }
 
 /// The editor's width with its left edge at `x`, within the bounds.
