@@ -153,6 +153,114 @@ fn every_bundled_scene_from_a_link_is_drawn_like_the_reference() {
     }
 }
 
+/// How the page refined a scene: its `ready` line, the wall time from the
+/// navigation to the first sample on screen and from there to the last.
+struct Refined {
+    ready: String,
+    to_first: Duration,
+    first_to_last: Duration,
+}
+
+impl Refined {
+    /// A field `name=VALUE` of the `ready` line.
+    fn field(&self, name: &str) -> &str {
+        self.ready
+            .split_whitespace()
+            .find_map(|f| f.strip_prefix(name)?.strip_prefix('='))
+            .unwrap_or_else(|| panic!("no {name} in 'ready {}'", self.ready))
+    }
+}
+
+/// Opens bundled scene `name` from a link with its panel shown and waits
+/// until it has `samples` samples, for as long as `patience`; fails on a
+/// lost device (a GPU process that crashed or a watchdog that fired) or an
+/// error.
+fn refine(page: &mut Browser, url: &str, name: &str, samples: u32, patience: Duration) -> Refined {
+    let text = bundled::text(name).unwrap();
+    let start = Instant::now();
+    page.navigate(&format!(
+        "{url}?samples={samples}&{name}#{}",
+        link::scene_hash(text)
+    ));
+    let deadline = start + patience;
+    let mut lines = Vec::new();
+    let mut first = None;
+    loop {
+        for line in page.events_within(Duration::from_millis(200)) {
+            assert!(
+                !line.starts_with("device-lost") && !line.starts_with("error"),
+                "{name}: {line}, after {lines:?}"
+            );
+            if line.starts_with("first-frame") {
+                first = Some(Instant::now());
+            }
+            if let Some(ready) = line.strip_prefix("ready ") {
+                let first = first.expect("the first frame before 'ready'");
+                return Refined {
+                    ready: ready.to_string(),
+                    to_first: first - start,
+                    first_to_last: first.elapsed(),
+                };
+            }
+            lines.push(line);
+        }
+        assert_eq!(page.exceptions(), Vec::<String>::new());
+        assert!(
+            Instant::now() < deadline,
+            "{name}: no 'ready' within {patience:?}; the page said {lines:?}"
+        );
+    }
+}
+
+/// A number from the environment, for measurements longer than a test.
+fn from_env(name: &str, default: u32) -> u32 {
+    std::env::var(name).map_or(default, |n| n.parse().expect(name))
+}
+
+/// The heaviest bundled scenes (a glass model and a box of mirrors and
+/// triangles), their panel shown, are traced in many short jobs timed by
+/// their own timestamps (src/gpu/jobs.rs), and the device is never lost
+/// to Chromium's GPU watchdog. The longest job is printed, not bounded:
+/// it passes the planner's 200 ms by far on this machine (docs/web.md,
+/// "Heavy scenes"). One sample at the tests' size; `RAYSANDBOX_WEB_SAMPLES=N`
+/// and `RAYSANDBOX_WEB_WIDTH=1280 RAYSANDBOX_WEB_HEIGHT=900` measure more.
+#[test]
+fn the_heaviest_scenes_refine_in_short_jobs_without_losing_the_device() {
+    let Some(display) = common::xwindow::Display::start() else {
+        return;
+    };
+    let samples = from_env("RAYSANDBOX_WEB_SAMPLES", 1);
+    let size = (
+        from_env("RAYSANDBOX_WEB_WIDTH", SIZE.0),
+        from_env("RAYSANDBOX_WEB_HEIGHT", SIZE.1),
+    );
+    let url = browser::serve(browser::page_dir());
+    let options = browser::Options {
+        size,
+        ..Default::default()
+    };
+    let mut page = Browser::start(&display, options);
+    for name in ["glass_bunny", "cornell_dragon"] {
+        let pixels = size.0 * size.1;
+        let patience = browser::TIMEOUT * (1 + samples * pixels / (SIZE.0 * SIZE.1));
+        let refined = refine(&mut page, &url, name, samples, patience);
+        eprintln!(
+            "{name} at {size:?}: the first sample on screen {:.1} s after the \
+             navigation, {samples} in {:.1} s more; ready {}",
+            refined.to_first.as_secs_f64(),
+            refined.first_to_last.as_secs_f64(),
+            refined.ready
+        );
+        assert_eq!(refined.field("timing"), "timestamps", "{name}");
+        // A sample of these scenes takes SwiftShader seconds: many jobs.
+        let jobs: u32 = refined.field("jobs").parse().unwrap();
+        assert!(
+            jobs >= 4 * samples,
+            "{name}: {jobs} jobs for {samples} samples"
+        );
+    }
+}
+
 /// A link made from an edited scene (another sky and camera) reproduces
 /// that scene, not the default one, in a fresh browser.
 #[test]
@@ -1509,6 +1617,76 @@ fn the_editor_leaves_a_usable_picture_at_1024_x_768_and_f1_shows_help() {
     wait_for_layout(&mut page, "the panel comes back", |p| {
         p.contains_key("panel")
     });
+    assert_eq!(page.exceptions(), Vec::<String>::new());
+}
+
+/// The picture's and the editor's rectangles: the canvas and the editor
+/// panel in the page, and the picture egui lays out in the canvas.
+fn split(page: &mut Browser) -> (common::xwindow::Rect, common::xwindow::Rect) {
+    let canvas = page.element("raysandbox").expect("the canvas");
+    let editor = page.element("editor").expect("the editor is open");
+    (canvas, editor)
+}
+
+/// Drags the divider between the picture and the editor to `x`.
+fn drag_divider(page: &mut Browser, x: f64) {
+    let divider = page.element("editor-divider").expect("the divider");
+    page.drag(Button::Left, page_point(divider), (x, 300.0));
+}
+
+/// The divider between the picture and the editor moves the border between
+/// them (the picture egui draws follows the canvas), never leaves the
+/// picture too narrow to use, and the next visit keeps the width; the
+/// editor opens at the top of its text.
+#[test]
+fn dragging_the_divider_resizes_the_editor_and_the_width_is_kept() {
+    let Some((_display, mut page)) = open_on_projector("?samples=1&editor") else {
+        return;
+    };
+    wait_for_layout(&mut page, "the picture", |p| p.contains_key("view"));
+    let inner = page.evaluate("innerWidth").as_i64().unwrap() as i32;
+    let (canvas, editor) = split(&mut page);
+    assert_eq!(
+        (canvas.w, editor.right()),
+        (editor.x, inner),
+        "side by side: {canvas:?} {editor:?}"
+    );
+    drag_divider(&mut page, f64::from(editor.x + 150));
+    let width: i32 = page.wait_for("editor-width").parse().unwrap();
+    let (wider, narrower) = split(&mut page);
+    assert_eq!(width, editor.w - 150, "the drag's width");
+    assert_eq!(narrower.x, editor.x + 150, "the editor's edge moved");
+    assert_eq!(narrower.w, width, "the editor is as wide as told");
+    assert_eq!(wider.w, canvas.w + 150, "the picture took the rest");
+    wait_for_layout(&mut page, "the picture follows the canvas", |p| {
+        p.get("view").is_some_and(|v| v.w == wider.w)
+    });
+
+    drag_divider(&mut page, 20.0);
+    let widest: i32 = page.wait_for("editor-width").parse().unwrap();
+    let (least, _) = split(&mut page);
+    assert_eq!(least.w, 320, "the picture keeps a usable width");
+    assert_eq!(widest, inner - 320);
+
+    drag_divider(&mut page, f64::from(editor.x + 150));
+    page.wait_for("editor-width");
+    let again = page.evaluate("location.href");
+    page.navigate(again.as_str().unwrap());
+    wait_for_layout(&mut page, "the picture after the reload", |p| {
+        p.contains_key("view")
+    });
+    assert_eq!(
+        split(&mut page),
+        (wider, narrower),
+        "the next visit keeps the width"
+    );
+    let at_top = "(() => { const t = document.getElementById('scene-text'); \
+                  return [t.scrollTop, t.selectionStart]; })()";
+    assert_eq!(
+        page.evaluate(at_top),
+        serde_json::json!([0, 0]),
+        "the editor opens at the top of the scene"
+    );
     assert_eq!(page.exceptions(), Vec::<String>::new());
 }
 

@@ -24,7 +24,7 @@ use super::drop::{Dropped, DroppedFile};
 use super::editor::{Doc, EditorEvent};
 use super::meshes::{self, PageMeshes};
 use super::workbench::{Outcome, WorkEvent, Workbench};
-use super::{drop, link, page};
+use super::{drop, link, page, split};
 use crate::app::document::Document;
 use crate::app::help::{self, Help};
 use crate::app::panel;
@@ -184,6 +184,9 @@ pub fn start() {
         let _ = to_page.send_event(PageEvent::Dropped(file));
     });
     if let Err(e) = listening {
+        page::show_error(&e);
+    }
+    if let Err(e) = split::attach() {
         page::show_error(&e);
     }
     let to_page = proxy.clone();

@@ -23,4 +23,6 @@ mod page;
 #[cfg(target_arch = "wasm32")]
 mod sandbox_page;
 #[cfg(target_arch = "wasm32")]
+mod split;
+#[cfg(target_arch = "wasm32")]
 mod workbench;
