@@ -7,6 +7,7 @@
 mod common;
 
 use std::path::PathBuf;
+use std::time::Instant;
 
 use common::xwindow::{Display, Rect, Window, crop};
 use raysandbox::compare::diff_images;
@@ -236,6 +237,69 @@ fn the_window_shows_the_channel_image_given_on_the_command_line() {
     let shown = crop(&window.capture(), area);
     let d = diff_images(&shown, &crop(&input, area));
     assert!(d.max_abs <= 1, "the window shows the image: {d:?}");
+    drop(window);
+    std::fs::remove_dir_all(&dir).unwrap();
+}
+
+/// Rings over the channel image: both must come back after a lost device.
+const RINGS_OVER_CHANNEL0: &str = "\
+void mainImage(out vec4 fragColor, in vec2 fragCoord) {
+    vec2 p = fragCoord / iResolution.xy;
+    float r = length(p - vec2(0.7, 0.6));
+    vec3 image = texture(iChannel0, p).rgb;
+    fragColor = vec4(image.rg, 0.5 + 0.5 * sin(60.0 * r - iTime), 1.0);
+}
+";
+
+/// A lost GPU device (SIGUSR1 destroys it, as a driver reset would lose it)
+/// is replaced by a new one in the same window (docs/reliability.md, "The
+/// GPU's limits and a lost device"): the shader, built again, draws the
+/// same picture with its channel image, the clock paused where it was.
+/// Prints the time from the signal to the first frame on the new device.
+#[test]
+fn a_lost_device_is_recovered_keeping_the_shader_and_its_channel() {
+    let Some(display) = Display::start() else {
+        return;
+    };
+    let dir = std::env::temp_dir().join(format!("raysandbox-window-lost-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).unwrap();
+    let shader = dir.join("rings.glsl");
+    std::fs::write(&shader, RINGS_OVER_CHANNEL0).unwrap();
+    let input = image::RgbaImage::from_fn(WIDTH, HEIGHT, |x, y| {
+        image::Rgba([(x % 256) as u8, ((x ^ y) % 256) as u8, 0, 255])
+    });
+    let input_path = dir.join("input.png");
+    input.save(&input_path).unwrap();
+    let mut window = Window::open(
+        &display,
+        &[
+            "shader",
+            shader.to_str().unwrap(),
+            "--start-paused",
+            "--channel0",
+            input_path.to_str().unwrap(),
+        ],
+        (WIDTH, HEIGHT),
+    );
+    let area = free(&window);
+    let before = crop(&window.capture(), area);
+
+    let pid = i32::try_from(window.pid()).unwrap();
+    let start = Instant::now();
+    // SAFETY: kill(2) with a valid signal number only sends the signal.
+    assert_eq!(unsafe { libc::kill(pid, libc::SIGUSR1) }, 0);
+    let lost = window.wait_for("device-lost");
+    assert!(lost.contains("destroyed"), "{lost}");
+    window.wait_for("device-recovered");
+    window.wait_for("ready");
+    eprintln!(
+        "sandbox window: SIGUSR1 to the first frame on the new device: {:.2} s",
+        start.elapsed().as_secs_f64()
+    );
+    let after = crop(&window.capture(), area);
+    let d = diff_images(&before, &after);
+    assert!(d.max_abs <= 1, "the same picture after the loss: {d:?}");
+    assert!(window.is_running());
     drop(window);
     std::fs::remove_dir_all(&dir).unwrap();
 }
