@@ -7,7 +7,6 @@
 mod common;
 
 use std::path::PathBuf;
-use std::time::Instant;
 
 use common::xwindow::{Display, Rect, Window, crop};
 use raysandbox::compare::diff_images;
@@ -255,7 +254,6 @@ void mainImage(out vec4 fragColor, in vec2 fragCoord) {
 /// is replaced by a new one in the same window (docs/reliability.md, "The
 /// GPU's limits and a lost device"): the shader, built again, draws the
 /// same picture with its channel image, the clock paused where it was.
-/// Prints the time from the signal to the first frame on the new device.
 #[test]
 fn a_lost_device_is_recovered_keeping_the_shader_and_its_channel() {
     let Some(display) = Display::start() else {
@@ -284,18 +282,8 @@ fn a_lost_device_is_recovered_keeping_the_shader_and_its_channel() {
     let area = free(&window);
     let before = crop(&window.capture(), area);
 
-    let pid = i32::try_from(window.pid()).unwrap();
-    let start = Instant::now();
-    // SAFETY: kill(2) with a valid signal number only sends the signal.
-    assert_eq!(unsafe { libc::kill(pid, libc::SIGUSR1) }, 0);
-    let lost = window.wait_for("device-lost");
-    assert!(lost.contains("destroyed"), "{lost}");
-    window.wait_for("device-recovered");
-    window.wait_for("ready");
-    eprintln!(
-        "sandbox window: SIGUSR1 to the first frame on the new device: {:.2} s",
-        start.elapsed().as_secs_f64()
-    );
+    let recovery = window.lose_device("sandbox window");
+    assert!(recovery.reason.contains("destroyed"), "{}", recovery.reason);
     let after = crop(&window.capture(), area);
     let d = diff_images(&before, &after);
     assert!(d.max_abs <= 1, "the same picture after the loss: {d:?}");
