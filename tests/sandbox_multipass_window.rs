@@ -7,6 +7,7 @@ mod common;
 use std::path::Path;
 
 use common::xwindow::{Display, Rect, Window, crop};
+use raysandbox::compare::diff_images;
 
 const WIDTH: u32 = 480;
 const HEIGHT: u32 = 270;
@@ -114,5 +115,46 @@ fn a_multipass_folder_accumulates_resets_on_r_and_reloads_each_pass() {
     );
     std::fs::write(&bindings, &toml).unwrap();
     window.wait_for("shader-reloaded");
+    assert!(window.is_running());
+}
+
+/// A lost GPU device (SIGUSR1, docs/reliability.md, "The GPU's limits and
+/// a lost device"): the passes are built again on a new device and the
+/// buffers start again with the clock, as after `R`: the progressive
+/// average's frame 0, the same picture as when the window opened paused.
+#[test]
+fn a_lost_device_restarts_the_buffers_with_the_clock() {
+    let Some(display) = Display::start() else {
+        return;
+    };
+    let dir = common::temp_dir("multipass-window-lost", "progressive");
+    let source = Path::new(env!("CARGO_MANIFEST_DIR")).join("tests/shaders/multipass/progressive");
+    common::copy_dir(&source, &dir);
+    let mut window = Window::open(
+        &display,
+        &["shader", dir.to_str().unwrap(), "--start-paused"],
+        (WIDTH, HEIGHT),
+    );
+    let area = free(&window);
+    let first = crop(&window.capture(), area);
+    // Run for a while, then pause: the frames accumulate.
+    window.key("space");
+    std::thread::sleep(std::time::Duration::from_secs(2));
+    window.key("space");
+    std::thread::sleep(std::time::Duration::from_millis(500));
+    let before = averaged(&window, area);
+    assert!(
+        before > 0.5,
+        "the frames accumulate: {before} of the pixels grey"
+    );
+
+    let recovery = window.lose_device("sandbox window, multipass");
+    assert!(recovery.reason.contains("destroyed"), "{}", recovery.reason);
+    let after = crop(&window.capture(), area);
+    let d = diff_images(&first, &after);
+    assert!(
+        d.max_abs <= 1,
+        "after the loss the buffers start again at frame 0, as when the window opened: {d:?}"
+    );
     assert!(window.is_running());
 }

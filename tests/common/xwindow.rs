@@ -345,9 +345,7 @@ impl<'d> Window<'d> {
             recovery.recovered.as_secs_f64(),
             recovery.ready.as_secs_f64(),
             recovery.cpu.as_secs_f64(),
-            std::fs::read_to_string("/proc/loadavg")
-                .unwrap_or_default()
-                .trim()
+            super::load_average()
         );
         recovery
     }

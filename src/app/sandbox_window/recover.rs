@@ -3,7 +3,9 @@
 //! dropped and made again on a new one, in the same window. The shader's
 //! last good text, its parameter values, the clock, the mouse and the
 //! channel images stay; the pipelines are built again from the compiled
-//! shader, and a multipass shader's buffers start again, black.
+//! shader. A multipass shader's buffers start again, black, with the clock
+//! at time and frame 0, as after `R`: a buffer that averages over the
+//! frames would otherwise weigh its lost history as black.
 
 use winit::event_loop::ActiveEventLoop;
 
@@ -42,7 +44,10 @@ impl SandboxApp {
         self.devices += 1;
         let was_building = std::mem::take(&mut self.building);
         let rebuild = match &mut self.multi {
-            Some(multi) => Some(Rebuild::Passes(multi.device_lost())),
+            Some(multi) => {
+                self.clock.restart(std::time::Instant::now());
+                Some(Rebuild::Passes(multi.device_lost()))
+            }
             None => self.session.drop_pipeline().map(Rebuild::Single),
         };
         let lost = (reason, "the shader, its parameters and channels are");
