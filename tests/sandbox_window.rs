@@ -202,15 +202,40 @@ void mainImage(out vec4 fragColor, in vec2 fragCoord) {
 }
 ";
 
+/// Opens the window, paused, on the GLSL `shader` in a fresh folder
+/// (`raysandbox-window-NAME-PID`), with `input` as `--channel0`; returns
+/// it and the folder.
+fn open_with_channel0<'d>(
+    display: &'d Display,
+    name: &str,
+    shader: &str,
+    input: &image::RgbaImage,
+) -> (Window<'d>, PathBuf) {
+    let dir = std::env::temp_dir().join(format!("raysandbox-window-{name}-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).unwrap();
+    let path = dir.join("shader.glsl");
+    std::fs::write(&path, shader).unwrap();
+    let input_path = dir.join("input.png");
+    input.save(&input_path).unwrap();
+    let window = Window::open(
+        display,
+        &[
+            "shader",
+            path.to_str().unwrap(),
+            "--start-paused",
+            "--channel0",
+            input_path.to_str().unwrap(),
+        ],
+        (WIDTH, HEIGHT),
+    );
+    (window, dir)
+}
+
 #[test]
 fn the_window_shows_the_channel_image_given_on_the_command_line() {
     let Some(display) = Display::start() else {
         return;
     };
-    let dir = std::env::temp_dir().join(format!("raysandbox-window-ch-{}", std::process::id()));
-    std::fs::create_dir_all(&dir).unwrap();
-    let shader = dir.join("show.glsl");
-    std::fs::write(&shader, SHOW_CHANNEL0).unwrap();
     let input = image::RgbaImage::from_fn(WIDTH, HEIGHT, |x, y| {
         image::Rgba([
             (x % 256) as u8,
@@ -219,19 +244,7 @@ fn the_window_shows_the_channel_image_given_on_the_command_line() {
             255,
         ])
     });
-    let input_path = dir.join("input.png");
-    input.save(&input_path).unwrap();
-    let window = Window::open(
-        &display,
-        &[
-            "shader",
-            shader.to_str().unwrap(),
-            "--start-paused",
-            "--channel0",
-            input_path.to_str().unwrap(),
-        ],
-        (WIDTH, HEIGHT),
-    );
+    let (window, dir) = open_with_channel0(&display, "ch", SHOW_CHANNEL0, &input);
     let area = free(&window);
     let shown = crop(&window.capture(), area);
     let d = diff_images(&shown, &crop(&input, area));
@@ -259,26 +272,10 @@ fn a_lost_device_is_recovered_keeping_the_shader_and_its_channel() {
     let Some(display) = Display::start() else {
         return;
     };
-    let dir = std::env::temp_dir().join(format!("raysandbox-window-lost-{}", std::process::id()));
-    std::fs::create_dir_all(&dir).unwrap();
-    let shader = dir.join("rings.glsl");
-    std::fs::write(&shader, RINGS_OVER_CHANNEL0).unwrap();
     let input = image::RgbaImage::from_fn(WIDTH, HEIGHT, |x, y| {
         image::Rgba([(x % 256) as u8, ((x ^ y) % 256) as u8, 0, 255])
     });
-    let input_path = dir.join("input.png");
-    input.save(&input_path).unwrap();
-    let mut window = Window::open(
-        &display,
-        &[
-            "shader",
-            shader.to_str().unwrap(),
-            "--start-paused",
-            "--channel0",
-            input_path.to_str().unwrap(),
-        ],
-        (WIDTH, HEIGHT),
-    );
+    let (mut window, dir) = open_with_channel0(&display, "lost", RINGS_OVER_CHANNEL0, &input);
     let area = free(&window);
     let before = crop(&window.capture(), area);
 

@@ -19,7 +19,7 @@ use crate::sandbox::{Compiled, ReloadError};
 
 /// What runs and must be built again on a new device.
 enum Rebuild {
-    Single(Compiled),
+    Single(Box<Compiled>),
     Passes(Vec<CompiledPass>),
 }
 
@@ -48,7 +48,10 @@ impl SandboxApp {
                 self.clock.restart(std::time::Instant::now());
                 Some(Rebuild::Passes(multi.device_lost()))
             }
-            None => self.session.drop_pipeline().map(Rebuild::Single),
+            None => self
+                .session
+                .drop_pipeline()
+                .map(|c| Rebuild::Single(Box::new(c))),
         };
         let lost = (reason, "the shader, its parameters and channels are");
         match replace_lost_device(window, lost, self.events, |window, gpu, surface| {
