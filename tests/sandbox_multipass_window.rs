@@ -7,6 +7,7 @@ mod common;
 use std::path::Path;
 
 use common::xwindow::{Display, Rect, Window, crop};
+use raysandbox::compare::diff_images;
 
 const WIDTH: u32 = 480;
 const HEIGHT: u32 = 270;
@@ -33,6 +34,35 @@ fn averaged(window: &Window, area: (u32, u32, u32, u32)) -> f64 {
     grey as f64 / f64::from(image.width() * image.height())
 }
 
+/// Opens the window on a copy of tests/shaders/multipass/progressive in a
+/// fresh folder (named with `prefix`), with the options `more`; returns it
+/// and the folder.
+fn open_progressive<'d>(
+    display: &'d Display,
+    prefix: &str,
+    more: &[&str],
+) -> (Window<'d>, std::path::PathBuf) {
+    let dir = common::temp_dir(prefix, "progressive");
+    let source = Path::new(env!("CARGO_MANIFEST_DIR")).join("tests/shaders/multipass/progressive");
+    common::copy_dir(&source, &dir);
+    let mut args = vec!["shader", dir.to_str().unwrap()];
+    args.extend_from_slice(more);
+    (Window::open(display, &args, (WIDTH, HEIGHT)), dir)
+}
+
+/// Lets the running clock run for 2 s, then pauses it: the frames have
+/// accumulated.
+fn run_then_pause(window: &Window, area: (u32, u32, u32, u32)) {
+    std::thread::sleep(std::time::Duration::from_secs(2));
+    window.key("space");
+    std::thread::sleep(std::time::Duration::from_millis(500));
+    let accumulated = averaged(window, area);
+    assert!(
+        accumulated > 0.5,
+        "the frames accumulate: {accumulated} of the pixels grey"
+    );
+}
+
 /// tests/shaders/multipass/progressive accumulates while the clock runs;
 /// `R` clears its buffer (the next frame is frame 0 again); a saved pass
 /// reloads; a mistake in a pass or in channels.toml is reported at its
@@ -42,23 +72,9 @@ fn a_multipass_folder_accumulates_resets_on_r_and_reloads_each_pass() {
     let Some(display) = Display::start() else {
         return;
     };
-    let dir = common::temp_dir("multipass-window", "progressive");
-    let source = Path::new(env!("CARGO_MANIFEST_DIR")).join("tests/shaders/multipass/progressive");
-    common::copy_dir(&source, &dir);
-    let mut window = Window::open(
-        &display,
-        &["shader", dir.to_str().unwrap()],
-        (WIDTH, HEIGHT),
-    );
+    let (mut window, dir) = open_progressive(&display, "multipass-window", &[]);
     let area = free(&window);
-    std::thread::sleep(std::time::Duration::from_secs(2));
-    window.key("space");
-    std::thread::sleep(std::time::Duration::from_millis(500));
-    let before = averaged(&window, area);
-    assert!(
-        before > 0.5,
-        "the frames accumulate: {before} of the pixels grey"
-    );
+    run_then_pause(&window, area);
 
     window.key("r");
     window.wait_for("buffers-cleared");
@@ -114,5 +130,31 @@ fn a_multipass_folder_accumulates_resets_on_r_and_reloads_each_pass() {
     );
     std::fs::write(&bindings, &toml).unwrap();
     window.wait_for("shader-reloaded");
+    assert!(window.is_running());
+}
+
+/// A lost GPU device (SIGUSR1, docs/reliability.md, "The GPU's limits and
+/// a lost device"): the passes are built again on a new device and the
+/// buffers start again with the clock, as after `R`: the progressive
+/// average's frame 0, the same picture as when the window opened paused.
+#[test]
+fn a_lost_device_restarts_the_buffers_with_the_clock() {
+    let Some(display) = Display::start() else {
+        return;
+    };
+    let (mut window, _) = open_progressive(&display, "multipass-window-lost", &["--start-paused"]);
+    let area = free(&window);
+    let first = crop(&window.capture(), area);
+    window.key("space");
+    run_then_pause(&window, area);
+
+    let recovery = window.lose_device("sandbox window, multipass");
+    assert!(recovery.reason.contains("destroyed"), "{}", recovery.reason);
+    let after = crop(&window.capture(), area);
+    let d = diff_images(&first, &after);
+    assert!(
+        d.max_abs <= 1,
+        "after the loss the buffers start again at frame 0, as when the window opened: {d:?}"
+    );
     assert!(window.is_running());
 }

@@ -202,15 +202,40 @@ void mainImage(out vec4 fragColor, in vec2 fragCoord) {
 }
 ";
 
+/// Opens the window, paused, on the GLSL `shader` in a fresh folder
+/// (`raysandbox-window-NAME-PID`), with `input` as `--channel0`; returns
+/// it and the folder.
+fn open_with_channel0<'d>(
+    display: &'d Display,
+    name: &str,
+    shader: &str,
+    input: &image::RgbaImage,
+) -> (Window<'d>, PathBuf) {
+    let dir = std::env::temp_dir().join(format!("raysandbox-window-{name}-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).unwrap();
+    let path = dir.join("shader.glsl");
+    std::fs::write(&path, shader).unwrap();
+    let input_path = dir.join("input.png");
+    input.save(&input_path).unwrap();
+    let window = Window::open(
+        display,
+        &[
+            "shader",
+            path.to_str().unwrap(),
+            "--start-paused",
+            "--channel0",
+            input_path.to_str().unwrap(),
+        ],
+        (WIDTH, HEIGHT),
+    );
+    (window, dir)
+}
+
 #[test]
 fn the_window_shows_the_channel_image_given_on_the_command_line() {
     let Some(display) = Display::start() else {
         return;
     };
-    let dir = std::env::temp_dir().join(format!("raysandbox-window-ch-{}", std::process::id()));
-    std::fs::create_dir_all(&dir).unwrap();
-    let shader = dir.join("show.glsl");
-    std::fs::write(&shader, SHOW_CHANNEL0).unwrap();
     let input = image::RgbaImage::from_fn(WIDTH, HEIGHT, |x, y| {
         image::Rgba([
             (x % 256) as u8,
@@ -219,23 +244,47 @@ fn the_window_shows_the_channel_image_given_on_the_command_line() {
             255,
         ])
     });
-    let input_path = dir.join("input.png");
-    input.save(&input_path).unwrap();
-    let window = Window::open(
-        &display,
-        &[
-            "shader",
-            shader.to_str().unwrap(),
-            "--start-paused",
-            "--channel0",
-            input_path.to_str().unwrap(),
-        ],
-        (WIDTH, HEIGHT),
-    );
+    let (window, dir) = open_with_channel0(&display, "ch", SHOW_CHANNEL0, &input);
     let area = free(&window);
     let shown = crop(&window.capture(), area);
     let d = diff_images(&shown, &crop(&input, area));
     assert!(d.max_abs <= 1, "the window shows the image: {d:?}");
+    drop(window);
+    std::fs::remove_dir_all(&dir).unwrap();
+}
+
+/// Rings over the channel image: both must come back after a lost device.
+const RINGS_OVER_CHANNEL0: &str = "\
+void mainImage(out vec4 fragColor, in vec2 fragCoord) {
+    vec2 p = fragCoord / iResolution.xy;
+    float r = length(p - vec2(0.7, 0.6));
+    vec3 image = texture(iChannel0, p).rgb;
+    fragColor = vec4(image.rg, 0.5 + 0.5 * sin(60.0 * r - iTime), 1.0);
+}
+";
+
+/// A lost GPU device (SIGUSR1 destroys it, as a driver reset would lose it)
+/// is replaced by a new one in the same window (docs/reliability.md, "The
+/// GPU's limits and a lost device"): the shader, built again, draws the
+/// same picture with its channel image, the clock paused where it was.
+#[test]
+fn a_lost_device_is_recovered_keeping_the_shader_and_its_channel() {
+    let Some(display) = Display::start() else {
+        return;
+    };
+    let input = image::RgbaImage::from_fn(WIDTH, HEIGHT, |x, y| {
+        image::Rgba([(x % 256) as u8, ((x ^ y) % 256) as u8, 0, 255])
+    });
+    let (mut window, dir) = open_with_channel0(&display, "lost", RINGS_OVER_CHANNEL0, &input);
+    let area = free(&window);
+    let before = crop(&window.capture(), area);
+
+    let recovery = window.lose_device("sandbox window");
+    assert!(recovery.reason.contains("destroyed"), "{}", recovery.reason);
+    let after = crop(&window.capture(), area);
+    let d = diff_images(&before, &after);
+    assert!(d.max_abs <= 1, "the same picture after the loss: {d:?}");
+    assert!(window.is_running());
     drop(window);
     std::fs::remove_dir_all(&dir).unwrap();
 }

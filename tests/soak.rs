@@ -27,6 +27,9 @@ const MAX_GROWTH_MB: f64 = 50.0;
 
 const SIZE: (u32, u32) = (640, 360);
 
+/// Every how many actions a sample is printed.
+const SAMPLES_EVERY: usize = 10;
+
 /// How many of each action, after the warm-up round.
 #[derive(Debug, Clone, Copy)]
 struct Counts {
@@ -70,8 +73,23 @@ impl Counts {
         page_switches: 200,
     };
 
-    /// `RAYSANDBOX_SOAK`: `full`, or a whole number `N` for N times the
-    /// short soak; unset, the short soak.
+    /// Only the viewer's scene switches, as many as the full soak's: how
+    /// their memory levels off (docs/reliability.md, "The soak").
+    const SWITCHES: Counts = Counts {
+        scene_saves: 0,
+        shader_saves: 0,
+        panel_edits: 0,
+        scene_switches: Self::FULL.scene_switches,
+        mesh_reloads: 0,
+        sandbox_saves: 0,
+        page_scene_edits: 0,
+        page_shader_edits: 0,
+        page_orbits: 0,
+        page_switches: Self::FULL.page_switches,
+    };
+
+    /// `RAYSANDBOX_SOAK`: `full`, `switches`, or a whole number `N` for N
+    /// times the short soak; unset, the short soak.
     fn chosen() -> Counts {
         let times = |n: usize| Counts {
             scene_saves: Self::SHORT.scene_saves * n,
@@ -87,6 +105,7 @@ impl Counts {
         };
         match std::env::var("RAYSANDBOX_SOAK").as_deref() {
             Ok("full") => Counts::FULL,
+            Ok("switches") => Counts::SWITCHES,
             Ok(n) => times(n.parse().expect("RAYSANDBOX_SOAK: full or a whole number")),
             Err(_) => Counts::SHORT,
         }
@@ -140,7 +159,7 @@ impl Samples {
         self.last = now;
         self.peak = self.peak.max(self.last);
         self.actions += 1;
-        if self.actions.is_multiple_of(50) {
+        if self.actions.is_multiple_of(SAMPLES_EVERY) {
             println!(
                 "{}: {} actions, {:.1} MB",
                 self.what, self.actions, self.last

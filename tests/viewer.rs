@@ -673,13 +673,8 @@ fn a_lost_device_is_recovered_keeping_the_scene_and_its_edits() {
     let before = crop(&viewer.capture(), area);
     let orbited = orbit(&mut viewer, area, &before);
 
-    let pid = i32::try_from(viewer.pid()).unwrap();
-    // SAFETY: kill(2) with a valid signal number only sends the signal.
-    assert_eq!(unsafe { libc::kill(pid, libc::SIGUSR1) }, 0);
-    let lost = viewer.wait_for("device-lost");
-    assert!(lost.contains("destroyed"), "{lost}");
-    viewer.wait_for("device-recovered");
-    viewer.wait_for("ready");
+    let recovery = viewer.lose_device("viewer");
+    assert!(recovery.reason.contains("destroyed"), "{}", recovery.reason);
     // The status line says what happened on a row of its own: the
     // uncovered image is shorter now.
     let shorter = view(&viewer).crop();

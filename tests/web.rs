@@ -509,9 +509,10 @@ fn a_lost_device_is_said_and_the_same_picture_comes_back() {
     page.evaluate("document.getElementById('message').className = ''");
     let after = page.capture_picture();
     eprintln!(
-        "device lost and recovered: device-recovered {:.1} s after destroy(), ready {:.1} s",
+        "page: destroy() to device-recovered {:.2} s, to the next ready {:.2} s (load average {})",
         recovered_after.as_secs_f64(),
-        ready_after.as_secs_f64()
+        ready_after.as_secs_f64(),
+        common::load_average()
     );
     assert_like_reference("after-loss", &after, &scene);
     let d = diff_images(&after, &before);

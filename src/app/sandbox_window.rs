@@ -9,6 +9,7 @@
 
 mod actions;
 mod multipass;
+mod recover;
 mod reload;
 mod ui;
 
@@ -27,7 +28,7 @@ use super::layout::LayoutReport;
 use super::memory;
 use super::shell::{self, EguiLayer, EventLog};
 use super::watch;
-use super::window::{open_gpu_window, run_until_closed};
+use super::window::{lose_device, open_gpu_window, run_until_closed};
 use crate::gpu::{EXPORT_FORMAT, Gpu, GpuTimer, Viewport};
 use crate::sandbox::channels::CHANNELS;
 use crate::sandbox::clock::{Clock, Tick};
@@ -69,6 +70,15 @@ enum SandboxEvent {
         built: Box<multipass::MultiBuilt>,
         reloaded: bool,
     },
+    /// SIGUSR1: drop the GPU device, as a driver reset would, to test the
+    /// recovery.
+    LoseDevice,
+    /// The running shader's pipelines, built again on the device that
+    /// replaced a lost one (the `device`-th).
+    Rebuilt {
+        device: u64,
+        rebuilt: Box<recover::Rebuilt>,
+    },
 }
 
 /// `raysandbox shader FILE` without `--render`/`--frames`: opens the window
@@ -107,6 +117,8 @@ fn open_window(
     let paths = options
         .channel_paths()
         .map(|p| p.map(|p| p.display().to_string()).unwrap_or_default());
+    #[cfg(unix)]
+    super::window::lose_device_on_sigusr1(event_loop.create_proxy(), || SandboxEvent::LoseDevice);
     let mut app = SandboxApp {
         proxy: event_loop.create_proxy(),
         events: EventLog {
@@ -130,6 +142,7 @@ fn open_window(
         },
         mouse: Mouse::default(),
         generation: 0,
+        devices: 0,
         draw_next: true,
         check_next: true,
         last_check: now,
@@ -163,7 +176,8 @@ struct Graphics {
 }
 
 /// The channel images: a path per channel in the panel, and the images
-/// read at start-up, given to the canvas once it exists.
+/// shown, kept on the CPU to give to every canvas made (the first, and
+/// one on the device that replaces a lost one).
 struct ChannelPanel {
     paths: [String; CHANNELS],
     images: [Option<image::RgbaImage>; CHANNELS],
@@ -216,6 +230,9 @@ struct SandboxApp {
     mouse: Mouse,
     /// Counts reloads, so a slow build finishing after a newer one is dropped.
     generation: u64,
+    /// Counts the devices that replaced a lost one, so that pipelines
+    /// built for one lost since are dropped.
+    devices: u64,
     /// The shader must draw the next frame even with the clock paused.
     draw_next: bool,
     /// Check the next drawn frame for NaN and empty output.
@@ -282,6 +299,17 @@ impl ApplicationHandler<SandboxEvent> for SandboxApp {
                     self.multipass_built(*built, reloaded);
                 }
             }
+            SandboxEvent::LoseDevice => {
+                if let Some(gfx) = &self.gfx {
+                    lose_device(&gfx.gpu);
+                }
+            }
+            SandboxEvent::Rebuilt { device, rebuilt } => {
+                if device == self.devices {
+                    self.building = false;
+                    self.rebuilt(*rebuilt);
+                }
+            }
         }
         // The shader a reload replaced is dropped by now.
         memory::release_freed();
@@ -331,6 +359,12 @@ impl SandboxApp {
         let title = format!("raysandbox: {}", self.options.file.display());
         let (window, gpu, surface) =
             open_gpu_window(event_loop, &title, self.options.size, (1280.0, 720.0))?;
+        Ok(self.graphics(window, gpu, surface))
+    }
+
+    /// What draws into `window` with `gpu`: at start-up, and again on a
+    /// new device after a loss.
+    fn graphics(&self, window: Arc<Window>, gpu: Gpu, surface: wgpu::Surface<'static>) -> Graphics {
         let format = Viewport::output_formats(&gpu, &surface)[0];
         let size = window.inner_size();
         let config = wgpu::SurfaceConfiguration {
@@ -354,14 +388,14 @@ impl SandboxApp {
             &sandbox,
             scaled((size.width, size.height), self.scale),
         );
-        for (k, image) in self.channels.images.iter_mut().enumerate() {
-            if let Some(image) = image.take() {
-                canvas.set_channel(&gpu, &sandbox, k, Some(&image));
+        for (k, image) in self.channels.images.iter().enumerate() {
+            if let Some(image) = image {
+                canvas.set_channel(&gpu, &sandbox, k, Some(image));
             }
         }
         let egui = EguiLayer::new(&window, &gpu, format);
         let timer = GpuTimer::new(&gpu);
-        Ok(Graphics {
+        Graphics {
             timer,
             window,
             gpu,
@@ -371,7 +405,7 @@ impl SandboxApp {
             builder,
             canvas,
             egui,
-        })
+        }
     }
 
     fn request_redraw(&self) {
@@ -394,9 +428,21 @@ impl SandboxApp {
     }
 
     fn redraw(&mut self, event_loop: &ActiveEventLoop) {
+        if let Some(reason) = self.gfx.as_ref().and_then(|gfx| gfx.gpu.lost()) {
+            self.recover_lost_device(event_loop, &reason);
+            return;
+        }
         let (actions, output) = self.run_ui();
         self.apply(&actions, event_loop);
         self.paint(output);
+        // A device lost during the frame is replaced at the next one.
+        if self
+            .gfx
+            .as_ref()
+            .is_some_and(|gfx| gfx.gpu.lost().is_some())
+        {
+            self.request_redraw();
+        }
     }
 
     /// Draws the shader (when the clock runs or something changed), shows

@@ -119,7 +119,7 @@ pub fn run(options: ViewerOptions) -> Result<(), ViewerError> {
         next_sample_after_gpu: false,
     };
     #[cfg(unix)]
-    lose_device_on_sigusr1(proxy.clone());
+    lose_device_on_sigusr1(proxy.clone(), || UserEvent::LoseDevice);
     let mut viewer = Viewer::new(doc, shaders, shader_params, platform);
     if let Some(n) = options.max_samples {
         viewer.editor.view.max_samples = n.max(1);
@@ -127,6 +127,7 @@ pub fn run(options: ViewerOptions) -> Result<(), ViewerError> {
     viewer.editor.view.shown = options.view;
     let mut app = App {
         proxy,
+        log,
         options,
         viewer,
         shader_dir,
@@ -150,10 +151,12 @@ pub(super) fn run_until_closed<T: 'static>(
         .map_err(|e| ViewerError::NoDisplay(e.to_string()))
 }
 
-/// A thread that turns SIGUSR1 into [`UserEvent::LoseDevice`]
-/// (docs/reliability.md, "The GPU's limits and a lost device").
+/// A thread that sends the event loop `lose` on SIGUSR1, so that the
+/// window destroys its own GPU device, as a driver reset would, to try the
+/// recovery ([`lose_device`]; docs/reliability.md, "The GPU's limits and
+/// a lost device").
 #[cfg(unix)]
-fn lose_device_on_sigusr1(proxy: EventLoopProxy<UserEvent>) {
+pub(super) fn lose_device_on_sigusr1<T: Send + 'static>(proxy: EventLoopProxy<T>, lose: fn() -> T) {
     let mut signals = match signal_hook::iterator::Signals::new([signal_hook::consts::SIGUSR1]) {
         Ok(signals) => signals,
         Err(e) => {
@@ -163,11 +166,46 @@ fn lose_device_on_sigusr1(proxy: EventLoopProxy<UserEvent>) {
     };
     std::thread::spawn(move || {
         for _ in signals.forever() {
-            if proxy.send_event(UserEvent::LoseDevice).is_err() {
+            if proxy.send_event(lose()).is_err() {
                 break;
             }
         }
     });
+}
+
+/// What SIGUSR1 asks for: the device destroyed; the next frame finds it
+/// lost and [`replace_lost_device`] makes a new one.
+pub(super) fn lose_device(gpu: &Gpu) {
+    log::warn!("SIGUSR1: destroying the GPU device");
+    gpu.device.destroy();
+}
+
+/// Makes a new GPU device for `window`, whose device was lost for
+/// `reason`, once the window's program has dropped everything made from
+/// the old one, and hands it to `attach`, which makes those things again.
+/// Prints `device-lost REASON` and, once attached, `device-recovered`.
+/// Returns the status line's message, which says what was `kept`, or the
+/// error to exit with.
+pub(super) fn replace_lost_device(
+    window: Arc<Window>,
+    (reason, kept): (&str, &str),
+    log: EventLog,
+    attach: impl FnOnce(Arc<Window>, Gpu, wgpu::Surface<'static>) -> Result<(), ViewerError>,
+) -> Result<String, ViewerError> {
+    log.event(&format!("device-lost {reason}"));
+    let made =
+        gpu_for_window(&window, None).and_then(|(gpu, surface)| attach(window, gpu, surface));
+    match made {
+        Ok(()) => {
+            log.event("device-recovered");
+            Ok(format!(
+                "the GPU device was lost ({reason}); a new one was made, {kept} kept"
+            ))
+        }
+        Err(e) => Err(ViewerError::NoGpu(format!(
+            "the GPU device was lost ({reason}) and no new one could be made: {e}"
+        ))),
+    }
 }
 
 /// Opens a window of `size` physical pixels (or `default` logical ones) and
@@ -223,6 +261,8 @@ fn gpu_for_window(
 
 struct App {
     proxy: EventLoopProxy<UserEvent>,
+    /// Where the viewer's event lines go (also [`Platform::event`]).
+    log: EventLog,
     options: ViewerOptions,
     viewer: Viewer,
     shader_dir: Option<PathBuf>,
@@ -258,8 +298,7 @@ impl ApplicationHandler<UserEvent> for App {
             UserEvent::MeshRead(path, mesh) => self.mesh_read(&path, *mesh),
             UserEvent::LoseDevice => {
                 if let Some(gfx) = &self.viewer.gfx {
-                    log::warn!("SIGUSR1: destroying the GPU device");
-                    gfx.gpu.device.destroy();
+                    lose_device(&gfx.gpu);
                 }
             }
         }
@@ -336,23 +375,18 @@ impl App {
         let window = lost.window.clone();
         let generation = lost.pipelines.generation();
         drop(lost);
-        self.event(&format!("device-lost {reason}"));
-        let made = gpu_for_window(&window, None)
-            .and_then(|(gpu, surface)| self.attach(window, gpu, surface));
-        match made {
-            Ok(()) => {
+        let log = self.log;
+        let lost = (reason, "the scene and its edits are");
+        match replace_lost_device(window, lost, log, |window, gpu, surface| {
+            self.attach(window, gpu, surface)
+        }) {
+            Ok(message) => {
                 self.viewer.follow_generation(generation);
-                self.viewer.editor.message = Some(format!(
-                    "the GPU device was lost ({reason}); a new one was made, the scene and \
-                     its edits are kept"
-                ));
-                self.event("device-recovered");
+                self.viewer.editor.message = Some(message);
                 self.request_redraw();
             }
             Err(e) => {
-                self.fatal = Some(ViewerError::NoGpu(format!(
-                    "the GPU device was lost ({reason}) and no new one could be made: {e}"
-                )));
+                self.fatal = Some(e);
                 event_loop.exit();
             }
         }

@@ -50,8 +50,9 @@ impl ReloadError {
 
 pub struct Session {
     path: PathBuf,
-    /// The last shader that compiled, and its pipeline.
-    current: Option<(Compiled, ShaderPipeline)>,
+    /// The last shader that compiled, and its pipeline: none while a new
+    /// device replaces a lost one ([`Session::drop_pipeline`]).
+    current: Option<(Compiled, Option<ShaderPipeline>)>,
     /// Parameter values (of the current shader, or kept from the last one).
     pub params: ParamSet,
     /// The last reload's error, until a reload succeeds.
@@ -134,7 +135,7 @@ impl Session {
             params.keep_values_from(&self.params);
         }
         self.params = params;
-        self.current = Some((compiled, pipeline));
+        self.current = Some((compiled, Some(pipeline)));
         self.error = None;
         warnings
     }
@@ -164,7 +165,34 @@ impl Session {
 
     /// The last good pipeline, if any shader compiled yet.
     pub fn pipeline(&self) -> Option<&ShaderPipeline> {
-        self.current.as_ref().map(|(_, p)| p)
+        self.current.as_ref().and_then(|(_, p)| p.as_ref())
+    }
+
+    /// The GPU device the pipeline was made on is lost: the pipeline goes,
+    /// the shader, its parameter values and the error shown stay. Returns
+    /// the shader to build again on the new device and give back with
+    /// [`Session::restore_pipeline`] (docs/reliability.md, "The GPU's
+    /// limits and a lost device"). The text compiled last is forgotten:
+    /// a build of it may have been running on the lost device, so the next
+    /// compile takes the file's text even if unchanged.
+    pub fn drop_pipeline(&mut self) -> Option<Compiled> {
+        self.last_text = None;
+        let (compiled, pipeline) = self.current.as_mut()?;
+        *pipeline = None;
+        Some(compiled.clone())
+    }
+
+    /// The pipeline of the shader [`Session::drop_pipeline`] returned,
+    /// built on the new device, unless a reload installed a newer one
+    /// meanwhile. Returns whether it was taken.
+    pub fn restore_pipeline(&mut self, pipeline: ShaderPipeline) -> bool {
+        match &mut self.current {
+            Some((_, slot @ None)) => {
+                *slot = Some(pipeline);
+                true
+            }
+            _ => false,
+        }
     }
 
     pub fn compiled(&self) -> Option<&Compiled> {

@@ -123,6 +123,15 @@ pub fn copy_dir(from: &Path, to: &Path) {
     }
 }
 
+/// `/proc/loadavg`, to print beside a measured time: the test machine's 2
+/// cores are shared with other jobs.
+pub fn load_average() -> String {
+    std::fs::read_to_string("/proc/loadavg")
+        .unwrap_or_default()
+        .trim()
+        .to_string()
+}
+
 /// A fresh folder for one test's files, `raysandbox-PREFIX-NAME-PID` in the
 /// system's temporary folder.
 pub fn temp_dir(prefix: &str, name: &str) -> PathBuf {

@@ -319,6 +319,53 @@ impl<'d> Window<'d> {
         self.child.id()
     }
 
+    /// Sends SIGUSR1, on which the program destroys its own GPU device as
+    /// a driver reset would lose it, and waits until it has made a new one
+    /// (`device-lost`, `device-recovered`) and shown a frame drawn with it
+    /// (the next `ready`). Prints how long that took, for
+    /// docs/reliability.md ("The GPU's limits and a lost device").
+    pub fn lose_device(&mut self, program: &str) -> Recovery {
+        let pid = i32::try_from(self.pid()).unwrap();
+        let (start, cpu) = (Instant::now(), self.cpu_time());
+        // SAFETY: kill(2) with a valid signal number only sends the signal.
+        assert_eq!(unsafe { libc::kill(pid, libc::SIGUSR1) }, 0);
+        let reason = self.wait_for("device-lost");
+        self.wait_for("device-recovered");
+        let recovered = start.elapsed();
+        self.wait_for("ready");
+        let recovery = Recovery {
+            reason,
+            recovered,
+            ready: start.elapsed(),
+            cpu: self.cpu_time() - cpu,
+        };
+        eprintln!(
+            "{program}: SIGUSR1 to device-recovered {:.2} s, to the next ready {:.2} s \
+             ({:.2} s of CPU time; load average {})",
+            recovery.recovered.as_secs_f64(),
+            recovery.ready.as_secs_f64(),
+            recovery.cpu.as_secs_f64(),
+            super::load_average()
+        );
+        recovery
+    }
+
+    /// The CPU time the program used so far, all its threads (from
+    /// `/proc/PID/stat`).
+    pub fn cpu_time(&self) -> Duration {
+        let stat = std::fs::read_to_string(format!("/proc/{}/stat", self.pid()))
+            .expect("the window's /proc/PID/stat");
+        // The fields after the command's name, which ends with ')':
+        // state is field 3, utime and stime 14 and 15.
+        let fields: Vec<&str> = stat[stat.rfind(')').unwrap() + 2..]
+            .split_whitespace()
+            .collect();
+        let ticks: u64 = fields[11].parse::<u64>().unwrap() + fields[12].parse::<u64>().unwrap();
+        // SAFETY: sysconf only reads a system constant.
+        let per_second = u64::try_from(unsafe { libc::sysconf(libc::_SC_CLK_TCK) }).unwrap();
+        Duration::from_millis(ticks * 1000 / per_second)
+    }
+
     pub fn is_running(&mut self) -> bool {
         self.child
             .try_wait()
@@ -332,6 +379,18 @@ impl Drop for Window<'_> {
         let _ = self.child.kill();
         let _ = self.child.wait();
     }
+}
+
+/// What [`Window::lose_device`] measured.
+pub struct Recovery {
+    /// The `device-lost` event's reason.
+    pub reason: String,
+    /// From SIGUSR1 to `device-recovered`.
+    pub recovered: Duration,
+    /// From SIGUSR1 to the first `ready` after it.
+    pub ready: Duration,
+    /// The CPU time the program used meanwhile.
+    pub cpu: Duration,
 }
 
 /// A part of the window in pixels, as a `layout` event tells it.

@@ -90,6 +90,7 @@ impl SandboxApp {
         };
         gfx.canvas
             .set_channel(&gfx.gpu, &gfx.sandbox, k, image.as_ref());
+        self.channels.images[k] = image;
         self.panel.message = Some(match path {
             Some(path) => format!("iChannel{k}: {}", path.display()),
             None => format!("iChannel{k}: the built-in noise"),

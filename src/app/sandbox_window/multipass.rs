@@ -14,7 +14,7 @@ use crate::sandbox::multipass::gpu::{Buffers, pass_builder};
 use crate::sandbox::multipass::keyboard::Keyboard;
 use crate::sandbox::multipass::session::{MultiSession, Pending};
 use crate::sandbox::render::{Canvas, SandboxGpu, ShaderPipeline};
-use crate::sandbox::{FrameUniforms, channels};
+use crate::sandbox::{FrameUniforms, ReloadError, channels};
 
 /// A multipass shader's state in the window.
 pub(super) struct Multi {
@@ -62,6 +62,14 @@ impl Multi {
         if Buffers::at_size(&mut self.buffers, gpu, size).1 {
             self.drawn_frame = None;
         }
+    }
+
+    /// The GPU device was lost: the buffers go (they start again, black,
+    /// on the new device), and the passes to build again are returned.
+    pub(super) fn device_lost(&mut self) -> Vec<CompiledPass> {
+        self.buffers = None;
+        self.drawn_frame = None;
+        self.session.drop_pipelines()
     }
 
     /// A key went down or up: its JavaScript code in the keyboard texture.
@@ -134,19 +142,14 @@ impl SandboxApp {
     /// The passes built: the new ones run, the images the channels name
     /// are read.
     pub(super) fn multipass_built(&mut self, built: MultiBuilt, reloaded: bool) {
-        let (Some(multi), Some(gfx)) = (&mut self.multi, &self.gfx) else {
+        let (Some(multi), Some(_)) = (&mut self.multi, &self.gfx) else {
             return;
         };
-        let mut error = multi.session.install(built.pending, built.built);
-        let size = gfx.canvas.size();
-        multi.resize(&gfx.gpu, size);
-        let buffers = multi.buffers.as_mut().expect("made by resize");
-        if let Err(e) = buffers.prepare(&gfx.gpu, &multi.session.bindings(), &channels::load) {
-            error.get_or_insert(crate::sandbox::ReloadError::Project(e));
-        }
-        multi.drawn_frame = None;
-        self.session.error = error.clone();
+        let installed = multi.session.install(built.pending, built.built);
         let warnings = multi.session.warnings();
+        // The buffers are prepared whatever failed.
+        let error = installed.or(self.prepare_buffers());
+        self.session.error = error.clone();
         self.announce_warnings(warnings);
         self.draw_next = true;
         self.check_next = true;
@@ -155,6 +158,20 @@ impl SandboxApp {
             None if reloaded => self.after_present.push("shader-reloaded".into()),
             None => {}
         }
+    }
+
+    /// Makes the buffers at the canvas's size for the passes of the
+    /// project and reads the images their channels name; they draw from
+    /// the start again. Returns what could not be bound.
+    pub(super) fn prepare_buffers(&mut self) -> Option<ReloadError> {
+        let (Some(multi), Some(gfx)) = (&mut self.multi, &self.gfx) else {
+            return None;
+        };
+        multi.resize(&gfx.gpu, gfx.canvas.size());
+        let buffers = multi.buffers.as_mut().expect("made by resize");
+        let bound = buffers.prepare(&gfx.gpu, &multi.session.bindings(), &channels::load);
+        multi.drawn_frame = None;
+        bound.err().map(ReloadError::Project)
     }
 
     /// Watches every file of the shader: the pass files (also those a

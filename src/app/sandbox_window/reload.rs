@@ -57,6 +57,17 @@ impl SandboxApp {
         + 'static,
     ) {
         self.generation += 1;
+        self.spawn_with_builder(build);
+    }
+
+    /// [`SandboxApp::spawn_build`] without a new generation: a rebuild
+    /// after a lost device does not overtake a reload.
+    pub(super) fn spawn_with_builder(
+        &mut self,
+        build: impl FnOnce(&PipelineBuilder, &Mutex<Probe>, (u32, u32), u64) -> SandboxEvent
+        + Send
+        + 'static,
+    ) {
         let Some(gfx) = &self.gfx else { return };
         let builder = gfx.builder.clone();
         let size = gfx.canvas.size();
@@ -172,14 +183,23 @@ pub(super) fn build_checked(
     compiled: &Compiled,
     size: (u32, u32),
 ) -> Result<ShaderPipeline, String> {
-    let pipeline = match builder.build_within(compiled, FRAME_LIMIT) {
-        Ok(pipeline) => pipeline,
-        Err(BuildFailed::Refused(m)) => return Err(m),
-        Err(BuildFailed::TooSlow) => return Err(build_too_slow(&compiled.file)),
-    };
+    let pipeline = build_within_limit(builder, compiled)?;
     probe
         .lock()
         .unwrap_or_else(PoisonError::into_inner)
         .check(compiled, size)?;
     Ok(pipeline)
+}
+
+/// Builds the pipeline of a compiled shader within [`FRAME_LIMIT`]; the
+/// error names the shader's file.
+pub(super) fn build_within_limit(
+    builder: &PipelineBuilder,
+    compiled: &Compiled,
+) -> Result<ShaderPipeline, String> {
+    match builder.build_within(compiled, FRAME_LIMIT) {
+        Ok(pipeline) => Ok(pipeline),
+        Err(BuildFailed::Refused(m)) => Err(m),
+        Err(BuildFailed::TooSlow) => Err(build_too_slow(&compiled.file)),
+    }
 }

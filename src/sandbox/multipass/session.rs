@@ -199,6 +199,48 @@ impl MultiSession {
         }
     }
 
+    /// The GPU device the passes' pipelines were made on is lost: they go,
+    /// and the compiled passes are returned, to build again on the new
+    /// device and give back with [`MultiSession::restore`]. The texts
+    /// compiled last are forgotten, as [`crate::sandbox::Session::drop_pipeline`]
+    /// does.
+    pub fn drop_pipelines(&mut self) -> Vec<CompiledPass> {
+        self.texts.clear();
+        std::mem::take(&mut self.passes)
+            .into_iter()
+            .map(|live| live.pass)
+            .collect()
+    }
+
+    /// The passes [`MultiSession::drop_pipelines`] returned, built on the
+    /// new device: each runs again unless a reload gave its kind a newer
+    /// pipeline meanwhile or the project lost the pass. Returns the first
+    /// build that failed.
+    pub fn restore(
+        &mut self,
+        built: Vec<(CompiledPass, Result<ShaderPipeline, String>)>,
+    ) -> Option<ReloadError> {
+        let mut error = None;
+        for (pass, result) in built {
+            let kind = pass.kind;
+            let wanted = self
+                .project
+                .as_ref()
+                .is_some_and(|p| p.pass(kind).is_some());
+            if !wanted || self.passes.iter().any(|p| p.pass.kind == kind) {
+                continue;
+            }
+            match result {
+                Ok(pipeline) => self.passes.push(LivePass { pass, pipeline }),
+                Err(e) => {
+                    error.get_or_insert(ReloadError::Gpu(e));
+                }
+            }
+        }
+        self.passes.sort_by_key(|p| p.pass.kind);
+        error
+    }
+
     /// The passes that run: in the project, with a pipeline.
     pub fn draws(&self) -> Vec<PassDraw<'_>> {
         let Some(project) = &self.project else {
