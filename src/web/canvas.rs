@@ -91,6 +91,8 @@ pub enum PageEvent {
     LinkCopied(Result<(), String>),
     /// The page's own "Copy link" button (over the shader) was clicked.
     CopyLink,
+    /// The page's "Restart" button (over the shader) was clicked.
+    Restart,
     /// The address's fragment changed (a link pasted into the open tab,
     /// the browser's back button): the page shows what it holds.
     AddressChanged,
@@ -196,6 +198,10 @@ pub fn start() {
     let to_page = proxy.clone();
     page::listen(Some("copy-link"), "click", move || {
         let _ = to_page.send_event(PageEvent::CopyLink);
+    });
+    let to_page = proxy.clone();
+    page::listen(Some("restart"), "click", move || {
+        let _ = to_page.send_event(PageEvent::Restart);
     });
     let to_page = proxy.clone();
     page::listen_scale_keys(move |key| {
@@ -389,6 +395,11 @@ impl ApplicationHandler<PageEvent> for Page {
                 self.viewer.editor.message = Some(message);
             }
             PageEvent::CopyLink => self.copy_link(),
+            PageEvent::Restart => {
+                if let Some(gfx) = &self.viewer.gfx {
+                    self.work.restart_shader(&gfx.gpu);
+                }
+            }
             PageEvent::AddressChanged => self.address_changed(),
             PageEvent::Scale(key) => self.scale(key),
             PageEvent::Work(WorkEvent::Editor(EditorEvent::Changed(Doc::Scene, text))) => {

@@ -172,6 +172,13 @@ impl PageMulti {
         reports
     }
 
+    /// Clears the buffers: every pass starts again from black.
+    pub fn clear_buffers(&mut self, gpu: &Gpu) {
+        if let Some(buffers) = &mut self.buffers {
+            buffers.reset(gpu);
+        }
+    }
+
     /// A key went down or up over the canvas.
     pub fn key(&mut self, event: &KeyEvent) {
         self.keyboard.key(event);

@@ -244,6 +244,16 @@ impl ShaderView {
         Some(multi.status(&reports))
     }
 
+    /// Starts the shader again, as `R` does in the native window: time
+    /// and frame from 0, a multipass shader's buffers cleared.
+    pub fn restart(&mut self, gpu: &Gpu) {
+        self.clock.restart(Instant::now());
+        if let Some(multi) = &mut self.multi {
+            multi.clear_buffers(gpu);
+        }
+        page::event("shader-restarted");
+    }
+
     /// The pointer over the canvas, as the shader's mouse uniforms
     /// (docs/sandbox.md, "The values every shader gets"), and the keys
     /// pressed there, as a multipass shader's keyboard texture.

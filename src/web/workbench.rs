@@ -299,6 +299,14 @@ impl Workbench {
         }
     }
 
+    /// The "Restart" button: the shader shown starts again from time 0
+    /// (docs/web.md, "Multipass shaders").
+    pub fn restart_shader(&mut self, gpu: &Gpu) {
+        if let (true, Some(shader)) = (self.shows_shader(), &mut self.shader) {
+            shader.restart(gpu);
+        }
+    }
+
     /// An image dropped on the canvas: a texture channel of the multipass
     /// shader shown reads it (docs/web.md, "Multipass shaders"); the line
     /// under the shader's editor says which, unless the user's own text
