@@ -385,12 +385,14 @@ fn soak_sandbox(display: &Display, counts: Counts) {
     samples.check();
 }
 
-/// The page's memory in MB, read through the DevTools protocol after a
-/// garbage collection: the JS heap in use, and the linear memory of every
-/// `WebAssembly.Memory` (the Rust side's heap; it only ever grows, so it
-/// holds the most the page ever needed).
+/// The page's memory in MB, read through the DevTools protocol without
+/// collecting garbage first, as a user's browser would leave it: the JS heap
+/// in use, and the linear memory of every `WebAssembly.Memory` (the Rust
+/// side's heap; it only ever grows, so it holds the most the page ever
+/// needed). A forced collection would also free GPU buffers and textures
+/// whose wrappers the page dropped without destroying them, which a small JS
+/// heap otherwise keeps for a long time (docs/web.md, "GPU memory").
 fn page_memory_mb(page: &mut Browser) -> (f64, f64) {
-    page.call("HeapProfiler.collectGarbage", json!({}));
     let heap = page.call("Runtime.getHeapUsage", json!({}));
     let js = heap["usedSize"].as_f64().expect("usedSize");
     let group = json!("soak");

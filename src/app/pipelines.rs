@@ -13,9 +13,13 @@ use crate::gpu::{Pipelines, ShaderOptions, ShaderSource};
 
 /// How many feature sets keep their pipelines: enough to switch back and
 /// forth between a few edits (a material's mirror on and off, a shape
-/// added and removed) without a rebuild, few enough that compiled
-/// pipelines (megabytes each in the driver) never pile up.
-pub const MAX_FEATURE_SETS: usize = 4;
+/// added and removed) and among the handful of scenes a lecture shows
+/// without a rebuild, few enough that compiled pipelines (megabytes each in
+/// the driver) never pile up. With 4, switching among five bundled scenes
+/// rebuilt a pipeline at every switch, and in Chromium every such rebuild
+/// left about 0.3 MB in the browser's GPU process (docs/reliability.md,
+/// "The soak").
+pub const MAX_FEATURE_SETS: usize = 8;
 
 /// A finished build, as the worker reports it.
 pub struct Built<P = Pipelines> {
@@ -152,16 +156,19 @@ mod tests {
             assert_eq!(build(&mut cache, n), 1);
             assert!(cache.built.len() <= MAX_FEATURE_SETS);
         }
-        // 16..=19 are kept; using 16 makes 17 the oldest.
+        // The last MAX_FEATURE_SETS of them are kept, from `oldest` to 19;
+        // using `oldest` makes the one after it the oldest.
+        let oldest = 20 - MAX_FEATURE_SETS as u32;
         let mut spawned = 0;
         assert_eq!(
-            cache.get_or_build(options(16), |_, _| spawned += 1),
-            Some(16)
+            cache.get_or_build(options(oldest), |_, _| spawned += 1),
+            Some(oldest)
         );
         build(&mut cache, 20);
         assert_eq!(spawned, 0);
         let kept: Vec<u32> = cache.built.iter().map(|(_, p)| *p).collect();
-        assert_eq!(kept, [18, 19, 16, 20]);
+        let expected: Vec<u32> = (oldest + 2..20).chain([oldest, 20]).collect();
+        assert_eq!(kept, expected);
     }
 
     #[test]

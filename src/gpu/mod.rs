@@ -38,7 +38,7 @@ pub use offscreen::{
 pub use outline::OUTLINE_COLOR;
 pub use ray_tree::{GpuRayTree, RayTreeRenderer, TREE_MAX};
 pub use shaders::{ShaderError, ShaderSource};
-pub use texture::{readback_target, render_target};
+pub use texture::{OwnedTexture, readback_target, render_target};
 pub use timer::{GpuTimer, Timing};
 pub use tracer::{
     Accumulator, DEFAULT_MAX_SAMPLES, DEFAULT_MIN_WEIGHT, DEFAULT_RENDER_SAMPLES, FrameTarget,

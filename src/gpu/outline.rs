@@ -8,7 +8,7 @@ use super::buffer;
 use super::features::{ShaderOptions, borrowed};
 use super::fullscreen;
 use super::layout::Selection;
-use super::texture::render_target;
+use super::texture::{OwnedTexture, render_target};
 
 /// The outline colour, sRGB-encoded: an orange that none of the bundled
 /// scenes' materials comes close to, as in Blender.
@@ -122,7 +122,7 @@ pub(super) struct Outline {
 
 /// The id image at the traced resolution, with the outline's bind group.
 struct IdImage {
-    view: wgpu::TextureView,
+    texture: OwnedTexture,
     bind_group: wgpu::BindGroup,
     size: (u32, u32),
     /// Whether it shows the current scene and view.
@@ -204,7 +204,7 @@ impl Outline {
         }
         let image = self.image.as_mut().expect("made above");
         if !image.current {
-            fullscreen::pass(encoder, &pipelines.id, &[scene], &image.view);
+            fullscreen::pass(encoder, &pipelines.id, &[scene], image.texture.view());
             image.current = true;
         }
         // Over the traced image, which the pixels the outline discards keep.
@@ -218,21 +218,20 @@ impl Outline {
         pipelines: &OutlinePipelines,
         size: (u32, u32),
     ) -> IdImage {
-        let view = render_target(
+        let texture = OwnedTexture::new(render_target(
             device,
             "first hits (outline)",
             size,
             ID_FORMAT,
             wgpu::TextureUsages::TEXTURE_BINDING,
-        )
-        .create_view(&Default::default());
+        ));
         let bind_group = device.create_bind_group(&wgpu::BindGroupDescriptor {
             label: Some("selection outline"),
             layout: &pipelines.layout,
             entries: &[
                 wgpu::BindGroupEntry {
                     binding: 1,
-                    resource: wgpu::BindingResource::TextureView(&view),
+                    resource: wgpu::BindingResource::TextureView(texture.view()),
                 },
                 wgpu::BindGroupEntry {
                     binding: 2,
@@ -241,7 +240,7 @@ impl Outline {
             ],
         });
         IdImage {
-            view,
+            texture,
             bind_group,
             size,
             current: false,

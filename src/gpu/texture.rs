@@ -37,3 +37,37 @@ pub fn readback_target(
 ) -> wgpu::Texture {
     render_target(device, label, size, format, wgpu::TextureUsages::COPY_SRC)
 }
+
+/// A texture and its view, destroyed when dropped.
+///
+/// Natively wgpu frees a dropped texture at once (after the submissions
+/// that use it). In the browser dropping frees nothing: the GPU process
+/// keeps the texture until JavaScript's garbage collector finalises its
+/// wrapper, which the page's small JS heap seldom needs, so the
+/// accumulation textures replaced at every resize and the data textures
+/// replaced at every edit would pile up there (docs/web.md, "GPU memory").
+pub struct OwnedTexture {
+    texture: wgpu::Texture,
+    view: wgpu::TextureView,
+}
+
+impl OwnedTexture {
+    pub fn new(texture: wgpu::Texture) -> Self {
+        let view = texture.create_view(&Default::default());
+        OwnedTexture { texture, view }
+    }
+
+    pub fn texture(&self) -> &wgpu::Texture {
+        &self.texture
+    }
+
+    pub fn view(&self) -> &wgpu::TextureView {
+        &self.view
+    }
+}
+
+impl Drop for OwnedTexture {
+    fn drop(&mut self) {
+        self.texture.destroy();
+    }
+}

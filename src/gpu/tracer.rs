@@ -17,7 +17,7 @@ use super::limits::{BufferLimitError, check_buffers};
 use super::outline::OutlinePipelines;
 use super::shaders::{ShaderError, ShaderSource};
 use super::shapes::glue::{DATA_TEXTURE_WIDTH, FIRST_SHAPE_BINDING, is_bound};
-use super::texture::render_target;
+use super::texture::{OwnedTexture, render_target};
 use wgpu::util::DeviceExt;
 
 /// Where the radiance sum is kept: full f32 precision, so 1000s of samples
@@ -235,42 +235,52 @@ fn bound_bindings(bound_kinds: u32) -> Vec<(u32, bool)> {
 /// An array as an `Rgba32Uint` texture [`DATA_TEXTURE_WIDTH`] texels wide,
 /// its last row padded with zeros (the loaders and `<name>_texel` of the
 /// generated WGSL read it).
-fn data_texture(device: &wgpu::Device, queue: &wgpu::Queue, words: &[u32]) -> wgpu::TextureView {
+fn data_texture(device: &wgpu::Device, queue: &wgpu::Queue, words: &[u32]) -> OwnedTexture {
     let texels = words.len().div_ceil(4).max(1) as u32;
     let width = texels.min(DATA_TEXTURE_WIDTH);
     let rows = texels.div_ceil(width);
     let mut padded = words.to_vec();
     padded.resize((4 * width * rows) as usize, 0);
-    device
-        .create_texture_with_data(
-            queue,
-            &wgpu::TextureDescriptor {
-                label: Some("shape data"),
-                size: wgpu::Extent3d {
-                    width,
-                    height: rows,
-                    depth_or_array_layers: 1,
-                },
-                mip_level_count: 1,
-                sample_count: 1,
-                dimension: wgpu::TextureDimension::D2,
-                format: wgpu::TextureFormat::Rgba32Uint,
-                usage: wgpu::TextureUsages::TEXTURE_BINDING,
-                view_formats: &[],
+    OwnedTexture::new(device.create_texture_with_data(
+        queue,
+        &wgpu::TextureDescriptor {
+            label: Some("shape data"),
+            size: wgpu::Extent3d {
+                width,
+                height: rows,
+                depth_or_array_layers: 1,
             },
-            wgpu::util::TextureDataOrder::LayerMajor,
-            bytemuck::cast_slice(&padded),
-        )
-        .create_view(&Default::default())
+            mip_level_count: 1,
+            sample_count: 1,
+            dimension: wgpu::TextureDimension::D2,
+            format: wgpu::TextureFormat::Rgba32Uint,
+            usage: wgpu::TextureUsages::TEXTURE_BINDING,
+            view_formats: &[],
+        },
+        wgpu::util::TextureDataOrder::LayerMajor,
+        bytemuck::cast_slice(&padded),
+    ))
 }
 
 /// The scene in GPU buffers, with the CPU copy it was made from.
 pub struct SceneBuffers {
     packed: PackedScene,
     globals: wgpu::Buffer,
-    /// One per entry of `packed.shapes`.
-    shape_textures: Vec<wgpu::TextureView>,
+    /// Materials, lights, the BVH's nodes and shape list, the shape counts:
+    /// read through `bind_group`, held here to be destroyed with the scene.
+    _fixed: [OwnedTexture; 5],
+    /// One per entry of `packed.shapes`; shared with the scene before when
+    /// its contents are ([`SceneBuffers::reusing`]).
+    shape_textures: Vec<Arc<OwnedTexture>>,
     pub(super) bind_group: wgpu::BindGroup,
+}
+
+/// The globals buffer is destroyed with the scene, for the reason an
+/// [`OwnedTexture`] is.
+impl Drop for SceneBuffers {
+    fn drop(&mut self) {
+        self.globals.destroy();
+    }
 }
 
 impl SceneBuffers {
@@ -324,7 +334,7 @@ impl SceneBuffers {
             texture(&packed.bvh_prims),
             texture(&packed.shape_counts),
         ];
-        let shape_textures: Vec<wgpu::TextureView> = packed
+        let shape_textures: Vec<Arc<OwnedTexture>> = packed
             .shapes
             .iter()
             .enumerate()
@@ -333,15 +343,15 @@ impl SceneBuffers {
                     let same = Arc::ptr_eq(p.packed.shapes.get(i)?, words);
                     same.then(|| p.shape_textures[i].clone())
                 });
-                shared.unwrap_or_else(|| texture(words))
+                shared.unwrap_or_else(|| Arc::new(texture(words)))
             })
             .collect();
         let resource = |i: u32| -> wgpu::BindingResource {
             let i = i as usize;
             match i.checked_sub(FIRST_SHAPE_BINDING as usize) {
                 None if i == 0 => globals.as_entire_binding(),
-                None => wgpu::BindingResource::TextureView(&fixed[i - 1]),
-                Some(j) => wgpu::BindingResource::TextureView(&shape_textures[j]),
+                None => wgpu::BindingResource::TextureView(fixed[i - 1].view()),
+                Some(j) => wgpu::BindingResource::TextureView(shape_textures[j].view()),
             }
         };
         let entries: Vec<wgpu::BindGroupEntry> = bound_bindings(bound_kinds)
@@ -359,6 +369,7 @@ impl SceneBuffers {
         Ok(SceneBuffers {
             packed,
             globals,
+            _fixed: fixed,
             shape_textures,
             bind_group,
         })
@@ -400,8 +411,7 @@ pub const DEFAULT_MIN_WEIGHT: f64 = 1e-3;
 
 /// Two radiance-sum textures used in turn, and how many samples they hold.
 pub struct Accumulator {
-    textures: [wgpu::Texture; 2],
-    views: [wgpu::TextureView; 2],
+    textures: [OwnedTexture; 2],
     bind_groups: [wgpu::BindGroup; 2],
     /// Index of the texture that holds the current sum.
     front: usize,
@@ -416,8 +426,8 @@ impl Accumulator {
     pub fn new(device: &wgpu::Device, pipelines: &Pipelines, width: u32, height: u32) -> Self {
         // COPY_SRC: the ray-counting variant's counts are read back;
         // COPY_DST: the error view's errors are written in (`write_sum`).
-        let textures: [wgpu::Texture; 2] = std::array::from_fn(|_| {
-            render_target(
+        let textures: [OwnedTexture; 2] = std::array::from_fn(|_| {
+            OwnedTexture::new(render_target(
                 device,
                 "accumulated radiance",
                 (width, height),
@@ -425,24 +435,20 @@ impl Accumulator {
                 wgpu::TextureUsages::TEXTURE_BINDING
                     | wgpu::TextureUsages::COPY_SRC
                     | wgpu::TextureUsages::COPY_DST,
-            )
+            ))
         });
-        let views = textures
-            .each_ref()
-            .map(|t| t.create_view(&Default::default()));
         let bind_groups = std::array::from_fn(|i| {
             device.create_bind_group(&wgpu::BindGroupDescriptor {
                 label: Some("accumulated radiance"),
                 layout: &pipelines.accum_layout,
                 entries: &[wgpu::BindGroupEntry {
                     binding: 0,
-                    resource: wgpu::BindingResource::TextureView(&views[i]),
+                    resource: wgpu::BindingResource::TextureView(textures[i].view()),
                 }],
             })
         });
         Accumulator {
             textures,
-            views,
             bind_groups,
             front: 0,
             samples: 0,
@@ -469,7 +475,7 @@ impl Accumulator {
 
     /// The texture that holds the current sum.
     pub fn sum(&self) -> &wgpu::Texture {
-        &self.textures[self.front]
+        self.textures[self.front].texture()
     }
 
     /// Replaces the current sum with `texels`, four floats per pixel, row
@@ -535,7 +541,7 @@ pub fn encode_frame(
             encoder,
             &pipelines.trace,
             &[&scene.bind_group, &accum.bind_groups[accum.front]],
-            &accum.views[back],
+            accum.textures[back].view(),
         );
         accum.front = back;
         accum.samples += new_samples;
@@ -579,7 +585,7 @@ pub fn encode_job(
         encoder,
         &pipelines.trace,
         &[&scene.bind_group, &accum.bind_groups[accum.front]],
-        &accum.views[back],
+        accum.textures[back].view(),
         &span_rects(&span, width),
         clear,
         timestamp_writes,
