@@ -30,7 +30,7 @@ pub fn noise_image() -> image::RgbaImage {
 
 /// A 32-bit integer hash (Chris Wellons' "lowbias32"): every output bit
 /// depends on every input bit, so neighbouring pixels are unrelated.
-fn hash(mut x: u32) -> u32 {
+pub(crate) fn hash(mut x: u32) -> u32 {
     x ^= x >> 16;
     x = x.wrapping_mul(0x7feb_352d);
     x ^= x >> 15;

@@ -9,8 +9,9 @@
 //!   ignores): each gets a name, `float f(float rsb_p0);`;
 //! - a name that is a keyword of GLSL 4.50 but not of WebGL GLSL
 //!   (`float sample = 0.0;`): `rsb_sample`;
-//! - WebGL's texture functions (`texture2D(`, `texture2DLod(`, ...):
-//!   GLSL 4.50's (`texture  (`, `textureLod  (`), padded with spaces;
+//! - WebGL's texture functions (`texture2D(`, `texture2DLod(`,
+//!   `textureCube(`, `texture3D(`, ...): GLSL 4.50's (`texture  (`,
+//!   `textureLod  (`), padded with spaces;
 //! - a float literal too big for a float (`1e39`, which WebGL reads as
 //!   infinity and naga rejects), or a positive one divided by a zero
 //!   literal (`1.0 / 0.0`): the largest float, `3.4028235e38`;
@@ -20,7 +21,8 @@
 //!   the prelude adds for square matrices;
 //! - a `sampler2D` parameter, which naga's Vulkan GLSL has no type for:
 //!   a `texture2D` parameter, each use of it in the function's body wrapped
-//!   as `sampler2D(NAME, rsb_linear_sampler)` with the prelude's sampler;
+//!   as `sampler2D(NAME, rsb_linear_sampler)` with the prelude's sampler
+//!   (`samplerCube` and `sampler3D` likewise, as `textureCube`, `texture3D`);
 //! - a precision qualifier (`highp vec2 p`), which naga rejects in a
 //!   parameter list: blanked everywhere, it means nothing in Vulkan GLSL;
 //! - a local `const int N = 4;` used as an array size (`float a[N];`),
@@ -129,8 +131,13 @@ const NEW_KEYWORDS: [&str; 21] = [
 ];
 
 /// WebGL GLSL's texture functions and the GLSL 4.50 function each is.
-const TEXTURE_FUNCTIONS: [(&str, &str); 7] = [
+const TEXTURE_FUNCTIONS: [(&str, &str); 12] = [
     ("texture2D", "texture"),
+    ("textureCube", "texture"),
+    ("textureCubeLod", "textureLod"),
+    ("textureCubeLodEXT", "textureLod"),
+    ("texture3D", "texture"),
+    ("texture3DLod", "textureLod"),
     ("texture2DLod", "textureLod"),
     ("texture2DLodEXT", "textureLod"),
     ("texture2DProj", "textureProj"),
@@ -607,13 +614,23 @@ fn overwrite(text: &mut String, range: std::ops::Range<usize>, new: &str) {
     text.replace_range(range, &padded);
 }
 
+/// The sampler types of WebGL GLSL and the texture types of Vulkan GLSL
+/// they are made from (each pair of the same length).
+const SAMPLER_TYPES: [(&str, &str); 3] = [
+    ("sampler2D", "texture2D"),
+    ("samplerCube", "textureCube"),
+    ("sampler3D", "texture3D"),
+];
+
 /// `sampler2D NAME` parameters become `texture2D NAME` (the same length),
 /// and in the function's body each `NAME` becomes
-/// `sampler2D(NAME, rsb_linear_sampler)`, which naga's texture functions take.
+/// `sampler2D(NAME, rsb_linear_sampler)`, which naga's texture functions
+/// take; `samplerCube` and `sampler3D` likewise.
 fn sampler_parameters(tokens: &[Token], text: &mut String, out: &mut Vec<(usize, String)>) {
     let (mut braces, mut parens) = (0i32, 0i32);
-    let mut pending: Vec<&str> = Vec::new();
-    let mut in_body: Vec<&str> = Vec::new();
+    let mut pending: Vec<(&str, &str)> = Vec::new();
+    let mut in_body: Vec<(&str, &str)> = Vec::new();
+    let sampler = |word: &str| SAMPLER_TYPES.iter().find(|(s, _)| *s == word).copied();
     for (i, t) in tokens.iter().enumerate() {
         match t.text {
             "{" => {
@@ -631,19 +648,18 @@ fn sampler_parameters(tokens: &[Token], text: &mut String, out: &mut Vec<(usize,
             "(" => parens += 1,
             ")" => parens -= 1,
             ";" if braces == 0 => pending.clear(),
-            "sampler2D" if braces == 0 && parens > 0 => {
-                overwrite(text, t.start..t.end(), "texture2D");
+            word if braces == 0 && parens > 0 && sampler(word).is_some() => {
+                let (sampler_type, texture_type) = sampler(word).expect("a sampler type");
+                overwrite(text, t.start..t.end(), texture_type);
                 if let Some(n) = tokens.get(i + 1).filter(|n| n.kind == Kind::Ident) {
-                    pending.push(n.text);
+                    pending.push((n.text, sampler_type));
                 }
             }
-            word if braces > 0
-                && t.kind == Kind::Ident
-                && in_body.contains(&word)
-                && !(i > 0 && tokens[i - 1].is(".")) =>
-            {
-                out.push((t.start, "sampler2D(".to_string()));
-                out.push((t.end(), ", rsb_linear_sampler)".to_string()));
+            word if braces > 0 && t.kind == Kind::Ident && !(i > 0 && tokens[i - 1].is(".")) => {
+                if let Some((_, sampler_type)) = in_body.iter().find(|(n, _)| *n == word) {
+                    out.push((t.start, format!("{sampler_type}(")));
+                    out.push((t.end(), ", rsb_linear_sampler)".to_string()));
+                }
             }
             _ => {}
         }
@@ -913,6 +929,15 @@ mod tests {
         assert_eq!(
             k.text,
             "vec4 h(texture2D rsb_sampler) { return texelFetch(sampler2D(rsb_sampler, rsb_linear_sampler), ivec2(0), 0); }"
+        );
+        // Cube maps and volumes, WebGL's functions for them renamed too.
+        let (c, _) = bridged(
+            "vec4 f(samplerCube c, sampler3D v) { return textureCube(c, d) + texture3D(v, p); }",
+        );
+        assert_eq!(
+            c.text,
+            "vec4 f(textureCube c, texture3D v) { return texture   (samplerCube(c, rsb_linear_sampler), d) \
+             + texture  (sampler3D(v, rsb_linear_sampler), p); }"
         );
     }
 

@@ -17,6 +17,7 @@
 //! | `bundled` | the example shaders, embedded (the page's menu) |
 //! | `check` | `--check-all`: one frame of each file of a folder, the verdicts and warnings |
 //! | `channels` | the images a shader samples: files, or the built-in noise |
+//! | `channels_3d` | cube maps and volumes: the kinds of channel, the built-in cube map and noise volume |
 //! | `multipass` | Shadertoy's Buffer A-D, Common and Image: a folder or a JSON export |
 //! | `session` | one file: the last good pipeline, reloads, parameter values |
 //! | `watchdog` | the window's trial frame that refuses shaders too slow to run |
@@ -27,6 +28,7 @@
 
 pub mod bundled;
 pub mod channels;
+pub mod channels_3d;
 mod check;
 pub mod clock;
 pub mod compose;
