@@ -106,12 +106,17 @@ pub struct Compiled {
 /// Reads and compiles a shader file. Unreadable files are errors too, named
 /// like compile errors.
 pub fn compile_file(path: &Path) -> Result<Compiled, ShaderError> {
+    compile_file_with(path, &ChannelKinds::default())
+}
+
+/// [`compile_file`] with channels of `kinds` (`--channel0 cube`).
+pub fn compile_file_with(path: &Path, kinds: &ChannelKinds) -> Result<Compiled, ShaderError> {
     let name = path.display().to_string();
     let text =
         std::fs::read_to_string(path).map_err(|e| ShaderError::unreadable(name.clone(), &e))?;
     let (expanded, included) = include::expand(path, &text);
     included?;
-    compile_expanded(&name, &expanded, &ChannelKinds::default())
+    compile_expanded(&name, &expanded, kinds)
 }
 
 /// Compiles a file whose includes are joined in, its channels of `kinds`
