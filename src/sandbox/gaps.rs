@@ -162,6 +162,9 @@ pub fn bridge(scan: &Scan, mut text: String) -> Bridged {
     // First, so that a parameter whose name is renamed too (`sampler2D
     // sampler`) is wrapped around its new name: insertions at one offset
     // keep the order they are made in.
+    // Before the others: a bracket opening a condition comes before what
+    // they insert at its first token.
+    for_conditions(tokens, &mut insertions);
     sampler_parameters(tokens, &mut text, &mut insertions);
     let mut overloads = Vec::new();
     let in_constants = macros_in_constants(tokens);
@@ -666,6 +669,41 @@ fn sampler_parameters(tokens: &[Token], text: &mut String, out: &mut Vec<(usize,
     }
 }
 
+/// The condition of a `for` loop goes in brackets (`for (int i = 0;
+/// (int(t[i]) != 15 && i < 15); i++)`): naga reads a condition that starts
+/// with a type as a declaration and stops at the `(` of a constructor
+/// (`Expected identifier, found LeftParen`), often through a macro
+/// (`#define V(t, j) int(t[j])`, `V(t, i) != 15`). A condition that is a
+/// declaration (`TYPE NAME = ...`) stays as it is.
+fn for_conditions(tokens: &[Token], out: &mut Vec<(usize, String)>) {
+    for (i, t) in tokens.iter().enumerate() {
+        if !(t.is("for") && tokens.get(i + 1).is_some_and(|n| n.is("("))) {
+            continue;
+        }
+        let mut depth = 0;
+        let mut semicolons = Vec::new();
+        for (k, t) in tokens.iter().enumerate().skip(i + 1) {
+            match t.text {
+                "(" | "[" | "{" => depth += 1,
+                ")" | "]" | "}" => depth -= 1,
+                ";" if depth == 1 => semicolons.push(k),
+                _ => {}
+            }
+            if depth == 0 || semicolons.len() == 2 {
+                break;
+            }
+        }
+        let [first, second] = semicolons[..] else {
+            continue;
+        };
+        let declares = second - first > 2 && tokens[first + 2].kind == Kind::Ident;
+        if second - first > 1 && !declares {
+            out.push((tokens[first + 1].start, "(".to_string()));
+            out.push((tokens[second].start, ")".to_string()));
+        }
+    }
+}
+
 /// `(` at `open` starts a call with exactly one argument.
 fn single_argument(tokens: &[Token], open: usize) -> bool {
     arguments(tokens, open).is_some_and(|(commas, _)| commas.is_empty())
@@ -905,6 +943,19 @@ mod tests {
         assert_eq!(
             b.text,
             "vec4 a = texture  (t, uv) + textureLod  (t, uv, 0.0); float texture2Dx;"
+        );
+    }
+
+    #[test]
+    fn for_conditions_go_in_brackets_unless_they_declare() {
+        let (b, _) = bridged(
+            "void f() { for (int i = 0; V(t, i) != 15 && i < 15; i += 3) {} \
+             for (;;) {} for (; bool b = x;) {} }",
+        );
+        assert_eq!(
+            b.text,
+            "void f() { for (int i = 0; (V(t, i) != 15 && i < 15); i += 3) {} \
+             for (;;) {} for (; bool b = x;) {} }"
         );
     }
 
