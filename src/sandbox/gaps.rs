@@ -987,7 +987,7 @@ mod tests {
         );
         assert_eq!(
             c.text,
-            "vec4 f(textureCube c, texture3D v) { return texture   (samplerCube(c, rsb_linear_sampler), d) \
+            "vec4 f(textureCube c, texture3D v) { return texture    (samplerCube(c, rsb_linear_sampler), d) \
              + texture  (sampler3D(v, rsb_linear_sampler), p); }"
         );
     }

@@ -30,8 +30,9 @@ fn wgsl_prelude() -> String {
     )
 }
 
-/// The textures of the WGSL prelude (docs/sandbox.md, "Textures"): the four
-/// channels, their sampler and the previous frame.
+/// The textures of the WGSL prelude (docs/sandbox.md, "Textures", "Cube
+/// maps and volumes"): the four channels, their sampler, the previous
+/// frame, and each channel as a cube map and as a volume.
 const WGSL_TEXTURES: &str = "\
 @group(0) @binding(2) var channel0: texture_2d<f32>;
 @group(0) @binding(3) var channel1: texture_2d<f32>;
