@@ -5,9 +5,7 @@
 //! a cube map whose colour is the direction looked in, and a volume of
 //! noise like Shadertoy's "RGBA Noise3D".
 
-use wgpu::util::DeviceExt;
-
-use super::channels::{CHANNEL_FORMAT, CHANNELS, hash};
+use super::channels::{CHANNELS, hash, upload_texels};
 
 /// What a channel holds, which decides the sampler type its name has in
 /// the shader (`sampler2D`, `samplerCube`, `sampler3D`).
@@ -87,53 +85,29 @@ pub fn noise_volume() -> Vec<u8> {
 
 /// Uploads the built-in cube map; the view is a cube view.
 pub fn upload_cube(device: &wgpu::Device, queue: &wgpu::Queue) -> wgpu::TextureView {
-    let texture = device.create_texture_with_data(
-        queue,
-        &wgpu::TextureDescriptor {
-            label: Some("sandbox cube map"),
-            size: wgpu::Extent3d {
-                width: CUBE_SIZE,
-                height: CUBE_SIZE,
-                depth_or_array_layers: 6,
-            },
-            mip_level_count: 1,
-            sample_count: 1,
-            dimension: wgpu::TextureDimension::D2,
-            format: CHANNEL_FORMAT,
-            usage: wgpu::TextureUsages::TEXTURE_BINDING,
-            view_formats: &[],
+    let size = (CUBE_SIZE, CUBE_SIZE, 6);
+    let d2 = wgpu::TextureDimension::D2;
+    upload_texels(device, queue, "sandbox cube map", size, d2, &cube_faces()).create_view(
+        &wgpu::TextureViewDescriptor {
+            dimension: Some(wgpu::TextureViewDimension::Cube),
+            ..Default::default()
         },
-        wgpu::util::TextureDataOrder::LayerMajor,
-        &cube_faces(),
-    );
-    texture.create_view(&wgpu::TextureViewDescriptor {
-        dimension: Some(wgpu::TextureViewDimension::Cube),
-        ..Default::default()
-    })
+    )
 }
 
 /// Uploads the built-in noise volume.
 pub fn upload_volume(device: &wgpu::Device, queue: &wgpu::Queue) -> wgpu::TextureView {
-    let texture = device.create_texture_with_data(
+    let size = (VOLUME_SIZE, VOLUME_SIZE, VOLUME_SIZE);
+    let d3 = wgpu::TextureDimension::D3;
+    upload_texels(
+        device,
         queue,
-        &wgpu::TextureDescriptor {
-            label: Some("sandbox noise volume"),
-            size: wgpu::Extent3d {
-                width: VOLUME_SIZE,
-                height: VOLUME_SIZE,
-                depth_or_array_layers: VOLUME_SIZE,
-            },
-            mip_level_count: 1,
-            sample_count: 1,
-            dimension: wgpu::TextureDimension::D3,
-            format: CHANNEL_FORMAT,
-            usage: wgpu::TextureUsages::TEXTURE_BINDING,
-            view_formats: &[],
-        },
-        wgpu::util::TextureDataOrder::LayerMajor,
+        "sandbox noise volume",
+        size,
+        d3,
         &noise_volume(),
-    );
-    texture.create_view(&Default::default())
+    )
+    .create_view(&Default::default())
 }
 
 #[cfg(test)]
