@@ -10,6 +10,7 @@ mod common;
 use std::path::{Path, PathBuf};
 
 use raysandbox::gpu::Gpu;
+use raysandbox::sandbox::channels_3d::{VOLUME_SIZE, cube_colour, noise_volume};
 use raysandbox::sandbox::multipass::headless::MultipassOffscreen;
 use raysandbox::sandbox::multipass::{Input, PassKind, Project, compile_project};
 use raysandbox::sandbox::watchdog::Probe;
@@ -245,7 +246,8 @@ fn frames_of_a_multipass_folder_render_and_check_all_takes_folders_and_json() {
     );
     assert!(stdout.contains("progressive"), "{stdout}");
     assert!(stdout.contains("broken/image.glsl:2:"), "{stdout}");
-    assert!(stdout.contains("2 of 3 pass"), "{stdout}");
+    assert!(stdout.contains("cube_volume"), "{stdout}");
+    assert!(stdout.contains("3 of 4 pass"), "{stdout}");
 }
 
 fn temp(name: &str) -> PathBuf {
@@ -470,4 +472,83 @@ fn json_errors_name_the_file_and_the_key() {
         "{:?}",
         project.warnings
     );
+}
+
+/// tests/shaders/multipass/cube_volume samples the built-in cube map
+/// (`iChannel0 = "cube"`) in 1024 directions all round, with `texture()`
+/// and `textureLod()`, and the built-in noise volume (`"volume"`) at 2048
+/// texels, with `texelFetch()` and `texture()`; each value is compared with
+/// what the built-ins hold (docs/sandbox.md, "Cube maps and volumes").
+#[test]
+fn the_built_in_cube_map_and_noise_volume_read_as_they_are_made() {
+    let Some(gpu) = common::gpu() else { return };
+    let size = (64, 49);
+    let mut o = offscreen(&gpu, &shaders().join("cube_volume"), size);
+    draw(&gpu, &mut o, 0, size);
+    let texels = o.texels(&gpu).unwrap();
+    // Rows of `texels` run from the top; the shader's y from the bottom.
+    let at = |x: usize, y: usize| texels[(48 - y) * 64 + x];
+    let mut worst = 0.0f32;
+    for y in 0..16 {
+        for x in 0..64 {
+            let longitude = 2.0 * std::f32::consts::PI * (x as f32 + 0.5) / 64.0;
+            let latitude = 0.9 * std::f32::consts::PI * ((y as f32 + 0.5) / 16.0 - 0.5);
+            let d = [
+                longitude.cos() * latitude.cos(),
+                latitude.sin(),
+                longitude.sin() * latitude.cos(),
+            ];
+            let got = at(x, y);
+            for (g, e) in got.iter().zip(cube_colour(d)) {
+                worst = worst.max((g - e).abs());
+            }
+        }
+    }
+    eprintln!("cube map: largest difference {worst:.4}");
+    // 8-bit texels of 64-pixel faces, filtered linearly: within 1%.
+    assert!(worst < 0.01, "the cube map differs by {worst}");
+    let volume = noise_volume();
+    let n = VOLUME_SIZE as usize;
+    let mut sum = 0.0f64;
+    for y in 0..32 {
+        for x in 0..64 {
+            let (tx, tz) = if x < 32 { (x, 0) } else { (x - 32, 1) };
+            let texel = &volume[4 * (tx + n * (y + n * tz))..][..4];
+            let got = at(x, y + 16);
+            for c in 0..4 {
+                let expected = f32::from(texel[c]) / 255.0;
+                assert!(
+                    (got[c] - expected).abs() < 1e-3,
+                    "volume texel ({tx}, {y}, {tz}) component {c}: {} not {expected}",
+                    got[c]
+                );
+                sum += f64::from(got[c]);
+            }
+        }
+    }
+    // 8192 uniform values: mean 0.5, standard error 0.0032.
+    let mean = sum / 8192.0;
+    assert!((mean - 0.5).abs() < 0.02, "mean {mean}");
+    assert_eq!(at(0, 48), [64.0, 64.0, 1.0, 32.0], "iChannelResolution[0]");
+    assert_eq!(at(1, 48)[..3], [32.0, 32.0, 32.0], "iChannelResolution[1]");
+}
+
+/// A JSON export's "cubemap" and "volume" inputs read the built-ins, the
+/// cube map with a warning that Shadertoy's own is not in the file.
+#[test]
+fn json_cube_maps_and_volumes_read_the_built_ins() {
+    let dir = temp("json-cube");
+    let text = r#"{"renderpass": [{"type": "image", "code": "void mainImage(out vec4 c, in vec2 p) { c = texture(iChannel0, vec3(1.0, 0.0, 0.0)) + texture(iChannel3, vec3(0.5)); }",
+        "inputs": [{"channel": 0, "ctype": "cubemap", "src": "/media/a/sky.png"}, {"channel": 3, "ctype": "volume", "src": "/media/a/noise.bin"}],
+        "outputs": [{"id": 37, "channel": 0}]}]}"#;
+    let file = common::write_file(&dir, "toy.json", text);
+    let project = Project::load(&file).unwrap();
+    assert_eq!(project.passes[0].channels[0], Some(Input::Cube));
+    assert_eq!(project.passes[0].channels[3], Some(Input::Volume));
+    assert!(
+        project.warnings.len() == 1 && project.warnings[0].contains("inputs[0].src"),
+        "{:?}",
+        project.warnings
+    );
+    compile_project(&project).unwrap_or_else(|e| panic!("{e}"));
 }

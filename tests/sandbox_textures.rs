@@ -231,3 +231,57 @@ fn a_channel_image_that_cannot_be_read_exits_2_naming_the_file() {
     }
     std::fs::remove_dir_all(&dir).unwrap();
 }
+
+/// `--channel0 cube --channel1 volume` (docs/sandbox.md, "Cube maps and
+/// volumes"): a Shadertoy shader that does not declare its channels reads
+/// the built-in cube map (the direction's colour) as a `samplerCube` and
+/// the built-in noise volume as a `sampler3D`, whose size it is told.
+#[test]
+fn channels_given_as_cube_and_volume_are_the_built_ins() {
+    if common::gpu().is_none() {
+        return;
+    }
+    let dir = temp_dir("cube-volume");
+    let shader = write(
+        &dir,
+        "sky.glsl",
+        "void mainImage(out vec4 c, in vec2 p) {\n\
+         \x20   vec3 d = p.x < 8.0 ? vec3(1.0, 0.0, 0.0) : vec3(0.0, -1.0, 0.0);\n\
+         \x20   float depth = iChannelResolution[1].z / 32.0;\n\
+         \x20   c = vec4(texture(iChannel0, d).rgb * depth * step(0.0, texture(iChannel1, vec3(0.5)).r), 1.0);\n\
+         }\n",
+    );
+    let out = dir.join("sky.png");
+    let output = raysandbox(&[
+        "shader",
+        shader.to_str().unwrap(),
+        "--channel0",
+        "cube",
+        "--channel1",
+        "volume",
+        "--render",
+        out.to_str().unwrap(),
+        "--size",
+        "16x4",
+    ]);
+    succeeded(&output);
+    let image = open(&out);
+    // +x is (1, 0.5, 0.5), -y (0.5, 0, 0.5): within two levels (filtering).
+    for (x, expected) in [(2, [255, 128, 128]), (12, [128, 0, 128])] {
+        let got = image.get_pixel(x, 1).0;
+        for c in 0..3 {
+            assert!(
+                (i32::from(got[c]) - expected[c]).abs() <= 2,
+                "pixel {x}: {got:?}, expected {expected:?}"
+            );
+        }
+    }
+    // Without --channel0 cube the same shader is a 2-D channel's: an error.
+    let output = raysandbox(&[
+        "shader",
+        shader.to_str().unwrap(),
+        "--render",
+        out.to_str().unwrap(),
+    ]);
+    assert_eq!(output.status.code(), Some(2));
+}

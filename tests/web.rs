@@ -1093,6 +1093,37 @@ fn a_multipass_shaders_texture_channel_reads_an_image_dropped_on_the_canvas() {
     assert_eq!(page.exceptions(), Vec::<String>::new());
 }
 
+/// A Shadertoy JSON's "cubemap" and "volume" inputs in the page read the
+/// built-in cube map (the direction's colour: +x red 1, +y green 1, -z
+/// blue 0) and noise volume, bound as WebGPU cube and 3-D textures
+/// (docs/sandbox.md, "Cube maps and volumes").
+#[test]
+fn a_multipass_shaders_cube_map_and_volume_channels_draw_in_the_page() {
+    let Some(display) = common::xwindow::Display::start() else {
+        return;
+    };
+    let code = "void mainImage(out vec4 fragColor, in vec2 fragCoord) {\n    \
+                float v = step(0.0, texture(iChannel1, vec3(0.5)).r) * iChannelResolution[1].z / 32.0;\n    \
+                fragColor = vec4(texture(iChannel0, vec3(1.0, 0.0, 0.0)).r,\n        \
+                texture(iChannel0, vec3(0.0, 1.0, 0.0)).g,\n        \
+                texture(iChannel0, vec3(0.0, 0.0, -1.0)).b, 1.0) * v;\n}\n";
+    let json = format!(
+        r#"{{"Shader": {{"renderpass": [{{"type": "image", "name": "Image", "code": {code:?},
+          "inputs": [{{"id": "1", "ctype": "cubemap", "src": "/media/a/sky.png", "channel": 0}},
+                     {{"id": "2", "ctype": "volume", "src": "/media/a/noise.bin", "channel": 1}}],
+          "outputs": [{{"id": "4dfGRr", "channel": 0}}]}}]}}}}
+"#
+    );
+    let url = browser::serve(browser::page_dir());
+    let address = format!("{url}?ui=0#{}", link::shader_hash(&json));
+    let mut page = Browser::open(&display, &address);
+    page.wait_for("shader ok");
+    wait_for_picture(&page, "the cube map's face colours", |p| {
+        middle_is(p, [255, 255, 0])
+    });
+    assert_eq!(page.exceptions(), Vec::<String>::new());
+}
+
 /// Every example shader of the editor's menu compiles in the page and
 /// draws (the browser's WebGPU takes what naga writes for it).
 #[test]

@@ -119,12 +119,14 @@ fn open_window(
         .map(|p| p.map(|p| p.display().to_string()).unwrap_or_default());
     #[cfg(unix)]
     super::window::lose_device_on_sigusr1(event_loop.create_proxy(), || SandboxEvent::LoseDevice);
+    let mut session = Session::new(&options.file);
+    session.kinds = options.channel_kinds();
     let mut app = SandboxApp {
         proxy: event_loop.create_proxy(),
         events: EventLog {
             print: options.print_events,
         },
-        session: Session::new(&options.file),
+        session,
         multi: sandbox::multipass::is_multipass(&options.file)
             .then(|| multipass::Multi::new(&options.file)),
         probe: Arc::default(),

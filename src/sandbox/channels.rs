@@ -30,7 +30,7 @@ pub fn noise_image() -> image::RgbaImage {
 
 /// A 32-bit integer hash (Chris Wellons' "lowbias32"): every output bit
 /// depends on every input bit, so neighbouring pixels are unrelated.
-fn hash(mut x: u32) -> u32 {
+pub(crate) fn hash(mut x: u32) -> u32 {
     x ^= x >> 16;
     x = x.wrapping_mul(0x7feb_352d);
     x ^= x >> 15;
@@ -70,24 +70,45 @@ pub fn upload(
     image: &image::RgbaImage,
 ) -> wgpu::Texture {
     let flipped = image::imageops::flip_vertical(image);
+    let size = (image.width().max(1), image.height().max(1), 1);
+    upload_texels(
+        device,
+        queue,
+        "sandbox channel",
+        size,
+        wgpu::TextureDimension::D2,
+        flipped.as_raw(),
+    )
+}
+
+/// Uploads `bytes` ([`CHANNEL_FORMAT`], layer after layer) as a texture of
+/// `size` (width, height, layers or depth) that shaders sample.
+pub(crate) fn upload_texels(
+    device: &wgpu::Device,
+    queue: &wgpu::Queue,
+    label: &str,
+    (width, height, layers): (u32, u32, u32),
+    dimension: wgpu::TextureDimension,
+    bytes: &[u8],
+) -> wgpu::Texture {
     device.create_texture_with_data(
         queue,
         &wgpu::TextureDescriptor {
-            label: Some("sandbox channel"),
+            label: Some(label),
             size: wgpu::Extent3d {
-                width: image.width().max(1),
-                height: image.height().max(1),
-                depth_or_array_layers: 1,
+                width,
+                height,
+                depth_or_array_layers: layers,
             },
             mip_level_count: 1,
             sample_count: 1,
-            dimension: wgpu::TextureDimension::D2,
+            dimension,
             format: CHANNEL_FORMAT,
             usage: wgpu::TextureUsages::TEXTURE_BINDING,
             view_formats: &[],
         },
         wgpu::util::TextureDataOrder::LayerMajor,
-        flipped.as_raw(),
+        bytes,
     )
 }
 

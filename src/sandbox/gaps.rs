@@ -9,8 +9,9 @@
 //!   ignores): each gets a name, `float f(float rsb_p0);`;
 //! - a name that is a keyword of GLSL 4.50 but not of WebGL GLSL
 //!   (`float sample = 0.0;`): `rsb_sample`;
-//! - WebGL's texture functions (`texture2D(`, `texture2DLod(`, ...):
-//!   GLSL 4.50's (`texture  (`, `textureLod  (`), padded with spaces;
+//! - WebGL's texture functions (`texture2D(`, `texture2DLod(`,
+//!   `textureCube(`, `texture3D(`, ...): GLSL 4.50's (`texture  (`,
+//!   `textureLod  (`), padded with spaces;
 //! - a float literal too big for a float (`1e39`, which WebGL reads as
 //!   infinity and naga rejects), or a positive one divided by a zero
 //!   literal (`1.0 / 0.0`): the largest float, `3.4028235e38`;
@@ -20,7 +21,8 @@
 //!   the prelude adds for square matrices;
 //! - a `sampler2D` parameter, which naga's Vulkan GLSL has no type for:
 //!   a `texture2D` parameter, each use of it in the function's body wrapped
-//!   as `sampler2D(NAME, rsb_linear_sampler)` with the prelude's sampler;
+//!   as `sampler2D(NAME, rsb_linear_sampler)` with the prelude's sampler
+//!   (`samplerCube` and `sampler3D` likewise, as `textureCube`, `texture3D`);
 //! - a precision qualifier (`highp vec2 p`), which naga rejects in a
 //!   parameter list: blanked everywhere, it means nothing in Vulkan GLSL;
 //! - a local `const int N = 4;` used as an array size (`float a[N];`),
@@ -129,8 +131,13 @@ const NEW_KEYWORDS: [&str; 21] = [
 ];
 
 /// WebGL GLSL's texture functions and the GLSL 4.50 function each is.
-const TEXTURE_FUNCTIONS: [(&str, &str); 7] = [
+const TEXTURE_FUNCTIONS: [(&str, &str); 12] = [
     ("texture2D", "texture"),
+    ("textureCube", "texture"),
+    ("textureCubeLod", "textureLod"),
+    ("textureCubeLodEXT", "textureLod"),
+    ("texture3D", "texture"),
+    ("texture3DLod", "textureLod"),
     ("texture2DLod", "textureLod"),
     ("texture2DLodEXT", "textureLod"),
     ("texture2DProj", "textureProj"),
@@ -155,6 +162,9 @@ pub fn bridge(scan: &Scan, mut text: String) -> Bridged {
     // First, so that a parameter whose name is renamed too (`sampler2D
     // sampler`) is wrapped around its new name: insertions at one offset
     // keep the order they are made in.
+    // Before the others: a bracket opening a condition comes before what
+    // they insert at its first token.
+    for_conditions(tokens, &mut insertions);
     sampler_parameters(tokens, &mut text, &mut insertions);
     let mut overloads = Vec::new();
     let in_constants = macros_in_constants(tokens);
@@ -607,13 +617,23 @@ fn overwrite(text: &mut String, range: std::ops::Range<usize>, new: &str) {
     text.replace_range(range, &padded);
 }
 
+/// The sampler types of WebGL GLSL and the texture types of Vulkan GLSL
+/// they are made from (each pair of the same length).
+const SAMPLER_TYPES: [(&str, &str); 3] = [
+    ("sampler2D", "texture2D"),
+    ("samplerCube", "textureCube"),
+    ("sampler3D", "texture3D"),
+];
+
 /// `sampler2D NAME` parameters become `texture2D NAME` (the same length),
 /// and in the function's body each `NAME` becomes
-/// `sampler2D(NAME, rsb_linear_sampler)`, which naga's texture functions take.
+/// `sampler2D(NAME, rsb_linear_sampler)`, which naga's texture functions
+/// take; `samplerCube` and `sampler3D` likewise.
 fn sampler_parameters(tokens: &[Token], text: &mut String, out: &mut Vec<(usize, String)>) {
     let (mut braces, mut parens) = (0i32, 0i32);
-    let mut pending: Vec<&str> = Vec::new();
-    let mut in_body: Vec<&str> = Vec::new();
+    let mut pending: Vec<(&str, &str)> = Vec::new();
+    let mut in_body: Vec<(&str, &str)> = Vec::new();
+    let sampler = |word: &str| SAMPLER_TYPES.iter().find(|(s, _)| *s == word).copied();
     for (i, t) in tokens.iter().enumerate() {
         match t.text {
             "{" => {
@@ -631,21 +651,55 @@ fn sampler_parameters(tokens: &[Token], text: &mut String, out: &mut Vec<(usize,
             "(" => parens += 1,
             ")" => parens -= 1,
             ";" if braces == 0 => pending.clear(),
-            "sampler2D" if braces == 0 && parens > 0 => {
-                overwrite(text, t.start..t.end(), "texture2D");
+            word if braces == 0 && parens > 0 && sampler(word).is_some() => {
+                let (sampler_type, texture_type) = sampler(word).expect("a sampler type");
+                overwrite(text, t.start..t.end(), texture_type);
                 if let Some(n) = tokens.get(i + 1).filter(|n| n.kind == Kind::Ident) {
-                    pending.push(n.text);
+                    pending.push((n.text, sampler_type));
                 }
             }
-            word if braces > 0
-                && t.kind == Kind::Ident
-                && in_body.contains(&word)
-                && !(i > 0 && tokens[i - 1].is(".")) =>
-            {
-                out.push((t.start, "sampler2D(".to_string()));
-                out.push((t.end(), ", rsb_linear_sampler)".to_string()));
+            word if braces > 0 && t.kind == Kind::Ident && !(i > 0 && tokens[i - 1].is(".")) => {
+                if let Some((_, sampler_type)) = in_body.iter().find(|(n, _)| *n == word) {
+                    out.push((t.start, format!("{sampler_type}(")));
+                    out.push((t.end(), ", rsb_linear_sampler)".to_string()));
+                }
             }
             _ => {}
+        }
+    }
+}
+
+/// The condition of a `for` loop goes in brackets (`for (int i = 0;
+/// (int(t[i]) != 15 && i < 15); i++)`): naga reads a condition that starts
+/// with a type as a declaration and stops at the `(` of a constructor
+/// (`Expected identifier, found LeftParen`), often through a macro
+/// (`#define V(t, j) int(t[j])`, `V(t, i) != 15`). A condition that is a
+/// declaration (`TYPE NAME = ...`) stays as it is.
+fn for_conditions(tokens: &[Token], out: &mut Vec<(usize, String)>) {
+    for (i, t) in tokens.iter().enumerate() {
+        if !(t.is("for") && tokens.get(i + 1).is_some_and(|n| n.is("("))) {
+            continue;
+        }
+        let mut depth = 0;
+        let mut semicolons = Vec::new();
+        for (k, t) in tokens.iter().enumerate().skip(i + 1) {
+            match t.text {
+                "(" | "[" | "{" => depth += 1,
+                ")" | "]" | "}" => depth -= 1,
+                ";" if depth == 1 => semicolons.push(k),
+                _ => {}
+            }
+            if depth == 0 || semicolons.len() == 2 {
+                break;
+            }
+        }
+        let [first, second] = semicolons[..] else {
+            continue;
+        };
+        let declares = second - first > 2 && tokens[first + 2].kind == Kind::Ident;
+        if second - first > 1 && !declares {
+            out.push((tokens[first + 1].start, "(".to_string()));
+            out.push((tokens[second].start, ")".to_string()));
         }
     }
 }
@@ -893,6 +947,19 @@ mod tests {
     }
 
     #[test]
+    fn for_conditions_go_in_brackets_unless_they_declare() {
+        let (b, _) = bridged(
+            "void f() { for (int i = 0; V(t, i) != 15 && i < 15; i += 3) {} \
+             for (;;) {} for (; bool b = x;) {} }",
+        );
+        assert_eq!(
+            b.text,
+            "void f() { for (int i = 0; (V(t, i) != 15 && i < 15); i += 3) {} \
+             for (;;) {} for (; bool b = x;) {} }"
+        );
+    }
+
+    #[test]
     fn sampler2d_parameters_become_textures_wrapped_at_each_use() {
         let (b, _) = bridged(
             "vec4 f(sampler2D s, vec2 p);\nvec4 f(in sampler2D s, vec2 p) {\n    return texture(s, p) + v.s;\n}\nvec4 g() { return texture(s, p); }",
@@ -913,6 +980,15 @@ mod tests {
         assert_eq!(
             k.text,
             "vec4 h(texture2D rsb_sampler) { return texelFetch(sampler2D(rsb_sampler, rsb_linear_sampler), ivec2(0), 0); }"
+        );
+        // Cube maps and volumes, WebGL's functions for them renamed too.
+        let (c, _) = bridged(
+            "vec4 f(samplerCube c, sampler3D v) { return textureCube(c, d) + texture3D(v, p); }",
+        );
+        assert_eq!(
+            c.text,
+            "vec4 f(textureCube c, texture3D v) { return texture    (samplerCube(c, rsb_linear_sampler), d) \
+             + texture  (sampler3D(v, rsb_linear_sampler), p); }"
         );
     }
 

@@ -17,6 +17,7 @@
 //! | `bundled` | the example shaders, embedded (the page's menu) |
 //! | `check` | `--check-all`: one frame of each file of a folder, the verdicts and warnings |
 //! | `channels` | the images a shader samples: files, or the built-in noise |
+//! | `channels_3d` | cube maps and volumes: the kinds of channel, the built-in cube map and noise volume |
 //! | `multipass` | Shadertoy's Buffer A-D, Common and Image: a folder or a JSON export |
 //! | `session` | one file: the last good pipeline, reloads, parameter values |
 //! | `watchdog` | the window's trial frame that refuses shaders too slow to run |
@@ -27,6 +28,7 @@
 
 pub mod bundled;
 pub mod channels;
+pub mod channels_3d;
 mod check;
 pub mod clock;
 pub mod compose;
@@ -43,8 +45,11 @@ pub mod watchdog;
 use std::path::{Path, PathBuf};
 use std::time::Instant;
 
+use channels_3d::{ChannelKind, ChannelKinds};
 pub use check::{Checked, Flat, Report, check_file};
-pub use compose::{Compiled, Style, Warning, WarningKind, compile, compile_file};
+pub use compose::{
+    Compiled, Style, Warning, WarningKind, compile, compile_file, compile_file_with,
+};
 use render::{BuildFailed, FRAME_LIMIT, build_too_slow};
 pub use render::{CanvasStats, NanColor, Offscreen, render_once};
 pub use session::{ReloadError, Session};
@@ -101,7 +106,9 @@ pub struct ShaderArgs {
     /// The image of Shadertoy's `iChannel0` (PNG, JPEG, ...), also the
     /// first `uniform sampler2D` of a GLSL Sandbox file other than
     /// `backbuffer`, and glslViewer's `u_tex0` (so also `--tex0`, as
-    /// glslViewer spells it). Without it, a built-in noise image.
+    /// glslViewer spells it). Without it, a built-in noise image. `cube`
+    /// or `volume`: the built-in cube map or noise volume, and iChannel0
+    /// is a samplerCube or sampler3D.
     #[arg(long, value_name = "IMAGE", visible_alias = "tex0")]
     pub channel0: Option<PathBuf>,
     /// The image of `iChannel1` and `u_tex1` (see --channel0).
@@ -142,14 +149,28 @@ pub enum SandboxError {
 }
 
 impl ShaderArgs {
-    /// The paths of `--channel0 .. --channel3`.
+    /// The image paths of `--channel0 .. --channel3` (not `cube` or
+    /// `volume`, the built-ins).
     pub fn channel_paths(&self) -> [Option<PathBuf>; channels::CHANNELS] {
+        self.channel_values()
+            .map(|p| p.filter(|p| built_in_kind(p).is_none()))
+    }
+
+    fn channel_values(&self) -> [Option<PathBuf>; channels::CHANNELS] {
         [
             self.channel0.clone(),
             self.channel1.clone(),
             self.channel2.clone(),
             self.channel3.clone(),
         ]
+    }
+
+    /// What each channel holds: `--channel0 cube` and `volume` name the
+    /// built-in cube map and noise volume (docs/sandbox.md, "Cube maps and
+    /// volumes"); anything else is a 2-D image.
+    pub fn channel_kinds(&self) -> ChannelKinds {
+        self.channel_values()
+            .map(|p| p.as_deref().and_then(built_in_kind).unwrap_or_default())
     }
 
     /// The channel images, read now: a wrong path is the user's error
@@ -164,6 +185,15 @@ impl ShaderArgs {
     /// window, which `app::run_sandbox` owns.
     pub fn is_headless(&self) -> bool {
         self.check_all || self.render.is_some() || self.frames.is_some()
+    }
+}
+
+/// The kind a `--channelN` value names, if it is a built-in's name.
+fn built_in_kind(value: &Path) -> Option<ChannelKind> {
+    match value.to_str()? {
+        "cube" => Some(ChannelKind::Cube),
+        "volume" => Some(ChannelKind::Volume),
+        _ => None,
     }
 }
 
@@ -191,7 +221,8 @@ pub fn run_headless(args: &ShaderArgs) -> Result<(), SandboxError> {
         return multipass::headless::run(args);
     }
     let images = args.channel_images()?;
-    let compiled = compile_file(&args.file).map_err(|e| SandboxError::Input(e.to_string()))?;
+    let compiled = compile_file_with(&args.file, &args.channel_kinds())
+        .map_err(|e| SandboxError::Input(e.to_string()))?;
     for warning in &compiled.warnings {
         eprintln!("{warning}");
     }

@@ -7,6 +7,7 @@
 use std::borrow::Cow;
 
 use super::channels::{self, CHANNELS};
+use super::channels_3d;
 use super::compose::Compiled;
 use super::uniforms::{FRAME_UNIFORMS_SIZE, FrameUniforms};
 use crate::gpu::{
@@ -92,6 +93,25 @@ pub struct SandboxGpu {
     sampler: wgpu::Sampler,
     /// [`channels::noise_image`], the channel where no image is given.
     noise: wgpu::TextureView,
+    /// The built-in cube map ([`channels_3d::cube_faces`]).
+    cube: wgpu::TextureView,
+    /// The built-in noise volume ([`channels_3d::noise_volume`]).
+    volume: wgpu::TextureView,
+}
+
+/// The binding of channel 0 as a cube map (channel k at `+ k`).
+pub const CUBE_BINDING: u32 = 8;
+/// The binding of channel 0 as a volume (channel k at `+ k`).
+pub const VOLUME_BINDING: u32 = 12;
+
+/// What one channel binds: a 2-D view, a cube view and a 3-D view. The
+/// prelude names the one of the channel's kind ([`channels_3d::ChannelKind`]);
+/// the others hold the built-ins, so that every binding is filled.
+#[derive(Clone)]
+pub struct ChannelViews {
+    pub flat: wgpu::TextureView,
+    pub cube: wgpu::TextureView,
+    pub volume: wgpu::TextureView,
 }
 
 /// The previous frame as the shader reads it: 8 bits per component,
@@ -130,19 +150,23 @@ impl SandboxGpu {
     /// that shows NaN pixels in `nan`.
     pub fn new(gpu: &Gpu, formats: &[wgpu::TextureFormat], nan: NanColor) -> Self {
         let device = &gpu.device;
-        let texture = |binding| wgpu::BindGroupLayoutEntry {
+        let of_dimension = |binding, view_dimension| wgpu::BindGroupLayoutEntry {
             binding,
             visibility: wgpu::ShaderStages::FRAGMENT,
             ty: wgpu::BindingType::Texture {
                 sample_type: wgpu::TextureSampleType::Float { filterable: true },
-                view_dimension: wgpu::TextureViewDimension::D2,
+                view_dimension,
                 multisampled: false,
             },
             count: None,
         };
-        // The bindings of the preludes (docs/sandbox.md, "Textures"):
-        // frame uniforms, parameters, four channels, the sampler, the
-        // previous frame.
+        let texture = |binding| of_dimension(binding, wgpu::TextureViewDimension::D2);
+        let cube = |binding| of_dimension(binding, wgpu::TextureViewDimension::Cube);
+        let volume = |binding| of_dimension(binding, wgpu::TextureViewDimension::D3);
+        // The bindings of the preludes (docs/sandbox.md, "Textures", "Cube
+        // maps and volumes"): frame uniforms, parameters, four channels, the
+        // sampler, the previous frame, then each channel as a cube map and
+        // as a volume (13 textures: WebGPU allows 16 per stage).
         let bind_layout = device.create_bind_group_layout(&wgpu::BindGroupLayoutDescriptor {
             label: Some("sandbox uniforms"),
             entries: &[
@@ -159,6 +183,14 @@ impl SandboxGpu {
                     count: None,
                 },
                 texture(7),
+                cube(CUBE_BINDING),
+                cube(CUBE_BINDING + 1),
+                cube(CUBE_BINDING + 2),
+                cube(CUBE_BINDING + 3),
+                volume(VOLUME_BINDING),
+                volume(VOLUME_BINDING + 1),
+                volume(VOLUME_BINDING + 2),
+                volume(VOLUME_BINDING + 3),
             ],
         });
         let pipeline_layout = device.create_pipeline_layout(&wgpu::PipelineLayoutDescriptor {
@@ -214,6 +246,8 @@ impl SandboxGpu {
         });
         let noise = channels::upload(device, &gpu.queue, &channels::noise_image())
             .create_view(&Default::default());
+        let cube = channels_3d::upload_cube(device, &gpu.queue);
+        let volume = channels_3d::upload_volume(device, &gpu.queue);
         SandboxGpu {
             bind_layout,
             pipeline_layout,
@@ -223,6 +257,8 @@ impl SandboxGpu {
             backbuffer_copy,
             sampler,
             noise,
+            cube,
+            volume,
         }
     }
 
@@ -239,6 +275,16 @@ impl SandboxGpu {
     /// The built-in noise channel image.
     pub(crate) fn noise(&self) -> &wgpu::TextureView {
         &self.noise
+    }
+
+    /// A channel reading `flat` as a 2-D image, the built-in cube map and
+    /// noise volume as the other kinds.
+    pub(crate) fn views(&self, flat: &wgpu::TextureView) -> ChannelViews {
+        ChannelViews {
+            flat: flat.clone(),
+            cube: self.cube.clone(),
+            volume: self.volume.clone(),
+        }
     }
 
     fn display(&self, format: wgpu::TextureFormat) -> &wgpu::RenderPipeline {
@@ -388,7 +434,7 @@ pub struct Canvas {
     frame: wgpu::Buffer,
     params: wgpu::Buffer,
     /// The channel images; the noise where none was given.
-    channels: [wgpu::TextureView; CHANNELS],
+    channels: [ChannelViews; CHANNELS],
     /// The previous frame, upside down ([`BACKBUFFER_FORMAT`]).
     backbuffer: wgpu::TextureView,
     bind_group: wgpu::BindGroup,
@@ -407,7 +453,7 @@ impl Canvas {
         let params = Self::params_buffer(device, 16);
         let texture = Self::texture(device, size);
         let view = texture.create_view(&Default::default());
-        let channels = std::array::from_fn(|_| sandbox.noise.clone());
+        let channels = std::array::from_fn(|_| sandbox.views(&sandbox.noise));
         let backbuffer = Self::backbuffer(device, size);
         let display_bind_group = Self::display_bind_group(device, sandbox, &view);
         let bind_group =
@@ -432,7 +478,7 @@ impl Canvas {
         k: usize,
         image: Option<&image::RgbaImage>,
     ) {
-        self.channels[k] = match image {
+        self.channels[k].flat = match image {
             Some(image) => {
                 channels::upload(&gpu.device, &gpu.queue, image).create_view(&Default::default())
             }
@@ -447,7 +493,7 @@ impl Canvas {
         &mut self,
         device: &wgpu::Device,
         sandbox: &SandboxGpu,
-        views: [wgpu::TextureView; CHANNELS],
+        views: [ChannelViews; CHANNELS],
     ) {
         self.channels = views;
         self.bind(device, sandbox);
@@ -505,35 +551,40 @@ impl Canvas {
         device: &wgpu::Device,
         sandbox: &SandboxGpu,
         [frame, params]: [&wgpu::Buffer; 2],
-        channels: &[wgpu::TextureView; CHANNELS],
+        channels: &[ChannelViews; CHANNELS],
         backbuffer: &wgpu::TextureView,
     ) -> wgpu::BindGroup {
         let view = |binding, view| wgpu::BindGroupEntry {
             binding,
             resource: wgpu::BindingResource::TextureView(view),
         };
+        let mut entries = vec![
+            wgpu::BindGroupEntry {
+                binding: 0,
+                resource: frame.as_entire_binding(),
+            },
+            wgpu::BindGroupEntry {
+                binding: 1,
+                resource: params.as_entire_binding(),
+            },
+            view(2, &channels[0].flat),
+            view(3, &channels[1].flat),
+            view(4, &channels[2].flat),
+            view(5, &channels[3].flat),
+            wgpu::BindGroupEntry {
+                binding: 6,
+                resource: wgpu::BindingResource::Sampler(&sandbox.sampler),
+            },
+            view(7, backbuffer),
+        ];
+        for (k, channel) in (0u32..).zip(channels) {
+            entries.push(view(CUBE_BINDING + k, &channel.cube));
+            entries.push(view(VOLUME_BINDING + k, &channel.volume));
+        }
         device.create_bind_group(&wgpu::BindGroupDescriptor {
             label: Some("sandbox uniforms"),
             layout: &sandbox.bind_layout,
-            entries: &[
-                wgpu::BindGroupEntry {
-                    binding: 0,
-                    resource: frame.as_entire_binding(),
-                },
-                wgpu::BindGroupEntry {
-                    binding: 1,
-                    resource: params.as_entire_binding(),
-                },
-                view(2, &channels[0]),
-                view(3, &channels[1]),
-                view(4, &channels[2]),
-                view(5, &channels[3]),
-                wgpu::BindGroupEntry {
-                    binding: 6,
-                    resource: wgpu::BindingResource::Sampler(&sandbox.sampler),
-                },
-                view(7, backbuffer),
-            ],
+            entries: &entries,
         })
     }
 

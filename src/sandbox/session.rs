@@ -8,6 +8,7 @@
 use std::fmt;
 use std::path::{Path, PathBuf};
 
+use super::channels_3d::ChannelKinds;
 use super::compose::{Compiled, Style, compile_expanded, compile_file};
 use super::include;
 use super::render::{PipelineBuilder, ShaderPipeline};
@@ -63,6 +64,9 @@ pub struct Session {
     last_text: Option<String>,
     /// The files the last compile attempt included, to watch.
     includes: Vec<PathBuf>,
+    /// What each channel holds (`--channel0 cube`, docs/sandbox.md, "Cube
+    /// maps and volumes"), which the prelude's names follow.
+    pub kinds: ChannelKinds,
 }
 
 impl Session {
@@ -75,6 +79,7 @@ impl Session {
             error: None,
             last_text: None,
             includes: Vec::new(),
+            kinds: ChannelKinds::default(),
         }
     }
 
@@ -107,7 +112,7 @@ impl Session {
         if self.last_text.as_deref() == Some(expanded.text.as_str()) {
             return Ok(None);
         }
-        let result = compile_expanded(&name, &expanded);
+        let result = compile_expanded(&name, &expanded, &self.kinds);
         self.last_text = Some(expanded.text);
         self.compiled_or_error(result).map(Some)
     }

@@ -6,7 +6,7 @@ use std::fmt::Write as _;
 use super::glsl_decls::rewrite_glsl;
 use super::glsl_prelude::{
     GLSL_TEXTURES, glsl_frame_block, glsl_param_type, glsl_sandbox_surface, glsl_texture_names,
-    is_matrix, old_shadertoy_names, shadertoy_channels, standard_uniforms,
+    is_matrix, old_shadertoy_names, sampler_kind, shadertoy_channels, standard_uniforms,
 };
 use super::glslviewer;
 use super::param_block::{GLSL_BOOL_PREFIX, read_params};
@@ -16,6 +16,7 @@ use super::{
     find_pair,
 };
 use crate::gpu::{ShaderError, ShaderSource};
+use crate::sandbox::channels_3d::ChannelKinds;
 use crate::sandbox::{gaps, repair};
 use crate::shader_params::scan::{self, Kind, Scan, Token, top_level};
 
@@ -67,7 +68,9 @@ pub(super) fn compile_glsl(
     name: &str,
     scan: &Scan,
     target: Target,
+    kinds: &ChannelKinds,
 ) -> Result<Compiled, ShaderError> {
+    let mut kinds = *kinds;
     if let Some(offset) = scan.too_deep() {
         let message = format!(
             "nested more than {} levels deep (brackets and signs): more than the GLSL \
@@ -109,6 +112,13 @@ pub(super) fn compile_glsl(
     for decl in &rewrite.uniforms {
         match standard.iter().find(|(n, _)| *n == decl.name) {
             Some((n, t)) if *t == decl.type_name => declared.push(*n),
+            // Exports for other players declare `uniform samplerCube
+            // iChannel0;`: that channel is a cube map (or a volume).
+            Some((n, "sampler2D")) if sampler_kind(&decl.type_name).is_some() => {
+                let k = usize::from(n.as_bytes()[n.len() - 1] - b'0');
+                kinds[k] = sampler_kind(&decl.type_name).expect("a sampler");
+                declared.push(*n);
+            }
             // `uniform vec4 mouse;`: the pointer in xy, zw zero.
             Some((n @ ("mouse" | "u_mouse"), _))
                 if ["vec3", "vec4"].contains(&decl.type_name.as_str()) =>
@@ -143,7 +153,9 @@ pub(super) fn compile_glsl(
                     ),
                 ));
             }
-            None if decl.type_name == "sampler2D" => textures.push(decl.name),
+            None if sampler_kind(&decl.type_name).is_some() => {
+                textures.push((decl.name, sampler_kind(&decl.type_name).expect("a sampler")));
+            }
             None if is_matrix(&decl.type_name) => {
                 warnings.push(silent_zeros::warning(name, scan, decl, false));
                 zero.push(format!(
@@ -165,7 +177,7 @@ pub(super) fn compile_glsl(
                         decl.offset,
                         format!(
                             "uniform `{}`: a {} cannot be a parameter here (no matrices, \
-                             the only textures are sampler2D); use float, int, uint, bool \
+                             the textures are sampler2D, samplerCube, sampler3D); use float, int, uint, bool \
                              or a vector of them",
                             decl.name, decl.type_name
                         ),
@@ -182,7 +194,8 @@ pub(super) fn compile_glsl(
     prelude.push_str(&glsl_frame_block(style, &declared));
     prelude.push_str(GLSL_TEXTURES);
     prelude.push_str(&zero.concat());
-    let reads_backbuffer = style == Style::GlslSandbox && textures.contains(&"backbuffer");
+    let reads_backbuffer =
+        style == Style::GlslSandbox && textures.iter().any(|(t, _)| *t == "backbuffer");
     prelude.push_str(&glsl_texture_names(
         name,
         scan,
@@ -246,7 +259,7 @@ pub(super) fn compile_glsl(
     match style {
         Style::Shadertoy => {
             prelude.push_str(&old_shadertoy_names(&used));
-            prelude.push_str(&shadertoy_channels(&used));
+            prelude.push_str(&shadertoy_channels(&used, &kinds));
         }
         Style::GlslViewer => prelude.push_str(&glslviewer::prelude(&declared, resolution)),
         _ => prelude.push_str(&glsl_sandbox_surface(

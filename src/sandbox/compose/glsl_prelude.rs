@@ -8,6 +8,7 @@ use super::glsl_decls::UniformDecl;
 use super::glslviewer;
 use super::{CHANNELS, Style, error_at};
 use crate::gpu::ShaderError;
+use crate::sandbox::channels_3d::{ChannelKind, ChannelKinds};
 use crate::sandbox::uniforms::FrameUniforms;
 use crate::shader_params::scan::Scan;
 
@@ -134,26 +135,56 @@ layout(set = 0, binding = 4) uniform texture2D rsb_channel2;
 layout(set = 0, binding = 5) uniform texture2D rsb_channel3;
 layout(set = 0, binding = 6) uniform sampler rsb_linear_sampler;
 layout(set = 0, binding = 7) uniform texture2D rsb_backbuffer;
+layout(set = 0, binding = 8) uniform textureCube rsb_cube0;
+layout(set = 0, binding = 9) uniform textureCube rsb_cube1;
+layout(set = 0, binding = 10) uniform textureCube rsb_cube2;
+layout(set = 0, binding = 11) uniform textureCube rsb_cube3;
+layout(set = 0, binding = 12) uniform texture3D rsb_volume0;
+layout(set = 0, binding = 13) uniform texture3D rsb_volume1;
+layout(set = 0, binding = 14) uniform texture3D rsb_volume2;
+layout(set = 0, binding = 15) uniform texture3D rsb_volume3;
 ";
+
+/// The kind of channel a GLSL sampler type reads (docs/sandbox.md, "Cube
+/// maps and volumes").
+pub(super) fn sampler_kind(type_name: &str) -> Option<ChannelKind> {
+    match type_name {
+        "sampler2D" => Some(ChannelKind::Flat),
+        "samplerCube" => Some(ChannelKind::Cube),
+        "sampler3D" => Some(ChannelKind::Volume),
+        _ => None,
+    }
+}
+
+/// Channel `k` as a GLSL sampler of `kind`: the prelude's texture of that
+/// kind joined with its sampler, as naga's Vulkan GLSL makes one.
+fn channel_sampler(k: usize, kind: ChannelKind) -> String {
+    match kind {
+        ChannelKind::Flat => format!("sampler2D(rsb_channel{k}, rsb_linear_sampler)"),
+        ChannelKind::Cube => format!("samplerCube(rsb_cube{k}, rsb_linear_sampler)"),
+        ChannelKind::Volume => format!("sampler3D(rsb_volume{k}, rsb_linear_sampler)"),
+    }
+}
 
 /// `#define`s for the `uniform sampler2D` names the file declared: GLSL
 /// Sandbox's `backbuffer` is the previous frame, Shadertoy's `iChannelN`
 /// and glslViewer's `u_texN` channel N, and any other name the next free
-/// channel in the order declared.
+/// channel in the order declared. A `samplerCube` or `sampler3D` reads
+/// its channel as a cube map or a volume.
 pub(super) fn glsl_texture_names(
     name: &str,
     scan: &Scan,
     style: Style,
     uniforms: &[UniformDecl],
-    textures: &[&str],
+    textures: &[(&str, ChannelKind)],
 ) -> Result<String, ShaderError> {
     let mut text = String::new();
     let numbered = |texture: &str| match style {
         Style::GlslViewer => glslviewer::texture_channel(texture),
         _ => None,
     };
-    let mut taken: Vec<usize> = textures.iter().filter_map(|t| numbered(t)).collect();
-    for texture in textures {
+    let mut taken: Vec<usize> = textures.iter().filter_map(|(t, _)| numbered(t)).collect();
+    for (texture, kind) in textures {
         if style == Style::GlslSandbox && *texture == "backbuffer" {
             text.push_str("#define backbuffer sampler2D(rsb_backbuffer, rsb_linear_sampler)\n");
             continue;
@@ -179,7 +210,8 @@ pub(super) fn glsl_texture_names(
         };
         let _ = writeln!(
             text,
-            "#define {renamed} sampler2D(rsb_channel{channel}, rsb_linear_sampler)"
+            "#define {renamed} {}",
+            channel_sampler(channel, *kind)
         );
         if numbered(texture).is_none() {
             taken.push(channel);
@@ -188,23 +220,24 @@ pub(super) fn glsl_texture_names(
     Ok(text)
 }
 
-/// Shadertoy's channels where the file reads them: `iChannel0..3` and
-/// `iChannelResolution[4]` (each channel's size in pixels, z = 1).
-pub(super) fn shadertoy_channels(used: &dyn Fn(&str) -> bool) -> String {
+/// Shadertoy's channels where the file reads them: `iChannel0..3`, each a
+/// sampler of its kind, and `iChannelResolution[4]` (each channel's size in
+/// pixels: z = 1 for a 2-D image or a cube map's face, the depth of a
+/// volume).
+pub(super) fn shadertoy_channels(used: &dyn Fn(&str) -> bool, kinds: &ChannelKinds) -> String {
     let mut text = String::new();
-    for k in 0..CHANNELS {
+    for (k, kind) in kinds.iter().enumerate() {
         if used(&format!("iChannel{k}")) {
-            let _ = writeln!(
-                text,
-                "#define iChannel{k} sampler2D(rsb_channel{k}, rsb_linear_sampler)"
-            );
+            let _ = writeln!(text, "#define iChannel{k} {}", channel_sampler(k, *kind));
         }
     }
     if used("iChannelResolution") {
-        let size = |k| {
-            format!(
-                "vec3(vec2(textureSize(sampler2D(rsb_channel{k}, rsb_linear_sampler), 0)), 1.0)"
-            )
+        let size = |k: usize| {
+            let sampler = channel_sampler(k, kinds[k]);
+            match kinds[k] {
+                ChannelKind::Volume => format!("vec3(textureSize({sampler}, 0))"),
+                _ => format!("vec3(vec2(textureSize({sampler}, 0)), 1.0)"),
+            }
         };
         let _ = write!(
             text,

@@ -31,6 +31,7 @@ mod wgsl;
 
 use std::path::{Path, PathBuf};
 
+use super::channels_3d::ChannelKinds;
 use super::include::{self, Expanded, include_target};
 use crate::gpu::{ShaderError, ShaderSource};
 use crate::shader_params::ParamSet;
@@ -105,31 +106,44 @@ pub struct Compiled {
 /// Reads and compiles a shader file. Unreadable files are errors too, named
 /// like compile errors.
 pub fn compile_file(path: &Path) -> Result<Compiled, ShaderError> {
+    compile_file_with(path, &ChannelKinds::default())
+}
+
+/// [`compile_file`] with channels of `kinds` (`--channel0 cube`).
+pub fn compile_file_with(path: &Path, kinds: &ChannelKinds) -> Result<Compiled, ShaderError> {
     let name = path.display().to_string();
     let text =
         std::fs::read_to_string(path).map_err(|e| ShaderError::unreadable(name.clone(), &e))?;
     let (expanded, included) = include::expand(path, &text);
     included?;
-    compile_expanded(&name, &expanded)
+    compile_expanded(&name, &expanded, kinds)
 }
 
-/// Compiles a file whose includes are joined in: errors are at the line of
+/// Compiles a file whose includes are joined in, its channels of `kinds`
+/// (docs/sandbox.md, "Cube maps and volumes"): errors are at the line of
 /// the file, included or not, that they are in.
-pub fn compile_expanded(name: &str, expanded: &Expanded) -> Result<Compiled, ShaderError> {
-    let compiled = compile(name, &expanded.text).map_err(|e| expanded.locate(e, name))?;
+pub fn compile_expanded(
+    name: &str,
+    expanded: &Expanded,
+    kinds: &ChannelKinds,
+) -> Result<Compiled, ShaderError> {
+    let compiled = compile_with(name, &expanded.text, None, Target::Canvas, kinds)
+        .map_err(|e| expanded.locate(e, name))?;
     Ok(located(compiled, expanded))
 }
 
 /// Compiles one pass of a multipass Shadertoy shader (docs/sandbox.md,
 /// "Multipass"): GLSL whatever its name, in the Shadertoy style, with
-/// `fragCoord` in the rows `target` stores. `expanded` holds the Common code
-/// and the pass's text, each line mapped to its own file.
+/// `fragCoord` in the rows `target` stores and its channels of `kinds`.
+/// `expanded` holds the Common code and the pass's text, each line mapped
+/// to its own file.
 pub fn compile_pass(
     name: &str,
     expanded: &Expanded,
     target: Target,
+    kinds: &ChannelKinds,
 ) -> Result<Compiled, ShaderError> {
-    let compiled = compile_with(name, &expanded.text, Some(false), target)
+    let compiled = compile_with(name, &expanded.text, Some(false), target, kinds)
         .map_err(|e| expanded.locate(e, name))?;
     if compiled.style != Style::Shadertoy {
         let scan = Scan::new(&expanded.text);
@@ -168,7 +182,7 @@ fn located(mut compiled: Compiled, expanded: &Expanded) -> Compiled {
 /// tells the language: `.wgsl` is WGSL, `.glsl`, `.frag`, `.fs`, `.fsh` are
 /// GLSL; otherwise the text decides).
 pub fn compile(name: &str, text: &str) -> Result<Compiled, ShaderError> {
-    compile_with(name, text, None, Target::Canvas)
+    compile_with(name, text, None, Target::Canvas, &ChannelKinds::default())
 }
 
 /// Where a shader's pixels go, which decides how `fragCoord`'s rows lie in
@@ -193,6 +207,7 @@ fn compile_with(
     text: &str,
     wgsl: Option<bool>,
     target: Target,
+    kinds: &ChannelKinds,
 ) -> Result<Compiled, ShaderError> {
     let scan = Scan::new(text);
     if let Some(t) = scan
@@ -224,7 +239,7 @@ fn compile_with(
     } else {
         let mut scan = Scan::new(text);
         scan.drop_inactive_branches(GLSL_DEFINES);
-        compile_glsl(name, &scan, target)
+        compile_glsl(name, &scan, target, kinds)
     };
     result.map_err(|mut e| {
         if e.line == 0 {
@@ -650,7 +665,7 @@ void main() {
         assert_eq!(bool_field.line, 2, "{bool_field}");
         let sampler = error(
             "x.frag",
-            "uniform samplerCube sky;\nvoid main() { gl_FragColor = vec4(1.0); }\n",
+            "uniform sampler2DArray sky;\nvoid main() { gl_FragColor = vec4(1.0); }\n",
         );
         assert_eq!(sampler.line, 1, "{sampler}");
     }

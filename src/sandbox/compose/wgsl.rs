@@ -30,8 +30,9 @@ fn wgsl_prelude() -> String {
     )
 }
 
-/// The textures of the WGSL prelude (docs/sandbox.md, "Textures"): the four
-/// channels, their sampler and the previous frame.
+/// The textures of the WGSL prelude (docs/sandbox.md, "Textures", "Cube
+/// maps and volumes"): the four channels, their sampler, the previous
+/// frame, and each channel as a cube map and as a volume.
 const WGSL_TEXTURES: &str = "\
 @group(0) @binding(2) var channel0: texture_2d<f32>;
 @group(0) @binding(3) var channel1: texture_2d<f32>;
@@ -39,6 +40,14 @@ const WGSL_TEXTURES: &str = "\
 @group(0) @binding(5) var channel3: texture_2d<f32>;
 @group(0) @binding(6) var channel_sampler: sampler;
 @group(0) @binding(7) var backbuffer: texture_2d<f32>;
+@group(0) @binding(8) var channel0_cube: texture_cube<f32>;
+@group(0) @binding(9) var channel1_cube: texture_cube<f32>;
+@group(0) @binding(10) var channel2_cube: texture_cube<f32>;
+@group(0) @binding(11) var channel3_cube: texture_cube<f32>;
+@group(0) @binding(12) var channel0_volume: texture_3d<f32>;
+@group(0) @binding(13) var channel1_volume: texture_3d<f32>;
+@group(0) @binding(14) var channel2_volume: texture_3d<f32>;
+@group(0) @binding(15) var channel3_volume: texture_3d<f32>;
 ";
 
 fn wgsl_epilogue(has_params: bool) -> String {

@@ -70,7 +70,8 @@ pub fn compile_joined(pass: &Pass, expanded: &Expanded) -> Result<CompiledPass, 
         PassKind::Buffer(_) => Target::Buffer,
         PassKind::Image => Target::Canvas,
     };
-    let compiled = compile_pass(&pass.name, expanded, target)?;
+    let kinds = super::kinds(&pass.channels);
+    let compiled = compile_pass(&pass.name, expanded, target, &kinds)?;
     Ok(CompiledPass {
         kind: pass.kind,
         compiled,

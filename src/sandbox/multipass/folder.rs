@@ -94,10 +94,7 @@ pub fn bind(dir: &Path, file: &str, text: &str, passes: &mut [Pass]) -> Result<(
                 format!("{at}: not a channel (iChannel0, iChannel1, iChannel2, iChannel3)")
             })?;
             let toml::Value::String(source) = value else {
-                return Err(format!(
-                    "{at}: expected a string: \"buffer_a\" .. \"buffer_d\", \"keyboard\", \
-                     \"noise\" or an image file"
-                ));
+                return Err(format!("{at}: expected a string: {EXPECTED}"));
             };
             pass.channels[k] = Some(input(dir, source).map_err(|e| format!("{at}: {e}"))?);
         }
@@ -111,8 +108,13 @@ fn channel_index(key: &str) -> Option<usize> {
     (k < 4 && key.len() == "iChannel0".len()).then_some(k)
 }
 
-/// A channel's value: a buffer, `keyboard`, `noise` or an image file
-/// relative to the folder (which must exist).
+/// What a channel's value may be, for errors.
+const EXPECTED: &str = "\"buffer_a\" .. \"buffer_d\", \"keyboard\", \"noise\", \"cube\", \
+                        \"volume\" or an image file";
+
+/// A channel's value: a buffer, `keyboard`, `noise`, the built-in `cube`
+/// map or noise `volume`, or an image file relative to the folder (which
+/// must exist).
 fn input(dir: &Path, source: &str) -> Result<Input, String> {
     if let Some(k) = (0..BUFFERS).find(|&k| PassKind::Buffer(k).stem() == source) {
         return Ok(Input::Buffer(k));
@@ -120,15 +122,17 @@ fn input(dir: &Path, source: &str) -> Result<Input, String> {
     match source {
         "keyboard" => Ok(Input::Keyboard),
         "noise" => Ok(Input::Noise),
-        "" => Err("empty: expected \"buffer_a\" .. \"buffer_d\", \"keyboard\", \"noise\" or an image file".into()),
+        "cube" => Ok(Input::Cube),
+        "volume" => Ok(Input::Volume),
+        "" => Err(format!("empty: expected {EXPECTED}")),
         _ => {
             let path = dir.join(source);
             if path.is_file() {
                 Ok(Input::Texture(path))
             } else {
                 Err(format!(
-                    "\"{source}\" is neither buffer_a .. buffer_d, keyboard, noise nor an \
-                     image file ({} not found)",
+                    "\"{source}\" is neither buffer_a .. buffer_d, keyboard, noise, cube, \
+                     volume nor an image file ({} not found)",
                     path.display()
                 ))
             }

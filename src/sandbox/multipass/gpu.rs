@@ -11,7 +11,7 @@ use super::keyboard::Keyboard;
 use super::{BUFFERS, Input, PassKind};
 use crate::gpu::{Gpu, fullscreen, render_target};
 use crate::sandbox::channels;
-use crate::sandbox::render::{Canvas, PipelineBuilder, SandboxGpu, ShaderPipeline};
+use crate::sandbox::render::{Canvas, ChannelViews, PipelineBuilder, SandboxGpu, ShaderPipeline};
 use crate::sandbox::uniforms::{FRAME_UNIFORMS_SIZE, FrameUniforms};
 use crate::shader_params::ParamSet;
 
@@ -200,9 +200,15 @@ impl Buffers {
         keyboard.write(&gpu.queue, &self.keyboard);
     }
 
-    /// The view a channel of `reader` reads: for a buffer, the texture
+    /// The views a channel of `reader` reads: for a buffer, the texture
     /// written this frame if the buffer was drawn before `reader`, else
-    /// the previous frame's.
+    /// the previous frame's; a cube map or volume is the built-in one.
+    fn views(&self, sandbox: &SandboxGpu, reader: PassKind, input: Option<&Input>) -> ChannelViews {
+        sandbox.views(&self.view(sandbox, reader, input))
+    }
+
+    /// The 2-D view of [`views`](Self::views): black for a channel that is
+    /// not a 2-D image.
     fn view(
         &self,
         sandbox: &SandboxGpu,
@@ -211,7 +217,7 @@ impl Buffers {
     ) -> wgpu::TextureView {
         let current = (self.drawn % 2) as usize;
         match input {
-            None => self.black.clone(),
+            None | Some(Input::Cube | Input::Volume) => self.black.clone(),
             Some(Input::Noise) => sandbox.noise().clone(),
             Some(Input::Keyboard) => self.keyboard_view.clone(),
             Some(Input::Texture(path)) => self
@@ -249,7 +255,7 @@ impl Buffers {
             let views = draw
                 .channels
                 .each_ref()
-                .map(|input| self.view(sandbox, draw.kind, input.as_ref()));
+                .map(|input| self.views(sandbox, draw.kind, input.as_ref()));
             let PassKind::Buffer(k) = draw.kind else {
                 canvas.set_channel_views(device, sandbox, views);
                 canvas.draw(gpu, sandbox, encoder, draw.pipeline, frame, draw.params);

@@ -269,6 +269,16 @@ fn bind(
                 Ok(Some(Input::Noise))
             }
         },
+        // Shadertoy's own cube maps and volumes are not part of an export:
+        // the built-in ones stand in (docs/sandbox.md, "Cube maps and volumes").
+        "cubemap" => {
+            warnings.push(format!(
+                "{at}.src ({reader}): the cube map `{src}` is Shadertoy's own: the built-in \
+                 cube map instead"
+            ));
+            Ok(Some(Input::Cube))
+        }
+        "volume" => Ok(Some(Input::Volume)),
         other => {
             warnings.push(format!(
                 "{at}.ctype ({reader}): `{other}` inputs are not supported: the channel reads \

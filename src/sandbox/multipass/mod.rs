@@ -27,6 +27,8 @@ use std::path::{Path, PathBuf};
 
 pub use compile::{CompiledProject, compile_project};
 
+use crate::sandbox::channels_3d::{ChannelKind, ChannelKinds};
+
 /// Shadertoy has four buffers, A to D.
 pub const BUFFERS: usize = 4;
 
@@ -84,6 +86,22 @@ pub enum Input {
     Keyboard,
     /// The built-in noise image (docs/sandbox.md, "Textures").
     Noise,
+    /// The built-in cube map, read as a `samplerCube` (docs/sandbox.md,
+    /// "Cube maps and volumes").
+    Cube,
+    /// The built-in noise volume, read as a `sampler3D`.
+    Volume,
+}
+
+impl Input {
+    /// The sampler type the channel has in the pass.
+    pub fn kind(&self) -> ChannelKind {
+        match self {
+            Input::Cube => ChannelKind::Cube,
+            Input::Volume => ChannelKind::Volume,
+            _ => ChannelKind::Flat,
+        }
+    }
 }
 
 /// Where a pass's code is: a file of its own (the folder form, reloaded
@@ -172,6 +190,13 @@ impl Project {
         }
         Ok(())
     }
+}
+
+/// The kinds of a pass's channels (an empty one is flat, black).
+pub fn kinds(channels: &[Option<Input>; 4]) -> ChannelKinds {
+    channels
+        .each_ref()
+        .map(|c| c.as_ref().map_or(ChannelKind::Flat, Input::kind))
 }
 
 /// Whether `path` is a multipass shader: a folder, or a `.json` file.
