@@ -177,9 +177,10 @@ impl JobPlanner {
     /// The pixels of the next job, from pixel `start` of an image of
     /// `size` pixels: as many as the remembered costs of the cells they
     /// cross say fit in the budget (at least [`Self::min_pixels`], or what
-    /// is left), growing at most [`GROWTH`] times over pixels whose cell
-    /// was never measured. A job ends inside a row only where the budget
-    /// ends there.
+    /// is left); over pixels whose cell was never measured, growing at
+    /// most [`GROWTH`] times and spanning at most [`UNKNOWN_CELL_ROWS`]
+    /// rows of cells. A job ends inside a row only where the budget ends
+    /// there.
     pub fn next(&mut self, start: u32, (width, height): (u32, u32)) -> Range<u32> {
         let width = width.max(1);
         let total = width * height;
@@ -193,7 +194,7 @@ impl JobPlanner {
         while end < total {
             let (row, x) = (end / width, end % width);
             let column = cell_column(x, width);
-            let cell = cell_row(row, height) * CELL_COLUMNS + column;
+            let cell = row_cells(row, height) + column;
             if self.cost[cell] <= 0.0 && !std::mem::replace(&mut unknown_met, true) {
                 let rows_end = first_row(cell_row(row, height) + UNKNOWN_CELL_ROWS, height);
                 unknown_limit = unknown_limit.min(rows_end.min(height) * width);
