@@ -708,7 +708,10 @@ fn refinement_in_short_jobs_adds_up_to_the_headless_image() {
     let field = |name: &str| event_field(ready, name);
     let (samples, jobs, longest) = (field("samples"), field("jobs"), field("longest_job_ms"));
     println!(
-        "{samples} samples in {jobs} jobs, the longest {longest} ms (budget {} ms)",
+        "{samples} samples in {jobs} jobs, the longest {longest} ms, predicted {} ms for its {} \
+         pixels (budget {} ms)",
+        field("longest_job_predicted_ms"),
+        field("longest_job_pixels"),
         raysandbox::gpu::JOB_BUDGET.as_millis()
     );
     assert_eq!(samples, 4.0);

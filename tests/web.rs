@@ -1778,6 +1778,58 @@ fn dragging_the_divider_resizes_the_editor_and_the_width_is_kept() {
     assert_eq!(page.exceptions(), Vec::<String>::new());
 }
 
+/// A drag as a hand makes it, over about three seconds: the page's frames
+/// take hundreds of milliseconds on SwiftShader, and egui follows a
+/// panel's edge frame by frame.
+fn slow_drag(page: &mut Browser, a: (f64, f64), b: (f64, f64)) {
+    let pause = Duration::from_millis(400);
+    page.mouse_move(a);
+    std::thread::sleep(pause);
+    page.mouse_press(Button::Left, a);
+    std::thread::sleep(pause);
+    for step in 1..=6 {
+        let t = f64::from(step) / 6.0;
+        page.mouse_move((a.0 + (b.0 - a.0) * t, a.1 + (b.1 - a.1) * t));
+        std::thread::sleep(pause);
+    }
+    page.mouse_release(Button::Left, b);
+}
+
+/// The scene panel's edge, dragged, widens it, and the next visit opens it
+/// as wide (docs/web.md, "Editing in the page"), as the editor's divider
+/// and the UI scale are kept.
+#[test]
+fn the_scene_panels_width_is_kept_for_the_next_visit() {
+    let Some((_display, mut page)) = open_on_projector("?samples=1") else {
+        return;
+    };
+    wait_for_layout(&mut page, "the panel", |p| p.contains_key("panel"));
+    let panel = page.part("panel");
+    let y = f64::from(panel.y + panel.h / 2);
+    // Just inside the panel: its last column is egui's resize handle, and
+    // the picture beside it would take the drag for an orbit.
+    let edge = f64::from(panel.right()) - 3.0;
+    slow_drag(&mut page, (edge, y), (edge + 120.0, y));
+    let kept: f32 = page.wait_for("panel-width").parse().unwrap();
+    // The edge follows the pointer to where it was let go.
+    assert!(
+        (f64::from(kept) - (edge + 120.0)).abs() <= 2.0,
+        "the drag widened the panel from {panel:?} to {kept}"
+    );
+    wait_for_layout(&mut page, "the panel as wide as kept", |p| {
+        p.get("panel").is_some_and(|r| r.w == kept.round() as i32)
+    });
+    let wider = page.part("panel");
+
+    let again = page.evaluate("location.href");
+    page.navigate(again.as_str().unwrap());
+    wait_for_layout(&mut page, "the panel after the reload", |p| {
+        p.contains_key("panel")
+    });
+    assert_eq!(page.part("panel"), wider, "the next visit keeps the width");
+    assert_eq!(page.exceptions(), Vec::<String>::new());
+}
+
 /// Ctrl+plus scales the panel, the editor and the page's buttons together,
 /// and the browser keeps the scale for the next visit.
 #[test]

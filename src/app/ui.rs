@@ -19,6 +19,10 @@ pub struct Editor {
     pub panel: PanelState,
     pub view: ViewSettings,
     pub show_panel: bool,
+    /// The scene panel's width in points: where it opens (330, or what the
+    /// page kept from the last visit, docs/web.md), then as the user
+    /// dragged it, after each frame.
+    pub panel_width: f32,
     pub show_help: bool,
     /// The last shader error (file:line:column and source line); cleared
     /// when the shaders compile again.
@@ -55,6 +59,7 @@ impl Default for Editor {
             panel: PanelState::default(),
             view: ViewSettings::default(),
             show_panel: true,
+            panel_width: 330.0,
             show_help: false,
             shader_error: None,
             scene_error: None,
@@ -179,9 +184,9 @@ pub fn draw(
         let (title, path) = (doc.short_label(), doc.label());
         let panel = egui::Panel::left("scene panel")
             .resizable(true)
-            .default_size(330.0)
+            .default_size(editor.panel_width)
             .show(ui, |ui| {
-                // The panel keeps its width (330 points, or as the user
+                // The panel keeps its width (`panel_width`, or as the user
                 // dragged it), not that of its widest row, which changes
                 // with the selection.
                 ui.set_min_width(ui.available_width());
@@ -210,6 +215,7 @@ pub fn draw(
                 });
             });
         layout::note(ui.ctx(), "panel", panel.response.rect);
+        editor.panel_width = panel.response.rect.width();
         // Hiding the panel (H) leaves the picture alone, for a projector.
         editor.message_age.expire(ui.ctx(), &mut editor.message);
         let message = editor.message.as_deref();

@@ -811,8 +811,11 @@ impl Viewer {
         if let Some(((jobs, longest), timing)) = jobs {
             self.settled = true;
             self.event(&format!(
-                "ready samples={samples} jobs={jobs} longest_job_ms={:.1} timing={}",
-                longest.as_secs_f64() * 1e3,
+                "ready samples={samples} jobs={jobs} longest_job_ms={:.1} \
+                 longest_job_predicted_ms={:.1} longest_job_pixels={} timing={}",
+                longest.time.as_secs_f64() * 1e3,
+                longest.predicted.as_secs_f64() * 1e3,
+                longest.pixels,
                 timing.name()
             ));
         }

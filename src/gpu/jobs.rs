@@ -26,8 +26,21 @@ const OVERHEAD_SHARE: f64 = 4.0;
 /// watchdog (seconds) is far.
 const MAX_BUDGET: Duration = Duration::from_millis(200);
 
-/// How finely the costs along the image's height are remembered.
-const BINS: usize = 64;
+/// How finely the costs are remembered: a grid of cells over the image,
+/// rows of cells along its height and columns across its width (fractions
+/// of the image, so that a new resolution keeps what was learnt). Columns
+/// too: in a row, a glass object's pixels cost many times the floor's
+/// beside them, and a job cut from a row that crosses it must see that
+/// (docs/performance.md, "Short GPU jobs").
+const CELL_ROWS: usize = 128;
+const CELL_COLUMNS: usize = 64;
+
+/// A cell's cost falls at most to this fraction of what it was by one
+/// job (0.5 let the object of `a_costly_object_in_a_cheap_row_keeps_jobs_within_the_budget`
+/// take 101 ms in the second sample, 0.8 51 ms), while it rises at once: a cell holds several rows, and a job that
+/// traced only its cheap ones (the floor under an object's lower edge) must
+/// not make the dear ones look cheap to the next sample.
+const MAX_FALL: f64 = 0.8;
 
 /// Pixels of the first job on an image whose costs are unknown: few, since
 /// on a slow adapter one pixel of a glass scene can take milliseconds
@@ -37,8 +50,16 @@ const BINS: usize = 64;
 const FIRST_PIXELS: u32 = 64;
 
 /// Over pixels whose cost is unknown, a job takes at most this many times
-/// the pixels of the last measured one.
+/// the pixels of the last measured one (of those of them that fitted in
+/// the budget).
 const GROWTH: u32 = 2;
+
+/// Over pixels whose cost is unknown, a job spans at most this many rows
+/// of cells (a 32nd of the image's height): during the first sample, the
+/// rows traced so far say nothing of an object that starts below them, and
+/// a job sized from the sky above the glass bunny took over a second
+/// (docs/performance.md, "Short GPU jobs").
+const UNKNOWN_CELL_ROWS: usize = 4;
 
 /// The fewest pixels of a job: a CPU rasteriser shades pixels in groups
 /// (llvmpipe: 4 x 4 blocks, 8 lanes at once), so a thinner piece of a row
@@ -51,21 +72,21 @@ const MIN_PIXELS: u32 = 16;
 #[derive(Debug, Clone)]
 pub struct JobPlanner {
     budget: Duration,
-    /// Seconds per pixel, by band of the image's height (fractions of it,
-    /// so that a new resolution keeps what was learnt); 0: not measured.
-    cost: [f64; BINS],
+    /// Seconds per pixel, by cell (row of cells times [`CELL_COLUMNS`]
+    /// plus column); 0: not measured.
+    cost: Vec<f64>,
     /// The job planned last and not measured yet: its pixels, in an image
-    /// of that width and height.
-    pending: Option<(Range<u32>, (u32, u32))>,
-    /// Pixels of the last measured job, and its seconds per pixel; none
-    /// before the first.
+    /// of that width and height, and the seconds it was predicted to take.
+    pending: Option<(Range<u32>, (u32, u32), f64)>,
+    /// Pixels of the last measured job (at most those that fitted in the
+    /// budget), and its seconds per pixel; none before the first.
     last: Option<(u32, f64)>,
     /// The GPU time of the sample in progress so far, and of the last
     /// whole sample.
     sample_time: Duration,
     last_sample_time: Option<Duration>,
     /// The longest job measured since [`JobPlanner::take_longest`].
-    longest: Duration,
+    longest: LongestJob,
     jobs: u32,
     /// The GPU time of the last job measured, and the time around a job,
     /// averaged ([`JobPlanner::cycle`]).
@@ -75,16 +96,27 @@ pub struct JobPlanner {
     whole_rows: bool,
 }
 
+/// The longest job measured: its GPU time, what the planner predicted for
+/// it and its pixels. A time far over its prediction is a misjudged cost
+/// (or a loaded machine); a prediction over the budget, a job that could
+/// not be cut smaller.
+#[derive(Debug, Clone, Copy, Default, PartialEq)]
+pub struct LongestJob {
+    pub time: Duration,
+    pub predicted: Duration,
+    pub pixels: u32,
+}
+
 impl JobPlanner {
     pub fn new(budget: Duration) -> Self {
         JobPlanner {
             budget,
-            cost: [0.0; BINS],
+            cost: vec![0.0; CELL_ROWS * CELL_COLUMNS],
             pending: None,
             last: None,
             sample_time: Duration::ZERO,
             last_sample_time: None,
-            longest: Duration::ZERO,
+            longest: LongestJob::default(),
             jobs: 0,
             last_time: Duration::ZERO,
             overhead: None,
@@ -127,29 +159,52 @@ impl JobPlanner {
         self.budget.max(overhead.min(MAX_BUDGET))
     }
 
+    /// The seconds per pixel expected in `cell`: its measured cost, else
+    /// the costliest measured of the three cells above it (objects are
+    /// whole: during the first sample, the rows just traced are the best
+    /// guess of the next ones, and the dearest of them the safe one);
+    /// `None` where neither is known.
+    fn estimate(&self, cell: usize) -> Option<f64> {
+        let known = |c: usize| Some(self.cost[c]).filter(|&c| c > 0.0);
+        let (row, column) = (cell / CELL_COLUMNS, cell % CELL_COLUMNS);
+        known(cell).or_else(|| {
+            let above = row.checked_sub(1)? * CELL_COLUMNS;
+            let columns = column.saturating_sub(1)..=(column + 1).min(CELL_COLUMNS - 1);
+            columns.filter_map(|c| known(above + c)).reduce(f64::max)
+        })
+    }
+
     /// The pixels of the next job, from pixel `start` of an image of
-    /// `size` pixels: as many as the remembered costs say fit in the budget
-    /// (at least [`Self::min_pixels`], or what is left), growing at most
-    /// [`GROWTH`] times over pixels never measured. A job ends inside a
-    /// row only where the budget ends there.
+    /// `size` pixels: as many as the remembered costs of the cells they
+    /// cross say fit in the budget (at least [`Self::min_pixels`], or what
+    /// is left); over pixels whose cell was never measured, growing at
+    /// most [`GROWTH`] times and spanning at most [`UNKNOWN_CELL_ROWS`]
+    /// rows of cells. A job ends inside a row only where the budget ends
+    /// there.
     pub fn next(&mut self, start: u32, (width, height): (u32, u32)) -> Range<u32> {
         let width = width.max(1);
         let total = width * height;
         debug_assert!(start < total, "no pixels left from {start} of {total}");
         let budget = self.budget().as_secs_f64();
         let (last_pixels, last_cost) = self.last.unwrap_or((FIRST_PIXELS / GROWTH, 0.0));
-        let unknown_limit = start.saturating_add(last_pixels.max(1).saturating_mul(GROWTH));
+        let mut unknown_limit = start.saturating_add(last_pixels.max(1).saturating_mul(GROWTH));
+        let mut unknown_met = false;
         let mut spent = 0.0;
         let mut end = start;
         while end < total {
-            let row = end / width;
-            let known = self.cost[bin(row, height)];
-            let (limit, per_pixel) = if known > 0.0 {
-                ((row + 1) * width, known)
-            } else if end < unknown_limit {
-                (((row + 1) * width).min(unknown_limit), last_cost)
-            } else {
-                break;
+            let (row, x) = (end / width, end % width);
+            let column = cell_column(x, width);
+            let cell = row_cells(row, height) + column;
+            if self.cost[cell] <= 0.0 && !std::mem::replace(&mut unknown_met, true) {
+                let rows_end = first_row(cell_row(row, height) + UNKNOWN_CELL_ROWS, height);
+                unknown_limit = unknown_limit.min(rows_end.min(height) * width);
+            }
+            // The piece of this row in this cell.
+            let row_end = row * width + column_start(column + 1, width).min(width);
+            let (limit, per_pixel) = match (self.cost[cell] > 0.0, self.estimate(cell)) {
+                (true, Some(known)) => (row_end, known),
+                _ if end >= unknown_limit => break,
+                (_, guess) => (row_end.min(unknown_limit), guess.unwrap_or(last_cost)),
             };
             let fit = if per_pixel > 0.0 {
                 ((budget - spent) / per_pixel).max(0.0)
@@ -164,42 +219,80 @@ impl JobPlanner {
             }
         }
         let span = start..end.max(start + self.min_pixels(width)).min(total);
-        self.pending = Some((span.clone(), (width, height)));
+        let predicted = self.predict(&span, (width, height), last_cost);
+        self.pending = Some((span.clone(), (width, height), predicted));
         span
     }
 
-    /// The GPU time the job last planned took. Where the costs of its bands
-    /// were known, they are scaled together to the measured time, which
-    /// keeps what finer jobs learnt about their differences (the edge of an
-    /// object inside a job); where not, each band gets the job's average.
+    /// The seconds `span` is expected to take: each cell's pixels at its
+    /// estimate, `fallback` where there is none.
+    fn predict(&self, span: &Range<u32>, size: (u32, u32), fallback: f64) -> f64 {
+        pixels_by_cell(span, size)
+            .iter()
+            .map(|&(cell, n)| f64::from(n) * self.estimate(cell).unwrap_or(fallback))
+            .sum()
+    }
+
+    /// The GPU time the job last planned took. Each of its cells gets its
+    /// estimate (its cost, or the guess from the cells above), all scaled
+    /// together to the measured time: what finer jobs learnt about their
+    /// differences (the edge of an object inside a job) is kept. Cells
+    /// with no estimate get the job's average.
     pub fn measured(&mut self, time: Duration) {
-        let Some((span, (width, height))) = self.pending.take() else {
+        let Some((span, size, predicted)) = self.pending.take() else {
             return;
         };
         let pixels = span.len() as u32;
-        let per_pixel = time.as_secs_f64() / f64::from(pixels.max(1));
-        let bands = pixels_by_band(&span, (width, height));
-        let known = bands.iter().all(|&(b, _)| self.cost[b] > 0.0);
-        let predicted: f64 = bands
+        let seconds = time.as_secs_f64();
+        let per_pixel = seconds / f64::from(pixels.max(1));
+        log::debug!(
+            "job start={} pixels={pixels} predicted_ms={:.2} ms={:.2}",
+            span.start,
+            predicted * 1e3,
+            seconds * 1e3
+        );
+        let cells = pixels_by_cell(&span, size);
+        let estimates: Vec<Option<f64>> = cells.iter().map(|&(c, _)| self.estimate(c)).collect();
+        let guessed: f64 = cells
             .iter()
-            .map(|&(b, n)| f64::from(n) * self.cost[b])
+            .zip(&estimates)
+            .map(|(&(_, n), e)| f64::from(n) * e.unwrap_or(0.0))
             .sum();
-        if known && predicted > 0.0 {
-            let factor = time.as_secs_f64() / predicted;
-            for (b, _) in bands {
-                self.cost[b] *= factor;
-            }
+        let unguessed: u32 = cells
+            .iter()
+            .zip(&estimates)
+            .filter(|(_, e)| e.is_none())
+            .map(|(&(_, n), _)| n)
+            .sum();
+        // The cells without an estimate take what the others leave of the
+        // time, at least the job's average if they leave nothing.
+        let rest = if unguessed > 0 {
+            ((seconds - guessed) / f64::from(unguessed)).max(per_pixel)
         } else {
-            for (b, _) in bands {
-                self.cost[b] = per_pixel;
-            }
+            0.0
+        };
+        let total = guessed + rest * f64::from(unguessed);
+        let factor = if total > 0.0 { seconds / total } else { 0.0 };
+        for (&(cell, _), estimate) in cells.iter().zip(&estimates) {
+            let before = self.cost[cell];
+            self.cost[cell] = (estimate.unwrap_or(rest) * factor).max(before * MAX_FALL);
         }
-        self.last = Some((pixels, per_pixel));
+        // A job far over the budget (it met a dear object over pixels
+        // never measured) lets the next grow only from the pixels that
+        // would have fitted.
+        let fitted = (self.budget().as_secs_f64() / per_pixel.max(f64::MIN_POSITIVE)) as u32;
+        self.last = Some((pixels.min(fitted.max(MIN_PIXELS)), per_pixel));
         self.last_time = time;
-        self.longest = self.longest.max(time);
+        if time > self.longest.time {
+            self.longest = LongestJob {
+                time,
+                predicted: Duration::from_secs_f64(predicted),
+                pixels,
+            };
+        }
         self.jobs += 1;
         self.sample_time += time;
-        if span.end >= width * height {
+        if span.end >= size.0 * size.1 {
             self.last_sample_time = Some(std::mem::take(&mut self.sample_time));
         }
     }
@@ -218,10 +311,10 @@ impl JobPlanner {
 
     /// The number of jobs measured and the longest of them, since the last
     /// call.
-    pub fn take_longest(&mut self) -> (u32, Duration) {
+    pub fn take_longest(&mut self) -> (u32, LongestJob) {
         let taken = (self.jobs, self.longest);
         self.jobs = 0;
-        self.longest = Duration::ZERO;
+        self.longest = LongestJob::default();
         taken
     }
 }
@@ -254,25 +347,52 @@ pub fn span_rects(span: &Range<u32>, width: u32) -> Vec<[u32; 4]> {
     rects
 }
 
-/// How many pixels of `span` fall in each band of the image's height.
-fn pixels_by_band(span: &Range<u32>, (width, height): (u32, u32)) -> Vec<(usize, u32)> {
+/// How many pixels of `span` fall in each cell, each cell once.
+fn pixels_by_cell(span: &Range<u32>, (width, height): (u32, u32)) -> Vec<(usize, u32)> {
     let width = width.max(1);
-    let mut bands: Vec<(usize, u32)> = Vec::new();
-    for [_, y, w, h] in span_rects(span, width) {
+    let mut counts = vec![0u32; CELL_ROWS * CELL_COLUMNS];
+    for [x, y, w, h] in span_rects(span, width) {
         for row in y..y + h {
-            let b = bin(row, height);
-            match bands.last_mut() {
-                Some((last, n)) if *last == b => *n += w,
-                _ => bands.push((b, w)),
+            let first = row_cells(row, height);
+            for column in cell_column(x, width)..=cell_column(x + w - 1, width) {
+                let from = column_start(column, width).max(x);
+                let to = column_start(column + 1, width).min(x + w);
+                counts[first + column] += to.saturating_sub(from);
             }
         }
     }
-    bands
+    counts
+        .into_iter()
+        .enumerate()
+        .filter(|&(_, n)| n > 0)
+        .collect()
 }
 
-/// The band of row `row` in an image `height` rows high.
-fn bin(row: u32, height: u32) -> usize {
-    (row as usize * BINS / height.max(1) as usize).min(BINS - 1)
+/// The index of the first cell of row `row` in an image `height` rows high.
+fn row_cells(row: u32, height: u32) -> usize {
+    cell_row(row, height) * CELL_COLUMNS
+}
+
+/// The row of cells of pixel row `row` in an image `height` rows high.
+fn cell_row(row: u32, height: u32) -> usize {
+    (row as usize * CELL_ROWS / height.max(1) as usize).min(CELL_ROWS - 1)
+}
+
+/// The first pixel row of the row of cells `cells` (the height for the
+/// one after the last): the least row whose [`cell_row`] is it.
+fn first_row(cells: usize, height: u32) -> u32 {
+    (cells * height as usize).div_ceil(CELL_ROWS) as u32
+}
+
+/// The column of cells of pixel column `x` in an image `width` wide.
+fn cell_column(x: u32, width: u32) -> usize {
+    (x as usize * CELL_COLUMNS / width.max(1) as usize).min(CELL_COLUMNS - 1)
+}
+
+/// The first pixel column of the column of cells `column` (the width for
+/// the one after the last): the least `x` whose [`cell_column`] is it.
+fn column_start(column: usize, width: u32) -> u32 {
+    (column * width as usize).div_ceil(CELL_COLUMNS) as u32
 }
 
 #[cfg(test)]
@@ -284,16 +404,23 @@ mod tests {
     /// A GPU whose rows cost `cost(row)` milliseconds each at width 100:
     /// every job of one sample, as (pixels, milliseconds).
     fn run(planner: &mut JobPlanner, cost: impl Fn(u32) -> f64, height: u32) -> Vec<(u32, f64)> {
+        run_pixels(planner, |_, row| cost(row) / f64::from(WIDTH), height)
+    }
+
+    /// A GPU whose pixel (x, y) costs `cost(x, y)` milliseconds: every job
+    /// of one sample of an image 100 pixels wide, as (pixels, milliseconds).
+    fn run_pixels(
+        planner: &mut JobPlanner,
+        cost: impl Fn(u32, u32) -> f64,
+        height: u32,
+    ) -> Vec<(u32, f64)> {
         let total = WIDTH * height;
         let mut jobs = Vec::new();
         let mut start = 0;
         while start < total {
             let span = planner.next(start, (WIDTH, height));
             assert!(span.start == start && span.end > start && span.end <= total);
-            let ms: f64 = span
-                .clone()
-                .map(|p| cost(p / WIDTH) / f64::from(WIDTH))
-                .sum();
+            let ms: f64 = span.clone().map(|p| cost(p % WIDTH, p / WIDTH)).sum();
             planner.measured(Duration::from_secs_f64(ms / 1000.0));
             jobs.push((span.len() as u32, ms));
             start = span.end;
@@ -301,21 +428,30 @@ mod tests {
         jobs
     }
 
+    /// During the first sample a job over unknown pixels spans at most
+    /// [`UNKNOWN_CELL_ROWS`] rows of cells (here 18 or 19 rows of 1 ms);
+    /// from the second on, the jobs fill the budget.
     #[test]
     fn jobs_grow_from_a_few_pixels_to_the_budget_and_cover_the_image() {
         let mut planner = JobPlanner::new(Duration::from_millis(30));
-        let jobs = run(&mut planner, |_| 1.0, 600);
-        assert_eq!(jobs.iter().map(|j| j.0).sum::<u32>(), 600 * WIDTH);
-        assert_eq!(jobs[0].0, FIRST_PIXELS);
-        assert!(jobs.iter().all(|&(_, ms)| ms <= 30.0 + 1e-9), "{jobs:?}");
-        // 30 rows of 1 ms, but for the rounding of the measured times.
-        let mut last = jobs.iter().rev().skip(1).take(5);
-        assert!(
-            last.all(|&(pixels, _)| (2990..=3000).contains(&pixels)),
-            "{jobs:?}"
-        );
+        let first = run(&mut planner, |_| 1.0, 600);
+        assert_eq!(first.iter().map(|j| j.0).sum::<u32>(), 600 * WIDTH);
+        assert_eq!(first[0].0, FIRST_PIXELS);
+        assert!(first.iter().all(|&(_, ms)| ms <= 30.0 + 1e-9), "{first:?}");
+        assert!(first.iter().all(|&(pixels, _)| pixels <= 2000), "{first:?}");
         let sample = planner.last_sample_time().unwrap().as_secs_f64();
         assert!((sample - 0.6).abs() < 1e-6, "{sample}");
+        let second = run(&mut planner, |_| 1.0, 600);
+        assert!(
+            second.iter().all(|&(_, ms)| ms <= 30.0 + 1e-9),
+            "{second:?}"
+        );
+        // 30 rows of 1 ms, but for the rounding of the measured times.
+        let mut last = second.iter().rev().skip(1).take(5);
+        assert!(
+            last.all(|&(pixels, _)| (2990..=3000).contains(&pixels)),
+            "{second:?}"
+        );
     }
 
     /// Later samples know the costs of each band: a band ten times dearer
@@ -371,6 +507,82 @@ mod tests {
         let jobs = run(&mut planner, |_| 100.0, 20);
         assert_eq!(jobs.len(), 20, "{jobs:?}");
         assert!(jobs.iter().all(|&(pixels, _)| pixels == WIDTH), "{jobs:?}");
+    }
+
+    /// A glass object over a cheap floor: in the rows it crosses, its
+    /// pixels cost 500 times the floor's, and a row costs more than the
+    /// budget, so jobs are pieces of rows. A cost per band of rows averaged
+    /// the object with the floor beside it, and a piece lying on the
+    /// object took several budgets (the glass bunny in the page); the
+    /// cells of the grid tell them apart, and from the second sample on
+    /// no job costs more than the dearest one of the fewest pixels and a
+    /// cell.
+    #[test]
+    fn a_costly_object_in_a_cheap_row_keeps_jobs_within_the_budget() {
+        let object = |x: u32, y: u32| (45..55).contains(&x) && (100..200).contains(&y);
+        let cost = |x, y| if object(x, y) { 5.0 } else { 0.01 };
+        let mut planner = JobPlanner::new(Duration::from_millis(30));
+        let first = run_pixels(&mut planner, cost, 300);
+        let second = run_pixels(&mut planner, cost, 300);
+        let third = run_pixels(&mut planner, cost, 300);
+        // The dearest job that cannot be cut, the fewest pixels (16) with
+        // the object's 10 among them (50.06 ms), and a cell of the object
+        // (2 pixels) more.
+        let dearest = 12.0 * 5.0 + 4.0 * 0.01;
+        let longest = |jobs: &[(u32, f64)]| jobs.iter().map(|j| j.1).fold(0.0, f64::max);
+        assert!(longest(&second) <= dearest, "{second:?}");
+        assert!(longest(&third) <= dearest, "{third:?}");
+        assert!(
+            longest(&first) > dearest,
+            "the object's first rows are a surprise"
+        );
+        // The floor is still traced in large jobs.
+        assert!(third.iter().any(|&(pixels, _)| pixels >= 2000), "{third:?}");
+    }
+
+    /// What the planner predicts of its own jobs: once the costs are
+    /// known, never more than the budget, but for a job of the fewest
+    /// pixels (one too dear to cut further).
+    #[test]
+    fn no_planned_job_is_predicted_over_its_budget() {
+        let object = |x: u32, y: u32| (20..70).contains(&x) && (40..90).contains(&y);
+        let cost = |x, y| if object(x, y) { 1.0 } else { 0.02 };
+        let mut planner = JobPlanner::new(Duration::from_millis(30));
+        run_pixels(&mut planner, cost, 120);
+        let (width, height) = (WIDTH, 120);
+        let mut start = 0;
+        while start < width * height {
+            let span = planner.next(start, (width, height));
+            let (_, _, predicted) = planner.pending.clone().unwrap();
+            assert!(
+                predicted <= 0.030 + 1e-9 || span.len() as u32 == MIN_PIXELS,
+                "{span:?} predicted {predicted} s"
+            );
+            let ms: f64 = span.clone().map(|p| cost(p % width, p / width)).sum();
+            planner.measured(Duration::from_secs_f64(ms / 1000.0));
+            start = span.end;
+        }
+    }
+
+    /// A grid of cells counts each pixel of a span once, in its cell, at
+    /// widths below, at and above the number of columns.
+    #[test]
+    fn pixels_by_cell_counts_every_pixel_of_a_span_once() {
+        for width in [7, 32, 45, 100] {
+            let height = 9;
+            for (start, end) in [
+                (0, width * height),
+                (3, width + 5),
+                (width - 1, 3 * width + 2),
+            ] {
+                let cells = pixels_by_cell(&(start..end), (width, height));
+                assert_eq!(cells.iter().map(|c| c.1).sum::<u32>(), end - start);
+                for p in start..end {
+                    let cell = row_cells(p / width, height) + cell_column(p % width, width);
+                    assert!(cells.iter().any(|&(c, _)| c == cell), "pixel {p}");
+                }
+            }
+        }
     }
 
     /// However a span starts and ends, its rectangles cover each of its

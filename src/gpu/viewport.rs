@@ -10,7 +10,7 @@ use web_time::{Duration, Instant};
 use super::context::{Gpu, GpuWaitError};
 use super::id_pass::FirstHit;
 use super::interaction::MIN_SCALE;
-use super::jobs::{JOB_BUDGET, JobPlanner};
+use super::jobs::{JOB_BUDGET, JobPlanner, LongestJob};
 use super::layout::PackedScene;
 use super::limits::BufferLimitError;
 use super::offscreen::TexelRead;
@@ -433,7 +433,7 @@ impl Viewport {
 
     /// The number of jobs measured and the longest of them since the last
     /// call: what the viewer reports once the image is refined.
-    pub fn take_longest_job(&mut self) -> (u32, Duration) {
+    pub fn take_longest_job(&mut self) -> (u32, LongestJob) {
         self.jobs.take_longest()
     }
 

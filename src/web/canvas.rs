@@ -24,7 +24,7 @@ use super::drop::{Dropped, DroppedFile};
 use super::editor::{Doc, EditorEvent};
 use super::meshes::{self, PageMeshes};
 use super::workbench::{Outcome, WorkEvent, Workbench};
-use super::{drop, link, page, split};
+use super::{drop, link, page, panel_width, split};
 use crate::app::document::Document;
 use crate::app::help::{self, Help};
 use crate::app::panel;
@@ -213,6 +213,10 @@ pub fn start() {
         .map_or(MAX_SAMPLES, |n| n.max(1));
     // `?ui=0`: the picture alone, as the H key leaves it.
     viewer.editor.show_panel = !page::bare();
+    if let Some(width) = panel_width::stored() {
+        viewer.editor.panel_width = width;
+    }
+    let panel_width = viewer.editor.panel_width;
     let mut page = Page {
         proxy,
         viewer,
@@ -226,6 +230,7 @@ pub fn start() {
         graphics_started: false,
         recovering: None,
         ui_scale: stored_ui_scale(),
+        panel_width,
         editor_open: false,
         panel_before_editor: None,
     };
@@ -314,6 +319,8 @@ struct Page {
     recovering: Option<Recovering>,
     /// The UI scale: egui's zoom factor, and the page's controls' size.
     ui_scale: f32,
+    /// The scene panel's width the browser keeps ([`panel_width`]).
+    panel_width: f32,
     /// Whether the editor was open at the last frame.
     editor_open: bool,
     /// Whether the panel was shown before the editor opened (it is hidden
@@ -476,6 +483,16 @@ impl Page {
         self.work.follow_scene(&self.viewer.doc.scene);
         self.follow_address();
         self.follow_ui_scale();
+        self.follow_panel_width();
+    }
+
+    /// The panel's edge was dragged: the browser keeps its width.
+    fn follow_panel_width(&mut self) {
+        let Some(gfx) = &self.viewer.gfx else { return };
+        if self.viewer.editor.show_panel {
+            let width = self.viewer.editor.panel_width;
+            panel_width::follow(&mut self.panel_width, width, &gfx.egui.ctx);
+        }
     }
 
     /// The editor opened or closed (Ctrl+E, Edit): the scene panel hides

@@ -21,6 +21,8 @@ mod multipass_page;
 #[cfg(target_arch = "wasm32")]
 mod page;
 #[cfg(target_arch = "wasm32")]
+mod panel_width;
+#[cfg(target_arch = "wasm32")]
 mod sandbox_page;
 #[cfg(target_arch = "wasm32")]
 mod split;
