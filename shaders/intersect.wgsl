@@ -138,24 +138,33 @@ fn hit_bounded_bvh(ray: Ray, best_in: Hit, any: bool) -> Hit {
     var stack: array<u32, BVH_STACK>;
     stack[0] = 0u;
     var top = 1u;
-    while top > 0u {
-        top -= 1u;
-        let node = load_bvh_node(stack[top]);
-        count_node();
-        if !hit_box(node.bounds_min, node.bounds_max, ray, inv_d, best.t) {
-            continue;
+    // The "while-while" traversal of shaders/shapes/mesh.wgsl: descend to
+    // a leaf, then test its shapes outside the descending loop.
+    loop {
+        var leaf = BvhNode();
+        while top > 0u && leaf.count == 0u {
+            top -= 1u;
+            let node = load_bvh_node(stack[top]);
+            count_node();
+            if !hit_box(node.bounds_min, node.bounds_max, ray, inv_d, best.t) {
+                continue;
+            }
+            if node.count == 0u {
+                top = push_children(&stack, top, node.first, node.bounds_max - node.bounds_min, ray.dir);
+                continue;
+            }
+            leaf = node;
         }
-        if node.count == 0u {
-            top = push_children(&stack, top, node.first, node.bounds_max - node.bounds_min, ray.dir);
-            continue;
+        if leaf.count == 0u {
+            break;
         }
-        for (var i = node.first; i < node.first + node.count; i++) {
+        for (var i = leaf.first; i < leaf.first + leaf.count; i++) {
             let shape = bvh_shape(i);
             count_test();
             best = hit_bounded(shape >> KIND_SHIFT, shape & INDEX_MASK, ray, best, any);
         }
         if any && best.kind != KIND_NONE {
-            return best;
+            break;
         }
     }
     return best;

@@ -16,6 +16,7 @@ fn vs_fullscreen(@builtin(vertex_index) i: u32) -> @builtin(position) vec4<f32> 
 
 @fragment
 fn fs_trace(@builtin(position) frag: vec4<f32>) -> @location(0) vec4<f32> {
+    globals = load_globals(0u);
     if VIEW != VIEW_SHADED {
         return view_trace(frag.xy);
     }
@@ -69,6 +70,7 @@ fn srgb_encode(c: vec3<f32>) -> vec3<f32> {
 
 @fragment
 fn fs_display(@builtin(position) frag: vec4<f32>) -> @location(0) vec4<f32> {
+    globals = load_globals(0u);
     // The image may be traced at a lower resolution than it is shown
     // (resolution scale): each output pixel shows the traced pixel under it.
     let scale = vec2<f32>(globals.resolution) / vec2<f32>(globals.output_size);
@@ -104,6 +106,7 @@ fn fs_display(@builtin(position) frag: vec4<f32>) -> @location(0) vec4<f32> {
 /// `reference::pick`, and the two are compared pixel by pixel.
 @fragment
 fn fs_id(@builtin(position) frag: vec4<f32>) -> @location(0) vec4<u32> {
+    globals = load_globals(0u);
     let pixel = vec2<f32>(floor(frag.xy)) + vec2(0.5);
     let ray = camera_ray(pixel, vec2(0.0));
     let hit = hit_scene(ray, T_FAR);

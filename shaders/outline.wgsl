@@ -35,6 +35,7 @@ fn shows_selected(p: vec2<i32>) -> bool {
 
 @fragment
 fn fs_outline(@builtin(position) frag: vec4<f32>) -> @location(0) vec4<f32> {
+    globals = load_globals(0u);
     let p = vec2<i32>(floor(frag.xy));
     if selection.kind == KIND_NONE || shows_selected(p) {
         discard;

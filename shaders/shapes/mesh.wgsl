@@ -159,21 +159,35 @@ fn hit_mesh(ray: Ray, m: Mesh, index: u32, best: Hit) -> Hit {
     var stack: array<u32, BVH_STACK>;
     stack[0] = 0u;
     var top = 1u;
-    while top > 0u {
-        top -= 1u;
-        let at = m.node_start + 2u * stack[top];
-        let lo = mesh_data_at(at);
-        let hi = mesh_data_at(at + 1u);
-        count_node();
-        if !hit_box(bitcast<vec3<f32>>(lo.xyz), bitcast<vec3<f32>>(hi.xyz), local, inv_d, t_best) {
-            continue;
+    // Aila and Laine's "while-while" traversal (docs/performance.md, "What
+    // each change bought"): the inner loop only descends, until this ray
+    // holds a leaf its box test keeps (or has nothing left); the leaf's
+    // triangles are tested after it. Rays run side by side in SIMD lanes
+    // wait in the inner loop until every one holds a leaf, and then test
+    // their leaves together, instead of paying for both branches in every
+    // step.
+    loop {
+        var first = 0u;
+        var count = 0u;
+        while top > 0u && count == 0u {
+            top -= 1u;
+            let at = m.node_start + 2u * stack[top];
+            let lo = mesh_data_at(at);
+            let hi = mesh_data_at(at + 1u);
+            count_node();
+            if !hit_box(bitcast<vec3<f32>>(lo.xyz), bitcast<vec3<f32>>(hi.xyz), local, inv_d, t_best) {
+                continue;
+            }
+            if hi.w == 0u {
+                let e = bitcast<vec3<f32>>(hi.xyz) - bitcast<vec3<f32>>(lo.xyz);
+                top = push_children(&stack, top, lo.w, e, local.dir);
+                continue;
+            }
+            first = lo.w;
+            count = hi.w;
         }
-        let first = lo.w;
-        let count = hi.w;
         if count == 0u {
-            let e = bitcast<vec3<f32>>(hi.xyz) - bitcast<vec3<f32>>(lo.xyz);
-            top = push_children(&stack, top, first, e, local.dir);
-            continue;
+            break;
         }
         for (var k = first; k < first + count; k++) {
             let v = m.tri_start + 3u * k;

@@ -79,8 +79,8 @@ pub const WAIT_LIMIT: Duration = Duration::from_secs(600);
 
 /// Storage buffers asked for per shader stage where the adapter has them.
 /// WebGPU's default allows 8; lavapipe and desktop GPUs offer far more. The
-/// tracer binds one (its globals; its arrays are data textures,
-/// `gpu::shapes::glue`); the rest is headroom for other shaders.
+/// tracer binds none (its globals and arrays are data textures,
+/// `gpu::shapes::glue`); this is headroom for other shaders.
 pub const STORAGE_BUFFERS_NEEDED: u32 = 16;
 
 /// The default limits, with as many storage buffers per stage as the

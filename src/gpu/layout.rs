@@ -11,36 +11,38 @@ use super::shapes::{Frame, PackShape, Words, buffer_position, f32x3, pack_all, r
 use crate::bvh::{Aabb, Bvh};
 use crate::scene::{self, Scene, ShapeKind};
 
-#[repr(C)]
-#[derive(Debug, Clone, Copy, PartialEq, Pod, Zeroable)]
-pub struct Globals {
-    /// The camera's `from` and `to` (`from` is a reserved word in WGSL).
-    pub camera_from: [f32; 3],
-    pub film_height: f32,
-    pub camera_to: [f32; 3],
-    pub aperture: f32,
-    /// The camera's basis ([`scene::Film`]), computed in f64 on the CPU.
-    pub u: [f32; 3],
-    pub focus_distance: f32,
-    pub v: [f32; 3],
-    /// `|from - to|`, in f64 on the CPU.
-    pub target_distance: f32,
-    pub w: [f32; 3],
-    pub min_weight: f32,
-    pub background: [f32; 3],
-    pub exposure: f32,
-    pub ambient: [f32; 3],
-    pub max_depth: u32,
-    pub resolution: [u32; 2],
-    pub sample_start: u32,
-    pub sample_count: u32,
-    pub light_count: u32,
-    pub bvh_node_count: u32,
-    pub output_size: [u32; 2],
-    /// A scalar view's colour bar: the quantity shown blue, and red
-    /// (`shaders/views.wgsl`; 0 for the shaded picture).
-    pub view_range: [f32; 2],
-    pub _view_pad: [u32; 2],
+crate::packed_struct! {
+    /// The camera, render settings and counts (`shaders/scene.wgsl`): a data
+    /// texture of one row, read once per pixel into `var<private> globals`.
+    pub struct Globals {
+        /// The camera's `from` and `to` (`from` is a reserved word in WGSL).
+        pub camera_from: [f32; 3],
+        pub film_height: f32,
+        pub camera_to: [f32; 3],
+        pub aperture: f32,
+        /// The camera's basis ([`scene::Film`]), computed in f64 on the CPU.
+        pub u: [f32; 3],
+        pub focus_distance: f32,
+        pub v: [f32; 3],
+        /// `|from - to|`, in f64 on the CPU.
+        pub target_distance: f32,
+        pub w: [f32; 3],
+        pub min_weight: f32,
+        pub background: [f32; 3],
+        pub exposure: f32,
+        pub ambient: [f32; 3],
+        pub max_depth: u32,
+        pub resolution: [u32; 2],
+        pub sample_start: u32,
+        pub sample_count: u32,
+        pub light_count: u32,
+        pub bvh_node_count: u32,
+        pub output_size: [u32; 2],
+        /// A scalar view's colour bar: the quantity shown blue, and red
+        /// (`shaders/views.wgsl`; 0 for the shaded picture).
+        pub view_range: [f32; 2],
+        pub _view_pad: [u32; 2],
+    }
 }
 
 /// The viewer's selection outline (`shaders/outline.wgsl`): the shape whose
@@ -326,11 +328,17 @@ fn pack_light(l: &scene::Light, frame: &Frame) -> Light {
     }
 }
 
-/// The scene's arrays that are not a kind's (bindings 1 to 5, before
-/// the kinds' arrays; their structs are in `shaders/scene.wgsl`): the WGSL
-/// that declares their data textures and loaders.
+/// The globals and the scene's arrays that are not a kind's (bindings 0 to
+/// 5, before the kinds' arrays; their structs are in `shaders/scene.wgsl`):
+/// the WGSL that declares their data textures and loaders.
 pub fn fixed_arrays() -> String {
     [
+        struct_array(
+            "globals_texture",
+            "load_globals",
+            &Element::of::<Globals>("Globals"),
+            Some(0),
+        ),
         struct_array(
             "materials",
             "load_material",
@@ -362,6 +370,7 @@ mod tests {
     fn every_fixed_array_has_a_loader() {
         let fixed = super::fixed_arrays();
         for f in [
+            "load_globals",
             "load_material",
             "load_light",
             "load_bvh_node",

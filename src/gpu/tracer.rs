@@ -8,11 +8,10 @@
 
 use std::sync::Arc;
 
-use super::buffer;
 use super::features::{ShaderOptions, borrowed};
 use super::fullscreen;
 use super::jobs::span_rects;
-use super::layout::PackedScene;
+use super::layout::{Globals, PackedScene};
 use super::limits::{BufferLimitError, check_buffers};
 use super::outline::OutlinePipelines;
 use super::shaders::{ShaderError, ShaderSource};
@@ -184,47 +183,38 @@ impl Pipelines {
     }
 }
 
-/// Binding 0: the globals (a storage buffer, see `scene.wgsl`); 1..=5:
-/// materials, lights, BVH nodes, BVH shape list and shape counts; from
+/// Binding 0: the globals (see `scene.wgsl`); 1..=5: materials, lights,
+/// BVH nodes, BVH shape list and shape counts; from
 /// [`FIRST_SHAPE_BINDING`] on, one array per shape kind in the registry
 /// order of `gpu::shapes`, each followed by its shared data if the kind has
 /// one (`mesh_data`), of which only those of `bound_kinds` are bound (see
-/// [`ShaderSource::specialised`]). Every array is a data texture
+/// [`ShaderSource::specialised`]). Every one is a data texture
 /// (`Rgba32Uint`, read by the loaders `shapes::glue` generates).
 pub(super) fn scene_layout_entries(bound_kinds: u32) -> Vec<wgpu::BindGroupLayoutEntry> {
     bound_bindings(bound_kinds)
         .into_iter()
-        .map(|(i, texture)| wgpu::BindGroupLayoutEntry {
+        .map(|i| wgpu::BindGroupLayoutEntry {
             binding: i,
             visibility: wgpu::ShaderStages::FRAGMENT,
-            ty: if texture {
-                wgpu::BindingType::Texture {
-                    sample_type: wgpu::TextureSampleType::Uint,
-                    view_dimension: wgpu::TextureViewDimension::D2,
-                    multisampled: false,
-                }
-            } else {
-                wgpu::BindingType::Buffer {
-                    ty: wgpu::BufferBindingType::Storage { read_only: true },
-                    has_dynamic_offset: false,
-                    min_binding_size: None,
-                }
+            ty: wgpu::BindingType::Texture {
+                sample_type: wgpu::TextureSampleType::Uint,
+                view_dimension: wgpu::TextureViewDimension::D2,
+                multisampled: false,
             },
             count: None,
         })
         .collect()
 }
 
-/// The binding numbers of [`scene_layout_entries`], in order, each with
-/// whether it is a data texture (all but the globals).
-fn bound_bindings(bound_kinds: u32) -> Vec<(u32, bool)> {
-    let mut bindings: Vec<(u32, bool)> = (0..FIRST_SHAPE_BINDING).map(|i| (i, i > 0)).collect();
+/// The binding numbers of [`scene_layout_entries`], in order.
+fn bound_bindings(bound_kinds: u32) -> Vec<u32> {
+    let mut bindings: Vec<u32> = (0..FIRST_SHAPE_BINDING).collect();
     let mut binding = FIRST_SHAPE_BINDING;
     for k in super::shapes::kinds() {
         if is_bound(bound_kinds, k.kind) {
-            bindings.push((binding, true));
+            bindings.push(binding);
             if k.data.is_some() {
-                bindings.push((binding + 1, true));
+                bindings.push(binding + 1);
             }
         }
         binding += 1 + u32::from(k.data.is_some());
@@ -262,10 +252,49 @@ fn data_texture(device: &wgpu::Device, queue: &wgpu::Queue, words: &[u32]) -> Ow
     ))
 }
 
+/// The globals' data texture: one row, written before every pass
+/// ([`write_globals`]).
+fn globals_texture(device: &wgpu::Device) -> wgpu::Texture {
+    device.create_texture(&wgpu::TextureDescriptor {
+        label: Some("globals"),
+        size: globals_extent(),
+        mip_level_count: 1,
+        sample_count: 1,
+        dimension: wgpu::TextureDimension::D2,
+        format: wgpu::TextureFormat::Rgba32Uint,
+        usage: wgpu::TextureUsages::TEXTURE_BINDING | wgpu::TextureUsages::COPY_DST,
+        view_formats: &[],
+    })
+}
+
+/// The size of the globals' texture: a texel per 16 bytes.
+fn globals_extent() -> wgpu::Extent3d {
+    wgpu::Extent3d {
+        width: (size_of::<Globals>() / 16) as u32,
+        height: 1,
+        depth_or_array_layers: 1,
+    }
+}
+
+/// Writes `globals` into their texture through `queue` (taking effect at
+/// the next submission, as a buffer write would).
+fn write_globals(queue: &wgpu::Queue, texture: &wgpu::Texture, globals: &Globals) {
+    queue.write_texture(
+        texture.as_image_copy(),
+        bytemuck::bytes_of(globals),
+        wgpu::TexelCopyBufferLayout {
+            offset: 0,
+            bytes_per_row: Some(size_of::<Globals>() as u32),
+            rows_per_image: None,
+        },
+        globals_extent(),
+    );
+}
+
 /// The scene in GPU buffers, with the CPU copy it was made from.
 pub struct SceneBuffers {
     packed: PackedScene,
-    globals: wgpu::Buffer,
+    globals: OwnedTexture,
     /// Materials, lights, the BVH's nodes and shape list, the shape counts:
     /// read through `bind_group`, held here to be destroyed with the scene.
     _fixed: [OwnedTexture; 5],
@@ -273,14 +302,6 @@ pub struct SceneBuffers {
     /// its contents are ([`SceneBuffers::reusing`]).
     shape_textures: Vec<Arc<OwnedTexture>>,
     pub(super) bind_group: wgpu::BindGroup,
-}
-
-/// The globals buffer is destroyed with the scene, for the reason an
-/// [`OwnedTexture`] is.
-impl Drop for SceneBuffers {
-    fn drop(&mut self) {
-        self.globals.destroy();
-    }
 }
 
 impl SceneBuffers {
@@ -320,12 +341,8 @@ impl SceneBuffers {
         previous: Option<&SceneBuffers>,
     ) -> Result<Self, BufferLimitError> {
         check_buffers(&device.limits(), &packed)?;
-        let globals = buffer::with_contents(
-            device,
-            "globals",
-            bytemuck::bytes_of(&packed.globals),
-            wgpu::BufferUsages::STORAGE | wgpu::BufferUsages::COPY_DST,
-        );
+        let globals = OwnedTexture::new(globals_texture(device));
+        write_globals(queue, globals.texture(), &packed.globals);
         let texture = |words: &[u32]| data_texture(device, queue, words);
         let fixed = [
             texture(bytemuck::cast_slice(&packed.materials)),
@@ -349,14 +366,14 @@ impl SceneBuffers {
         let resource = |i: u32| -> wgpu::BindingResource {
             let i = i as usize;
             match i.checked_sub(FIRST_SHAPE_BINDING as usize) {
-                None if i == 0 => globals.as_entire_binding(),
+                None if i == 0 => wgpu::BindingResource::TextureView(globals.view()),
                 None => wgpu::BindingResource::TextureView(fixed[i - 1].view()),
                 Some(j) => wgpu::BindingResource::TextureView(shape_textures[j].view()),
             }
         };
         let entries: Vec<wgpu::BindGroupEntry> = bound_bindings(bound_kinds)
             .into_iter()
-            .map(|(i, _)| wgpu::BindGroupEntry {
+            .map(|i| wgpu::BindGroupEntry {
                 binding: i,
                 resource: resource(i),
             })
@@ -533,7 +550,7 @@ pub fn encode_frame(
     globals.output_size = [target.size.0, target.size.1];
     globals.sample_start = accum.samples;
     globals.sample_count = new_samples;
-    queue.write_buffer(&scene.globals, 0, bytemuck::bytes_of(&globals));
+    write_globals(queue, scene.globals.texture(), &globals);
 
     if new_samples > 0 {
         let back = 1 - accum.front;
@@ -577,7 +594,7 @@ pub fn encode_job(
     globals.output_size = [width, height];
     globals.sample_start = accum.samples;
     globals.sample_count = 1;
-    queue.write_buffer(&scene.globals, 0, bytemuck::bytes_of(&globals));
+    write_globals(queue, scene.globals.texture(), &globals);
     let back = 1 - accum.front;
     // The first sample's pixels not traced yet show black, not an old image.
     let clear = accum.samples == 0 && accum.pixels_done == 0;
@@ -619,7 +636,7 @@ pub fn encode_display(
     globals.output_size = [target.size.0, target.size.1];
     globals.sample_start = samples;
     globals.sample_count = 0;
-    queue.write_buffer(&scene.globals, 0, bytemuck::bytes_of(&globals));
+    write_globals(queue, scene.globals.texture(), &globals);
     fullscreen::pass(
         encoder,
         pipelines.display(target.format),
