@@ -181,6 +181,24 @@ macro_rules! scene_with_shapes {
             }
         )*
 
+        /// Every kind's options ([`Shape::Options`]), one field per kind
+        /// named after the scene's array of it (`tori`): both renderers'
+        /// options carry them without naming a kind, and each kind's code
+        /// in a renderer reads its own.
+        #[derive(Debug, Clone, Default, PartialEq, Eq, Hash)]
+        pub struct KindOptions {
+            $(pub $field: <$kind as Shape>::Options,)*
+        }
+
+        impl KindOptions {
+            /// What `scene` asks of every kind ([`Shape::options`]).
+            pub fn of(scene: &Scene) -> Self {
+                KindOptions {
+                    $($field: <$kind as Shape>::options(scene),)*
+                }
+            }
+        }
+
         impl Scene {
             /// Every shape, kind by kind in registry order.
             pub fn shape_ids(&self) -> Vec<ShapeId> {

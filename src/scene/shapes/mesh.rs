@@ -163,6 +163,14 @@ impl Mesh {
 }
 
 impl Shape for Mesh {
+    /// The ray-triangle test.
+    type Options = TriangleTest;
+
+    /// The scene's `triangles` in `[render]`.
+    fn options(scene: &crate::scene::Scene) -> TriangleTest {
+        scene.render.triangles
+    }
+
     /// Loads the geometry (file or inline) and keeps it; degenerate
     /// triangles dropped are reported as a warning.
     fn validate(&mut self, path: &KeyPath, context: &Context) -> Check {

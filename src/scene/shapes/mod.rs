@@ -107,6 +107,19 @@ pub trait Shape: Clone + PartialEq + std::fmt::Debug + Serialize + DeserializeOw
     /// (docs/rendering-model.md, "Implicit surfaces").
     const OPAQUE: bool = false;
 
+    /// The renderers' choices for the kind ([`super::KindOptions`] holds
+    /// every kind's): a method chosen by name (a torus's
+    /// [`TorusMethod`], a mesh's [`TriangleTest`]) or what the shader is
+    /// written from (an implicit surface's functions); `()` for a kind
+    /// without any.
+    type Options: Clone + std::fmt::Debug + Default + PartialEq + Eq + std::hash::Hash;
+
+    /// The options `scene` asks for (its `[render]` keys, its shapes'
+    /// functions); the default unless the kind says otherwise.
+    fn options(_scene: &super::Scene) -> Self::Options {
+        Self::Options::default()
+    }
+
     /// The kind's keys whose arrays of numbers are not vectors of 3 (a
     /// Julia set's quaternion `c`); serde checks their length, the parser
     /// every other array's (src/scene/parse.rs).
