@@ -62,9 +62,9 @@ struct PointLight {
     radiance: DVec3,
 }
 
-/// A [`Scene`] turned into what tracing needs: camera basis, rotation
-/// matrices of the boxes, unit plane normals, and materials by index, all in
-/// f64. Prepare once, render many times.
+/// A [`Scene`] turned into what tracing needs: camera basis, every shape
+/// as its kind prepares it, and materials by index, all in f64. Prepare
+/// once, render many times.
 #[derive(Debug, Clone)]
 pub struct PreparedScene {
     /// The world point every position below is relative to: the camera
