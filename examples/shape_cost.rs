@@ -83,10 +83,8 @@ fn renderer(
         Some(dir) => ShaderSource::from_dir(dir)?,
         None => ShaderSource::embedded(),
     };
-    let options = ShaderOptions {
-        torus,
-        ..ShaderOptions::for_scene(scene)
-    };
+    let mut options = ShaderOptions::for_scene(scene);
+    options.kinds.tori = torus;
     Ok(OffscreenRenderer::new(
         gpu, &source, &options, scene, width, height,
     )?)

@@ -62,10 +62,8 @@ fn cases() -> Vec<(String, Scene, f64)> {
 
 /// The generic pipeline's image of `scene` with the tori solved by `torus`.
 fn render_with(gpu: &raysandbox::gpu::Gpu, scene: &Scene, torus: TorusMethod) -> image::RgbaImage {
-    let options = ShaderOptions {
-        torus,
-        ..ShaderOptions::generic(scene)
-    };
+    let mut options = ShaderOptions::generic(scene);
+    options.kinds.tori = torus;
     let source = ShaderSource::embedded();
     let mut renderer = OffscreenRenderer::new(gpu, &source, &options, scene, WIDTH, HEIGHT)
         .unwrap_or_else(|e| panic!("{e}"));

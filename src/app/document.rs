@@ -5,7 +5,7 @@ use std::path::{Path, PathBuf};
 
 use super::mesh_files;
 use crate::files::write_atomically;
-use crate::scene::{Camera, Folder, Instance, Mesh, MeshFiles, Scene, SceneError, bundled};
+use crate::scene::{Camera, Folder, Mesh, MeshFiles, Scene, SceneError, bundled};
 
 /// A scene being edited, and where it came from.
 pub struct Document {
@@ -93,53 +93,24 @@ impl Document {
         move || Mesh::from_file(named, base.as_deref())
     }
 
-    /// Every mesh file the scene reads, as [`Document::reload_mesh_file`]
-    /// expects it, each once.
-    pub fn mesh_files(&self) -> Vec<PathBuf> {
-        let mut files: Vec<PathBuf> = Vec::new();
-        for file in self
-            .scene
-            .meshes
-            .iter()
-            .filter_map(|m| m.file_path(self.base()))
-        {
-            if !files.contains(&file) {
-                files.push(file);
-            }
-        }
-        files
+    /// Every file the scene's shapes read (a mesh's model), as
+    /// [`Document::reload_file`] expects it, each once.
+    pub fn files_read(&self) -> Vec<PathBuf> {
+        self.scene.files_read(self.base())
     }
 
-    /// Reads the mesh file `file` (one of [`Document::mesh_files`]) again
-    /// after it changed on disk and gives its new geometry to every mesh
-    /// that shows it, in the scene and in its saved state (a reload is not
-    /// an edit). Returns how many meshes changed. On an error (file and
-    /// line) nothing changes: the last good geometry stays.
-    pub fn reload_mesh_file(&mut self, file: &Path) -> Result<usize, String> {
+    /// Reads `file` (one of [`Document::files_read`]) again after it
+    /// changed on disk, for every shape that reads it, in the scene and in
+    /// its saved state (a reload is not an edit). Returns how many shapes
+    /// of the scene read it. On an error (file and line) nothing changes:
+    /// the last good geometry stays.
+    pub fn reload_file(&mut self, file: &Path) -> Result<usize, String> {
         let base = self.base().map(Path::to_path_buf);
-        let shows = |m: &Mesh| m.file_path(base.as_deref()).as_deref() == Some(file);
-        // One load per shading (`smooth` changes the normals), shared.
-        let mut fresh: Vec<Mesh> = Vec::new();
-        for mesh in self.scene.meshes.iter().filter(|m| shows(m)) {
-            if !fresh.iter().any(|f| f.smooth == mesh.smooth) {
-                let mut copy = mesh.shape.clone();
-                copy.reload(base.as_deref())?;
-                fresh.push(copy);
-            }
-        }
-        let give = |meshes: &mut [Instance<Mesh>]| {
-            let mut changed = 0;
-            for mesh in meshes.iter_mut().filter(|m| shows(m)) {
-                if let Some(new) = fresh.iter().find(|f| f.smooth == mesh.smooth) {
-                    mesh.geometry = new.geometry.clone();
-                    changed += 1;
-                }
-            }
-            changed
-        };
-        give(&mut self.saved.meshes);
-        let changed = give(&mut self.scene.meshes);
-        Ok(changed)
+        Scene::read_again(
+            &mut [&mut self.scene, &mut self.saved],
+            file,
+            base.as_deref(),
+        )
     }
 
     pub fn is_dirty(&self) -> bool {
@@ -263,7 +234,7 @@ impl Document {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::scene::Placement;
+    use crate::scene::{Instance, Placement};
 
     fn temp_dir(name: &str) -> PathBuf {
         let dir =
@@ -350,13 +321,13 @@ mod tests {
         doc.save().unwrap();
         let loaded = Scene::load(&path).unwrap();
         assert_eq!(loaded.meshes[1].geometry.0.triangles.len(), 1);
-        let files = doc.mesh_files();
+        let files = doc.files_read();
         assert_eq!(files, [dir.join("scenes").join("../models/tri.obj")]);
 
         // A different good file: both meshes take it, and it is no edit.
         let quad = "v 0 0 0\nv 1 0 0\nv 1 1 0\nv 0 1 0\nf 1 2 3 4\n";
         std::fs::write(&obj, quad).unwrap();
-        assert_eq!(doc.reload_mesh_file(&files[0]), Ok(2));
+        assert_eq!(doc.reload_file(&files[0]), Ok(2));
         let [a, b] = [0, 1].map(|i| doc.scene.meshes[i].geometry.0.clone());
         assert_eq!(a.triangles.len(), 2);
         assert!(std::sync::Arc::ptr_eq(&a, &b), "one load for both");
@@ -364,10 +335,10 @@ mod tests {
 
         // A bad file: the error names file and line, the geometry stays.
         std::fs::write(&obj, "v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 9\n").unwrap();
-        let error = doc.reload_mesh_file(&files[0]).unwrap_err();
+        let error = doc.reload_file(&files[0]).unwrap_err();
         assert!(error.contains("tri.obj:4: face vertex index 9"), "{error}");
         assert!(std::sync::Arc::ptr_eq(&doc.scene.meshes[0].geometry.0, &a));
-        assert_eq!(doc.reload_mesh_file(&dir.join("models/other.obj")), Ok(0));
+        assert_eq!(doc.reload_file(&dir.join("models/other.obj")), Ok(0));
 
         // Saved in another folder, the scene still finds the model.
         std::fs::write(&obj, quad).unwrap();

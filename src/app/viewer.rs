@@ -841,10 +841,10 @@ impl Viewer {
         let Some(gfx) = &mut self.gfx else { return };
         if let Some(scene) = scene {
             let options = reference::ReferenceOptions {
-                triangles: self
+                kinds: self
                     .drawing
                     .as_ref()
-                    .map(|o| o.triangles)
+                    .map(|o| o.kinds.clone())
                     .unwrap_or_default(),
                 ..reference::ReferenceOptions::of(&scene)
             };

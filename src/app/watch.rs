@@ -17,8 +17,8 @@ use notify_debouncer_mini::{Config, DebounceEventResult, Debouncer, new_debounce
 pub enum Change {
     Shaders,
     SceneFile,
-    /// One of the mesh files, as it was given to [`watch`].
-    MeshFile(PathBuf),
+    /// One of the files the shapes read, as it was given to [`watch`].
+    ShapeFile(PathBuf),
 }
 
 /// Quiet time after the last write before a change is reported.
@@ -69,27 +69,28 @@ impl Watcher for ChangeWatcher {
 }
 
 /// Starts watching `shader_dir` (its `.wgsl` files and those of its `shapes/`
-/// folder, one per shape kind), `scene_file` and `mesh_files`, calling
+/// folder, one per shape kind), `scene_file` and `shape_files` (the files
+/// its shapes read), calling
 /// `notify` from the watcher's thread for every debounced change. Folders are
 /// watched rather than files, because editors often save by writing a new
 /// file and renaming it over the old one, which ends a watch on the file.
 pub fn watch(
     shader_dir: Option<&Path>,
     scene_file: Option<&Path>,
-    mesh_files: &[PathBuf],
+    shape_files: &[PathBuf],
     notify: impl Fn(Change) + Send + 'static,
 ) -> Result<Watch, String> {
     let shader_dir = shader_dir.map(canonical);
     let scene_file = scene_file.map(canonical);
     let shape_dir = shader_dir.as_ref().map(|d| d.join("shapes"));
-    let meshes: Vec<(PathBuf, PathBuf)> = mesh_files
+    let shape_files: Vec<(PathBuf, PathBuf)> = shape_files
         .iter()
         .map(|given| (canonical(given), given.clone()))
         .collect();
     let (dirs, classify) = {
         let mut dirs: Vec<PathBuf> = shader_dir.iter().cloned().collect();
         dirs.extend(shape_dir.iter().filter(|d| d.is_dir()).cloned());
-        let files = scene_file.iter().chain(meshes.iter().map(|(c, _)| c));
+        let files = scene_file.iter().chain(shape_files.iter().map(|(c, _)| c));
         for parent in files.filter_map(|f| f.parent()) {
             if parent.is_dir() && !dirs.iter().any(|d| d == parent) {
                 dirs.push(parent.to_path_buf());
@@ -100,8 +101,8 @@ pub fn watch(
             if scene_file.as_deref() == Some(path.as_path()) {
                 return Some(Change::SceneFile);
             }
-            if let Some((_, given)) = meshes.iter().find(|(c, _)| *c == path) {
-                return Some(Change::MeshFile(given.clone()));
+            if let Some((_, given)) = shape_files.iter().find(|(c, _)| *c == path) {
+                return Some(Change::ShapeFile(given.clone()));
             }
             let in_shader_dir = path.parent().is_some_and(|p| {
                 shader_dir.as_deref() == Some(p) || shape_dir.as_deref() == Some(p)
@@ -239,7 +240,7 @@ mod tests {
         std::thread::sleep(Duration::from_millis(200));
         std::fs::write(models.join("other.obj"), "x").unwrap();
         std::fs::write(&mesh, "b").unwrap();
-        assert_eq!(next_change(&rx, None), Some(Change::MeshFile(given)));
+        assert_eq!(next_change(&rx, None), Some(Change::ShapeFile(given)));
         while rx.recv_timeout(Duration::from_millis(500)).is_ok() {}
         std::fs::write(models.join("other.obj"), "y").unwrap();
         assert!(

@@ -132,7 +132,7 @@ pub fn run(options: ViewerOptions) -> Result<(), ViewerError> {
         viewer,
         shader_dir,
         watch: None,
-        watched_meshes: Vec::new(),
+        watched_files: Vec::new(),
         fatal: None,
         title: String::new(),
     };
@@ -267,8 +267,9 @@ struct App {
     viewer: Viewer,
     shader_dir: Option<PathBuf>,
     watch: Option<watch::Watch>,
-    /// The mesh files being watched (the scene's, when the watch started).
-    watched_meshes: Vec<PathBuf>,
+    /// The files the shapes read that are being watched (the scene's, when
+    /// the watch started).
+    watched_files: Vec<PathBuf>,
     /// Why the viewer had to stop, reported after the loop ends.
     fatal: Option<ViewerError>,
     title: String,
@@ -292,7 +293,7 @@ impl ApplicationHandler<UserEvent> for App {
         match event {
             UserEvent::FileChanged(watch::Change::Shaders) => self.reload_shaders(),
             UserEvent::FileChanged(watch::Change::SceneFile) => self.reload_scene_file(),
-            UserEvent::FileChanged(watch::Change::MeshFile(path)) => self.reload_mesh_file(&path),
+            UserEvent::FileChanged(watch::Change::ShapeFile(path)) => self.reload_shape_file(&path),
             UserEvent::PipelinesBuilt(built) => self.viewer.pipelines_built(*built),
             UserEvent::MeshFilePicked(path) => self.add_mesh_file(&path),
             UserEvent::MeshRead(path, mesh) => self.mesh_read(&path, *mesh),
@@ -400,15 +401,15 @@ impl App {
         self.viewer.event(line);
     }
 
-    /// (Re)starts watching the shader folder, the scene file and its mesh
-    /// files.
+    /// (Re)starts watching the shader folder, the scene file and the files
+    /// its shapes read.
     fn restart_watch(&mut self) {
         let proxy = self.proxy.clone();
         self.watch = None;
-        self.watched_meshes = self.viewer.doc.mesh_files();
+        self.watched_files = self.viewer.doc.files_read();
         if self.shader_dir.is_none()
             && self.viewer.doc.path().is_none()
-            && self.watched_meshes.is_empty()
+            && self.watched_files.is_empty()
         {
             return;
         }
@@ -416,7 +417,7 @@ impl App {
             let _ = proxy.send_event(UserEvent::FileChanged(change));
         };
         let (shaders, scene) = (self.shader_dir.as_deref(), self.viewer.doc.path());
-        match watch::watch(shaders, scene, &self.watched_meshes, notify) {
+        match watch::watch(shaders, scene, &self.watched_files, notify) {
             Ok(w) => self.watch = Some(w),
             Err(e) => {
                 log::warn!("{e}");
@@ -485,11 +486,12 @@ impl App {
         }
     }
 
-    /// A mesh file changed on disk: every mesh that shows it takes the new
-    /// triangles; a bad file is reported (file and line) in the panel and
-    /// the meshes keep their last good triangles.
-    fn reload_mesh_file(&mut self, path: &Path) {
-        match self.viewer.doc.reload_mesh_file(path) {
+    /// A file a shape reads changed on disk: every shape that reads it
+    /// takes the new contents (a mesh its triangles); a bad file is
+    /// reported (file and line) in the panel and the shapes keep their
+    /// last good state.
+    fn reload_shape_file(&mut self, path: &Path) {
+        match self.viewer.doc.reload_file(path) {
             Ok(0) => {}
             Ok(_) => {
                 self.viewer.editor.panel.mesh_error = None;
@@ -568,11 +570,11 @@ impl App {
     /// scene's mesh files.
     fn scene_changed(&mut self, before: Option<&Scene>) {
         self.viewer.scene_changed(before);
-        self.follow_mesh_files();
+        self.follow_shape_files();
     }
 
-    fn follow_mesh_files(&mut self) {
-        if self.viewer.doc.mesh_files() != self.watched_meshes {
+    fn follow_shape_files(&mut self) {
+        if self.viewer.doc.files_read() != self.watched_files {
             self.restart_watch();
         }
     }
@@ -604,7 +606,7 @@ impl App {
         }
         self.update_title();
         self.viewer.end_frame(start, ui);
-        self.follow_mesh_files();
+        self.follow_shape_files();
         // A device lost during the frame is replaced at the next one.
         if self
             .viewer

@@ -190,7 +190,7 @@ fn measure_mesh(
     let mut tests = Vec::new();
     for test in TriangleTest::ALL {
         let mut options = ShaderOptions::for_scene(&scene);
-        options.triangles = test;
+        options.kinds.meshes = test;
         let (time, _) = measure::frame_time(gpu, &options, &scene, plan.frame_size, 1, frames)
             .map_err(BenchError::Failed)?;
         let (_, image) = measure::frame_time(gpu, &options, &rounded, (w, h), 1, 1)

@@ -63,7 +63,7 @@ impl Knob {
             Knob::Steps(n) => scene.implicits.iter_mut().for_each(|s| s.steps = n),
             Knob::Iterations(n) => scene.julias.iter_mut().for_each(|s| s.iterations = n),
             Knob::Epsilon(e) => scene.julias.iter_mut().for_each(|s| s.epsilon = e),
-            Knob::Torus(m) => options.torus = m,
+            Knob::Torus(m) => options.kinds.tori = m,
             Knob::Footprint(on) => scene.julias.iter_mut().for_each(|s| s.footprint = on),
         }
     }
@@ -316,7 +316,7 @@ fn own_setting(scene: &Scene, like: Knob) -> Knob {
         Knob::Steps(_) => Knob::Steps(scene.implicits[0].steps),
         Knob::Iterations(_) => Knob::Iterations(scene.julias[0].iterations),
         Knob::Epsilon(_) => Knob::Epsilon(scene.julias[0].epsilon),
-        Knob::Torus(_) => Knob::Torus(ShaderOptions::for_scene(scene).torus),
+        Knob::Torus(_) => Knob::Torus(ShaderOptions::for_scene(scene).kinds.tori),
         Knob::Footprint(_) => Knob::Footprint(scene.julias[0].footprint),
     }
 }

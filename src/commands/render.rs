@@ -9,7 +9,7 @@ use crate::gpu::{
     Gpu, GpuWaitError, OffscreenRenderer, RenderError, ShaderOptions, ShaderSource, View,
 };
 use crate::reference;
-use crate::scene::{NamedOption, TorusMethod, TriangleTest};
+use crate::scene::{KindOptions, NamedOption, TorusMethod, TriangleTest};
 
 #[derive(clap::Args)]
 pub struct Args {
@@ -88,6 +88,19 @@ fn render_failure(e: RenderError) -> Failure {
     }
 }
 
+impl Args {
+    /// What `scene` asks of its kinds, with the methods chosen on the
+    /// command line in place of its own.
+    fn kinds(&self, scene: &crate::scene::Scene) -> KindOptions {
+        let mut kinds = KindOptions::of(scene);
+        if let Some(triangles) = self.triangles {
+            kinds.meshes = triangles;
+        }
+        kinds.tori = self.torus;
+        kinds
+    }
+}
+
 /// The error view of a rendered `renderer`: the f64 reference traced at
 /// every pixel centre (docs/views.md, "The error view"), the errors (in
 /// levels, or FLIP per pixel for `error-flip`) shown in place of the GPU's
@@ -100,7 +113,7 @@ fn show_error(
 ) -> Result<Option<crate::gpu::ColourBar>, Failure> {
     let start = Instant::now();
     let options = reference::ReferenceOptions {
-        triangles: args.triangles.unwrap_or(scene.render.triangles),
+        kinds: args.kinds(scene),
         ..reference::ReferenceOptions::of(scene)
     };
     let prepared = reference::PreparedScene::with_options(scene, &options);
@@ -149,7 +162,7 @@ pub fn run(args: &Args) -> Result<(), Failure> {
             rayon::current_num_threads()
         );
         let options = reference::ReferenceOptions {
-            triangles: args.triangles.unwrap_or(scene.render.triangles),
+            kinds: args.kinds(&scene),
             ..reference::ReferenceOptions::of(&scene)
         };
         let prepared = reference::PreparedScene::with_options(&scene, &options);
@@ -166,10 +179,7 @@ pub fn run(args: &Args) -> Result<(), Failure> {
         if args.bvh == Switch::Off {
             options.features.bvh = false;
         }
-        if let Some(triangles) = args.triangles {
-            options.triangles = triangles;
-        }
-        options.torus = args.torus;
+        options.kinds = args.kinds(&scene);
         options.view = args.view.traced();
         let mut renderer =
             OffscreenRenderer::new(&gpu, &source, &options, &scene, args.width, args.height)

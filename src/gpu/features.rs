@@ -5,7 +5,7 @@
 //! or checker code at all.
 
 use super::view::View;
-use crate::scene::{Scene, ShapeKind, TorusMethod, TriangleTest};
+use crate::scene::{KindOptions, Scene, ShapeKind};
 
 /// What a scene needs from the shader. Every flag that is true for a scene
 /// must be true in the pipeline that draws it; extra flags only cost time.
@@ -108,14 +108,11 @@ pub struct ShaderOptions {
     /// pipeline constant: WGSL sizes arrays only with `const`s, so it is
     /// written into the source, see `ShaderSource::with_stack_size`.
     pub stack_size: u32,
-    /// The ray-triangle test of meshes (`TRIANGLE_TEST`).
-    pub triangles: TriangleTest,
-    /// How tori solve their quartic (`TORUS_METHOD`).
-    pub torus: TorusMethod,
-    /// The scene's distinct implicit functions (`scene::implicit::functions`),
-    /// compiled into the source (see `ShaderSource::with_functions`): a
-    /// pipeline per distinct set.
-    pub functions: Vec<String>,
+    /// Each shape kind's own choices: a method chosen by name (a pipeline
+    /// constant of its WGSL) or WGSL written from the scene (compiled into
+    /// the source, see `ShaderSource::with_generated`: a pipeline per
+    /// distinct set of implicit functions).
+    pub kinds: KindOptions,
     /// The ray-counting variant (`COUNT_RAYS`): the trace pass writes the
     /// number of rays traced per pixel by kind instead of the radiance
     /// (docs/performance.md, "Rays per second"). Off in every pipeline
@@ -171,9 +168,7 @@ impl Default for ShaderOptions {
             robust: true,
             features: Features::ALL,
             stack_size: MAX_STACK_SIZE,
-            triangles: TriangleTest::default(),
-            torus: TorusMethod::default(),
-            functions: Vec::new(),
+            kinds: KindOptions::default(),
             count_rays: false,
             ray_tree: false,
             view: View::Shaded,
@@ -183,13 +178,13 @@ impl Default for ShaderOptions {
 }
 
 impl ShaderOptions {
-    /// Generic, with `scene`'s implicit functions (which no pipeline can
-    /// do without: they are the scene's own code) and intersections.
+    /// Generic, with what `scene` asks of its kinds (its implicit
+    /// functions, which no pipeline can do without: they are the scene's
+    /// own code) and its intersections.
     pub fn generic(scene: &Scene) -> Self {
         ShaderOptions {
             robust: scene.render.intersections.is_robust(),
-            triangles: scene.render.triangles,
-            functions: crate::scene::implicit::functions(scene),
+            kinds: KindOptions::of(scene),
             rays: Rays::of(scene),
             ..ShaderOptions::default()
         }
@@ -256,11 +251,11 @@ mod tests {
             ShaderOptions::for_scene(&scene),
             ShaderOptions::generic(&scene),
         ] {
-            assert_eq!(options.triangles, TriangleTest::Cramer);
+            assert_eq!(options.kinds.meshes, TriangleTest::Cramer);
             assert!(!options.robust);
         }
         let reference = ReferenceOptions::of(&scene);
-        assert_eq!(reference.triangles, TriangleTest::Cramer);
+        assert_eq!(reference.kinds.meshes, TriangleTest::Cramer);
         assert!(!reference.robust);
     }
 

@@ -59,8 +59,8 @@ impl IdRenderer {
         source: &ShaderSource,
         options: &ShaderOptions,
     ) -> Result<Self, PipelineError> {
-        // The scene's implicit functions are part of the source.
-        let source = &source.with_functions(&options.functions);
+        // The WGSL the kinds write for the scene is part of the source.
+        let source = &source.with_generated(&options.kinds);
         source.validate()?;
         let device = &gpu.device;
         let scope = device.push_error_scope(wgpu::ErrorFilter::Validation);

@@ -83,7 +83,7 @@ impl RayTreeRenderer {
         };
         let source = &source
             .specialised(options.stack_size, options.features.shape_kinds)
-            .with_functions(&options.functions);
+            .with_generated(&options.kinds);
         source.validate()?;
         let device = &gpu.device;
         let scope = device.push_error_scope(wgpu::ErrorFilter::Validation);

@@ -11,7 +11,8 @@ use std::path::{Path, PathBuf};
 use super::features::MAX_STACK_SIZE;
 use super::layout::fixed_arrays;
 use super::shapes::glue::{ALL_KINDS_BOUND, shape_glue};
-use super::shapes::{KindInfo, kinds};
+use super::shapes::{KindInfo, generated_parts, kinds};
+use crate::scene::KindOptions;
 
 /// The shader files in the order they are joined, before the shape kinds'
 /// `shapes/<kind>.wgsl` (see `gpu::shapes`). WGSL resolves names at module
@@ -133,15 +134,6 @@ fn generated_part(stack_size: u32, bound_kinds: u32) -> (String, String) {
     )
 }
 
-/// The parts the shape kinds write from the scene's `functions`
-/// ([`super::shapes::PackShape::generated`]).
-fn generated_parts(functions: &[String]) -> Vec<(String, String)> {
-    kinds()
-        .iter()
-        .filter_map(|k| (k.generated)(functions))
-        .collect()
-}
-
 impl ShaderSource {
     /// The shader files compiled into the binary.
     pub fn embedded() -> Self {
@@ -156,7 +148,7 @@ impl ShaderSource {
             std::iter::once(generated_part(MAX_STACK_SIZE, ALL_KINDS_BOUND))
                 .chain(files)
                 .chain(shapes)
-                .chain(generated_parts(&[])),
+                .chain(generated_parts(&KindOptions::default())),
         )
     }
 
@@ -207,15 +199,15 @@ impl ShaderSource {
         Ok(Self::join(
             std::iter::once(generated_part(MAX_STACK_SIZE, ALL_KINDS_BOUND))
                 .chain(files)
-                .chain(generated_parts(&[])),
+                .chain(generated_parts(&KindOptions::default())),
         ))
     }
 
-    /// The same source with `functions` (the scene's distinct implicit
-    /// functions, `scene::implicit::functions`) compiled to WGSL in
-    /// place of the previous ones.
-    pub fn with_functions(&self, functions: &[String]) -> Self {
-        let previous: Vec<String> = generated_parts(&[])
+    /// The same source with the WGSL the shape kinds write for `kinds`
+    /// (an implicit surface's functions, [`generated_parts`]) in
+    /// place of the previous.
+    pub fn with_generated(&self, kinds: &KindOptions) -> Self {
+        let previous: Vec<String> = generated_parts(&KindOptions::default())
             .into_iter()
             .map(|(name, _)| name)
             .collect();
@@ -225,7 +217,7 @@ impl ShaderSource {
         Self::join(
             files
                 .map(|(name, text)| (name.to_string(), text.to_string()))
-                .chain(generated_parts(functions)),
+                .chain(generated_parts(kinds)),
         )
     }
 

@@ -30,6 +30,7 @@ struct Disk {
 
 impl Shape for Disk {
     type Placement = Placement;
+    type Options = ();
     const THIN: bool = true;
 
     fn validate(&mut self, path: &KeyPath, _context: &scene::Context) -> Check {

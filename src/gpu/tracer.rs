@@ -94,7 +94,7 @@ impl Pipelines {
     ) -> Result<Self, PipelineError> {
         let source = &source
             .specialised(options.stack_size, options.features.shape_kinds)
-            .with_functions(&options.functions);
+            .with_generated(&options.kinds);
         source.validate()?;
         let scope = device.push_error_scope(wgpu::ErrorFilter::Validation);
         let pipelines = Self::build(device, source, output_formats, options, outline);

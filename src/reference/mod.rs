@@ -38,7 +38,7 @@ use glam::{DVec2, DVec3};
 use rayon::prelude::*;
 
 use crate::bvh::Bvh;
-use crate::scene::{Material, Scene, TriangleTest};
+use crate::scene::{KindOptions, Material, Scene};
 
 pub use camera::{Camera, camera_ray};
 pub use error::ErrorImage;
@@ -62,9 +62,9 @@ struct PointLight {
     radiance: DVec3,
 }
 
-/// A [`Scene`] turned into what tracing needs: camera basis, rotation
-/// matrices of the boxes, unit plane normals, and materials by index, all in
-/// f64. Prepare once, render many times.
+/// A [`Scene`] turned into what tracing needs: camera basis, every shape
+/// as its kind prepares it, and materials by index, all in f64. Prepare
+/// once, render many times.
 #[derive(Debug, Clone)]
 pub struct PreparedScene {
     /// The world point every position below is relative to: the camera
@@ -103,14 +103,15 @@ pub struct PreparedScene {
 }
 
 /// Variants of the reference, the twin of the shader's `gpu::ShaderOptions`.
-#[derive(Debug, Clone, Copy, PartialEq)]
+#[derive(Debug, Clone, PartialEq)]
 pub struct ReferenceOptions {
     /// true: the robust routines (docs/implementation.md); false: the naive
     /// quadratic, the plain slab test, the plane without re-projection and a
     /// fixed offset of 1e-3, as the shader with `ROBUST = false`.
     pub robust: bool,
-    /// The ray-triangle test of meshes.
-    pub triangles: TriangleTest,
+    /// Each shape kind's own choices (a mesh's ray-triangle test), as the
+    /// shader's options carry them.
+    pub kinds: KindOptions,
     /// The height one pixel subtends at unit distance (film height / image
     /// height), for Julia sets with `footprint` (docs/rendering-model.md,
     /// "Implicit surfaces"). The render functions set it for their image.
@@ -121,19 +122,20 @@ impl Default for ReferenceOptions {
     fn default() -> Self {
         ReferenceOptions {
             robust: true,
-            triangles: TriangleTest::default(),
+            kinds: KindOptions::default(),
             pixel_angle: 0.0,
         }
     }
 }
 
 impl ReferenceOptions {
-    /// The variant `scene` asks for: its `intersections` and `triangles`
-    /// (docs/rendering-model.md, "Lecture switches"), else the defaults.
+    /// The variant `scene` asks for: its `intersections` (docs/rendering-model.md,
+    /// "Lecture switches") and what it asks of its kinds (its `triangles`),
+    /// else the defaults.
     pub fn of(scene: &Scene) -> Self {
         ReferenceOptions {
             robust: scene.render.intersections.is_robust(),
-            triangles: scene.render.triangles,
+            kinds: KindOptions::of(scene),
             ..ReferenceOptions::default()
         }
     }
@@ -183,7 +185,7 @@ impl PreparedScene {
             reflection: scene.render.reflection,
             refraction: scene.render.refraction,
             exposure: scene.render.exposure,
-            options: *options,
+            options: options.clone(),
         }
     }
 

@@ -181,6 +181,24 @@ macro_rules! scene_with_shapes {
             }
         )*
 
+        /// Every kind's options ([`Shape::Options`]), one field per kind
+        /// named after the scene's array of it (`tori`): both renderers'
+        /// options carry them without naming a kind, and each kind's code
+        /// in a renderer reads its own.
+        #[derive(Debug, Clone, Default, PartialEq, Eq, Hash)]
+        pub struct KindOptions {
+            $(pub $field: <$kind as Shape>::Options,)*
+        }
+
+        impl KindOptions {
+            /// What `scene` asks of every kind ([`Shape::options`]).
+            pub fn of(scene: &Scene) -> Self {
+                KindOptions {
+                    $($field: <$kind as Shape>::options(scene),)*
+                }
+            }
+        }
+
         impl Scene {
             /// Every shape, kind by kind in registry order.
             pub fn shape_ids(&self) -> Vec<ShapeId> {
@@ -245,6 +263,42 @@ macro_rules! scene_with_shapes {
             fn shape_summary(&self) -> String {
                 let counts = [$(format!("{} {}", self.$field.len(), stringify!($field))),*];
                 counts.join(", ")
+            }
+
+            /// Every file the shapes read ([`Shape::file_read`]), each once,
+            /// relative to `base` (the scene file's folder) unless absolute.
+            pub fn files_read(&self, base: Option<&Path>) -> Vec<PathBuf> {
+                let mut files: Vec<PathBuf> = Vec::new();
+                $(for file in self.$field.iter().filter_map(|s| s.file_read(base)) {
+                    if !files.contains(&file) {
+                        files.push(file);
+                    }
+                })*
+                files
+            }
+
+            /// Reads `file` (one of [`Scene::files_read`]) again for every
+            /// shape of `scenes` that reads it ([`Shape::read_again`]): a
+            /// scene and its saved state, which share the new contents.
+            /// Returns how many shapes of the first scene read it. On an
+            /// error those shapes keep their last good state.
+            pub fn read_again(scenes: &mut [&mut Scene], file: &Path, base: Option<&Path>) -> Result<usize, String> {
+                let mut count = 0;
+                $({
+                    let mut shapes: Vec<&mut $kind> = Vec::new();
+                    for (i, scene) in scenes.iter_mut().enumerate() {
+                        for s in scene.$field.iter_mut() {
+                            if s.file_read(base).as_deref() == Some(file) {
+                                count += usize::from(i == 0);
+                                shapes.push(&mut s.shape);
+                            }
+                        }
+                    }
+                    if !shapes.is_empty() {
+                        <$kind as Shape>::read_again(&mut shapes, base)?;
+                    }
+                })*
+                Ok(count)
             }
 
             /// Moves every shape by `offset`.

@@ -23,7 +23,7 @@ use crate::gpu::{
     readback_target,
 };
 use crate::reference::{self, PreparedScene, ReferenceOptions};
-use crate::scene::Scene;
+use crate::scene::{KindOptions, Scene};
 use metrics::{Comparison, ReferenceRender};
 
 /// Arguments of `raysandbox stress`.
@@ -78,7 +78,8 @@ pub struct GpuVariant {
     pipelines: Pipelines,
     ids: IdRenderer,
     robust: bool,
-    /// Kept to build pipelines for a scene's own implicit functions.
+    /// Kept to build pipelines for what a scene asks of its kinds (its own
+    /// implicit functions).
     source: ShaderSource,
 }
 
@@ -86,19 +87,20 @@ const IMAGE_FORMAT: wgpu::TextureFormat = wgpu::TextureFormat::Rgba8Unorm;
 
 impl GpuVariant {
     pub fn new(gpu: &Gpu, source: &ShaderSource, robust: bool) -> Result<Self, PipelineError> {
-        Self::with_functions(gpu, source, robust, Vec::new())
+        Self::with_kinds(gpu, source, robust, KindOptions::default())
     }
 
-    /// The variant with `functions` (a scene's implicit functions) compiled in.
-    fn with_functions(
+    /// The variant with the kinds' `kinds` options (a scene's implicit
+    /// functions compiled in).
+    fn with_kinds(
         gpu: &Gpu,
         source: &ShaderSource,
         robust: bool,
-        functions: Vec<String>,
+        kinds: KindOptions,
     ) -> Result<Self, PipelineError> {
         let options = ShaderOptions {
             robust,
-            functions,
+            kinds,
             ..ShaderOptions::default()
         };
         Ok(GpuVariant {
@@ -119,13 +121,14 @@ impl GpuVariant {
         width: u32,
         height: u32,
     ) -> Result<GpuRender, RenderError> {
-        // A scene with its own functions needs pipelines with them compiled in.
-        let functions = crate::scene::implicit::functions(scene);
+        // A scene that asks its kinds for more than the defaults (its own
+        // functions) needs pipelines with that compiled in.
+        let kinds = KindOptions::of(scene);
         let own;
-        let variant = if functions.is_empty() {
+        let variant = if kinds == KindOptions::default() {
             self
         } else {
-            own = Self::with_functions(gpu, &self.source, self.robust, functions)?;
+            own = Self::with_kinds(gpu, &self.source, self.robust, kinds)?;
             &own
         };
         let device = &gpu.device;

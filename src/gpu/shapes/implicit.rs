@@ -57,7 +57,7 @@ fn functions_part(functions: &[String]) -> (String, String) {
 }
 
 impl PackShape for scene::Implicit {
-    fn generated(functions: &[String]) -> Option<(String, String)> {
+    fn generated(functions: &Vec<String>) -> Option<(String, String)> {
         Some(functions_part(functions))
     }
 

@@ -11,7 +11,6 @@ use bytemuck::Zeroable;
 use super::placement::columns;
 use super::{Frame, PackShape, Words, material_slot, packed_struct, round_out};
 use crate::bvh::mesh_bvh;
-use crate::gpu::ShaderOptions;
 use crate::scene::{self, Geometry, Instance, PerGeometry, Scene};
 
 packed_struct! {
@@ -32,8 +31,8 @@ packed_struct! {
 impl PackShape for scene::Mesh {
     const DATA: Option<&'static str> = Some("mesh_data");
 
-    fn constants(options: &ShaderOptions) -> Vec<(&'static str, u32)> {
-        vec![("TRIANGLE_TEST", options.triangles.number())]
+    fn constants(test: &scene::TriangleTest) -> Vec<(&'static str, u32)> {
+        vec![("TRIANGLE_TEST", test.number())]
     }
 
     /// The placement; the data offsets are set by [`PackShape::pack_kind`].

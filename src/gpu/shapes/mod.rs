@@ -13,7 +13,9 @@ use bytemuck::{Pod, Zeroable};
 use glam::DVec3;
 
 use super::ShaderOptions;
-use crate::scene::{Camera, Instance, Scene, ShapeKind, ShapeList, for_each_shape_kind};
+use crate::scene::{
+    Camera, Instance, KindOptions, Scene, ShapeKind, ShapeList, for_each_shape_kind,
+};
 
 mod cube;
 pub mod glue;
@@ -169,18 +171,19 @@ pub trait PackShape: PackedKind {
     const OCCLUDES: bool = false;
 
     /// The kind's own pipeline constants (`override` in its WGSL) and their
-    /// values for `options`: how it chooses between methods by name (a
-    /// torus's `TORUS_METHOD`, a mesh's `TRIANGLE_TEST`).
-    fn constants(_options: &ShaderOptions) -> Vec<(&'static str, u32)> {
+    /// values for its options ([`crate::scene::Shape::Options`]): how it
+    /// chooses between methods by name (a torus's `TORUS_METHOD`, a mesh's
+    /// `TRIANGLE_TEST`).
+    fn constants(_options: &Self::Options) -> Vec<(&'static str, u32)> {
         Vec::new()
     }
 
-    /// WGSL the kind writes from the scene's user functions
-    /// (`ShaderOptions::functions`: an implicit surface's `f`), as a named
-    /// part joined after the shader files (`src/gpu/shaders.rs`), if it
-    /// writes any. Called with no functions, it gives the part's name and
-    /// the WGSL that stands in until a scene brings its own.
-    fn generated(_functions: &[String]) -> Option<(String, String)> {
+    /// WGSL the kind writes from its `options` (an implicit surface's
+    /// functions), as a named part joined after the shader files
+    /// (`src/gpu/shaders.rs`), if it writes any. Called with the default
+    /// options, it gives the part's name and the WGSL that stands in until
+    /// a scene brings its own.
+    fn generated(_options: &Self::Options) -> Option<(String, String)> {
         None
     }
 
@@ -238,10 +241,6 @@ pub struct KindInfo {
     pub data: Option<&'static str>,
     /// Whether shadow rays call its `occludes_<kind>` ([`PackShape::OCCLUDES`]).
     pub occludes: bool,
-    /// Its pipeline constants for given options ([`PackShape::constants`]).
-    pub constants: fn(&ShaderOptions) -> Vec<(&'static str, u32)>,
-    /// The WGSL it writes from the scene's functions ([`PackShape::generated`]).
-    pub generated: fn(&[String]) -> Option<(String, String)>,
     /// The packed struct's fields and offsets ([`Layout`]).
     pub fields: &'static [(&'static str, usize)],
     /// The packed struct's fields' Rust types ([`Layout`]).
@@ -278,8 +277,6 @@ pub fn kinds() -> Vec<KindInfo> {
                 wgsl: <crate::scene::$kind as PackedKind>::WGSL,
                 data: <crate::scene::$kind as PackShape>::DATA,
                 occludes: <crate::scene::$kind as PackShape>::OCCLUDES,
-                constants: <crate::scene::$kind as PackShape>::constants,
-                generated: <crate::scene::$kind as PackShape>::generated,
                 fields: <<crate::scene::$kind as PackedKind>::Packed as Layout>::FIELDS,
                 types: <<crate::scene::$kind as PackedKind>::Packed as Layout>::TYPES,
                 size: size_of::<<crate::scene::$kind as PackedKind>::Packed>(),
@@ -341,6 +338,30 @@ pub fn buffer_count() -> usize {
         .sum()
 }
 
+/// Every kind's pipeline constants for `kinds` ([`PackShape::constants`]).
+fn kind_constants(kinds: &KindOptions) -> Vec<(&'static str, u32)> {
+    let mut constants = Vec::new();
+    macro_rules! visit {
+        ($($kind:ident: $field:ident),* $(,)?) => {
+            $(constants.extend(<crate::scene::$kind as PackShape>::constants(&kinds.$field));)*
+        };
+    }
+    for_each_shape_kind!(visit);
+    constants
+}
+
+/// Every part of WGSL the kinds write for `kinds` ([`PackShape::generated`]).
+pub fn generated_parts(kinds: &KindOptions) -> Vec<(String, String)> {
+    let mut parts = Vec::new();
+    macro_rules! visit {
+        ($($kind:ident: $field:ident),* $(,)?) => {
+            $(parts.extend(<crate::scene::$kind as PackShape>::generated(&kinds.$field));)*
+        };
+    }
+    for_each_shape_kind!(visit);
+    parts
+}
+
 /// The pipeline constants are the kinds' business as much as the
 /// features': written here, beside the kinds they visit, so that the
 /// features need not know the kinds' modules.
@@ -366,9 +387,8 @@ impl ShaderOptions {
         ]
         .map(|(name, on)| (name.to_string(), on));
         let present = ShapeKind::ALL.iter().map(|&k| (has_flag(k), f.has(k)));
-        let methods = kinds()
+        let methods = kind_constants(&self.kinds)
             .into_iter()
-            .flat_map(|k| (k.constants)(self))
             .map(|(name, value)| (name.to_string(), f64::from(value)));
         fixed
             .into_iter()

@@ -4,7 +4,6 @@ use bytemuck::Zeroable;
 use glam::DVec3;
 
 use super::{Frame, PackShape, packed_struct};
-use crate::gpu::ShaderOptions;
 use crate::scene::{self, Instance, Scene};
 
 packed_struct! {
@@ -27,8 +26,8 @@ packed_struct! {
 impl PackShape for scene::Torus {
     const OCCLUDES: bool = true;
 
-    fn constants(options: &ShaderOptions) -> Vec<(&'static str, u32)> {
-        vec![("TORUS_METHOD", options.torus.number())]
+    fn constants(method: &scene::TorusMethod) -> Vec<(&'static str, u32)> {
+        vec![("TORUS_METHOD", method.number())]
     }
 
     fn pack(_: &Scene, frame: &Frame, t: &Instance<scene::Torus>, material: u32) -> Torus {

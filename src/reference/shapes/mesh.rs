@@ -65,7 +65,7 @@ impl Trace for Mesh {
         let mut nearest: Option<(u32, TriangleHit)> = None;
         self.bvh.traverse(local.origin, local.dir, t_max, |tri, t| {
             let [a, b, c] = g.triangles[tri as usize].map(|v| g.positions[v as usize]);
-            match hit_triangle(options.triangles, &local, [a, b, c], t) {
+            match hit_triangle(options.kinds.meshes, &local, [a, b, c], t) {
                 Some(h) => {
                     nearest = Some((tri, h));
                     Some(h.t)

@@ -31,7 +31,7 @@ pub trait Prepare: Shape {
 pub trait Trace: Debug + Clone {
     /// The hit with `0 < t < t_max`: the robust routine
     /// (docs/implementation.md) or, with `options.robust = false`, the
-    /// lecture's; triangles by `options.triangles`.
+    /// lecture's; a mesh's triangles by its test in `options.kinds`.
     fn hit(&self, ray: &Ray, t_max: f64, options: &ReferenceOptions) -> Option<Hit>;
 
     /// Whether the hit depends on `options.pixel_angle`, which a render

@@ -14,6 +14,7 @@ use crate::scene::validate::Check;
 pub struct Cube {}
 
 impl Shape for Cube {
+    type Options = ();
     type Placement = Centered;
 
     fn validate(&mut self, _path: &KeyPath, _context: &Context) -> Check {

@@ -30,6 +30,14 @@ fn default_steps() -> u32 {
 }
 
 impl Shape for Implicit {
+    /// The scene's distinct functions ([`functions`]), which the shader is
+    /// written from.
+    type Options = Vec<String>;
+
+    fn options(scene: &crate::scene::Scene) -> Vec<String> {
+        functions(scene)
+    }
+
     fn validate(&mut self, path: &KeyPath, _context: &Context) -> Check {
         Function::parse(&self.f).map_err(|e| Issue::new(&path.key("f"), e.to_string()))?;
         let bounds = path.key("bounds");

@@ -44,6 +44,7 @@ fn is_false(b: &bool) -> bool {
 }
 
 impl Shape for Julia {
+    type Options = ();
     fn validate(&mut self, path: &KeyPath, _context: &Context) -> Check {
         let c_path = path.key("c");
         for (i, &x) in self.c.iter().enumerate() {

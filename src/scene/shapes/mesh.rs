@@ -163,6 +163,36 @@ impl Mesh {
 }
 
 impl Shape for Mesh {
+    /// The ray-triangle test.
+    type Options = TriangleTest;
+
+    /// The scene's `triangles` in `[render]`.
+    fn options(scene: &crate::scene::Scene) -> TriangleTest {
+        scene.render.triangles
+    }
+
+    fn file_read(&self, base: Option<&Path>) -> Option<PathBuf> {
+        self.file_path(base)
+    }
+
+    /// One read per shading (`smooth` changes the normals), shared.
+    fn read_again(shapes: &mut [&mut Mesh], base: Option<&Path>) -> Result<(), String> {
+        let mut fresh: Vec<Mesh> = Vec::new();
+        for mesh in shapes.iter() {
+            if !fresh.iter().any(|f| f.smooth == mesh.smooth) {
+                let mut copy = (**mesh).clone();
+                copy.reload(base)?;
+                fresh.push(copy);
+            }
+        }
+        for mesh in shapes.iter_mut() {
+            if let Some(new) = fresh.iter().find(|f| f.smooth == mesh.smooth) {
+                mesh.geometry = new.geometry.clone();
+            }
+        }
+        Ok(())
+    }
+
     /// Loads the geometry (file or inline) and keeps it; degenerate
     /// triangles dropped are reported as a warning.
     fn validate(&mut self, path: &KeyPath, context: &Context) -> Check {

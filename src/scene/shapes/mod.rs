@@ -26,6 +26,8 @@ pub use plane::Plane;
 pub use sphere::Sphere;
 pub use torus::{Torus, TorusMethod};
 
+use std::path::{Path, PathBuf};
+
 use glam::{DMat3, DVec3};
 use indexmap::IndexMap;
 use serde::Serialize;
@@ -106,6 +108,32 @@ pub trait Shape: Clone + PartialEq + std::fmt::Debug + Serialize + DeserializeOw
     /// lets no light through: its material's transparency counts as 0
     /// (docs/rendering-model.md, "Implicit surfaces").
     const OPAQUE: bool = false;
+
+    /// The renderers' choices for the kind ([`super::KindOptions`] holds
+    /// every kind's): a method chosen by name (a torus's
+    /// [`TorusMethod`], a mesh's [`TriangleTest`]) or what the shader is
+    /// written from (an implicit surface's functions); `()` for a kind
+    /// without any.
+    type Options: Clone + std::fmt::Debug + Default + PartialEq + Eq + std::hash::Hash;
+
+    /// The options `scene` asks for (its `[render]` keys, its shapes'
+    /// functions); the default unless the kind says otherwise.
+    fn options(_scene: &super::Scene) -> Self::Options {
+        Self::Options::default()
+    }
+
+    /// The file the shape reads (a mesh's model), relative to `base` (the
+    /// scene file's folder) unless absolute; the viewer watches it.
+    fn file_read(&self, _base: Option<&Path>) -> Option<PathBuf> {
+        None
+    }
+
+    /// Reads the file of `shapes` again (they all read one file, which
+    /// changed on disk), sharing one read between shapes that read it
+    /// alike. On an error nothing changes: the last good state stays.
+    fn read_again(_shapes: &mut [&mut Self], _base: Option<&Path>) -> Result<(), String> {
+        Ok(())
+    }
 
     /// The kind's keys whose arrays of numbers are not vectors of 3 (a
     /// Julia set's quaternion `c`); serde checks their length, the parser

@@ -15,6 +15,7 @@ pub struct Plane {
 }
 
 impl Shape for Plane {
+    type Options = ();
     type Placement = Unplaced;
     const THIN: bool = true;
     const BOUNDED: bool = false;

@@ -14,6 +14,7 @@ pub struct Sphere {
 }
 
 impl Shape for Sphere {
+    type Options = ();
     type Placement = Unplaced;
 
     fn validate(&mut self, path: &KeyPath, _context: &Context) -> Check {

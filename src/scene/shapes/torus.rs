@@ -35,6 +35,10 @@ crate::named_option! {
 }
 
 impl Shape for Torus {
+    /// How the GPU solves the quartic; the scene file does not choose it
+    /// (the reference always brackets).
+    type Options = TorusMethod;
+
     fn validate(&mut self, path: &KeyPath, _context: &Context) -> Check {
         number(&path.key("major_radius"), self.major_radius, &POSITIVE)?;
         number(&path.key("minor_radius"), self.minor_radius, &POSITIVE)?;
