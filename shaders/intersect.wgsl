@@ -78,23 +78,31 @@ fn foot(ray: Ray, anchor: vec3<f32>) -> Foot {
 /// Whether the ray meets the box for some t_min <= t < t_max: the slab test
 /// with the same care as hit_cube (a parallel axis decided by a branch, the
 /// far bound widened by 1 + 2 gamma(3)). `inv_d` is 1 / d, 0 where |d_i| is
-/// below 1e-20 (those components are not used).
+/// below 1e-20 (those components are not used). The three axes are written
+/// out, not looped over: lavapipe does not unroll shader loops, and the loop
+/// with its indexed components cost 10% of the instructions of a frame of
+/// the teapot (docs/performance.md, "The fixed price per pixel").
 fn hit_box(lo: vec3<f32>, hi: vec3<f32>, ray: Ray, inv_d: vec3<f32>, t_max: f32) -> bool {
-    var near = ray.t_min;
-    var far = t_max;
-    for (var i = 0u; i < 3u; i++) {
-        if abs(ray.dir[i]) < 1e-20 {
-            if ray.origin[i] < lo[i] || ray.origin[i] > hi[i] {
-                return false;
-            }
-            continue;
+    var span = vec2(ray.t_min, t_max);
+    span = slab(lo.x, hi.x, ray.origin.x, ray.dir.x, inv_d.x, span);
+    span = slab(lo.y, hi.y, ray.origin.y, ray.dir.y, inv_d.y, span);
+    span = slab(lo.z, hi.z, ray.origin.z, ray.dir.z, inv_d.z, span);
+    return span.x <= span.y;
+}
+
+/// One axis of hit_box: the parameter span (near, far) narrowed to the slab
+/// lo <= origin + t dir <= hi, or an empty span (near > far) when the ray
+/// runs parallel to the slab outside it.
+fn slab(lo: f32, hi: f32, origin: f32, dir: f32, inv_d: f32, span: vec2<f32>) -> vec2<f32> {
+    if abs(dir) < 1e-20 {
+        if origin < lo || origin > hi {
+            return vec2(1.0, 0.0);
         }
-        let ta = (lo[i] - ray.origin[i]) * inv_d[i];
-        let tb = (hi[i] - ray.origin[i]) * inv_d[i];
-        near = max(near, min(ta, tb));
-        far = min(far, max(ta, tb) * (1.0 + 2.0 * GAMMA3));
+        return span;
     }
-    return near <= far;
+    let ta = (lo - origin) * inv_d;
+    let tb = (hi - origin) * inv_d;
+    return vec2(max(span.x, min(ta, tb)), min(span.y, max(ta, tb) * (1.0 + 2.0 * GAMMA3)));
 }
 
 /// Pushes an inner BVH node's children, `first` and `first + 1` (split

@@ -165,40 +165,52 @@ fn hit_mesh(ray: Ray, m: Mesh, index: u32, best: Hit) -> Hit {
     // triangles are tested after it. Rays run side by side in SIMD lanes
     // wait in the inner loop until every one holds a leaf, and then test
     // their leaves together, instead of paying for both branches in every
-    // step.
+    // step. Every loop tests its end last: lavapipe leaves a loop only
+    // when no lane is left in it, and these loops written to test first
+    // cost 6% more instructions per pixel (docs/performance.md, "The fixed
+    // price per pixel"). The stack is never empty where a loop starts.
     loop {
         var first = 0u;
         var count = 0u;
-        while top > 0u && count == 0u {
+        loop {
             top -= 1u;
             let at = m.node_start + 2u * stack[top];
             let lo = mesh_data_at(at);
             let hi = mesh_data_at(at + 1u);
             count_node();
-            if !hit_box(bitcast<vec3<f32>>(lo.xyz), bitcast<vec3<f32>>(hi.xyz), local, inv_d, t_best) {
-                continue;
+            if hit_box(bitcast<vec3<f32>>(lo.xyz), bitcast<vec3<f32>>(hi.xyz), local, inv_d, t_best) {
+                if hi.w == 0u {
+                    let e = bitcast<vec3<f32>>(hi.xyz) - bitcast<vec3<f32>>(lo.xyz);
+                    top = push_children(&stack, top, lo.w, e, local.dir);
+                } else {
+                    first = lo.w;
+                    count = hi.w;
+                }
             }
-            if hi.w == 0u {
-                let e = bitcast<vec3<f32>>(hi.xyz) - bitcast<vec3<f32>>(lo.xyz);
-                top = push_children(&stack, top, lo.w, e, local.dir);
-                continue;
+            if top == 0u || count != 0u {
+                break;
             }
-            first = lo.w;
-            count = hi.w;
         }
-        if count == 0u {
+        if count > 0u {
+            var k = first;
+            loop {
+                let v = m.tri_start + 3u * k;
+                count_test();
+                let h = hit_triangle(local, data_vec3(v), data_vec3(v + 1u), data_vec3(v + 2u), t_best);
+                if h.hit {
+                    t_best = h.t;
+                    found = true;
+                    tri = k;
+                    weights = h.b;
+                }
+                k++;
+                if k >= first + count {
+                    break;
+                }
+            }
+        }
+        if top == 0u {
             break;
-        }
-        for (var k = first; k < first + count; k++) {
-            let v = m.tri_start + 3u * k;
-            count_test();
-            let h = hit_triangle(local, data_vec3(v), data_vec3(v + 1u), data_vec3(v + 2u), t_best);
-            if h.hit {
-                t_best = h.t;
-                found = true;
-                tri = k;
-                weights = h.b;
-            }
         }
     }
     if !found {
