@@ -1,9 +1,11 @@
 //! The GLSL rewrite by blanking (docs/sandbox.md, "The GLSL rewrite"): the
 //! top-level declarations the prelude replaces (`#version`, `uniform`,
-//! `out vec4`, `precision`, `varying vec2 surfacePosition`) are overwritten
-//! with spaces, newlines kept, and what they declared is returned.
+//! `out vec4`, `precision`, `varying vec2 surfacePosition`, a `varying`
+//! never read) and the words after `#endif` are overwritten with spaces,
+//! newlines kept, and what they declared is returned.
 
 use super::error_at;
+use super::glsl::{name_macros, through_macros};
 use crate::gpu::ShaderError;
 use crate::shader_params;
 use crate::shader_params::scan::{self, Kind, Scan, Token};
@@ -39,6 +41,8 @@ pub(super) fn rewrite_glsl<'a>(
     let mut uniforms = Vec::new();
     let mut output = None;
     let mut surface_position = false;
+    // `#define res resolution` then `uniform vec2 res;` declares `resolution`.
+    let macros = name_macros(tokens);
     let (mut braces, mut parens) = (0i32, 0i32);
     let mut i = 0;
     while i < tokens.len() {
@@ -54,6 +58,14 @@ pub(super) fn rewrite_glsl<'a>(
             let directive = t.text[1..].trim_start();
             if directive.starts_with("version") {
                 scan::blank(&mut text, t.start..t.end());
+            } else if let Some(rest) = ["endif", "else"]
+                .iter()
+                .find_map(|d| directive.strip_prefix(d))
+                .filter(|rest| rest.starts_with([' ', '\t']))
+            {
+                // `#endif NAME`: WebGL ignores the words after it (a
+                // warning), naga's preprocessor rejects them.
+                scan::blank(&mut text, t.end() - rest.len()..t.end());
             }
             i += 1;
             continue;
@@ -95,6 +107,16 @@ pub(super) fn rewrite_glsl<'a>(
                     .expect("checked");
                 scan::blank(&mut text, t.start..tokens[end].end());
                 surface_position = true;
+                i = end + 1;
+                continue;
+            }
+            "varying" | "attribute" if unused_input(tokens, i) => {
+                // Declared and never read: WebGL links it without a vertex
+                // shader output, so it is dropped.
+                let end = (i..tokens.len())
+                    .find(|&k| tokens[k].is(";"))
+                    .expect("checked");
+                scan::blank(&mut text, t.start..tokens[end].end());
                 i = end + 1;
                 continue;
             }
@@ -165,7 +187,7 @@ pub(super) fn rewrite_glsl<'a>(
                     }
                     uniforms.push(UniformDecl {
                         type_name: declared_type,
-                        name: n.text,
+                        name: through_macros(&macros, n.text),
                         offset: n.start,
                         initializer,
                     });
@@ -202,6 +224,22 @@ pub(super) fn rewrite_glsl<'a>(
         output,
         surface_position,
     })
+}
+
+/// Whether the `varying` (or `attribute`) declaration at `at` ends with a
+/// `;` and none of the names it declares occurs anywhere else.
+fn unused_input(tokens: &[Token], at: usize) -> bool {
+    let Some(end) = (at..tokens.len()).find(|&k| tokens[k].is(";") || tokens[k].is("{")) else {
+        return false;
+    };
+    let names = tokens[at + 1..end]
+        .iter()
+        .filter(|t| t.kind == Kind::Ident && !PRECISION.contains(&t.text))
+        .skip(1);
+    tokens[end].is(";")
+        && names
+            .clone()
+            .all(|n| tokens.iter().filter(|t| t.text == n.text).count() == 1)
 }
 
 /// `[precision] vec2 surfacePosition;` (after `varying`): GLSL Sandbox's
