@@ -38,8 +38,10 @@ fn declares_uniform(tokens: &[Token], names: &[&str]) -> bool {
 }
 
 /// The object-like macros that stand for one name (`#define mainImage
-/// main`, `#define res resolution`): (macro, name).
-pub(super) fn name_macros<'a>(tokens: &[Token<'a>]) -> Vec<(&'a str, &'a str)> {
+/// main`, `#define res resolution`): (where defined, macro, name).
+pub(super) type NameMacro<'a> = (usize, &'a str, &'a str);
+
+pub(super) fn name_macros<'a>(tokens: &[Token<'a>]) -> Vec<NameMacro<'a>> {
     tokens
         .iter()
         .filter(|t| t.kind == Kind::Directive)
@@ -47,7 +49,7 @@ pub(super) fn name_macros<'a>(tokens: &[Token<'a>]) -> Vec<(&'a str, &'a str)> {
             let inner = Scan::new(t.text.strip_prefix('#')?);
             match &inner.tokens[..] {
                 [define, name, body] if define.is("define") && body.kind == Kind::Ident => {
-                    Some((name.text, body.text))
+                    Some((t.start, name.text, body.text))
                 }
                 _ => None,
             }
@@ -55,12 +57,13 @@ pub(super) fn name_macros<'a>(tokens: &[Token<'a>]) -> Vec<(&'a str, &'a str)> {
         .collect()
 }
 
-/// `name`, or the name the macro `name` stands for.
-pub(super) fn through_macros<'a>(macros: &[(&'a str, &'a str)], name: &'a str) -> &'a str {
+/// `name` written at byte `at`, or the name the macro `name` defined
+/// before it stands for.
+pub(super) fn through_macros<'a>(macros: &[NameMacro<'a>], name: &'a str, at: usize) -> &'a str {
     macros
         .iter()
-        .find(|(m, _)| *m == name)
-        .map_or(name, |(_, body)| body)
+        .rfind(|(defined, m, _)| *m == name && *defined < at)
+        .map_or(name, |(_, _, body)| body)
 }
 
 /// `text` with each top-level use of an object-like macro whose body
@@ -79,7 +82,9 @@ pub(super) fn expand_declaring_macros(text: &str) -> Option<String> {
             let [define, name, rest @ ..] = &inner.tokens[..] else {
                 return None;
             };
-            let function_like = rest.first().is_some_and(|r| r.is("(") && r.start == name.end());
+            let function_like = rest
+                .first()
+                .is_some_and(|r| r.is("(") && r.start == name.end());
             let declares = rest
                 .iter()
                 .any(|r| ["uniform", "precision", "varying"].contains(&r.text));
@@ -114,7 +119,7 @@ fn defines_entry(tokens: &[Token], entry: &str) -> bool {
     let names = name_macros(tokens);
     let named = |i: usize| {
         tokens.get(i + 1).is_some_and(|n| n.is("("))
-            && through_macros(&names, tokens[i].text) == entry
+            && through_macros(&names, tokens[i].text, tokens[i].start) == entry
     };
     if top_level(tokens).any(named) {
         return true;

@@ -187,7 +187,7 @@ pub(super) fn rewrite_glsl<'a>(
                     }
                     uniforms.push(UniformDecl {
                         type_name: declared_type,
-                        name: through_macros(&macros, n.text),
+                        name: through_macros(&macros, n.text, n.start),
                         offset: n.start,
                         initializer,
                     });
