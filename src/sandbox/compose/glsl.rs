@@ -3,7 +3,7 @@
 
 use std::fmt::Write as _;
 
-use super::glsl_decls::rewrite_glsl;
+use super::glsl_decls::{name_macros, rewrite_glsl, through_macros};
 use super::glsl_prelude::{
     GLSL_TEXTURES, glsl_frame_block, glsl_param_type, glsl_sandbox_surface, glsl_texture_names,
     is_matrix, old_shadertoy_names, sampler_kind, shadertoy_channels, standard_uniforms,
@@ -35,35 +35,6 @@ fn declares_uniform(tokens: &[Token], names: &[&str]) -> bool {
                 .take_while(|n| !n.is(";"))
                 .any(|n| names.contains(&n.text))
     })
-}
-
-/// The object-like macros that stand for one name (`#define mainImage
-/// main`, `#define res resolution`): (where defined, macro, name).
-pub(super) type NameMacro<'a> = (usize, &'a str, &'a str);
-
-pub(super) fn name_macros<'a>(tokens: &[Token<'a>]) -> Vec<NameMacro<'a>> {
-    tokens
-        .iter()
-        .filter(|t| t.kind == Kind::Directive)
-        .filter_map(|t| {
-            let inner = Scan::new(t.text.strip_prefix('#')?);
-            match &inner.tokens[..] {
-                [define, name, body] if define.is("define") && body.kind == Kind::Ident => {
-                    Some((t.start, name.text, body.text))
-                }
-                _ => None,
-            }
-        })
-        .collect()
-}
-
-/// `name` written at byte `at`, or the name the macro `name` defined
-/// before it stands for.
-pub(super) fn through_macros<'a>(macros: &[NameMacro<'a>], name: &'a str, at: usize) -> &'a str {
-    macros
-        .iter()
-        .rfind(|(defined, m, _)| *m == name && *defined < at)
-        .map_or(name, |(_, _, body)| body)
 }
 
 /// `text` with each top-level use of an object-like macro whose body

@@ -5,7 +5,6 @@
 //! newlines kept, and what they declared is returned.
 
 use super::error_at;
-use super::glsl::{name_macros, through_macros};
 use crate::gpu::ShaderError;
 use crate::shader_params;
 use crate::shader_params::scan::{self, Kind, Scan, Token};
@@ -272,4 +271,33 @@ fn initializer_values(tokens: &[Token]) -> Vec<f64> {
         }
     }
     values
+}
+
+/// The object-like macros that stand for one name (`#define mainImage
+/// main`, `#define res resolution`): (where defined, macro, name).
+pub(super) type NameMacro<'a> = (usize, &'a str, &'a str);
+
+pub(super) fn name_macros<'a>(tokens: &[Token<'a>]) -> Vec<NameMacro<'a>> {
+    tokens
+        .iter()
+        .filter(|t| t.kind == Kind::Directive)
+        .filter_map(|t| {
+            let inner = Scan::new(t.text.strip_prefix('#')?);
+            match &inner.tokens[..] {
+                [define, name, body] if define.is("define") && body.kind == Kind::Ident => {
+                    Some((t.start, name.text, body.text))
+                }
+                _ => None,
+            }
+        })
+        .collect()
+}
+
+/// `name` written at byte `at`, or the name the macro `name` defined
+/// before it stands for.
+pub(super) fn through_macros<'a>(macros: &[NameMacro<'a>], name: &'a str, at: usize) -> &'a str {
+    macros
+        .iter()
+        .rfind(|(defined, m, _)| *m == name && *defined < at)
+        .map_or(name, |(_, _, body)| body)
 }
