@@ -552,3 +552,32 @@ fn json_cube_maps_and_volumes_read_the_built_ins() {
     );
     compile_project(&project).unwrap_or_else(|e| panic!("{e}"));
 }
+
+/// A Restart or a new size replaces every buffer's two textures, and the
+/// old ones are destroyed once the canvas is bound to the new ones
+/// (docs/web.md, "GPU memory"): many of them in a row leave the cycle
+/// drawing what it drew the first time (a texture destroyed too early
+/// would be a validation error, a panic here).
+#[test]
+fn restarts_and_resizes_destroy_the_old_buffers_and_keep_drawing() {
+    let Some(gpu) = common::gpu() else { return };
+    let sizes = [(8, 6), (5, 3), (9, 7)];
+    let mut o = offscreen(&gpu, &shaders().join("cycle.json"), sizes[0]);
+    for round in 0..60 {
+        // Even rounds change the size, odd ones keep it and Restart.
+        let size = sizes[(round / 2) % sizes.len()];
+        if round % 2 == 1 {
+            o.reset(&gpu);
+        }
+        draw(&gpu, &mut o, 0, size);
+        draw(&gpu, &mut o, 1, size);
+        let h = size.1 as f32;
+        // The second frame after the buffers were cleared.
+        let expected = [12.0, h - 0.5, 22.0, h];
+        assert_eq!(
+            o.texels(&gpu).unwrap()[0],
+            expected,
+            "round {round}, size {size:?}"
+        );
+    }
+}

@@ -435,6 +435,9 @@ pub struct Canvas {
     params: wgpu::Buffer,
     /// The channel images; the noise where none was given.
     channels: [ChannelViews; CHANNELS],
+    /// The textures of the images [`set_channel`](Self::set_channel) gave,
+    /// destroyed when replaced (docs/web.md, "GPU memory").
+    images: [Option<wgpu::Texture>; CHANNELS],
     /// The previous frame, upside down ([`BACKBUFFER_FORMAT`]).
     backbuffer: wgpu::TextureView,
     bind_group: wgpu::BindGroup,
@@ -464,13 +467,16 @@ impl Canvas {
             frame,
             params,
             channels,
+            images: Default::default(),
             backbuffer,
             bind_group,
             display_bind_group,
         }
     }
 
-    /// Shows `image` in channel `k` (0..3), or the noise for None.
+    /// Shows `image` in channel `k` (0..3), or the noise for None. The
+    /// image it replaces is destroyed once the bind group no longer holds
+    /// it (call between frames, after the last one was submitted).
     pub fn set_channel(
         &mut self,
         gpu: &Gpu,
@@ -478,13 +484,15 @@ impl Canvas {
         k: usize,
         image: Option<&image::RgbaImage>,
     ) {
-        self.channels[k].flat = match image {
-            Some(image) => {
-                channels::upload(&gpu.device, &gpu.queue, image).create_view(&Default::default())
-            }
+        let texture = image.map(|image| channels::upload(&gpu.device, &gpu.queue, image));
+        self.channels[k].flat = match &texture {
+            Some(texture) => texture.create_view(&Default::default()),
             None => sandbox.noise.clone(),
         };
         self.bind(&gpu.device, sandbox);
+        if let Some(old) = std::mem::replace(&mut self.images[k], texture) {
+            old.destroy();
+        }
     }
 
     /// Binds views to the four channels (a multipass shader's buffers

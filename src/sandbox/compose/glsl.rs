@@ -3,7 +3,7 @@
 
 use std::fmt::Write as _;
 
-use super::glsl_decls::rewrite_glsl;
+use super::glsl_decls::{name_macros, rewrite_glsl, through_macros};
 use super::glsl_prelude::{
     GLSL_TEXTURES, glsl_frame_block, glsl_param_type, glsl_sandbox_surface, glsl_texture_names,
     is_matrix, old_shadertoy_names, sampler_kind, shadertoy_channels, standard_uniforms,
@@ -37,11 +37,62 @@ fn declares_uniform(tokens: &[Token], names: &[&str]) -> bool {
     })
 }
 
-/// Whether the file defines the function `entry` at the top level, itself
-/// or through a macro it uses there (`#define Main void mainImage(out vec4
-/// Q, vec2 U)`, then `Main { ... }`, as some Common tabs have it).
+/// `text` with each top-level use of an object-like macro whose body
+/// declares what the prelude replaces (`#define init precision highp
+/// float; uniform float time;` then `init`, as code golf has it) written
+/// out in place, on the same line, so that the rewrite finds the
+/// declarations; None when there is none.
+pub(super) fn expand_declaring_macros(text: &str) -> Option<String> {
+    let scan = Scan::new(text);
+    let tokens = &scan.tokens;
+    let bodies: Vec<(&str, &str)> = tokens
+        .iter()
+        .filter(|t| t.kind == Kind::Directive)
+        .filter_map(|t| {
+            let inner = Scan::new(t.text.strip_prefix('#')?);
+            let [define, name, rest @ ..] = &inner.tokens[..] else {
+                return None;
+            };
+            let function_like = rest
+                .first()
+                .is_some_and(|r| r.is("(") && r.start == name.end());
+            let declares = rest
+                .iter()
+                .any(|r| ["uniform", "precision", "varying"].contains(&r.text));
+            let body = &inner.text[rest.first()?.start..];
+            (define.is("define") && !function_like && declares && !body.contains('\n'))
+                .then_some((name.text, body))
+        })
+        .collect();
+    let uses: Vec<(usize, &str)> = top_level(tokens)
+        .filter(|&i| tokens[i].kind == Kind::Ident)
+        .filter_map(|i| {
+            let body = bodies.iter().find(|(n, _)| *n == tokens[i].text)?.1;
+            Some((i, body))
+        })
+        .collect();
+    if uses.is_empty() {
+        return None;
+    }
+    let mut expanded = text.to_string();
+    for &(i, body) in uses.iter().rev() {
+        expanded.replace_range(tokens[i].start..tokens[i].end(), body);
+    }
+    Some(expanded)
+}
+
+/// Whether the file defines the function `entry` at the top level, itself,
+/// under a name that is a macro for it (`#define mainImage main`, then
+/// `void mainImage(void)`), or through a macro it uses there (`#define
+/// Main void mainImage(out vec4 Q, vec2 U)`, then `Main { ... }`, as some
+/// Common tabs have it; a whole `void main() { ... }` in a macro).
 fn defines_entry(tokens: &[Token], entry: &str) -> bool {
-    if find_pair(tokens, entry, "(").is_some() {
+    let names = name_macros(tokens);
+    let named = |i: usize| {
+        tokens.get(i + 1).is_some_and(|n| n.is("("))
+            && through_macros(&names, tokens[i].text, tokens[i].start) == entry
+    };
+    if top_level(tokens).any(named) {
         return true;
     }
     let macros: Vec<&str> = tokens
@@ -83,7 +134,7 @@ pub(super) fn compile_glsl(
     // A file with `mainImage` is Shadertoy's, also with a `main()` of its own
     // that calls it (as exports for other sites have), unless it declares
     // GLSL Sandbox's uniforms: then it is a port to GLSL Sandbox.
-    let user_main = find_pair(tokens, "main", "(").is_some();
+    let user_main = defines_entry(tokens, "main");
     let sandbox_port = user_main && declares_uniform(tokens, &["time", "resolution", "mouse"]);
     let style = if defines_entry(tokens, "mainImage") && !sandbox_port {
         Style::Shadertoy

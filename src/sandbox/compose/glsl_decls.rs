@@ -1,7 +1,8 @@
 //! The GLSL rewrite by blanking (docs/sandbox.md, "The GLSL rewrite"): the
 //! top-level declarations the prelude replaces (`#version`, `uniform`,
-//! `out vec4`, `precision`, `varying vec2 surfacePosition`) are overwritten
-//! with spaces, newlines kept, and what they declared is returned.
+//! `out vec4`, `precision`, `varying vec2 surfacePosition`, a `varying`
+//! never read) and the words after `#endif` are overwritten with spaces,
+//! newlines kept, and what they declared is returned.
 
 use super::error_at;
 use crate::gpu::ShaderError;
@@ -39,6 +40,8 @@ pub(super) fn rewrite_glsl<'a>(
     let mut uniforms = Vec::new();
     let mut output = None;
     let mut surface_position = false;
+    // `#define res resolution` then `uniform vec2 res;` declares `resolution`.
+    let macros = name_macros(tokens);
     let (mut braces, mut parens) = (0i32, 0i32);
     let mut i = 0;
     while i < tokens.len() {
@@ -54,6 +57,14 @@ pub(super) fn rewrite_glsl<'a>(
             let directive = t.text[1..].trim_start();
             if directive.starts_with("version") {
                 scan::blank(&mut text, t.start..t.end());
+            } else if let Some(rest) = ["endif", "else"]
+                .iter()
+                .find_map(|d| directive.strip_prefix(d))
+                .filter(|rest| rest.starts_with([' ', '\t']))
+            {
+                // `#endif NAME`: WebGL ignores the words after it (a
+                // warning), naga's preprocessor rejects them.
+                scan::blank(&mut text, t.end() - rest.len()..t.end());
             }
             i += 1;
             continue;
@@ -95,6 +106,16 @@ pub(super) fn rewrite_glsl<'a>(
                     .expect("checked");
                 scan::blank(&mut text, t.start..tokens[end].end());
                 surface_position = true;
+                i = end + 1;
+                continue;
+            }
+            "varying" | "attribute" if unused_input(tokens, i) => {
+                // Declared and never read: WebGL links it without a vertex
+                // shader output, so it is dropped.
+                let end = (i..tokens.len())
+                    .find(|&k| tokens[k].is(";"))
+                    .expect("checked");
+                scan::blank(&mut text, t.start..tokens[end].end());
                 i = end + 1;
                 continue;
             }
@@ -165,7 +186,7 @@ pub(super) fn rewrite_glsl<'a>(
                     }
                     uniforms.push(UniformDecl {
                         type_name: declared_type,
-                        name: n.text,
+                        name: through_macros(&macros, n.text, n.start),
                         offset: n.start,
                         initializer,
                     });
@@ -204,6 +225,22 @@ pub(super) fn rewrite_glsl<'a>(
     })
 }
 
+/// Whether the `varying` (or `attribute`) declaration at `at` ends with a
+/// `;` and none of the names it declares occurs anywhere else.
+fn unused_input(tokens: &[Token], at: usize) -> bool {
+    let Some(end) = (at..tokens.len()).find(|&k| tokens[k].is(";") || tokens[k].is("{")) else {
+        return false;
+    };
+    let names = tokens[at + 1..end]
+        .iter()
+        .filter(|t| t.kind == Kind::Ident && !PRECISION.contains(&t.text))
+        .skip(1);
+    tokens[end].is(";")
+        && names
+            .clone()
+            .all(|n| tokens.iter().filter(|t| t.text == n.text).count() == 1)
+}
+
 /// `[precision] vec2 surfacePosition;` (after `varying`): GLSL Sandbox's
 /// position on the plane, which the prelude provides.
 fn is_surface_position(tokens: &[Token]) -> bool {
@@ -234,4 +271,33 @@ fn initializer_values(tokens: &[Token]) -> Vec<f64> {
         }
     }
     values
+}
+
+/// The object-like macros that stand for one name (`#define mainImage
+/// main`, `#define res resolution`): (where defined, macro, name).
+pub(super) type NameMacro<'a> = (usize, &'a str, &'a str);
+
+pub(super) fn name_macros<'a>(tokens: &[Token<'a>]) -> Vec<NameMacro<'a>> {
+    tokens
+        .iter()
+        .filter(|t| t.kind == Kind::Directive)
+        .filter_map(|t| {
+            let inner = Scan::new(t.text.strip_prefix('#')?);
+            match &inner.tokens[..] {
+                [define, name, body] if define.is("define") && body.kind == Kind::Ident => {
+                    Some((t.start, name.text, body.text))
+                }
+                _ => None,
+            }
+        })
+        .collect()
+}
+
+/// `name` written at byte `at`, or the name the macro `name` defined
+/// before it stands for.
+pub(super) fn through_macros<'a>(macros: &[NameMacro<'a>], name: &'a str, at: usize) -> &'a str {
+    macros
+        .iter()
+        .rfind(|(defined, m, _)| *m == name && *defined < at)
+        .map_or(name, |(_, _, body)| body)
 }

@@ -36,7 +36,7 @@ use super::include::{self, Expanded, include_target};
 use crate::gpu::{ShaderError, ShaderSource};
 use crate::shader_params::ParamSet;
 use crate::shader_params::scan::{Scan, Token, top_level};
-use glsl::{GLSL_DEFINES, compile_glsl};
+use glsl::{GLSL_DEFINES, compile_glsl, expand_declaring_macros};
 pub use silent_zeros::{Warning, WarningKind};
 use wgsl::compile_wgsl;
 
@@ -237,7 +237,8 @@ fn compile_with(
     let result = if wgsl {
         compile_wgsl(name, text, &scan)
     } else {
-        let mut scan = Scan::new(text);
+        let expanded = expand_declaring_macros(text);
+        let mut scan = Scan::new(expanded.as_deref().unwrap_or(text));
         scan.drop_inactive_branches(GLSL_DEFINES);
         compile_glsl(name, &scan, target, kinds)
     };

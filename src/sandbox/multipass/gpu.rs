@@ -40,8 +40,16 @@ pub fn pass_builder(builder: &PipelineBuilder, kind: PassKind) -> PipelineBuilde
 
 /// One buffer: the two textures it alternates between.
 struct Buffer {
+    textures: [wgpu::Texture; 2],
     views: [wgpu::TextureView; 2],
     params: wgpu::Buffer,
+}
+
+/// A channel's image, by the file it came from.
+struct Image {
+    path: PathBuf,
+    texture: wgpu::Texture,
+    view: wgpu::TextureView,
 }
 
 /// The buffers, the keyboard, the images the channels read, and which of
@@ -56,7 +64,13 @@ pub struct Buffers {
     /// An empty channel: black, as on Shadertoy.
     black: wgpu::TextureView,
     /// The images of the channels, by file (at most 4 per pass).
-    images: Vec<(PathBuf, wgpu::TextureView)>,
+    images: Vec<Image>,
+    /// Textures replaced (buffers cleared or resized, images no longer
+    /// named), destroyed once the canvas no longer binds their views: in
+    /// the browser a texture only dropped waits for JavaScript's garbage
+    /// collector (docs/web.md, "GPU memory"), and a destroyed one must
+    /// not be in a bind group made or used after it.
+    retired: Vec<wgpu::Texture>,
     /// Frames drawn since the buffers were cleared: its parity picks the
     /// texture written.
     drawn: u64,
@@ -93,6 +107,7 @@ impl Buffers {
             keyboard,
             black,
             images: Vec::new(),
+            retired: Vec::new(),
             drawn: 0,
         }
     }
@@ -108,40 +123,52 @@ impl Buffers {
         passes: &[Binding],
         load: &dyn Fn(&Path) -> Result<image::RgbaImage, String>,
     ) -> Result<(), String> {
-        let mut images = Vec::new();
+        let mut images: Vec<Image> = Vec::new();
         for (_, channels) in passes {
             for input in channels.iter().flatten() {
                 let Input::Texture(path) = input else {
                     continue;
                 };
-                if images.iter().any(|(p, _)| p == path) {
+                if images.iter().any(|i| &i.path == path) {
                     continue;
                 }
-                let view = match self.images.iter().find(|(p, _)| p == path) {
-                    Some((_, view)) => view.clone(),
+                let image = match self.images.iter().position(|i| &i.path == path) {
+                    Some(at) => self.images.swap_remove(at),
                     None => {
-                        let image = load(path)?;
-                        channels::upload(&gpu.device, &gpu.queue, &image)
-                            .create_view(&Default::default())
+                        let texture = channels::upload(&gpu.device, &gpu.queue, &load(path)?);
+                        Image {
+                            path: path.clone(),
+                            view: texture.create_view(&Default::default()),
+                            texture,
+                        }
                     }
                 };
-                images.push((path.clone(), view));
+                images.push(image);
             }
         }
-        self.images = images;
+        let unnamed = std::mem::replace(&mut self.images, images);
+        self.retired.extend(unnamed.into_iter().map(|i| i.texture));
         for k in 0..BUFFERS {
             let used = passes.iter().any(|(kind, _)| *kind == PassKind::Buffer(k));
             match (used, self.buffers[k].is_some()) {
                 (true, false) => self.buffers[k] = Some(self.buffer(gpu)),
-                (false, true) => self.buffers[k] = None,
+                (false, true) => self.retire(k, None),
                 _ => {}
             }
         }
         Ok(())
     }
 
+    /// Puts `buffer` in slot `k`, the textures it replaces to be destroyed
+    /// after the next frame.
+    fn retire(&mut self, k: usize, buffer: Option<Buffer>) {
+        if let Some(old) = std::mem::replace(&mut self.buffers[k], buffer) {
+            self.retired.extend(old.textures);
+        }
+    }
+
     fn buffer(&self, gpu: &Gpu) -> Buffer {
-        let texture = || {
+        let textures = [(); 2].map(|_| {
             render_target(
                 &gpu.device,
                 "multipass buffer",
@@ -149,10 +176,12 @@ impl Buffers {
                 self.format,
                 wgpu::TextureUsages::TEXTURE_BINDING | wgpu::TextureUsages::COPY_SRC,
             )
-            .create_view(&Default::default())
-        };
+        });
         Buffer {
-            views: [texture(), texture()],
+            views: textures
+                .each_ref()
+                .map(|t| t.create_view(&Default::default())),
+            textures,
             params: Canvas::params_buffer(&gpu.device, 16),
         }
     }
@@ -162,7 +191,8 @@ impl Buffers {
     pub fn reset(&mut self, gpu: &Gpu) {
         for k in 0..BUFFERS {
             if self.buffers[k].is_some() {
-                self.buffers[k] = Some(self.buffer(gpu));
+                let buffer = self.buffer(gpu);
+                self.retire(k, Some(buffer));
             }
         }
         self.drawn = 0;
@@ -223,8 +253,8 @@ impl Buffers {
             Some(Input::Texture(path)) => self
                 .images
                 .iter()
-                .find(|(p, _)| p == path)
-                .map_or_else(|| sandbox.noise().clone(), |(_, v)| v.clone()),
+                .find(|i| &i.path == path)
+                .map_or_else(|| sandbox.noise().clone(), |i| i.view.clone()),
             Some(Input::Buffer(k)) => {
                 let done = PassKind::Buffer(*k) < reader;
                 let slot = if done { current } else { 1 - current };
@@ -237,7 +267,10 @@ impl Buffers {
     }
 
     /// Encodes one frame: the buffer passes into their textures, the Image
-    /// pass into `canvas`. Submit before the next frame.
+    /// pass into `canvas`. Submit before the next frame. The textures
+    /// replaced since the last frame are destroyed once the Image pass has
+    /// bound the canvas to the new ones (the frames that used them were
+    /// submitted before they were replaced; wgpu frees them after those).
     pub fn draw(
         &mut self,
         gpu: &Gpu,
@@ -251,6 +284,7 @@ impl Buffers {
         gpu.queue
             .write_buffer(&self.frame, 0, bytemuck::bytes_of(frame));
         let current = (self.drawn % 2) as usize;
+        let mut rebound = false;
         for draw in passes {
             let views = draw
                 .channels
@@ -259,6 +293,7 @@ impl Buffers {
             let PassKind::Buffer(k) = draw.kind else {
                 canvas.set_channel_views(device, sandbox, views);
                 canvas.draw(gpu, sandbox, encoder, draw.pipeline, frame, draw.params);
+                rebound = true;
                 continue;
             };
             let Some(buffer) = &mut self.buffers[k] else {
@@ -284,5 +319,8 @@ impl Buffers {
             );
         }
         self.drawn += 1;
+        if rebound {
+            self.retired.drain(..).for_each(|t| t.destroy());
+        }
     }
 }
