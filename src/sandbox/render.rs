@@ -11,8 +11,8 @@ use super::channels_3d;
 use super::compose::Compiled;
 use super::uniforms::{FRAME_UNIFORMS_SIZE, FrameUniforms};
 use crate::gpu::{
-    EXPORT_FORMAT, Gpu, GpuWaitError, fullscreen, read_texels, read_texture, readback_target,
-    render_target,
+    EXPORT_FORMAT, Gpu, GpuWaitError, OwnedTexture, fullscreen, read_texels, read_texture,
+    readback_target, render_target,
 };
 use crate::shader_params::ParamSet;
 
@@ -437,7 +437,7 @@ pub struct Canvas {
     channels: [ChannelViews; CHANNELS],
     /// The textures of the images [`set_channel`](Self::set_channel) gave,
     /// destroyed when replaced (docs/web.md, "GPU memory").
-    images: [Option<wgpu::Texture>; CHANNELS],
+    images: [Option<OwnedTexture>; CHANNELS],
     /// The previous frame, upside down ([`BACKBUFFER_FORMAT`]).
     backbuffer: wgpu::TextureView,
     bind_group: wgpu::BindGroup,
@@ -484,15 +484,15 @@ impl Canvas {
         k: usize,
         image: Option<&image::RgbaImage>,
     ) {
-        let texture = image.map(|image| channels::upload(&gpu.device, &gpu.queue, image));
-        self.channels[k].flat = match &texture {
-            Some(texture) => texture.create_view(&Default::default()),
-            None => sandbox.noise.clone(),
-        };
+        let texture =
+            image.map(|image| OwnedTexture::new(channels::upload(&gpu.device, &gpu.queue, image)));
+        self.channels[k].flat = texture
+            .as_ref()
+            .map_or_else(|| sandbox.noise.clone(), |t| t.view().clone());
         self.bind(&gpu.device, sandbox);
-        if let Some(old) = std::mem::replace(&mut self.images[k], texture) {
-            old.destroy();
-        }
+        // Dropping the image replaced destroys it, now that the bind group
+        // no longer holds it.
+        self.images[k] = texture;
     }
 
     /// Binds views to the four channels (a multipass shader's buffers
