@@ -99,6 +99,16 @@ impl Args {
         kinds.tori = self.torus;
         kinds
     }
+
+    /// The f64 reference of `scene`, with the kinds' methods chosen on the
+    /// command line.
+    fn prepared(&self, scene: &crate::scene::Scene) -> reference::PreparedScene {
+        let options = reference::ReferenceOptions {
+            kinds: self.kinds(scene),
+            ..reference::ReferenceOptions::of(scene)
+        };
+        reference::PreparedScene::with_options(scene, &options)
+    }
 }
 
 /// The error view of a rendered `renderer`: the f64 reference traced at
@@ -112,11 +122,7 @@ fn show_error(
     args: &Args,
 ) -> Result<Option<crate::gpu::ColourBar>, Failure> {
     let start = Instant::now();
-    let options = reference::ReferenceOptions {
-        kinds: args.kinds(scene),
-        ..reference::ReferenceOptions::of(scene)
-    };
-    let prepared = reference::PreparedScene::with_options(scene, &options);
+    let prepared = args.prepared(scene);
     let image = reference::ErrorImage::traced(&prepared, args.width, args.height);
     println!(
         "reference: f64 at every pixel centre, {} threads, {:.1} ms",
@@ -161,11 +167,7 @@ pub fn run(args: &Args) -> Result<(), Failure> {
             "renderer: f64 CPU reference, {} threads",
             rayon::current_num_threads()
         );
-        let options = reference::ReferenceOptions {
-            kinds: args.kinds(&scene),
-            ..reference::ReferenceOptions::of(&scene)
-        };
-        let prepared = reference::PreparedScene::with_options(&scene, &options);
+        let prepared = args.prepared(&scene);
         reference::render_prepared_rgba8(&prepared, args.width, args.height, spp)
     } else {
         let source = ShaderSource::checked(args.shaders.as_deref())
