@@ -307,9 +307,14 @@ impl Browser {
         let id = self.next_id;
         self.next_id += 1;
         let request = json!({ "id": id, "method": method, "params": params });
-        self.socket
-            .send(Message::text(request.to_string()))
-            .unwrap_or_else(|e| panic!("DevTools {method}: {e}"));
+        let mut sent = self.socket.send(Message::text(request.to_string()));
+        // Interrupted by a signal, the frame stays queued: flushing writes
+        // the rest.
+        while matches!(&sent, Err(tungstenite::Error::Io(e)) if e.kind() == ErrorKind::Interrupted)
+        {
+            sent = self.socket.flush();
+        }
+        sent.unwrap_or_else(|e| panic!("DevTools {method}: {e}"));
         let deadline = Instant::now() + TIMEOUT;
         loop {
             let Some(message) = self.receive(deadline) else {
@@ -652,8 +657,13 @@ impl Browser {
                     return Some(serde_json::from_str(&text).expect("DevTools sends JSON"));
                 }
                 Ok(_) => {}
+                // A signal landing during the read (EINTR) leaves the socket
+                // as a timeout does: nothing consumed, so read again.
                 Err(tungstenite::Error::Io(e))
-                    if matches!(e.kind(), ErrorKind::WouldBlock | ErrorKind::TimedOut) => {}
+                    if matches!(
+                        e.kind(),
+                        ErrorKind::WouldBlock | ErrorKind::TimedOut | ErrorKind::Interrupted
+                    ) => {}
                 Err(e) => panic!(
                     "the connection to Chromium broke: {e} (Chromium: {:?})",
                     self.child.try_wait()
