@@ -249,6 +249,10 @@ impl Browser {
             ])
             .env("DISPLAY", display.name())
             .env_remove("WAYLAND_DISPLAY")
+            // Chromium's singleton socket goes to a folder of its own in the
+            // temporary directory, which a killed Chromium leaves behind:
+            // inside the profile it goes when the profile does.
+            .env("TMPDIR", &profile.0)
             .stdout(Stdio::null())
             .stderr(log)
             .spawn()
