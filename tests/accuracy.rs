@@ -75,8 +75,8 @@ const MOVED_NAIVE_FAILS: &str = "world coordinates, rays from the eye, fixed off
 /// floor (8 ulps of 1/32, 3e-8) is larger than the smallest sphere.
 const BEYOND_LIMITS: &[&str] = &["moved_1e14", "scaled_1e-7"];
 
-fn measure_all() -> Option<HashMap<String, (Comparison, Comparison)>> {
-    let gpu = common::gpu()?;
+fn measure_all() -> HashMap<String, (Comparison, Comparison)> {
+    let gpu = common::gpu();
     let harness = Harness::new(&gpu, &ShaderSource::embedded()).unwrap_or_else(|e| panic!("{e}"));
     let mut out = HashMap::new();
     for entry in stress::entries(None, true).unwrap_or_else(|e| panic!("{e}")) {
@@ -107,12 +107,12 @@ fn measure_all() -> Option<HashMap<String, (Comparison, Comparison)>> {
         }
         out.insert(entry.name, (m.robust_cmp, m.naive_cmp));
     }
-    Some(out)
+    out
 }
 
 #[test]
 fn every_scene_meets_the_targets_and_naive_shows_the_failures() {
-    let Some(results) = measure_all() else { return };
+    let results = measure_all();
     let moved = scenes::moved();
     // The targets: translated by 1e6 in five directions, scaled by 1e-4 and
     // 1e4, the oblique small sphere framed from 1e6 units, 1e6 from the
@@ -183,7 +183,7 @@ fn every_scene_meets_the_targets_and_naive_shows_the_failures() {
 
 #[test]
 fn scaled_scenes_render_the_same_images() {
-    let Some(gpu) = common::gpu() else { return };
+    let gpu = common::gpu();
     let harness = Harness::new(&gpu, &ShaderSource::embedded()).unwrap_or_else(|e| panic!("{e}"));
     let mut failures = Vec::new();
     for name in stress::SCALE_INVARIANCE {
@@ -225,9 +225,7 @@ fn scaled_scenes_render_the_same_images() {
 
 #[test]
 fn stress_command_writes_the_report() {
-    if common::gpu().is_none() {
-        return;
-    }
+    common::require_gpu();
     let dir = std::env::temp_dir().join(format!("raysandbox-stress-{}", std::process::id()));
     let _ = std::fs::remove_dir_all(&dir);
     let out = std::process::Command::new(env!("CARGO_BIN_EXE_raysandbox"))

@@ -36,9 +36,7 @@ fn check_csv(path: &Path, columns: &str, text_columns: usize) -> usize {
 
 #[test]
 fn quick_bench_writes_csv_markdown_and_plots() {
-    if common::gpu().is_none() {
-        return;
-    }
+    common::require_gpu();
     let out = std::env::temp_dir().join(format!("raysandbox-bench-{}", std::process::id()));
     let status = Command::new(env!("CARGO_BIN_EXE_raysandbox"))
         .args([
@@ -112,7 +110,7 @@ fn quick_bench_writes_csv_markdown_and_plots() {
 /// kind, at most two shadow rays per ray traced.
 #[test]
 fn the_tracer_counts_its_rays_by_kind() {
-    let Some(gpu) = common::gpu() else { return };
+    let gpu = common::gpu();
     let plain = Scene::from_toml_str(
         "[camera]\nfrom = [0, 0, 4]\nto = [0, 0, 0]\nfov = 40\n\
          [materials.clay]\ncolor = [0.8, 0.5, 0.4]\n\

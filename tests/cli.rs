@@ -115,9 +115,7 @@ fn render_reference_writes_a_png_of_the_requested_size() {
 
 #[test]
 fn render_on_the_gpu_prints_adapter_and_time() {
-    if common::gpu().is_none() {
-        return;
-    }
+    common::require_gpu();
     let out_path = temp_path("gpu.png");
     let scene = common::scenes_dir().join("whitted.toml");
     let out = raysandbox(&[
@@ -169,7 +167,7 @@ fn broken_shader_folder_is_reported_with_file_and_line() {
 /// and zero, for every command that takes a size.
 #[test]
 fn sizes_beyond_the_gpu_or_zero_exit_2_naming_the_limit() {
-    let Some(gpu) = common::gpu() else { return };
+    let gpu = common::gpu();
     let max = gpu.device.limits().max_texture_dimension_2d;
     let too_big = (max + 1).to_string();
     let too_wide = format!("{too_big}x8");

@@ -23,7 +23,7 @@ fn scene(name: &str) -> Scene {
 /// still renders a scene that fits.
 #[test]
 fn a_scene_beyond_the_texture_limit_is_refused_naming_the_limit() {
-    let gpu = common::gpu().expect("a GPU");
+    let gpu = common::gpu();
     let mut scene = scene("many_spheres.toml");
     let base = scene.spheres.clone();
     for k in 1..400 {
@@ -97,7 +97,7 @@ fn a_mesh_beyond_the_largest_texture_is_refused_naming_the_limit() {
 /// was lost; a new device renders the same picture as before the loss.
 #[test]
 fn a_lost_device_is_reported_and_a_new_one_renders_the_scene() {
-    let gpu = common::gpu().expect("a GPU");
+    let gpu = common::gpu();
     let scene = scene("whitted.toml");
     let before = render_image(&gpu, &scene, WIDTH, HEIGHT, 1).expect("the first render");
     assert_eq!(gpu.lost(), None);

@@ -52,7 +52,7 @@ fn scaled_scene(scale: f64) -> String {
 /// Parses `text` as a scene file, renders it at 1 sample per pixel, and
 /// checks the picture: no non-finite pixel, more than one colour.
 fn render_checked(name: &str, text: &str) -> RgbaImage {
-    let gpu = common::gpu().expect("a GPU");
+    let gpu = common::gpu();
     let scene = Scene::from_toml_str(text, None).unwrap_or_else(|e| panic!("{name}: {e}"));
     let image = render_image(&gpu, &scene, WIDTH, HEIGHT, 1)
         .unwrap_or_else(|e| panic!("{name}: the render failed: {e}"));
@@ -175,7 +175,7 @@ fn exposures_up_to_the_largest_a_scene_may_hold_render() {
         let text = text.replace("[render]\n", &format!("[render]\nexposure = {exposure}\n"));
         let name = format!("exposure {exposure}");
         let scene = Scene::from_toml_str(&text, None).unwrap_or_else(|e| panic!("{name}: {e}"));
-        let gpu = common::gpu().expect("a GPU");
+        let gpu = common::gpu();
         let image = render_image(&gpu, &scene, WIDTH, HEIGHT, 1).unwrap();
         let magenta = image.pixels().filter(|p| p.0[..3] == NAN_MAGENTA).count();
         assert_eq!(magenta, 0, "{name}: {magenta} pixels are not finite");

@@ -91,7 +91,7 @@ fn differences(gpu: &Gpu, name: &str) -> Differences {
 /// textbook picture.
 #[test]
 fn textbook_offsets_leak_alike_on_the_gpu_and_in_the_reference() {
-    let Some(gpu) = common::gpu() else { return };
+    let gpu = common::gpu();
     let d = differences(&gpu, "scale_1e-3");
     assert!(
         d.switched.frac_over_8 > 0.01,
@@ -111,7 +111,7 @@ fn textbook_offsets_leak_alike_on_the_gpu_and_in_the_reference() {
 /// what the error view shows.
 #[test]
 fn the_textbook_discriminant_fails_in_f32_only() {
-    let Some(gpu) = common::gpu() else { return };
+    let gpu = common::gpu();
     let d = differences(&gpu, "small_sphere_1e3");
     assert!(
         within_budget(&d.switched_reference),

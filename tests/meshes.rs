@@ -197,7 +197,7 @@ fn a_tessellated_cube_renders_like_the_analytic_cube() {
 
 #[test]
 fn gpu_matches_reference_on_the_mesh_scenes() {
-    let Some(gpu) = common::gpu() else { return };
+    let gpu = common::gpu();
     let harness = Harness::new(&gpu, &ShaderSource::embedded()).unwrap();
     let mut scenes = common::toml_files(&mesh_scenes_dir());
     scenes.push(PathBuf::from("tessellated cube"));
@@ -229,7 +229,7 @@ fn gpu_matches_reference_on_the_mesh_scenes() {
 /// robust shader still matches the reference.
 #[test]
 fn the_far_and_moved_bunny_match_the_reference() {
-    let Some(gpu) = common::gpu() else { return };
+    let gpu = common::gpu();
     let harness = Harness::new(&gpu, &ShaderSource::embedded()).unwrap();
     let series = scenes::mesh_series().unwrap();
     let (name, scene) = series.far.last().unwrap();
@@ -258,7 +258,7 @@ fn the_far_and_moved_bunny_match_the_reference() {
 /// the bunny, so the count does see cracks.
 #[test]
 fn watertight_test_leaks_no_ray_through_shared_edges_and_vertices() {
-    let Some(gpu) = common::gpu() else { return };
+    let gpu = common::gpu();
     let rows = leaks::measure(&gpu, &ShaderSource::embedded(), 20_000).unwrap();
     println!("{}", leaks::markdown(&rows));
     for r in &rows {
@@ -292,7 +292,7 @@ fn check_loads_every_mesh_scene() {
 /// do hit.
 #[test]
 fn both_storage_layouts_find_identical_hits() {
-    let Some(gpu) = common::gpu() else { return };
+    let gpu = common::gpu();
     let (positions, triangles) = leaks::uv_sphere(8);
     let geometry = Geometry {
         positions,

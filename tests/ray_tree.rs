@@ -48,7 +48,7 @@ fn has(tree: &RayTree, kind: RayKind) -> bool {
 /// each quantity within the limits below (what was measured is printed).
 #[test]
 fn the_gpu_tree_equals_the_reference_tree() {
-    let Some(gpu) = common::gpu() else { return };
+    let gpu = common::gpu();
     let scene = glass_scene();
     let trees = reference_trees(&scene);
     let total_internal: Vec<usize> = (0..trees.len())

@@ -46,7 +46,7 @@ fn render(gpu: &Gpu, path: &Path, time: f64) -> RgbaImage {
 
 #[test]
 fn every_shipped_example_compiles_and_renders_a_real_image() {
-    let Some(gpu) = common::gpu() else { return };
+    let gpu = common::gpu();
     let mut examples: Vec<PathBuf> = std::fs::read_dir(shaders_dir())
         .unwrap()
         .map(|e| e.unwrap().path())
@@ -74,7 +74,7 @@ fn every_shipped_example_compiles_and_renders_a_real_image() {
 
 #[test]
 fn the_whitted_examples_draw_what_the_ray_tracer_draws() {
-    let Some(gpu) = common::gpu() else { return };
+    let gpu = common::gpu();
     let scene = Scene::load(&common::scenes_dir().join("whitted.toml")).unwrap();
     let tracer = render_image(&gpu, &scene, SIZE.0, SIZE.1, 1).unwrap();
     let glsl = render(&gpu, &shaders_dir().join("whitted.frag"), 0.0);
@@ -120,7 +120,7 @@ fn main_image(frag_coord: vec2<f32>) -> vec4<f32> {
 
 #[test]
 fn glsl_sandbox_shadertoy_and_wgsl_shaders_of_the_same_thing_draw_the_same_image() {
-    let Some(gpu) = common::gpu() else { return };
+    let gpu = common::gpu();
     let dir = temp_dir("same");
     let sandbox = write(&dir, "rings.frag", SANDBOX_RINGS);
     let toy = write(&dir, "rings.glsl", SHADERTOY_RINGS);
@@ -209,7 +209,7 @@ fn errors_name_the_users_file_line_and_column() {
 
 #[test]
 fn a_failed_reload_keeps_the_last_good_frame_and_the_fix_renders_again() {
-    let Some(gpu) = common::gpu() else { return };
+    let gpu = common::gpu();
     let dir = temp_dir("reload");
     let path = write(&dir, "live.frag", SANDBOX_RINGS);
     let mut offscreen = Offscreen::new(&gpu);
@@ -310,7 +310,7 @@ fn annotations_become_controls_and_values_survive_a_reload() {
         }
     );
 
-    let Some(gpu) = common::gpu() else { return };
+    let gpu = common::gpu();
     let offscreen = Offscreen::new(&gpu);
     let builder = offscreen.builder(&gpu);
     let mut session = Session::new(&path);
@@ -359,7 +359,7 @@ fn annotations_become_controls_and_values_survive_a_reload() {
 
 #[test]
 fn a_shader_that_writes_nan_gets_a_warning_and_black_or_magenta_pixels() {
-    let Some(gpu) = common::gpu() else { return };
+    let gpu = common::gpu();
     let dir = temp_dir("nan");
     let nan = write(
         &dir,
@@ -407,9 +407,7 @@ fn raysandbox(args: &[&str]) -> std::process::Output {
 
 #[test]
 fn headless_renders_one_png_or_a_numbered_sequence() {
-    if common::gpu().is_none() {
-        return;
-    }
+    common::require_gpu();
     let dir = temp_dir("cli");
     let shader = shaders_dir().join("mirror_cube.frag");
     let out = dir.join("one.png");

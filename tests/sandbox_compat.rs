@@ -68,16 +68,14 @@ void mainImage(out vec4 c, in vec2 p) {
     c = vec4(r.x, r.y * s.m, r.z + a[i], 1.0);
 }
 ";
-    let Some(gpu) = common::gpu() else { return };
+    let gpu = common::gpu();
     let image = render_text(&gpu, "inout.glsl", text);
     assert_every_pixel(&image, [128, 128, 128], "r.x + 0.5, 0.5 * 1.0, 0.25 + 0.25");
 }
 
 #[test]
 fn a_headless_frame_that_never_ends_is_stopped_with_exit_status_2() {
-    if common::gpu().is_none() {
-        return;
-    }
+    common::require_gpu();
     let dir = temp_dir("endless");
     let path = write(
         &dir,
@@ -120,7 +118,7 @@ precision lowp sampler2D;
 uniform float time;
 void main() { gl_FragColor = vec4(time * 0.5, 0.25, 1.0, 1.0); }
 ";
-    let Some(gpu) = common::gpu() else { return };
+    let gpu = common::gpu();
     let image = render_text(&gpu, "gles.frag", text);
     assert_every_pixel(&image, [128, 64, 255], "time 1");
 }
@@ -135,7 +133,7 @@ void main() {
     gl_FragColor = vec4(surfacePosition + 0.5, surfaceSize.y * 0.5, 1.0);
 }
 ";
-    let Some(gpu) = common::gpu() else { return };
+    let gpu = common::gpu();
     let image = render_text(&gpu, "surface.frag", text);
     let (w, h) = SIZE;
     let aspect = w as f32 / h as f32;
@@ -171,7 +169,7 @@ void mainImage(out vec4 fragColor, in vec2 fragCoord) {
 }
 void main(void) { mainImage(gl_FragColor, gl_FragCoord.xy); }
 ";
-    let Some(gpu) = common::gpu() else { return };
+    let gpu = common::gpu();
     let image = render_text(&gpu, "old.frag", text);
     assert_every_pixel(
         &image,
@@ -192,7 +190,7 @@ void mainImage(out vec4 c, in vec2 p) {
 #endif
 }
 ";
-    let Some(gpu) = common::gpu() else { return };
+    let gpu = common::gpu();
     let image = render_text(&gpu, "branches.glsl", text);
     assert_every_pixel(&image, [64, 64, 64], "mainImage at time 1");
 }
@@ -209,7 +207,7 @@ void mainImage(out vec4 c, in vec2 p) {
 }
 float half_of(const in float x, float unused) { return x * 0.5 + unused; }
 ";
-    let Some(gpu) = common::gpu() else { return };
+    let gpu = common::gpu();
     let image = render_text(&gpu, "gaps.glsl", text);
     assert_every_pixel(
         &image,
@@ -251,7 +249,7 @@ void main() { gl_FragColor = vec4(f(gl_FragCoord.x / resolution.x), halve(1.0), 
             "ends.frag:2: warning: function `f` can end without returning a value: it returns 0 there"
         ]
     );
-    let Some(gpu) = common::gpu() else { return };
+    let gpu = common::gpu();
     let image = render_text(&gpu, "ends.frag", text);
     let (w, h) = image.dimensions();
     let left = image::imageops::crop_imm(&image, 0, 0, w / 2 - 1, h).to_image();
@@ -268,7 +266,7 @@ const vec3 A = vec3(1.0, 0.0, 0.0);
 const vec3 C = mix(A, vec3(0.0, 0.0, 1.0), 0.25);
 void main() { gl_FragColor = vec4(C, 1.0); }
 ";
-    let Some(gpu) = common::gpu() else { return };
+    let gpu = common::gpu();
     let image = render_text(&gpu, "mix.frag", text);
     assert_every_pixel(&image, [191, 0, 64], "mix(red, blue, 0.25)");
 }
@@ -285,7 +283,7 @@ void main() { gl_FragColor = vec4(vec3(b(time * 0.25)), 1.0); }
 float c(float x) { return x * 0.5; }
 float a(float x) { return c(x) + 0.125; }
 ";
-    let Some(gpu) = common::gpu() else { return };
+    let gpu = common::gpu();
     let image = render_text(&gpu, "order.frag", text);
     assert_every_pixel(&image, [128, 128, 128], "(0.25 / 2 + 0.125) * 2");
 }
@@ -345,7 +343,7 @@ fn expectation(path: &Path) -> Expected {
 
 #[test]
 fn the_compatibility_suite_gives_the_expected_result_per_file() {
-    let Some(gpu) = common::gpu() else { return };
+    let gpu = common::gpu();
     let dir = Path::new(env!("CARGO_MANIFEST_DIR")).join("tests/shaders/compat");
     let files = common::shader_files(&dir);
     assert!(files.len() >= 10, "{files:?}");
@@ -372,9 +370,7 @@ fn the_compatibility_suite_gives_the_expected_result_per_file() {
 
 #[test]
 fn check_all_prints_a_verdict_per_file_and_the_totals() {
-    if common::gpu().is_none() {
-        return;
-    }
+    common::require_gpu();
     let dir = Path::new(env!("CARGO_MANIFEST_DIR")).join("tests/shaders/compat");
     let output = std::process::Command::new(env!("CARGO_BIN_EXE_raysandbox"))
         .args(["shader", "--check-all", dir.to_str().unwrap()])
@@ -430,7 +426,7 @@ fn check_all_prints_a_verdict_per_file_and_the_totals() {
 /// entirely NaN is told apart from one flat colour.
 #[test]
 fn uniforms_nothing_sets_and_flat_or_nan_pictures_are_reported() {
-    let Some(gpu) = common::gpu() else { return };
+    let gpu = common::gpu();
     let path = Path::new(env!("CARGO_MANIFEST_DIR")).join("tests/shaders/compat/silent_zero.frag");
     let report = check_file(&gpu, &path, SIZE, 1.0).unwrap();
     let lines: Vec<(u32, &str)> = report
@@ -479,7 +475,7 @@ fn uniforms_nothing_sets_and_flat_or_nan_pictures_are_reported() {
 /// exercises (its comment names them) compile *and* compute what GLSL says.
 #[test]
 fn passing_suite_files_render_without_warning_in_the_colour_they_state() {
-    let Some(gpu) = common::gpu() else { return };
+    let gpu = common::gpu();
     let dir = Path::new(env!("CARGO_MANIFEST_DIR")).join("tests/shaders/compat");
     let mut wrong = Vec::new();
     let mut coloured = 0;

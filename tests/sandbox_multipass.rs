@@ -57,7 +57,7 @@ fn rms(a: &[f64], b: impl Fn(usize) -> f64) -> f64 {
 /// 1/sqrt(N), and the mean over the image matches pi/4 within its noise.
 #[test]
 fn a_progressive_average_in_buffer_a_converges_to_pi_over_4() {
-    let Some(gpu) = common::gpu() else { return };
+    let gpu = common::gpu();
     let size = (64, 36);
     let mut o = offscreen(&gpu, &shaders().join("progressive"), size);
     let p = std::f64::consts::FRAC_PI_4;
@@ -101,7 +101,7 @@ fn a_progressive_average_in_buffer_a_converges_to_pi_over_4() {
 /// directly is white in every frame and the open front of the box black.
 #[test]
 fn the_bundled_path_tracer_converges_at_the_monte_carlo_rate() {
-    let Some(gpu) = common::gpu() else { return };
+    let gpu = common::gpu();
     let size = (64, 36);
     let folder = Path::new(env!("CARGO_MANIFEST_DIR")).join("assets/shaders/pathtracer");
     let mut o = offscreen(&gpu, &folder, size);
@@ -138,7 +138,7 @@ fn the_bundled_path_tracer_converges_at_the_monte_carlo_rate() {
 /// frames take milliseconds: each pass is let run at 640x360.
 #[test]
 fn the_watchdog_lets_the_bundled_path_tracer_run_in_the_window() {
-    let Some(_gpu) = common::gpu() else { return };
+    let _gpu = common::gpu();
     let folder = Path::new(env!("CARGO_MANIFEST_DIR")).join("assets/shaders/pathtracer");
     let project = Project::load(&folder).unwrap();
     let compiled = compile_project(&project).unwrap_or_else(|e| panic!("{e}"));
@@ -156,7 +156,7 @@ fn the_watchdog_lets_the_bundled_path_tracer_run_in_the_window() {
 /// with texture() and the height of A's texture (iChannelResolution).
 #[test]
 fn a_buffer_cycle_reads_the_previous_frame_and_reset_clears_it() {
-    let Some(gpu) = common::gpu() else { return };
+    let gpu = common::gpu();
     let size = (8, 6);
     let mut o = offscreen(&gpu, &shaders().join("cycle.json"), size);
     for frame in 0..3 {
@@ -180,7 +180,7 @@ fn a_buffer_cycle_reads_the_previous_frame_and_reset_clears_it() {
 
 #[test]
 fn buffers_are_32_bit_floats_where_the_device_filters_them() {
-    let Some(gpu) = common::gpu() else { return };
+    let gpu = common::gpu();
     let format = raysandbox::sandbox::multipass::gpu::buffer_format(&gpu.device);
     let filterable = gpu
         .device
@@ -199,9 +199,7 @@ fn buffers_are_32_bit_floats_where_the_device_filters_them() {
 /// average's first frame is 0 or 1 in each pixel, later ones in between.
 #[test]
 fn frames_of_a_multipass_folder_render_and_check_all_takes_folders_and_json() {
-    if common::gpu().is_none() {
-        return;
-    }
+    common::require_gpu();
     let out = common::temp_dir("multipass", "frames");
     let dir = shaders().join("progressive");
     let output = common::raysandbox(&[
@@ -481,7 +479,7 @@ fn json_errors_name_the_file_and_the_key() {
 /// what the built-ins hold (docs/sandbox.md, "Cube maps and volumes").
 #[test]
 fn the_built_in_cube_map_and_noise_volume_read_as_they_are_made() {
-    let Some(gpu) = common::gpu() else { return };
+    let gpu = common::gpu();
     let size = (64, 49);
     let mut o = offscreen(&gpu, &shaders().join("cube_volume"), size);
     draw(&gpu, &mut o, 0, size);
@@ -560,7 +558,7 @@ fn json_cube_maps_and_volumes_read_the_built_ins() {
 /// would be a validation error, a panic here).
 #[test]
 fn restarts_and_resizes_destroy_the_old_buffers_and_keep_drawing() {
-    let Some(gpu) = common::gpu() else { return };
+    let gpu = common::gpu();
     let sizes = [(8, 6), (5, 3), (9, 7)];
     let mut o = offscreen(&gpu, &shaders().join("cycle.json"), sizes[0]);
     for round in 0..60 {

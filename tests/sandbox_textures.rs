@@ -71,9 +71,7 @@ void main() {
 
 #[test]
 fn a_shader_sampling_a_channel_reproduces_the_given_image() {
-    if common::gpu().is_none() {
-        return;
-    }
+    common::require_gpu();
     let dir = temp_dir("channel");
     // Not a multiple of 64 wide, and every pixel different.
     let input = RgbaImage::from_fn(37, 23, |x, y| {
@@ -105,9 +103,7 @@ fn a_shader_sampling_a_channel_reproduces_the_given_image() {
 
 #[test]
 fn without_a_channel_image_the_channel_is_the_built_in_noise() {
-    if common::gpu().is_none() {
-        return;
-    }
+    common::require_gpu();
     let dir = temp_dir("noise");
     let shader = write(&dir, "show.glsl", SHOW_CHANNEL0);
     let out = dir.join("noise.png");
@@ -176,9 +172,7 @@ fn frames(dir: &Path, shader: &Path, count: u32, size: &str) -> Vec<RgbaImage> {
 
 #[test]
 fn backbuffer_is_the_previous_frame_upright_and_accumulates() {
-    if common::gpu().is_none() {
-        return;
-    }
+    common::require_gpu();
     let dir = temp_dir("backbuffer");
     let gradient = write(&dir, "gradient.frag", GRADIENT_THEN_BACKBUFFER);
     let images = frames(&dir, &gradient, 3, "40x24");
@@ -238,9 +232,7 @@ fn a_channel_image_that_cannot_be_read_exits_2_naming_the_file() {
 /// the built-in noise volume as a `sampler3D`, whose size it is told.
 #[test]
 fn channels_given_as_cube_and_volume_are_the_built_ins() {
-    if common::gpu().is_none() {
-        return;
-    }
+    common::require_gpu();
     let dir = temp_dir("cube-volume");
     let shader = write(
         &dir,

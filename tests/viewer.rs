@@ -81,13 +81,11 @@ fn scene_copy(name: &str, dir: &Path) -> PathBuf {
 #[test]
 fn window_shows_the_same_pixels_as_a_headless_render() {
     let _serial = serial();
-    let Some(display) = Display::start() else {
-        return;
-    };
+    let display = Display::start();
     let path = scene_path("whitted");
     let viewer = open(&display, &[path.to_str().unwrap()]);
     let window = viewer.capture();
-    let gpu = common::gpu().unwrap();
+    let gpu = common::gpu();
     let scene = Scene::load(&path).unwrap();
     let headless = render_image(&gpu, &scene, WIDTH, HEIGHT, 1).unwrap();
     let area = view(&viewer).crop();
@@ -101,9 +99,7 @@ fn window_shows_the_same_pixels_as_a_headless_render() {
 #[test]
 fn dragging_in_the_view_orbits_but_dragging_on_the_panel_does_not() {
     let _serial = serial();
-    let Some(display) = Display::start() else {
-        return;
-    };
+    let display = Display::start();
     let path = scene_path("mirror_cube");
     let mut viewer = open(&display, &[path.to_str().unwrap()]);
     let area = view(&viewer).crop();
@@ -177,9 +173,7 @@ fn assert_same_picture(a: &image::RgbaImage, b: &image::RgbaImage, what: &str) {
 #[test]
 fn dragging_a_slider_traces_at_the_moving_scale_then_refines() {
     let _serial = serial();
-    let Some(display) = Display::start() else {
-        return;
-    };
+    let display = Display::start();
     let path = scene_path("mirror_cube");
     let mut viewer = open(&display, &[path.to_str().unwrap()]);
     // On the slider's rail, left of its number.
@@ -195,9 +189,7 @@ fn dragging_a_slider_traces_at_the_moving_scale_then_refines() {
 #[test]
 fn clicking_an_object_selects_it_in_the_panel() {
     let _serial = serial();
-    let Some(display) = Display::start() else {
-        return;
-    };
+    let display = Display::start();
     let path = scene_path("whitted");
     let mut viewer = open(&display, &[path.to_str().unwrap()]);
     // The glass sphere fills the middle of the right half; the sky is above.
@@ -237,9 +229,7 @@ fn squared_distances(inside: &[bool], (w, h): (u32, u32), reach: i64) -> Vec<i64
 #[test]
 fn the_picked_object_is_outlined_around_its_silhouette() {
     let _serial = serial();
-    let Some(display) = Display::start() else {
-        return;
-    };
+    let display = Display::start();
     let path = scene_path("whitted");
     let mut viewer = open(&display, &[path.to_str().unwrap()]);
     let before = viewer.capture();
@@ -304,9 +294,7 @@ fn the_picked_object_is_outlined_around_its_silhouette() {
 #[test]
 fn a_broken_shader_keeps_the_last_good_image_and_the_fix_renders_again() {
     let _serial = serial();
-    let Some(display) = Display::start() else {
-        return;
-    };
+    let display = Display::start();
     let dir = temp_dir("shaders");
     let shaders = Path::new(env!("CARGO_MANIFEST_DIR")).join("shaders");
     common::copy_dir(&shaders, &dir);
@@ -379,9 +367,7 @@ fn a_broken_shader_keeps_the_last_good_image_and_the_fix_renders_again() {
 #[test]
 fn a_scene_saved_from_the_viewer_loads_back_equal() {
     let _serial = serial();
-    let Some(display) = Display::start() else {
-        return;
-    };
+    let display = Display::start();
     let dir = temp_dir("save");
     let path = scene_copy("cornell", &dir);
     let original = Scene::load(&path).unwrap();
@@ -418,14 +404,8 @@ fn a_scene_saved_from_the_viewer_loads_back_equal() {
 #[test]
 fn window_larger_than_the_gpu_allows_exits_2_naming_the_limit() {
     let _serial = serial();
-    let Some(display) = Display::start() else {
-        return;
-    };
-    let max = common::gpu()
-        .unwrap()
-        .device
-        .limits()
-        .max_texture_dimension_2d;
+    let display = Display::start();
+    let max = common::gpu().device.limits().max_texture_dimension_2d;
     let size = format!("{}x64", max + 1);
     let shader = Path::new(env!("CARGO_MANIFEST_DIR")).join("assets/shaders/whitted.wgsl");
     for args in [
@@ -471,9 +451,7 @@ const QUAD: &str = "v -2 0.01 -1\nv 2 0.01 -1\nv 2 1.2 -1\nv -2 1.2 -1\nf 1 2 3 
 #[test]
 fn a_mesh_file_edited_on_disk_reloads_and_a_bad_edit_keeps_the_last_good_mesh() {
     let _serial = serial();
-    let Some(display) = Display::start() else {
-        return;
-    };
+    let display = Display::start();
     let dir = temp_dir("mesh-reload");
     let obj = dir.join("shape.obj");
     std::fs::write(&obj, TETRAHEDRON).unwrap();
@@ -567,9 +545,7 @@ scale = 0.5
 #[test]
 fn bad_implicit_input_keeps_the_last_good_scene_and_shows_the_error() {
     let _serial = serial();
-    let Some(display) = Display::start() else {
-        return;
-    };
+    let display = Display::start();
     let dir = temp_dir("bad-implicit");
     let path = dir.join("implicit.toml");
     std::fs::write(&path, IMPLICIT_SCENE).unwrap();
@@ -664,9 +640,7 @@ fn bad_implicit_input_keeps_the_last_good_scene_and_shows_the_error() {
 #[test]
 fn a_lost_device_is_recovered_keeping_the_scene_and_its_edits() {
     let _serial = serial();
-    let Some(display) = Display::start() else {
-        return;
-    };
+    let display = Display::start();
     let path = scene_path("mirror_cube");
     let mut viewer = open(&display, &[path.to_str().unwrap()]);
     let area = view(&viewer).crop();
@@ -695,9 +669,7 @@ fn a_lost_device_is_recovered_keeping_the_scene_and_its_edits() {
 #[test]
 fn refinement_in_short_jobs_adds_up_to_the_headless_image() {
     let _serial = serial();
-    let Some(display) = Display::start() else {
-        return;
-    };
+    let display = Display::start();
     let path = scene_path("whitted");
     let viewer = Window::open(
         &display,
@@ -718,7 +690,7 @@ fn refinement_in_short_jobs_adds_up_to_the_headless_image() {
     assert!(jobs >= samples, "{ready}");
 
     let window = viewer.capture();
-    let gpu = common::gpu().unwrap();
+    let gpu = common::gpu();
     let scene = Scene::load(&path).unwrap();
     let headless = render_image(&gpu, &scene, WIDTH, HEIGHT, 4).unwrap();
     let area = view(&viewer).crop();

@@ -94,7 +94,7 @@ fn largest_difference(
 /// limits below, with what each scene measured printed beside them).
 #[test]
 fn first_hit_views_agree_with_the_reference_at_pixel_centres() {
-    let Some(gpu) = common::gpu() else { return };
+    let gpu = common::gpu();
     let mut failures = Vec::new();
     println!(
         "scene                          ids off  normals  geometric  depth (rel)  barycentric"
@@ -188,7 +188,7 @@ fn total(view: &[[f32; 4]]) -> f64 {
 /// than with it, and visits no node.
 #[test]
 fn the_cost_views_grow_with_the_work() {
-    let Some(gpu) = common::gpu() else { return };
+    let gpu = common::gpu();
     let teapot = scene("meshes/mirror_teapot.toml");
     let ids = quantities(&gpu, &teapot, View::Id, |_| {});
     let on_mesh: Vec<bool> = ids
@@ -254,7 +254,7 @@ fn the_cost_views_grow_with_the_work() {
 /// hits the torus.
 #[test]
 fn steps_count_where_surfaces_are_solved() {
-    let Some(gpu) = common::gpu() else { return };
+    let gpu = common::gpu();
     let whitted = scene("whitted.toml");
     assert_eq!(total(&quantities(&gpu, &whitted, View::Steps, |_| {})), 0.0);
     let torus = scene("torus.toml");
@@ -276,7 +276,7 @@ fn steps_count_where_surfaces_are_solved() {
 /// `bench --throughput` counts.
 #[test]
 fn bounces_and_shadow_rays_follow_the_ray_tree() {
-    let Some(gpu) = common::gpu() else { return };
+    let gpu = common::gpu();
     let whitted = scene("whitted.toml");
     let ids = quantities(&gpu, &whitted, View::Id, |_| {});
     let bounces = quantities(&gpu, &whitted, View::Bounces, |_| {});
@@ -309,7 +309,7 @@ fn bounces_and_shadow_rays_follow_the_ray_tree() {
 /// (exit status 2) and the error lists the views.
 #[test]
 fn render_view_on_the_command_line() {
-    let Some(_gpu) = common::gpu() else { return };
+    let _gpu = common::gpu();
     let dir = common::temp_dir("views", "render");
     let out = dir.join("nodes.png");
     let run = |view: &str, out: &std::path::Path| {
@@ -358,11 +358,9 @@ fn render_view_on_the_command_line() {
 /// fitted to the window's image.
 #[test]
 fn the_v_key_cycles_the_views_in_the_window() {
-    let Some(display) = Display::start() else {
-        return;
-    };
+    let display = Display::start();
     let mut viewer = whitted_window(&display, &["--max-samples", "1"]);
-    let gpu = common::gpu().unwrap();
+    let gpu = common::gpu();
     let scene = scene("whitted.toml");
     for view in [View::Normals, View::Geometric, View::Depth] {
         viewer.key("v");
@@ -423,7 +421,7 @@ fn assert_window_shows(viewer: &mut Window, headless: &image::RgbaImage, what: &
 /// ray is cast.
 #[test]
 fn lecture_switches_agree_with_the_reference() {
-    let Some(gpu) = common::gpu() else { return };
+    let gpu = common::gpu();
     let whitted = scene("whitted.toml");
     let picture = |scene: &Scene| {
         let gpu_image = rendered(&gpu, scene, View::Shaded, |_| {}, (WIDTH, HEIGHT))
@@ -512,7 +510,7 @@ fn error_view(
 /// other side of a rounding boundary), and the colour bar starts at 0.
 #[test]
 fn the_error_view_is_zero_where_the_gpu_agrees_with_the_reference() {
-    let Some(gpu) = common::gpu() else { return };
+    let gpu = common::gpu();
     let whitted = scene("whitted.toml");
     let errors = errors(&gpu, &whitted, |_| {});
     let over = |floor: f32| errors.iter().filter(|&&e| e > floor).count();
@@ -563,7 +561,7 @@ fn textbook_sphere(gpu: &Gpu, view: View) -> (FirstHits, Vec<[f32; 4]>, Vec<f32>
 /// hit mask, and the robust pipeline marks almost nothing.
 #[test]
 fn the_error_view_marks_the_textbook_sphere_failure() {
-    let Some(gpu) = common::gpu() else { return };
+    let gpu = common::gpu();
     let (hits, naive_ids, naive, robust) = textbook_sphere(&gpu, View::Error);
     let marked = |e: f32| e > 2.0;
     let (mut phantom, mut phantom_marked, mut clear_marked, mut clear) = (0, 0, 0, 0);
@@ -604,9 +602,8 @@ fn the_error_view_marks_the_textbook_sphere_failure() {
 /// The error view `view` in a window on the Whitted scene: the levels it
 /// drew (`stride=N`, `flip`) until `last`, and its status line then; the
 /// window is checked to show what `render --view` renders headless.
-/// `None` only where window tests are skipped explicitly.
-fn error_view_in_the_window(view: View, last: &str) -> Option<(Vec<String>, String)> {
-    let display = Display::start()?;
+fn error_view_in_the_window(view: View, last: &str) -> (Vec<String>, String) {
+    let display = Display::start();
     let mut viewer = whitted_window(&display, &["--view", view.name()]);
     // The pointer off the window (the screen is 1024 x 768): resting over
     // the status line while the reference is traced, it opens a tooltip
@@ -618,11 +615,11 @@ fn error_view_in_the_window(view: View, last: &str) -> Option<(Vec<String>, Stri
     }
     let status = viewer.wait_for("error-status ");
     println!("levels drawn: {levels:?}; status: {status}");
-    let gpu = common::gpu().unwrap();
+    let gpu = common::gpu();
     let (renderer, _) = error_view(&gpu, &scene("whitted.toml"), view, |_| {}, WINDOW);
     let headless = renderer.read_image(&gpu).unwrap_or_else(|e| panic!("{e}"));
     assert_window_shows(&mut viewer, &headless, view.name());
-    Some((levels, status))
+    (levels, status)
 }
 
 /// The error view in the window (`view --view error`): the reference comes
@@ -630,9 +627,7 @@ fn error_view_in_the_window(view: View, last: &str) -> Option<(Vec<String>, Stri
 /// pixel the window shows what `render --view error` renders headless.
 #[test]
 fn the_error_view_refines_in_the_window() {
-    let Some((levels, status)) = error_view_in_the_window(View::Error, "stride=1") else {
-        return;
-    };
+    let (levels, status) = error_view_in_the_window(View::Error, "stride=1");
     let strides: Vec<u32> = levels
         .iter()
         .map(|l| l.trim_start_matches("stride=").parse().unwrap())
@@ -648,7 +643,7 @@ fn the_error_view_refines_in_the_window() {
 /// reference the background.
 #[test]
 fn the_flip_view_is_near_zero_where_the_error_is_and_high_on_the_textbook_failure() {
-    let Some(gpu) = common::gpu() else { return };
+    let gpu = common::gpu();
     let whitted = scene("whitted.toml");
     let levels = errors(&gpu, &whitted, |_| {});
     let flip = error_view(&gpu, &whitted, View::ErrorFlip, |_| {}, (WIDTH, HEIGHT)).1;
@@ -703,9 +698,7 @@ fn the_flip_view_is_near_zero_where_the_error_is_and_high_on_the_textbook_failur
 /// --view error-flip` renders headless.
 #[test]
 fn the_flip_view_refines_in_the_window_and_ends_with_flip() {
-    let Some((levels, status)) = error_view_in_the_window(View::ErrorFlip, "flip") else {
-        return;
-    };
+    let (levels, status) = error_view_in_the_window(View::ErrorFlip, "flip");
     // The levels before FLIP (two may come in one look and show as one).
     let (_, before) = levels.split_last().unwrap();
     assert!(!before.is_empty(), "{levels:?}");

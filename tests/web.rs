@@ -68,9 +68,7 @@ fn whitted() -> (String, Scene) {
 /// over it).
 #[test]
 fn the_page_renders_the_whitted_scene_like_the_reference() {
-    let Some((_display, mut page)) = browser::open_page("?samples=1&ui=0") else {
-        return;
-    };
+    let (_display, mut page) = browser::open_page("?samples=1&ui=0");
     assert_eq!(page.wait_for("scene"), "whitted");
     let adapter = page.wait_for("adapter");
     eprintln!("page adapter: {adapter}");
@@ -89,9 +87,7 @@ fn the_page_renders_the_whitted_scene_like_the_reference() {
 #[test]
 fn with_the_panel_jobs_are_timed_by_their_own_pass_not_one_row_each() {
     let start = Instant::now();
-    let Some((_display, mut page)) = browser::open_page("?samples=1") else {
-        return;
-    };
+    let (_display, mut page) = browser::open_page("?samples=1");
     let ready = page.wait_for("ready");
     eprintln!(
         "the first sample done {:.1} s after Chromium started: ready {ready}",
@@ -132,9 +128,7 @@ fn mesh_scene_origin() -> std::path::PathBuf {
 /// files"), are the same triangles as on disk.
 #[test]
 fn every_bundled_scene_from_a_link_is_drawn_like_the_reference() {
-    let Some(display) = common::xwindow::Display::start() else {
-        return;
-    };
+    let display = common::xwindow::Display::start();
     let url = browser::serve(browser::page_dir());
     let mut page = Browser::start(&display, browser::Options::default());
     let names = [bundled::names(), bundled::mesh_scene_names()].concat();
@@ -226,9 +220,7 @@ fn from_env(name: &str, default: u32) -> u32 {
 /// and `RAYSANDBOX_WEB_WIDTH=1280 RAYSANDBOX_WEB_HEIGHT=900` measure more.
 #[test]
 fn the_heaviest_scenes_refine_in_short_jobs_without_losing_the_device() {
-    let Some(display) = common::xwindow::Display::start() else {
-        return;
-    };
+    let display = common::xwindow::Display::start();
     let samples = from_env("RAYSANDBOX_WEB_SAMPLES", 1);
     let size = (
         from_env("RAYSANDBOX_WEB_WIDTH", SIZE.0),
@@ -265,9 +257,7 @@ fn the_heaviest_scenes_refine_in_short_jobs_without_losing_the_device() {
 /// that scene, not the default one, in a fresh browser.
 #[test]
 fn a_shared_link_reproduces_the_scene_in_a_fresh_browser() {
-    let Some(display) = common::xwindow::Display::start() else {
-        return;
-    };
+    let display = common::xwindow::Display::start();
     let (text, original) = whitted();
     let edited = text
         .replace(
@@ -305,9 +295,7 @@ fn error_shown(page: &mut Browser) -> String {
 /// canvas, and the page shows the bundled Whitted scene instead.
 #[test]
 fn a_damaged_link_is_reported_and_the_whitted_scene_shown() {
-    let Some(display) = common::xwindow::Display::start() else {
-        return;
-    };
+    let display = common::xwindow::Display::start();
     let hash = link::scene_hash(&whitted().0);
     let cut = &hash[..hash.len() / 2];
     let error = whitted_instead_of(&display, "damaged-link", cut);
@@ -325,9 +313,7 @@ fn overlap(a: common::xwindow::Rect, b: common::xwindow::Rect) -> bool {
 /// the picture shown stays.
 #[test]
 fn a_damaged_link_pasted_into_the_page_is_said_in_a_box_that_closes() {
-    let Some((_display, mut page)) = open_on_projector("?samples=1") else {
-        return;
-    };
+    let (_display, mut page) = open_on_projector("?samples=1");
     assert_eq!(page.wait_for("scene"), "whitted");
     // The panel drawn: the page has its GPU and handles the address.
     wait_for_layout(&mut page, "the panel", |p| p.contains_key("panel"));
@@ -362,9 +348,7 @@ fn error_shown_and_kept(page: &mut Browser) -> String {
 /// shader typed in the editor, not the one before it.
 #[test]
 fn links_pasted_into_the_open_page_are_shown_and_the_address_follows_the_shader() {
-    let Some((_display, mut page)) = browser::open_page("?samples=1&ui=0") else {
-        return;
-    };
+    let (_display, mut page) = browser::open_page("?samples=1&ui=0");
     assert_eq!(page.wait_for("scene"), "whitted");
     page.wait_for("ready");
     page.evaluate("window.notReloaded = true");
@@ -398,9 +382,7 @@ fn links_pasted_into_the_open_page_are_shown_and_the_address_follows_the_shader(
 /// button puts the address, a link to the shader drawn, on the clipboard.
 #[test]
 fn copy_link_over_a_shader_copies_a_link_to_it() {
-    let Some(display) = common::xwindow::Display::start() else {
-        return;
-    };
+    let display = common::xwindow::Display::start();
     let red = RED_SHADER;
     let url = browser::serve(browser::page_dir());
     let mut page = Browser::start(&display, browser::Options::default());
@@ -458,9 +440,7 @@ fn lines_until(page: &mut Browser, lines: &mut Vec<String>, after: &str, last: &
 /// one).
 #[test]
 fn a_lost_device_is_said_and_the_same_picture_comes_back() {
-    let Some(display) = common::xwindow::Display::start() else {
-        return;
-    };
+    let display = common::xwindow::Display::start();
     let (text, _) = whitted();
     let edited = text.replace(
         "background = [0.25, 0.55, 0.95]",
@@ -527,9 +507,7 @@ fn a_lost_device_is_said_and_the_same_picture_comes_back() {
 /// components) names the scene's line, and the Whitted scene is shown.
 #[test]
 fn a_link_to_a_bad_scene_names_the_line_and_the_whitted_scene_is_shown() {
-    let Some(display) = common::xwindow::Display::start() else {
-        return;
-    };
+    let display = common::xwindow::Display::start();
     let (bad, line) = with_bad_ambient(&whitted().0);
     let error = whitted_instead_of(&display, "bad-scene-link", &link::scene_hash(&bad));
     assert!(error.contains(&format!("<scene>:{line}:")), "{error}");
@@ -554,9 +532,7 @@ fn whitted_instead_of(display: &common::xwindow::Display, name: &str, fragment: 
 /// says what the page can read; the Whitted scene is shown instead.
 #[test]
 fn a_link_to_a_scene_with_a_model_the_page_lacks_names_it_and_shows_the_whitted_scene() {
-    let Some(display) = common::xwindow::Display::start() else {
-        return;
-    };
+    let display = common::xwindow::Display::start();
     let text = bundled::text("glass_bunny")
         .unwrap()
         .replace("../../meshes/bunny.obj", "my_bunny.obj");
@@ -576,9 +552,7 @@ fn a_link_to_a_scene_with_a_model_the_page_lacks_names_it_and_shows_the_whitted_
 /// picture stays the Whitted scene's.
 #[test]
 fn a_model_that_cannot_be_fetched_is_reported_and_the_picture_kept() {
-    let Some(display) = common::xwindow::Display::start() else {
-        return;
-    };
+    let display = common::xwindow::Display::start();
     let without_models = browser::TempDir::new("raysandbox-no-models");
     for name in [
         "index.html",
@@ -619,9 +593,7 @@ fn with_bad_ambient(text: &str) -> (String, usize) {
 /// that have it, and nothing panics.
 #[test]
 fn without_webgpu_the_page_says_which_browsers_have_it() {
-    let Some(display) = common::xwindow::Display::start() else {
-        return;
-    };
+    let display = common::xwindow::Display::start();
     let url = browser::serve(browser::page_dir());
     let mut page = Browser::start(
         &display,
@@ -742,9 +714,7 @@ fn shown_problem(page: &mut Browser, doc: &str) -> (String, String) {
 /// stays as it was; undoing the typing applies the scene again.
 #[test]
 fn a_syntax_error_typed_in_the_scene_editor_shows_its_line_and_keeps_the_picture() {
-    let Some((_display, mut page)) = browser::open_page("?samples=1&ui=0&editor") else {
-        return;
-    };
+    let (_display, mut page) = browser::open_page("?samples=1&ui=0&editor");
     assert_eq!(page.wait_for("scene"), "whitted");
     page.wait_for("ready");
     let before = wait_for_still_picture(&page, "the scene");
@@ -804,9 +774,7 @@ fn a_syntax_error_typed_in_the_scene_editor_shows_its_line_and_keeps_the_picture
 /// is shown at that line while the green picture stays.
 #[test]
 fn a_shader_typed_in_the_editor_draws_and_its_error_is_at_the_users_line() {
-    let Some(display) = common::xwindow::Display::start() else {
-        return;
-    };
+    let display = common::xwindow::Display::start();
     let red = RED_SHADER;
     let url = browser::serve(browser::page_dir());
     let address = format!("{url}?ui=0&editor#{}", link::shader_hash(red));
@@ -843,10 +811,8 @@ fn a_shader_typed_in_the_editor_draws_and_its_error_is_at_the_users_line() {
 /// page's picture is the native sandbox's render of the same text.
 #[test]
 fn a_shader_link_reproduces_the_shader_in_a_fresh_browser() {
-    let Some(display) = common::xwindow::Display::start() else {
-        return;
-    };
-    let Some(gpu) = common::gpu() else { return };
+    let display = common::xwindow::Display::start();
+    let gpu = common::gpu();
     let text = "// A gradient over the image and a disc in its middle.\n\
                 void mainImage(out vec4 fragColor, in vec2 fragCoord) {\n    \
                 vec2 uv = fragCoord / iResolution.xy;\n    \
@@ -917,9 +883,7 @@ fn buffer_and_image_json(buffer: &str, image: &str) -> String {
 /// is marked at its line and the picture stays.
 #[test]
 fn a_multipass_shadertoy_json_runs_in_the_page_with_its_buffer_feedback() {
-    let Some(display) = common::xwindow::Display::start() else {
-        return;
-    };
+    let display = common::xwindow::Display::start();
     let json = feedback_json();
     raysandbox::sandbox::multipass::json::parse(std::path::Path::new("t.json"), &json)
         .unwrap_or_else(|e| panic!("the test's JSON: {e}"));
@@ -962,9 +926,7 @@ fn a_multipass_shadertoy_json_runs_in_the_page_with_its_buffer_feedback() {
 /// again once its buffers are cleared.
 #[test]
 fn restart_clears_a_multipass_shaders_buffers() {
-    let Some(display) = common::xwindow::Display::start() else {
-        return;
-    };
+    let display = common::xwindow::Display::start();
     let buffer = "void mainImage(out vec4 fragColor, in vec2 fragCoord) {\n    \
                   float previous = texelFetch(iChannel0, ivec2(fragCoord), 0).r;\n    \
                   fragColor = vec4(previous + 1.0 / 512.0, 0.0, 0.0, 1.0);\n}\n";
@@ -1006,9 +968,7 @@ fn image_pass_json(channel: u32, ctype: &str, src: &str, code: &str) -> String {
 /// green (docs/web.md, "Multipass shaders").
 #[test]
 fn a_multipass_shader_in_the_page_reads_the_keys_pressed_over_the_canvas() {
-    let Some(display) = common::xwindow::Display::start() else {
-        return;
-    };
+    let display = common::xwindow::Display::start();
     let code = "void mainImage(out vec4 fragColor, in vec2 fragCoord) {\n    \
                 float a = texelFetch(iChannel1, ivec2(65, 2), 0).x;\n    \
                 fragColor = vec4(a, 1.0 - a, 0.0, 1.0);\n}\n";
@@ -1044,9 +1004,7 @@ fn a_multipass_shader_in_the_page_reads_the_keys_pressed_over_the_canvas() {
 /// (docs/web.md, "Multipass shaders").
 #[test]
 fn a_multipass_shaders_texture_channel_reads_an_image_dropped_on_the_canvas() {
-    let Some(display) = common::xwindow::Display::start() else {
-        return;
-    };
+    let display = common::xwindow::Display::start();
     let code = "void mainImage(out vec4 fragColor, in vec2 fragCoord) {\n    \
                 fragColor = vec4(texture(iChannel2, vec2(0.5)).rgb, 1.0);\n}\n";
     let src = "/media/a/0a40562379b63dfb89227e6d172f39fdce9022cba76623f1054a2c83d6c0ba5d.png";
@@ -1099,9 +1057,7 @@ fn a_multipass_shaders_texture_channel_reads_an_image_dropped_on_the_canvas() {
 /// (docs/sandbox.md, "Cube maps and volumes").
 #[test]
 fn a_multipass_shaders_cube_map_and_volume_channels_draw_in_the_page() {
-    let Some(display) = common::xwindow::Display::start() else {
-        return;
-    };
+    let display = common::xwindow::Display::start();
     let code = "void mainImage(out vec4 fragColor, in vec2 fragCoord) {\n    \
                 float v = step(0.0, texture(iChannel1, vec3(0.5)).r) * iChannelResolution[1].z / 32.0;\n    \
                 fragColor = vec4(texture(iChannel0, vec3(1.0, 0.0, 0.0)).r,\n        \
@@ -1128,9 +1084,7 @@ fn a_multipass_shaders_cube_map_and_volume_channels_draw_in_the_page() {
 /// draws (the browser's WebGPU takes what naga writes for it).
 #[test]
 fn every_example_shader_in_the_menu_draws_in_the_page() {
-    let Some((_display, mut page)) = browser::open_page("?samples=1&ui=0&editor") else {
-        return;
-    };
+    let (_display, mut page) = browser::open_page("?samples=1&ui=0&editor");
     page.wait_for("ready");
     let mut previous = wait_for_picture(&page, "the scene", |p| distinct_colors(p, 16) >= 16);
     for (name, _) in sandbox::bundled::SHADERS {
@@ -1160,9 +1114,7 @@ fn every_example_shader_in_the_menu_draws_in_the_page() {
 /// (Shadertoy's `iMouse`): a click shows its position as a colour.
 #[test]
 fn the_shaders_mouse_is_the_pointer_y_up() {
-    let Some(display) = common::xwindow::Display::start() else {
-        return;
-    };
+    let display = common::xwindow::Display::start();
     let text = "void mainImage(out vec4 fragColor, in vec2 fragCoord) {\n    \
                 fragColor = vec4(iMouse.xy / iResolution.xy, 0.0, 1.0);\n}\n";
     let url = browser::serve(browser::page_dir());
@@ -1226,9 +1178,7 @@ fn nothing_more_and_still_shown(page: &mut Browser, name: &str, scene: &Scene) {
 /// picture stays.
 #[test]
 fn a_dropped_scene_is_drawn_and_a_malformed_one_named_with_its_line() {
-    let Some(display) = common::xwindow::Display::start() else {
-        return;
-    };
+    let display = common::xwindow::Display::start();
     let url = browser::serve(browser::page_dir());
     // `ui=0`: no Edit button over the picture.
     let mut page = Browser::open(&display, &format!("{url}?samples=1&ui=0"));
@@ -1260,9 +1210,7 @@ fn a_dropped_scene_is_drawn_and_a_malformed_one_named_with_its_line() {
 /// canvas draws it.
 #[test]
 fn a_dropped_shader_is_drawn() {
-    let Some((_display, mut page)) = browser::open_page("?samples=1") else {
-        return;
-    };
+    let (_display, mut page) = browser::open_page("?samples=1");
     page.wait_for("ready");
     let files = browser::TempDir::new("raysandbox-drop");
     let magenta = "void mainImage(out vec4 fragColor, in vec2 fragCoord) {\n    \
@@ -1292,9 +1240,7 @@ const CUBE_OBJ: &str = "v 0 0 0\nv 1 0 0\nv 1 1 0\nv 0 1 0\nv 0 0 1\nv 1 0 1\nv 
 /// and the picture stays.
 #[test]
 fn a_dropped_model_is_added_in_view_and_a_malformed_one_named_with_its_line() {
-    let Some((_display, mut page)) = browser::open_page("?samples=1&ui=0") else {
-        return;
-    };
+    let (_display, mut page) = browser::open_page("?samples=1&ui=0");
     assert_eq!(page.wait_for("scene"), "whitted");
     page.wait_for("ready");
     let files = browser::TempDir::new("raysandbox-drop");
@@ -1322,9 +1268,7 @@ fn a_dropped_model_is_added_in_view_and_a_malformed_one_named_with_its_line() {
 /// reference draws it from the file on disk.
 #[test]
 fn a_dropped_scene_naming_a_bundled_model_is_drawn_once_the_model_is_fetched() {
-    let Some((_display, mut page)) = browser::open_page("?samples=1&ui=0") else {
-        return;
-    };
+    let (_display, mut page) = browser::open_page("?samples=1&ui=0");
     assert_eq!(page.wait_for("scene"), "whitted");
     page.wait_for("ready");
     let files = browser::TempDir::new("raysandbox-drop-mesh-scene");
@@ -1351,9 +1295,7 @@ fn a_dropped_scene_naming_a_bundled_model_is_drawn_once_the_model_is_fetched() {
 /// its paragraph "Edits from the panel").
 #[test]
 fn the_scene_editor_follows_other_changes_but_never_overwrites_the_users_text() {
-    let Some((_display, mut page)) = browser::open_page("?samples=1&ui=0&editor") else {
-        return;
-    };
+    let (_display, mut page) = browser::open_page("?samples=1&ui=0&editor");
     page.wait_for("ready");
     let files = browser::TempDir::new("raysandbox-follow");
     let model = common::write_file(&files.0, "cube.obj", CUBE_OBJ);
@@ -1394,9 +1336,7 @@ fn the_scene_editor_follows_other_changes_but_never_overwrites_the_users_text() 
 /// and Tab there indents by four spaces instead of leaving the editor.
 #[test]
 fn ctrl_e_opens_the_editor_and_tab_indents() {
-    let Some((_display, mut page)) = browser::open_page("?samples=1&ui=0") else {
-        return;
-    };
+    let (_display, mut page) = browser::open_page("?samples=1&ui=0");
     page.wait_for("ready");
     let open = "document.body.classList.contains('editing')";
     assert_eq!(page.evaluate(open), false, "the panel starts closed");
@@ -1461,9 +1401,7 @@ fn capture_change(page: &mut Browser, before: &RgbaImage) -> RgbaImage {
 /// renderer's for the scene in the address: nothing but the camera moved.
 #[test]
 fn orbiting_with_the_mouse_changes_the_picture_and_the_address() {
-    let Some((_display, mut page)) = browser::open_page("?samples=1&ui=0") else {
-        return;
-    };
+    let (_display, mut page) = browser::open_page("?samples=1&ui=0");
     page.wait_for("ready");
     let before = page.capture_picture();
     page.drag(Button::Left, (200.0, 135.0), (300.0, 150.0));
@@ -1528,24 +1466,22 @@ fn assert_beside_panel_like_reference(
 
 /// The page with the panel (`?samples=1`), its first picture, and the
 /// panel's "Scenes" menu (at the top left of the panel) opened.
-fn page_with_scenes_menu() -> Option<(common::xwindow::Display, Browser, RgbaImage)> {
-    let (display, mut page) = browser::open_page("?samples=1")?;
+fn page_with_scenes_menu() -> (common::xwindow::Display, Browser, RgbaImage) {
+    let (display, mut page) = browser::open_page("?samples=1");
     page.wait_for("ready");
     let before = page.capture_picture();
     let menu = page.part("menu:Scenes");
     page.click(page_point(menu));
     // The menu opens on the next frame.
     std::thread::sleep(Duration::from_secs(1));
-    Some((display, page, before))
+    (display, page, before)
 }
 
 /// The panel's "Scenes" menu shows the bundled scene chosen there, as the
 /// reference draws it.
 #[test]
 fn choosing_a_bundled_scene_in_the_menu_shows_it() {
-    let Some((_display, mut page, before)) = page_with_scenes_menu() else {
-        return;
-    };
+    let (_display, mut page, before) = page_with_scenes_menu();
     let cornell = page.part("item:Scenes/cornell");
     page.click(page_point(cornell));
     assert_eq!(page.wait_for("scene"), "cornell");
@@ -1566,9 +1502,7 @@ fn choosing_a_bundled_scene_in_the_menu_shows_it() {
 /// draws it from the file on disk.
 #[test]
 fn choosing_a_bundled_mesh_scene_in_the_menu_fetches_its_model_and_shows_it() {
-    let Some((_display, mut page, before)) = page_with_scenes_menu() else {
-        return;
-    };
+    let (_display, mut page, before) = page_with_scenes_menu();
     // The list is taller than the 270-pixel page: it scrolls. Scrolled to
     // its end, its last rows are the mesh scenes.
     let list = page_point(page.part("item:Scenes/cornell"));
@@ -1611,9 +1545,7 @@ fn choosing_a_bundled_mesh_scene_in_the_menu_fetches_its_model_and_shows_it() {
 /// the changed scene.
 #[test]
 fn dragging_a_slider_in_the_panel_changes_the_picture() {
-    let Some((_display, mut page)) = browser::open_page("?samples=1") else {
-        return;
-    };
+    let (_display, mut page) = browser::open_page("?samples=1");
     page.wait_for("ready");
     let before = page.capture_picture();
     // The Camera section is open: on the `fov` slider's rail, left of its
@@ -1667,8 +1599,8 @@ fn focus_canvas(page: &mut Browser) {
 const PROJECTOR: (u32, u32) = (1024, 768);
 
 /// The page at `query` in a browser window of [`PROJECTOR`]'s size.
-fn open_on_projector(query: &str) -> Option<(common::xwindow::Display, Browser)> {
-    let display = common::xwindow::Display::start()?;
+fn open_on_projector(query: &str) -> (common::xwindow::Display, Browser) {
+    let display = common::xwindow::Display::start();
     let url = browser::serve(browser::page_dir());
     let options = browser::Options {
         size: PROJECTOR,
@@ -1676,7 +1608,7 @@ fn open_on_projector(query: &str) -> Option<(common::xwindow::Display, Browser)>
     };
     let mut page = Browser::start(&display, options);
     page.navigate(&format!("{url}{query}"));
-    Some((display, page))
+    (display, page)
 }
 
 /// At 1024 x 768, the editor opens beside the picture and the scene panel
@@ -1684,9 +1616,7 @@ fn open_on_projector(query: &str) -> Option<(common::xwindow::Display, Browser)>
 /// a usable width; F1 shows the page's help.
 #[test]
 fn the_editor_leaves_a_usable_picture_at_1024_x_768_and_f1_shows_help() {
-    let Some((_display, mut page)) = open_on_projector("?samples=1") else {
-        return;
-    };
+    let (_display, mut page) = open_on_projector("?samples=1");
     wait_for_layout(&mut page, "the panel", |p| p.contains_key("panel"));
     focus_canvas(&mut page);
     page.key("F1");
@@ -1728,9 +1658,7 @@ fn drag_divider(page: &mut Browser, x: f64) {
 /// editor opens at the top of its text.
 #[test]
 fn dragging_the_divider_resizes_the_editor_and_the_width_is_kept() {
-    let Some((_display, mut page)) = open_on_projector("?samples=1&editor") else {
-        return;
-    };
+    let (_display, mut page) = open_on_projector("?samples=1&editor");
     wait_for_layout(&mut page, "the picture", |p| p.contains_key("view"));
     let inner = page.evaluate("innerWidth").as_i64().unwrap() as i32;
     let (canvas, editor) = split(&mut page);
@@ -1800,9 +1728,7 @@ fn slow_drag(page: &mut Browser, a: (f64, f64), b: (f64, f64)) {
 /// and the UI scale are kept.
 #[test]
 fn the_scene_panels_width_is_kept_for_the_next_visit() {
-    let Some((_display, mut page)) = open_on_projector("?samples=1") else {
-        return;
-    };
+    let (_display, mut page) = open_on_projector("?samples=1");
     wait_for_layout(&mut page, "the panel", |p| p.contains_key("panel"));
     let panel = page.part("panel");
     let y = f64::from(panel.y + panel.h / 2);
@@ -1834,9 +1760,7 @@ fn the_scene_panels_width_is_kept_for_the_next_visit() {
 /// and the browser keeps the scale for the next visit.
 #[test]
 fn ctrl_plus_scales_panel_and_editor_together_and_the_scale_is_kept() {
-    let Some((_display, mut page)) = open_on_projector("?samples=1") else {
-        return;
-    };
+    let (_display, mut page) = open_on_projector("?samples=1");
     wait_for_layout(&mut page, "the panel", |p| p.contains_key("panel"));
     let font = "parseFloat(getComputedStyle(document.getElementById('editor-toggle')).fontSize)";
     assert_eq!(page.evaluate(font), 13.0);
@@ -1876,9 +1800,7 @@ fn ctrl_plus_scales_panel_and_editor_together_and_the_scale_is_kept() {
 /// decides them, so they are measured here, not bounded.
 #[test]
 fn a_one_second_drag_orbits_and_menus_open_while_the_page_refines() {
-    let Some((_display, mut page)) = browser::open_page("") else {
-        return;
-    };
+    let (_display, mut page) = browser::open_page("");
     page.wait_for("first-frame");
     let before = page.capture_picture();
     let (a, b) = ((380.0, 120.0), (460.0, 150.0));
@@ -1952,9 +1874,7 @@ fn wait_for_whole_picture(
 /// shape the reference sees, a different one for each.
 #[test]
 fn the_v_key_cycles_the_views_in_the_page() {
-    let Some((_display, mut page)) = browser::open_page("?samples=1&ui=0") else {
-        return;
-    };
+    let (_display, mut page) = browser::open_page("?samples=1&ui=0");
     page.wait_for("ready");
     let (_, scene) = whitted();
     let shaded = page.capture_picture();
@@ -2028,9 +1948,7 @@ fn the_v_key_cycles_the_views_in_the_page() {
 /// scene.
 #[test]
 fn the_error_view_is_traced_in_slices_in_the_page_and_it_stays_responsive() {
-    let Some((_display, mut page)) = browser::open_page("?samples=1&ui=0") else {
-        return;
-    };
+    let (_display, mut page) = browser::open_page("?samples=1&ui=0");
     page.wait_for("ready");
     show_view(&mut page, "error");
     let shown = Instant::now();
@@ -2117,9 +2035,7 @@ fn show_view(page: &mut Browser, view: &str) {
 /// with it, the native one.
 #[test]
 fn the_depth_view_in_the_page_gets_the_colour_bar_of_the_native_renderer() {
-    let Some((_display, mut page)) = browser::open_page("?samples=1&ui=0") else {
-        return;
-    };
+    let (_display, mut page) = browser::open_page("?samples=1&ui=0");
     page.wait_for("ready");
     show_view(&mut page, "depth");
     let told = page.wait_for("colour-bar");
@@ -2127,7 +2043,7 @@ fn the_depth_view_in_the_page_gets_the_colour_bar_of_the_native_renderer() {
     page.wait_for("ready");
     let picture = page.capture_picture();
 
-    let gpu = common::gpu().expect("a GPU adapter for the native render");
+    let gpu = common::gpu();
     let (_, scene) = whitted();
     let options = raysandbox::gpu::ShaderOptions {
         view: raysandbox::gpu::View::Depth,
@@ -2168,9 +2084,7 @@ fn the_depth_view_in_the_page_gets_the_colour_bar_of_the_native_renderer() {
 /// error-flip view shows the levels and says so in the status line.
 #[test]
 fn the_flip_view_in_the_page_says_flip_is_native_only_and_shows_the_levels() {
-    let Some((_display, mut page)) = browser::open_page("?samples=1&ui=0") else {
-        return;
-    };
+    let (_display, mut page) = browser::open_page("?samples=1&ui=0");
     page.wait_for("ready");
     show_view(&mut page, "error-flip");
     // Every event, since `error-level` lines would stop `wait_for`.

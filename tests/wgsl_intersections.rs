@@ -276,7 +276,7 @@ fn finite(r: &GpuResult) -> bool {
 
 #[test]
 fn wgsl_intersections_match_exact_answers_and_the_cpu_port() {
-    let Some(gpu) = common::gpu() else { return };
+    let gpu = common::gpu();
     let cases = cases();
     let input: Vec<GpuCase> = cases.iter().map(|(r, s)| gpu_case(r, s)).collect();
     let results = run(&gpu, &input, true);
@@ -419,7 +419,7 @@ fn wgsl_intersections_match_exact_answers_and_the_cpu_port() {
 
 #[test]
 fn wgsl_naive_routines_show_their_failures() {
-    let Some(gpu) = common::gpu() else { return };
+    let gpu = common::gpu();
     // A small sphere 1e3 away, rays across it: the naive quadratic gets many
     // wrong. A ray along a box's slab plane: the naive slab test misses.
     let sphere = Shape::Sphere(r32::Sphere {
@@ -486,7 +486,7 @@ fn same_within_ulps(a: &[f32], b: &[f32]) -> bool {
 /// misses, and the same t, point, normal, error scale and offsets.
 #[test]
 fn the_cpu_port_computes_what_the_wgsl_computes() {
-    let Some(gpu) = common::gpu() else { return };
+    let gpu = common::gpu();
     let cases = cases();
     let input: Vec<GpuCase> = cases.iter().map(|(r, s)| gpu_case(r, s)).collect();
     for robust in [true, false] {

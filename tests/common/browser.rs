@@ -14,7 +14,7 @@
 //!
 //! ```ignore
 //! // Xvfb, dist/web served over http, Chromium showing the page:
-//! let Some((_display, mut page)) = browser::open_page("?samples=1") else { return };
+//! let (_display, mut page) = browser::open_page("?samples=1");
 //! page.wait_for("ready");                            // a `raysandbox: ready ...` line
 //! page.drag(Button::Left, (240.0, 135.0), (300.0, 135.0));
 //! let picture = page.capture_picture();              // the X screen, top-left SIZE
@@ -86,15 +86,13 @@ pub fn page_dir() -> PathBuf {
 }
 
 /// An Xvfb server and Chromium showing the built page at `query` (what
-/// follows the page's address: `?samples=1&ui=0#scene=...`); `None` only
-/// when the GPU and window tests are skipped explicitly (see
-/// [`Display::start`]). Keep the display alive as long as the browser: the
+/// follows the page's address: `?samples=1&ui=0#scene=...`). Keep the display alive as long as the browser: the
 /// tuple's browser is dropped first when both are bound by one `let`.
-pub fn open_page(query: &str) -> Option<(Display, Browser)> {
-    let display = Display::start()?;
+pub fn open_page(query: &str) -> (Display, Browser) {
+    let display = Display::start();
     let url = serve(page_dir());
     let page = Browser::open(&display, &format!("{url}{query}"));
-    Some((display, page))
+    (display, page)
 }
 
 /// Serves the files of `dir` on a free port of 127.0.0.1 from a thread;

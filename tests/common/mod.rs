@@ -10,11 +10,6 @@ use std::path::{Path, PathBuf};
 
 use raysandbox::gpu::Gpu;
 
-/// Set to `1` to skip the GPU and window tests on a machine without a Vulkan
-/// driver or Xvfb: an explicit choice of the person running the tests, off by
-/// default and never set by `scripts/test` (README, "Tests").
-pub const SKIP_GPU_TESTS: &str = "RAYSANDBOX_SKIP_GPU_TESTS";
-
 /// A folder in which every GPU or window test leaves one file named after
 /// itself; `scripts/test` sets it and counts the files, so a run that tested
 /// nothing on the GPU cannot look like a green one.
@@ -25,31 +20,26 @@ pub const INSTALL_HINT: &str = "install lavapipe (Mesa's Vulkan driver on the CP
      loader with `sudo apt-get install mesa-vulkan-drivers libvulkan1`, or run scripts/test, \
      which installs them (and Xvfb, xdotool, ImageMagick for the window tests)";
 
-/// Whether the person running the tests opted out of the GPU and window
-/// tests ([`SKIP_GPU_TESTS`] = 1).
-pub fn skipping_gpu_tests() -> bool {
-    std::env::var(SKIP_GPU_TESTS).is_ok_and(|v| v == "1")
-}
-
 /// The GPU device. Without an adapter the test fails with a message saying
-/// how to install one, unless [`SKIP_GPU_TESTS`] is set: then `None`, and the
-/// test returns having tested nothing (it says so on stderr).
-pub fn gpu() -> Option<Gpu> {
-    if skipping_gpu_tests() {
-        eprintln!("!!! {SKIP_GPU_TESTS}=1: skipping this GPU test");
-        return None;
-    }
+/// how to install one: a GPU test never passes untested.
+pub fn gpu() -> Gpu {
     match Gpu::headless() {
         Ok(gpu) => {
             eprintln!("adapter: {}", gpu.describe());
             record("gpu");
-            Some(gpu)
+            gpu
         }
-        Err(e) => panic!(
-            "this test needs a GPU adapter and found none: {e}\nTo run it, {INSTALL_HINT}.\n\
-             To skip the GPU and window tests instead, set {SKIP_GPU_TESTS}=1."
-        ),
+        Err(e) => {
+            panic!("this test needs a GPU adapter and found none: {e}\nTo run it, {INSTALL_HINT}.")
+        }
     }
+}
+
+/// For the tests that run the `raysandbox` binary, which makes its own
+/// device: fails the test, saying how to install an adapter, when there is
+/// none, rather than letting the binary's own error stand for it.
+pub fn require_gpu() {
+    gpu();
 }
 
 /// Leaves the file `KIND-BINARY-TEST` in the [`TALLY_DIR`] folder, if there

@@ -49,13 +49,8 @@ pub struct Display {
 impl Display {
     /// The server, once Xvfb, xdotool, ImageMagick and a GPU adapter are
     /// found. Without one of them the test fails with a message saying how to
-    /// install it, unless the GPU and window tests are skipped explicitly
-    /// (`super::SKIP_GPU_TESTS`): then `None`.
-    pub fn start() -> Option<Display> {
-        if super::skipping_gpu_tests() {
-            eprintln!("!!! {}=1: skipping this window test", super::SKIP_GPU_TESTS);
-            return None;
-        }
+    /// install it.
+    pub fn start() -> Display {
         let missing: Vec<&str> = ["Xvfb", "xdotool", "import"]
             .into_iter()
             .filter(|t| !have(t))
@@ -63,11 +58,9 @@ impl Display {
         assert!(
             missing.is_empty(),
             "this window test needs {missing:?}: install them with \
-             `sudo apt-get install xvfb xdotool imagemagick`, or run scripts/test, which does. \
-             To skip the GPU and window tests instead, set {}=1.",
-            super::SKIP_GPU_TESTS
+             `sudo apt-get install xvfb xdotool imagemagick`, or run scripts/test, which does."
         );
-        super::gpu()?;
+        super::require_gpu();
         super::record("window");
         // A free display number; test binaries run in parallel, so each
         // process starts from its own offset.
@@ -101,7 +94,7 @@ impl Display {
             );
             std::thread::sleep(Duration::from_millis(50));
         }
-        Some(Display { server, name })
+        Display { server, name }
     }
 }
 
