@@ -163,20 +163,17 @@ fn expand_into(
             if out.files.len() >= MAX_FILES {
                 return Err(fail(format!("more than {MAX_FILES} included files")));
             }
-            let content = std::fs::read_to_string(&included)
-                .map_err(|e| fail(format!("cannot read {}: {e}", included.display())))?;
-            if out.text.len() + content.len() > MAX_BYTES {
-                return Err(fail(format!(
-                    "the includes make the shader longer than {} MB",
-                    MAX_BYTES >> 20
-                )));
-            }
+            let content = read_included(&included, MAX_BYTES - out.text.len().min(MAX_BYTES))
+                .map_err(fail)?;
             out.files.push(included);
             out.keys.push(key.clone());
             stack.push(key);
             expand_into(out, out.files.len() - 1, &content, stack)?;
             stack.pop();
-            if !out.text.ends_with('\n') {
+            // The included file's last line ended, unless nothing was
+            // joined yet (an empty file first): a newline then would be a
+            // line of no file, moving every error below it by one.
+            if !out.text.is_empty() && !out.text.ends_with('\n') {
                 out.text.push('\n');
             }
         }
@@ -186,6 +183,30 @@ fn expand_into(
         out.lines.push((file, number));
     }
     Ok(())
+}
+
+/// The text of an included file, refused unless it is a regular file (a
+/// device such as `/dev/zero` or a named pipe would never end) and at most
+/// `budget` bytes long (read no further than that, so that a huge file is
+/// never held whole).
+fn read_included(path: &Path, budget: usize) -> Result<String, String> {
+    use std::io::Read;
+    let cannot = |e: std::io::Error| format!("cannot read {}: {e}", path.display());
+    if !std::fs::metadata(path).map_err(cannot)?.is_file() {
+        return Err(format!("cannot read {}: not a file", path.display()));
+    }
+    let mut bytes = Vec::new();
+    std::fs::File::open(path)
+        .and_then(|file| file.take(budget as u64 + 1).read_to_end(&mut bytes))
+        .map_err(cannot)?;
+    if bytes.len() > budget {
+        return Err(format!(
+            "the includes make the shader longer than {} MB",
+            MAX_BYTES >> 20
+        ));
+    }
+    String::from_utf8(bytes)
+        .map_err(|_| format!("cannot read {}: it is not UTF-8 text", path.display()))
 }
 
 /// `a.glsl -> b.glsl -> a.glsl`, from where `key` is on the stack.
@@ -211,5 +232,31 @@ mod tests {
         assert_eq!(include_target("#include <x>"), None);
         assert_eq!(include_target("// #include \"x\""), None);
         assert_eq!(include_target("#define include \"x\""), None);
+    }
+
+    /// An empty file included first adds no line: the error below it is at
+    /// its own line (found by the fuzzer).
+    #[test]
+    fn an_empty_file_included_first_moves_no_line() {
+        let dir = std::env::temp_dir().join(format!("raysandbox-include-{}", std::process::id()));
+        std::fs::create_dir_all(&dir).unwrap();
+        std::fs::write(dir.join("empty.glsl"), "").unwrap();
+        let main = dir.join("main.frag");
+        let (expanded, result) = expand(&main, "#include \"empty.glsl\"\nx\ny\n");
+        result.unwrap();
+        assert_eq!(expanded.origin(3), Some((main.as_path(), 3)));
+        assert_eq!(expanded.text.lines().count(), 3);
+        std::fs::remove_dir_all(&dir).unwrap();
+    }
+
+    /// A device never ends: reading it whole would fill the memory.
+    #[cfg(unix)]
+    #[test]
+    fn a_device_is_refused_at_the_include_line() {
+        let text = "void main() {}\n#include \"/dev/zero\"\n";
+        let (_, result) = expand(Path::new("/tmp/main.frag"), text);
+        let e = result.unwrap_err();
+        assert_eq!((e.file.as_str(), e.line), ("/tmp/main.frag", 2));
+        assert!(e.message.contains("/dev/zero: not a file"), "{}", e.message);
     }
 }

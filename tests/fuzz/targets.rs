@@ -37,7 +37,7 @@ pub struct Target {
     pub run: fn(&[u8]) -> std::result::Result<(), String>,
 }
 
-pub const TARGETS: [Target; 10] = [
+pub const TARGETS: [Target; 11] = [
     Target {
         name: "scene",
         quick: 20_000,
@@ -109,6 +109,14 @@ pub const TARGETS: [Target; 10] = [
         seeds: shadertoy_json_seeds,
         make: make_shadertoy_json,
         run: run_shadertoy_json,
+    },
+    Target {
+        name: "include",
+        quick: 2_000,
+        extension: "txt",
+        seeds: shader_seeds,
+        make: make_include_folder,
+        run: run_include_folder,
     },
     Target {
         name: "channels-toml",
@@ -1233,4 +1241,118 @@ fn run_channels_toml(input: &[u8]) -> std::result::Result<(), String> {
         }
         _ => Ok(()),
     }
+}
+
+// --------------------------------------------------------------- includes
+
+/// The files of a fuzzed folder of shaders, by index: the first is the
+/// shader compiled, the others what it may include.
+const FOLDER_FILES: [&str; 4] = ["main.frag", "lib/a.glsl", "lib/b.glsl", "c.glsl"];
+
+/// The line that starts file `k` of [`FOLDER_FILES`] in a folder's input.
+fn file_marker(k: usize) -> String {
+    format!("//@file {k}\n")
+}
+
+/// What goes wrong with includes: files that are missing, not files, the
+/// including file itself, one including the other (cycles), paths out of
+/// the folder, empty and unterminated names.
+const INCLUDE_TOKENS: [&str; 12] = [
+    "#include \"lib/a.glsl\"\n",
+    "#include \"b.glsl\"\n",
+    "#include \"../c.glsl\"\n",
+    "#include \"../main.frag\"\n",
+    "#include \"main.frag\"\n",
+    "#include \"missing.glsl\"\n",
+    "#include \"lib\"\n",
+    "#include \"/dev/zero\"\n",
+    "#include \"\"\n",
+    "#include \"lib/a.glsl\n",
+    "//@file 1\n",
+    "//@file 2\n",
+];
+
+/// A seed shader cut at random lines into the folder's files, each piece
+/// included by the one before (so that, unmutated, the folder is the seed
+/// again), then mutated with [`INCLUDE_TOKENS`].
+fn make_include_folder(u: &mut Unstructured, seeds: &[Vec<u8>]) -> Result<Vec<u8>> {
+    let lines: Vec<&str> = seed_text(u, seeds)?.split_inclusive('\n').collect();
+    let pieces = u.int_in_range(1..=FOLDER_FILES.len())?;
+    let mut cuts: Vec<usize> = (1..pieces)
+        .map(|_| u.int_in_range(0..=lines.len()))
+        .collect::<Result<_>>()?;
+    cuts.sort_unstable();
+    let mut folder = String::new();
+    let mut start = 0;
+    for (k, end) in cuts.into_iter().chain([lines.len()]).enumerate() {
+        folder.push_str(&file_marker(k));
+        folder.push_str(&lines[start..end].concat());
+        if k + 1 < pieces {
+            // Relative to this file's folder: lib/a.glsl and lib/b.glsl
+            // are beside each other.
+            let next = FOLDER_FILES[k + 1];
+            let from_lib = FOLDER_FILES[k].starts_with("lib/");
+            let path = match (from_lib, next.strip_prefix("lib/")) {
+                (true, Some(name)) => name.to_string(),
+                (true, None) => format!("../{next}"),
+                (false, _) => next.to_string(),
+            };
+            folder.push_str(&format!("#include \"{path}\"\n"));
+        }
+        start = end;
+    }
+    Ok(mutate(u, &folder, &INCLUDE_TOKENS)?.into_bytes())
+}
+
+/// The folder's files from its input: text before the first marker, and
+/// after a marker of file 0, belong to the shader compiled.
+fn folder_files(text: &str) -> Vec<String> {
+    let mut files = vec![String::new(); FOLDER_FILES.len()];
+    let mut current = 0;
+    for line in text.split_inclusive('\n') {
+        match (0..FOLDER_FILES.len()).find(|&k| line == file_marker(k)) {
+            Some(k) => current = k,
+            None => files[current].push_str(line),
+        }
+    }
+    files
+}
+
+/// A folder of shaders written for each input, reused (one per process).
+static FOLDER: LazyLock<PathBuf> = LazyLock::new(|| {
+    let dir = std::env::temp_dir().join(format!("raysandbox-fuzz-include-{}", std::process::id()));
+    std::fs::create_dir_all(dir.join("lib")).expect("create the fuzzed folder");
+    dir
+});
+
+/// The folder's shader compiles, or is refused with an error at a line of
+/// one of the folder's files: the file that has the mistake, an included
+/// one included, never the joined text's line.
+fn run_include_folder(input: &[u8]) -> std::result::Result<(), String> {
+    let Ok(text) = text(input) else {
+        return Ok(());
+    };
+    let files = folder_files(text);
+    for (name, content) in FOLDER_FILES.iter().zip(&files) {
+        std::fs::write(FOLDER.join(name), content).map_err(|e| format!("{name}: {e}"))?;
+    }
+    let Err(e) = raysandbox::sandbox::compile_file(&FOLDER.join(FOLDER_FILES[0])) else {
+        return Ok(());
+    };
+    let file = Path::new(&e.file)
+        .canonicalize()
+        .map_err(|_| format!("the error is not in a file of the folder: {e}"))?;
+    let Some(k) = FOLDER_FILES
+        .iter()
+        .position(|name| FOLDER.join(name).canonicalize().is_ok_and(|p| p == file))
+    else {
+        return Err(format!("the error is not in a file of the folder: {e}"));
+    };
+    if !(1..=line_count(&files[k]).max(1) as u32).contains(&e.line) {
+        return Err(format!(
+            "the error's line is not in {}: {e}",
+            FOLDER_FILES[k]
+        ));
+    }
+    Ok(())
 }
