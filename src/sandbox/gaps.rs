@@ -214,6 +214,17 @@ pub fn bridge(scan: &Scan, mut text: String) -> Bridged {
     }
 }
 
+/// The name a declared variable `name` has after the rewrites: a keyword of
+/// GLSL 4.50, or `texture` (never followed by `(` where it is declared),
+/// gets the prefix `rsb_`, as at every use.
+pub(crate) fn declared_name(name: &str) -> std::borrow::Cow<'_, str> {
+    if name == "texture" || NEW_KEYWORDS.contains(&name) {
+        format!("rsb_{name}").into()
+    } else {
+        name.into()
+    }
+}
+
 /// Adds `used` to `overloads` unless it is there.
 fn note_overloads(overloads: &mut Vec<&'static str>, used: Option<&'static str>) {
     if let Some(used) = used

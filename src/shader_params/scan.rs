@@ -76,15 +76,17 @@ pub struct Comment<'a> {
 
 /// The indices of the tokens at brace depth 0 (outside every `{ }`, a
 /// closing brace back at 0 included): where a shader's top-level
-/// declarations start.
+/// declarations start. A closing brace with no opening one (a body opened
+/// by a macro: `#define Main void mainImage(...) {`, then `Main ... }`)
+/// leaves the depth at 0, so what follows is still top level.
 pub fn top_level(tokens: &[Token]) -> impl Iterator<Item = usize> {
     tokens
         .iter()
         .enumerate()
-        .scan(0i32, |depth, (i, t)| {
+        .scan(0u32, |depth, (i, t)| {
             match t.text {
                 "{" => *depth += 1,
-                "}" => *depth -= 1,
+                "}" => *depth = depth.saturating_sub(1),
                 _ => {}
             }
             Some((*depth == 0).then_some(i))
@@ -467,6 +469,22 @@ mod tests {
             .filter(|t| t.kind != Kind::Directive)
             .map(|t| t.text)
             .collect()
+    }
+
+    #[test]
+    fn a_body_opened_by_a_macro_leaves_the_rest_top_level() {
+        let text = "#define Main void f() {\nMain x = 1.0; }\nvoid main() { y(); }\n";
+        let scan = Scan::new(text);
+        let top: Vec<&str> = top_level(&scan.tokens)
+            .map(|i| scan.tokens[i].text)
+            .filter(|t| !t.starts_with('#'))
+            .collect();
+        assert_eq!(
+            top,
+            [
+                "Main", "x", "=", "1.0", ";", "}", "void", "main", "(", ")", "}"
+            ]
+        );
     }
 
     #[test]

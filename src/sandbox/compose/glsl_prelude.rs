@@ -9,6 +9,7 @@ use super::glslviewer;
 use super::{CHANNELS, Style, error_at};
 use crate::gpu::ShaderError;
 use crate::sandbox::channels_3d::{ChannelKind, ChannelKinds};
+use crate::sandbox::gaps;
 use crate::sandbox::uniforms::FrameUniforms;
 use crate::shader_params::scan::Scan;
 
@@ -202,12 +203,8 @@ pub(super) fn glsl_texture_names(
                 format!("`{texture}`: at most {CHANNELS} textures (channels 0 to 3)"),
             ));
         };
-        // The front-end gaps rename a variable called `texture`.
-        let renamed = if *texture == "texture" {
-            "rsb_texture"
-        } else {
-            texture
-        };
+        // The front-end gaps rename a variable called `texture` or `buffer`.
+        let renamed = gaps::declared_name(texture);
         let _ = writeln!(
             text,
             "#define {renamed} {}",
