@@ -384,7 +384,7 @@ fn check_all_prints_a_verdict_per_file_and_the_totals() {
     );
     assert!(
         stdout.contains(
-            "40 of 45 pass (88.9%), 5 fail; of those 10 drew a picture, 30 one flat colour, \
+            "41 of 46 pass (89.1%), 5 fail; of those 11 drew a picture, 30 one flat colour, \
          0 every pixel NaN; 1 with uniforms nothing sets (silent zeros)"
         ),
         "{stdout}"

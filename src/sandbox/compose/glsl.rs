@@ -5,8 +5,9 @@ use std::fmt::Write as _;
 
 use super::glsl_decls::{name_macros, rewrite_glsl, through_macros};
 use super::glsl_prelude::{
-    GLSL_TEXTURES, glsl_frame_block, glsl_param_type, glsl_sandbox_surface, glsl_texture_names,
-    is_matrix, old_shadertoy_names, sampler_kind, shadertoy_channels, standard_uniforms,
+    GLSL_TEXTURES, SURFACE_EPILOGUE, glsl_frame_block, glsl_param_type, glsl_sandbox_surface,
+    glsl_texture_names, is_matrix, old_shadertoy_names, sampler_kind, shadertoy_channels,
+    standard_uniforms,
 };
 use super::glslviewer;
 use super::param_block::{GLSL_BOOL_PREFIX, read_params};
@@ -328,6 +329,7 @@ pub(super) fn compile_glsl(
              \x20   rsb_frag_color = color;\n\
              }\n"
         .to_string(),
+        Style::GlslSandbox if rewrite.surface_position => SURFACE_EPILOGUE.to_string(),
         _ => String::new(),
     };
     let bridged = gaps::bridge(scan, rewrite.text);

@@ -255,6 +255,10 @@ pub(super) fn shadertoy_channels(used: &dyn Fn(&str) -> bool, kinds: &ChannelKin
 /// viewer pans and zooms, y up) and `surfaceSize` (the size of the part
 /// shown), where the file declares them. glslsandbox.com interpolates the
 /// corners of that rectangle over the screen; so does this, per pixel.
+/// `surfacePosition` is a variable, as the site's varying is, which
+/// [`SURFACE_EPILOGUE`] sets before it calls the file's `main`: a file may
+/// then declare a local of that name made from it (`vec2 surfacePosition
+/// = surfacePosition * 2.0;`) or a macro that uses it in its own body.
 pub(super) fn glsl_sandbox_surface(resolution: &str, position: bool, size: bool) -> String {
     if !position && !size {
         return String::new();
@@ -273,8 +277,20 @@ pub(super) fn glsl_sandbox_surface(resolution: &str, position: bool, size: bool)
             "vec2 rsb_surface_position() {{\n\
              \x20   return rsb_surface_center + (rsb_frag_coord().xy / {resolution} - 0.5) * rsb_surface_size();\n\
              }}\n\
-             #define surfacePosition rsb_surface_position()\n"
+             vec2 surfacePosition;\n\
+             #define main rsb_user_main\n"
         );
     }
     text
 }
+
+/// After a GLSL Sandbox file that reads `surfacePosition`: the entry point,
+/// which sets it and calls the file's `main` (renamed by the prelude); a
+/// macro of the file's named `surfacePosition` is left behind first.
+pub(super) const SURFACE_EPILOGUE: &str = "\n// raysandbox epilogue (surfacePosition)\n\
+     #undef main\n\
+     #undef surfacePosition\n\
+     void main() {\n\
+     \x20   surfacePosition = rsb_surface_position();\n\
+     \x20   rsb_user_main();\n\
+     }\n";
