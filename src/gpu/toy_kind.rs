@@ -144,7 +144,7 @@ fn read(table: &str) -> Result<Instance<Disk>, String> {
     let materials = materials();
     let context = scene::Context {
         materials: &materials,
-        meshes: &Folder(None),
+        files: &Folder(None),
     };
     let path = KeyPath::default().key("disks").index(0);
     disk.validate(&path, &context)

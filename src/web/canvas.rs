@@ -275,7 +275,7 @@ fn initial_document(meshes: &PageMeshes) -> Result<(String, Document, Option<Str
     let mut waits = None;
     match page::hash().as_deref().and_then(link::scene_in_hash) {
         Some(Ok(text)) if !meshes.missing(&text).is_empty() => waits = Some(text),
-        Some(Ok(text)) => match Scene::from_toml_with_meshes(&text, None, meshes.files()) {
+        Some(Ok(text)) => match Scene::from_toml_with_files(&text, None, meshes.files()) {
             Ok(scene) => {
                 page::event("scene from-link");
                 return Ok((text, Document::untitled(scene), None));
@@ -580,11 +580,11 @@ impl Page {
         });
         match dropped {
             Ok((Dropped::Scene(text), name)) => self.open(Opening::Dropped(name, text)),
-            Ok((Dropped::Mesh(mesh), name)) => {
+            Ok((Dropped::Shape(shape), name)) => {
                 // In front of the camera, as natively (not selected: the
                 // picture stays the scene's alone).
                 let before = self.viewer.doc.scene.clone();
-                self.viewer.doc.scene.add_mesh_in_view(*mesh);
+                self.viewer.doc.scene.add_in_view(shape);
                 self.viewer.scene_changed(Some(&before));
                 self.viewer.request_redraw();
                 self.address_due = Some(Instant::now());
@@ -801,7 +801,7 @@ impl Page {
     fn opened(&mut self, opening: Opening) {
         let files = self.meshes.files();
         match opening {
-            Opening::Bundled(name) => match Document::bundled_with_meshes(name, files) {
+            Opening::Bundled(name) => match Document::bundled_with_files(name, files) {
                 Ok(doc) => {
                     self.viewer.replace(doc);
                     page::event(&format!("scene {name}"));
@@ -812,7 +812,7 @@ impl Page {
                     page::show_error(&e.to_string());
                 }
             },
-            Opening::Link(text) => match Scene::from_toml_with_meshes(&text, None, files) {
+            Opening::Link(text) => match Scene::from_toml_with_files(&text, None, files) {
                 Ok(scene) => {
                     self.work.scene_opened(&text, &scene);
                     self.viewer.replace(Document::untitled(scene));
@@ -826,7 +826,7 @@ impl Page {
                 self.follow(outcome);
             }
             Opening::Dropped(name, text) => {
-                match Scene::from_toml_with_meshes(&text, Some(Path::new(&name)), files) {
+                match Scene::from_toml_with_files(&text, Some(Path::new(&name)), files) {
                     Ok(_) => {
                         let outcome = self.work.open(Doc::Scene, &text);
                         self.follow(outcome);
