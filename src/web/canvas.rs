@@ -102,9 +102,9 @@ pub enum PageEvent {
     Work(WorkEvent),
     /// A file dropped on the canvas, read.
     Dropped(Result<DroppedFile, String>),
-    /// A mesh file of a bundled mesh scene (`file` as the scene writes
-    /// it), fetched over http, or why not.
-    MeshFetched(PathBuf, Result<Vec<u8>, String>),
+    /// A file that a bundled scene's shapes read (a mesh scene's model,
+    /// `file` as the scene writes it), fetched over http, or why not.
+    FileFetched(PathBuf, Result<Vec<u8>, String>),
 }
 
 /// A scene the page opens once the mesh files it names are fetched
@@ -417,7 +417,7 @@ impl ApplicationHandler<PageEvent> for Page {
                 self.follow(outcome);
             }
             PageEvent::Dropped(file) => self.dropped(file),
-            PageEvent::MeshFetched(file, bytes) => self.mesh_fetched(&file, bytes),
+            PageEvent::FileFetched(file, bytes) => self.mesh_fetched(&file, bytes),
         }
         self.viewer.request_redraw();
     }
@@ -734,12 +734,12 @@ impl Page {
         let Some(address) = meshes::address(&file) else {
             // Not reached (only served files are waited for), but a scene
             // must never wait for a file nobody fetches.
-            let _ = proxy.send_event(PageEvent::MeshFetched(file, Err("not served".into())));
+            let _ = proxy.send_event(PageEvent::FileFetched(file, Err("not served".into())));
             return;
         };
         wasm_bindgen_futures::spawn_local(async move {
             let bytes = page::fetch_bytes(&address).await;
-            let _ = proxy.send_event(PageEvent::MeshFetched(file, bytes));
+            let _ = proxy.send_event(PageEvent::FileFetched(file, bytes));
         });
     }
 
