@@ -545,7 +545,7 @@ impl App {
                     shape,
                 );
                 self.scene_changed(Some(&before));
-                self.viewer.editor.message = Some(format!("added {} ({summary})", path.display()));
+                self.viewer.editor.message = Some(format!("added {}{summary}", path.display()));
                 self.event(&format!("mesh-added {}", path.display()));
             }
             Err(e) => {

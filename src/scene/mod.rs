@@ -220,11 +220,13 @@ macro_rules! scene_with_shapes {
                 }
             }
 
-            /// For a message: "12 triangles" ([`Shape::summary`]).
+            /// For a message: " (12 triangles)" ([`Shape::parts`]); empty
+            /// for a shape of one piece.
             pub fn summary(&self) -> String {
-                match self {
-                    $(NewShape::$kind(s) => s.summary(),)*
-                }
+                let parts = match self {
+                    $(NewShape::$kind(s) => s.parts(),)*
+                };
+                parts_summary(parts.into_iter())
             }
         }
 
@@ -335,9 +337,16 @@ macro_rules! scene_with_shapes {
                 true $(&& self.$field == other.$field)*
             }
 
-            /// "2 spheres, 1 planes, 0 cubes": the count of every kind.
+            /// "2 spheres, 1 planes, 0 cubes, ..., 1 meshes (12 triangles)":
+            /// the count of every kind, and of the parts of its shapes
+            /// ([`Shape::parts`]) if it has any.
             fn shape_summary(&self) -> String {
-                let counts = [$(format!("{} {}", self.$field.len(), stringify!($field))),*];
+                let counts = [$(format!(
+                    "{} {}{}",
+                    self.$field.len(),
+                    stringify!($field),
+                    parts_summary(self.$field.iter().filter_map(|s| s.parts())),
+                )),*];
                 counts.join(", ")
             }
 
@@ -415,6 +424,19 @@ macro_rules! scene_with_shapes {
     };
 }
 for_each_shape_kind!(scene_with_shapes);
+
+/// " (12 triangles)": the sum of the `parts` of some shapes of a kind,
+/// empty if none has parts.
+fn parts_summary(parts: impl Iterator<Item = (usize, &'static str)>) -> String {
+    let mut total = None;
+    for (count, name) in parts {
+        let (sum, _) = total.get_or_insert((0, name));
+        *sum += count;
+    }
+    total
+        .map(|(sum, name)| format!(" ({sum} {name})"))
+        .unwrap_or_default()
+}
 
 /// The array of one shape kind in a scene.
 pub trait ShapeList: Shape + Sized {
@@ -713,18 +735,8 @@ impl Scene {
 
     /// A one-line summary for `raysandbox check`.
     pub fn summary(&self) -> String {
-        let triangles: usize = self
-            .meshes
-            .iter()
-            .map(|m| m.geometry.0.triangles.len())
-            .sum();
-        let triangles = if self.meshes.is_empty() {
-            String::new()
-        } else {
-            format!(" ({triangles} triangles)")
-        };
         format!(
-            "{}{triangles}, {} materials, {} lights",
+            "{}, {} materials, {} lights",
             self.shape_summary(),
             self.materials.len(),
             self.lights.len()

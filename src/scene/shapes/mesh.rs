@@ -185,8 +185,8 @@ impl Shape for Mesh {
         })
     }
 
-    fn summary(&self) -> String {
-        format!("{} triangles", self.geometry.0.triangles.len())
+    fn parts(&self) -> Option<(usize, &'static str)> {
+        Some((self.geometry.0.triangles.len(), "triangles"))
     }
 
     /// One read per shading (`smooth` changes the normals), shared.

@@ -175,10 +175,11 @@ pub trait Shape: Clone + PartialEq + std::fmt::Debug + Serialize + DeserializeOw
         Err(format!("{name}: no shape is made from this file"))
     }
 
-    /// What a message says about a shape just made from a file ("12
-    /// triangles").
-    fn summary(&self) -> String {
-        String::new()
+    /// How many parts make the shape and what they are called, for
+    /// messages (a mesh's triangles: `(12, "triangles")`); `None` for a
+    /// kind of one piece.
+    fn parts(&self) -> Option<(usize, &'static str)> {
+        None
     }
 
     /// Reads the file of `shapes` again (they all read one file, which

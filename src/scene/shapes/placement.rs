@@ -156,9 +156,8 @@ impl Placement {
 
 /// Where a shape of one kind is and how it moves: the part of an
 /// [`super::Instance`] that every kind of the same form shares, validated
-/// and moved here once.
-/// The default is where a shape sits in its own coordinates (at the
-/// origin, unscaled).
+/// and moved here once. The default is where a shape sits in its own
+/// coordinates (at the origin, unscaled).
 pub trait Place:
     Clone + Default + PartialEq + Debug + Serialize + serde::de::DeserializeOwned
 {
