@@ -219,10 +219,17 @@ pub fn show(
 }
 
 /// A top-level collapsing section.
+/// A section of the panel, folded unless `open`; its header is a part of
+/// the layout the window tells (`section:Shapes`).
 fn section(ui: &mut Ui, title: &str, open: bool, add_contents: impl FnOnce(&mut Ui)) {
-    CollapsingHeader::new(title)
+    let shown = CollapsingHeader::new(title)
         .default_open(open)
         .show(ui, add_contents);
+    layout::note(
+        ui.ctx(),
+        &format!("section:{title}"),
+        shown.header_response.rect,
+    );
 }
 
 /// A label in the first column of a grid, with the explanation on hover.

@@ -722,30 +722,33 @@ fn write_outputs(
     let _ = writeln!(
         md,
         "Median frame times of the two pipelines rendered in turn, and the median over \
-         those frame pairs of generic / specialised; the bundled scenes, then the stress scenes.\n\n\
-         | scene | specialised (ms) | generic (ms) | generic / specialised |"
+         those frame pairs of generic / specialised; the bundled scenes, then the stress scenes.\n"
     );
-    let _ = writeln!(md, "| --- | --- | --- | --- |");
-    for r in pipelines {
-        let _ = writeln!(
-            md,
-            "| {} | {:.2} | {:.2} | {:.2} |",
-            r.scene, r.specialized_ms, r.generic_ms, r.ratio
-        );
-    }
+    md += &table(
+        "| scene | specialised (ms) | generic (ms) | generic / specialised |\n\
+         | --- | --- | --- | --- |",
+        pipelines,
+        |r| {
+            format!(
+                "| {} | {:.2} | {:.2} | {:.2} |",
+                r.scene, r.specialized_ms, r.generic_ms, r.ratio
+            )
+        },
+    );
     let _ = writeln!(
         md,
         "\n## Scaling with the number of spheres\n\n![scaling](scaling.png)\n"
     );
-    let _ = writeln!(md, "| spheres | BVH (ms) | loop (ms) | BVH build (ms) |");
-    let _ = writeln!(md, "| --- | --- | --- | --- |");
-    for r in scaling {
-        let _ = writeln!(
-            md,
-            "| {} | {:.2} | {:.2} | {:.3} |",
-            r.spheres, r.bvh_ms, r.loop_ms, r.build_ms
-        );
-    }
+    md += &table(
+        "| spheres | BVH (ms) | loop (ms) | BVH build (ms) |\n| --- | --- | --- | --- |",
+        scaling,
+        |r| {
+            format!(
+                "| {} | {:.2} | {:.2} | {:.3} |",
+                r.spheres, r.bvh_ms, r.loop_ms, r.build_ms
+            )
+        },
+    );
     plot::scaling(&out.join("scaling.png"), scaling)
         .map_err(|e| fail(&out.join("scaling.png"), e))?;
     write("results.md", md)

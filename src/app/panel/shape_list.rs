@@ -3,6 +3,7 @@
 
 use super::file::path_row;
 use super::{PanelAction, PanelState, edit, shapes};
+use crate::app::layout;
 use crate::app::shape_files::kinds_from_files;
 use crate::scene::{Scene, ShapeId, ShapeKind};
 use egui::{CollapsingHeader, ComboBox, Grid, Ui};
@@ -58,7 +59,9 @@ fn shape_file_rows(ui: &mut Ui, state: &mut PanelState, actions: &mut Vec<PanelA
     {
         actions.push(PanelAction::PickShapeFile);
     }
-    if let Some(path) = path_row(ui, "Add file", "models/bunny.obj", &mut state.shape_path) {
+    let row = ui.scope(|ui| path_row(ui, "Add file", "models/bunny.obj", &mut state.shape_path));
+    layout::note(ui.ctx(), "add-file", row.response.rect);
+    if let Some(path) = row.inner {
         actions.push(PanelAction::AddShapeFile(path));
     }
 }
