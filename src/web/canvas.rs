@@ -147,8 +147,8 @@ pub struct Graphics {
 pub fn start() {
     std::panic::set_hook(Box::new(|info| page::show_error(&info.to_string())));
     page::timing("start");
-    let mesh_files = PageMeshes::default();
-    let (text, doc, link_waits) = match initial_document(&mesh_files) {
+    let models = PageMeshes::default();
+    let (text, doc, link_waits) = match initial_document(&models) {
         Ok(doc) => doc,
         Err(e) => {
             page::show_error(&e);
@@ -225,7 +225,7 @@ pub fn start() {
         window: None,
         menu: [MenuItem::bundled_scenes(), MenuItem::example_shaders()].concat(),
         address_due: None,
-        meshes: mesh_files,
+        meshes: models,
         waiting: None,
         graphics_started: false,
         recovering: None,
