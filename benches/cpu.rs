@@ -16,7 +16,7 @@ use raysandbox::reference::shapes::cube::{Cube, hit_cube, hit_cube_naive};
 use raysandbox::reference::shapes::plane::{Plane, hit_plane, hit_plane_naive};
 use raysandbox::reference::shapes::sphere::{Sphere, hit_sphere, hit_sphere_naive};
 use raysandbox::reference::{PreparedScene, render_linear};
-use raysandbox::scene::{Instance, Loaded, Mesh, Placement, Scene, bundled};
+use raysandbox::scene::{Instance, Loaded, Mesh, Placement, Scene, Shape, bundled};
 
 /// Rays from a ring of origins at the unit shapes at the origin: about half
 /// hit, so both branches of every routine are measured.

@@ -448,6 +448,69 @@ const TETRAHEDRON: &str =
     "v -1 0 1\nv 1 0 1\nv 0 0 -1\nv 0 1.5 0\nf 1 3 2\nf 1 2 4\nf 2 3 4\nf 3 1 4\n";
 const QUAD: &str = "v -2 0.01 -1\nv 2 0.01 -1\nv 2 1.2 -1\nv -2 1.2 -1\nf 1 2 3 4\n";
 
+/// Types `text` into the panel's field at `at` and presses Enter.
+fn type_into(viewer: &Window, at: (u32, u32), text: &str) {
+    viewer.click(at);
+    viewer.key("ctrl+a");
+    viewer.xdotool(&["type", "--delay", "10", text]);
+    viewer.key("Return");
+}
+
+/// A model typed into "Add file" is read and added in front of the camera,
+/// named relative to the scene file; a file no shape is made from is
+/// reported and the scene left as it was.
+#[test]
+fn a_model_typed_into_add_file_is_added_in_view_and_another_file_is_refused() {
+    let _serial = serial();
+    let Some(display) = Display::start() else {
+        return;
+    };
+    let dir = temp_dir("add-file");
+    std::fs::create_dir_all(dir.join("models")).unwrap();
+    std::fs::write(dir.join("models/tet.obj"), TETRAHEDRON).unwrap();
+    std::fs::write(dir.join("notes.stl"), "solid").unwrap();
+    let path = dir.join("scene.toml");
+    let scene_text =
+        MESH_SCENE.replace("[[meshes]]\nfile = \"shape.obj\"\nmaterial = \"red\"\n", "");
+    std::fs::write(&path, &scene_text).unwrap();
+    let mut viewer = open(&display, &[path.to_str().unwrap()]);
+    viewer.click(viewer.part("section:Shapes").at(0.3, 0.5));
+    // The refused file first: adding a shape selects it, and the panel
+    // scrolls to the selection, away from the field.
+    let field = viewer.part("add-file").at(0.8, 0.5);
+    type_into(&viewer, field, dir.join("notes.stl").to_str().unwrap());
+    let error = viewer.wait_for("mesh-error");
+    assert!(
+        error.contains("notes.stl: no shape is made from this file"),
+        "{error}"
+    );
+    viewer.key("ctrl+s");
+    viewer.wait_for("saved");
+    let before = Scene::from_toml_str(&scene_text, None).unwrap();
+    assert_eq!(
+        Scene::load(&path).unwrap(),
+        before,
+        "the scene is as it was"
+    );
+
+    let field = viewer.part("add-file").at(0.8, 0.5);
+    type_into(&viewer, field, dir.join("models/tet.obj").to_str().unwrap());
+    assert!(viewer.wait_for("mesh-added").ends_with("tet.obj"));
+    viewer.wait_for("ready");
+    viewer.key("ctrl+s");
+    viewer.wait_for("saved");
+    let saved = Scene::load(&path).unwrap();
+    assert_eq!(saved.meshes.len(), 1);
+    assert_eq!(
+        saved.meshes[0].file.as_deref(),
+        Some(Path::new("models/tet.obj"))
+    );
+    let [lo, hi] = saved.meshes[0].bounds();
+    let centre = 0.5 * (lo + hi);
+    assert!((centre - saved.camera.to).length() < 1e-9, "{centre}");
+    assert!(viewer.is_running());
+}
+
 #[test]
 fn a_mesh_file_edited_on_disk_reloads_and_a_bad_edit_keeps_the_last_good_mesh() {
     let _serial = serial();

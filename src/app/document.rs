@@ -3,9 +3,9 @@
 
 use std::path::{Path, PathBuf};
 
-use super::mesh_files;
+use super::shape_files;
 use crate::files::write_atomically;
-use crate::scene::{Camera, Folder, Mesh, MeshFiles, Scene, SceneError, bundled};
+use crate::scene::{Camera, Folder, NewShape, Scene, SceneError, SceneFiles, ShapeKind, bundled};
 
 /// A scene being edited, and where it came from.
 pub struct Document {
@@ -22,22 +22,23 @@ pub struct Document {
 }
 
 impl Document {
-    /// A bundled example scene, embedded in the binary, that names no mesh
+    /// A bundled example scene, embedded in the binary, that names no
     /// file (`bundled::names`); a mesh scene's files are not beside the
-    /// binary: see [`Document::bundled_with_meshes`].
+    /// binary: see [`Document::bundled_with_files`].
     pub fn bundled(name: &'static str) -> Result<Self, SceneError> {
-        Document::bundled_with_meshes(name, &Folder(None))
+        Document::bundled_with_files(name, &Folder(None))
     }
 
-    /// A bundled example scene whose mesh files (if it names any) are read
-    /// from `meshes` (the web page gives the files it fetched).
-    pub fn bundled_with_meshes(
+    /// A bundled example scene whose shapes' files (a mesh's model, if it
+    /// names any) are read from `files` (the web page gives the files it
+    /// fetched).
+    pub fn bundled_with_files(
         name: &'static str,
-        meshes: &dyn MeshFiles,
+        files: &dyn SceneFiles,
     ) -> Result<Self, SceneError> {
         let text = bundled::text(name).unwrap_or_default();
         let origin = format!("(built-in) {name}.toml");
-        let scene = Scene::from_toml_with_meshes(text, Some(Path::new(&origin)), meshes)?;
+        let scene = Scene::from_toml_with_files(text, Some(Path::new(&origin)), files)?;
         Ok(Document {
             saved: scene.clone(),
             scene,
@@ -75,22 +76,23 @@ impl Document {
         self.path.as_deref()
     }
 
-    /// The folder that mesh `file`s are relative to: the scene file's.
+    /// The folder that shapes' `file`s are relative to: the scene file's.
     fn base(&self) -> Option<&Path> {
         self.path.as_deref().and_then(Path::parent)
     }
 
-    /// Reads the mesh in `file` (as picked or dropped: absolute, or relative
-    /// to the working folder) when called, on any thread (a large model
-    /// takes seconds), naming it relative to the scene file. The error
-    /// names the file and its line or element.
-    pub fn mesh_reader(
+    /// Reads a new shape of `kind` from `file` (as picked or dropped:
+    /// absolute, or relative to the working folder) when called, on any
+    /// thread (a large model takes seconds), naming it relative to the
+    /// scene file. The error names the file and its line or element.
+    pub fn shape_reader(
         &self,
+        kind: ShapeKind,
         file: &Path,
-    ) -> impl FnOnce() -> Result<Mesh, String> + Send + 'static {
-        let named = mesh_files::scene_relative(file, self.path());
+    ) -> impl FnOnce() -> Result<NewShape, String> + Send + 'static {
+        let named = shape_files::scene_relative(file, self.path());
         let base = self.base().map(Path::to_path_buf);
-        move || Mesh::from_file(named, base.as_deref())
+        move || NewShape::from_file(kind, named, base.as_deref())
     }
 
     /// Every file the scene's shapes read (a mesh's model), as
@@ -165,17 +167,13 @@ impl Document {
         self.save_as(&path)
     }
 
-    /// Writes the scene to `path` and makes it the document's file. Mesh
-    /// files stay where they are: in another folder the scene names them
-    /// by new relative paths.
+    /// Writes the scene to `path` and makes it the document's file. The
+    /// files shapes read stay where they are: in another folder the scene
+    /// names them by new relative paths.
     pub fn save_as(&mut self, path: &Path) -> Result<PathBuf, String> {
         let mut scene = self.scene.clone();
         if self.base() != path.parent() {
-            for mesh in &mut scene.meshes {
-                if let Some(file) = &mut mesh.file {
-                    *file = mesh_files::rebased(file, self.path(), path);
-                }
-            }
+            scene.rename_files(|file| shape_files::rebased(file, self.path(), path));
         }
         let text = scene.to_toml_string();
         write_atomically(path, &text).map_err(|e| format!("{}: {e}", path.display()))?;
@@ -313,8 +311,11 @@ mod tests {
         let path = dir.join("scenes/s.toml");
         let mut doc = Document::bundled("whitted").unwrap();
         doc.save_as(&path).unwrap();
-        let mesh = doc.mesh_reader(&obj)().unwrap();
+        let NewShape::Mesh(mesh) = doc.shape_reader(ShapeKind::Mesh, &obj)().unwrap() else {
+            panic!("an OBJ file makes a mesh");
+        };
         assert_eq!(mesh.file.as_deref(), Some(Path::new("../models/tri.obj")));
+        let mesh = *mesh;
         // Two meshes show the same file.
         let mesh = Instance::new(mesh, Placement::default());
         doc.scene.meshes.extend([mesh.clone(), mesh]);
@@ -358,9 +359,9 @@ mod tests {
         let obj = dir.join("bad.obj");
         std::fs::write(&obj, "v 0 0 0\nv 1 nan 0\n").unwrap();
         let doc = Document::bundled("whitted").unwrap();
-        let error = doc.mesh_reader(&obj)().unwrap_err();
+        let error = doc.shape_reader(ShapeKind::Mesh, &obj)().unwrap_err();
         assert!(error.contains("bad.obj:2:"), "{error}");
-        let error = doc.mesh_reader(&dir.join("missing.ply"))().unwrap_err();
+        let error = doc.shape_reader(ShapeKind::Mesh, &dir.join("missing.ply"))().unwrap_err();
         assert!(error.contains("missing.ply"), "{error}");
         std::fs::remove_dir_all(&dir).unwrap();
     }

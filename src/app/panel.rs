@@ -27,7 +27,7 @@ use std::path::PathBuf;
 
 use super::layout;
 use crate::gpu::{ColourBar, DEFAULT_MAX_SAMPLES, DEFAULT_MIN_WEIGHT, View};
-use crate::scene::{Mesh, Scene, ShapeId};
+use crate::scene::{NewShape, Scene, ShapeId};
 use egui::{CollapsingHeader, RichText, Ui};
 
 use camera::camera_section;
@@ -36,7 +36,7 @@ use lights::lights_section;
 use materials::materials_section;
 pub use ray_tree::ray_tree_section;
 use render::render_section;
-use shape_list::{mesh_error_row, selected_shape_section, shapes_section};
+use shape_list::{file_error_row, selected_shape_section, shapes_section};
 
 /// Viewer settings edited in the panel that are not part of the scene file.
 #[derive(Debug, Clone, PartialEq)]
@@ -114,11 +114,12 @@ pub struct PanelState {
     save_as_path: String,
     /// The text of the "Open" path field.
     open_path: String,
-    /// The text of the "Add mesh file" path field.
-    mesh_path: String,
-    /// Why the last mesh file could not be read (file and line), shown
-    /// under the shapes until a mesh file reads well.
-    pub mesh_error: Option<String>,
+    /// The text of the "Add file" path field (a file a shape is made
+    /// from).
+    shape_path: String,
+    /// Why the last file a shape reads could not be read (file and line),
+    /// shown under the shapes until one reads well.
+    pub file_error: Option<String>,
 }
 
 /// A material rename being typed, with the reason the last attempt failed.
@@ -151,16 +152,18 @@ pub enum PanelAction {
     ResetCamera,
     /// Save the current image.
     Screenshot,
-    /// Ask for a mesh file in the system's file dialog.
-    PickMeshFile,
-    /// Add the mesh in this file (OBJ or PLY), typed by the user.
-    AddMeshFile(PathBuf),
+    /// Ask for a file a shape is made from in the system's file dialog.
+    PickShapeFile,
+    /// Add the shape made from this file (a mesh's OBJ or PLY), typed by
+    /// the user or dropped on the window.
+    AddShapeFile(PathBuf),
 }
 
-/// Adds `mesh` (read from a file) in front of the camera and selects it.
-pub fn add_mesh(scene: &mut Scene, state: &mut PanelState, mesh: Mesh) {
-    state.selection = Some(edit::add_mesh(scene, mesh));
-    state.mesh_error = None;
+/// Adds `shape` (read from a file) in front of the camera
+/// ([`Scene::add_in_view`]) and selects it.
+pub fn add_in_view(scene: &mut Scene, state: &mut PanelState, shape: NewShape) {
+    state.selection = Some(scene.add_in_view(shape));
+    state.file_error = None;
 }
 
 /// Draws the panel's contents into `ui` (the app has already created a left
@@ -209,17 +212,24 @@ pub fn show(
     section(ui, "Shapes", false, |ui| {
         shapes_section(ui, scene, state, &mut actions);
     });
-    mesh_error_row(ui, state);
+    file_error_row(ui, state);
     let held = selected_shape_section(ui, scene, state, scale);
     shapes::settle(scene, held);
     actions
 }
 
 /// A top-level collapsing section.
+/// A section of the panel, folded unless `open`; its header is a part of
+/// the layout the window tells (`section:Shapes`).
 fn section(ui: &mut Ui, title: &str, open: bool, add_contents: impl FnOnce(&mut Ui)) {
-    CollapsingHeader::new(title)
+    let shown = CollapsingHeader::new(title)
         .default_open(open)
         .show(ui, add_contents);
+    layout::note(
+        ui.ctx(),
+        &format!("section:{title}"),
+        shown.header_response.rect,
+    );
 }
 
 /// A label in the first column of a grid, with the explanation on hover.

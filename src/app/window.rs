@@ -17,9 +17,9 @@ use super::panel::{self, PanelAction};
 use super::shell::{self, EventLog};
 use super::ui::{Command, Host};
 use super::viewer::{Platform, Viewer};
-use super::{memory, mesh_files, pipelines, watch};
+use super::{memory, pipelines, shape_files, watch};
 use crate::gpu::{Gpu, Pipelines, ShaderSource, Viewport};
-use crate::scene::{Mesh, Scene, bundled};
+use crate::scene::{NewShape, Scene, ShapeKind, bundled};
 use crate::shader_params::SourceParams;
 
 /// How the viewer was started (the `view` subcommand's options).
@@ -68,10 +68,11 @@ pub enum UserEvent {
     /// Pipelines built in the background: for a new scene feature set, from
     /// reloaded shaders or for changed shader parameters.
     PipelinesBuilt(Box<pipelines::Built>),
-    /// A mesh file chosen in the file dialog.
-    MeshFilePicked(PathBuf),
-    /// A mesh file read (and its BVH built) on another thread.
-    MeshRead(PathBuf, Box<Result<Mesh, String>>),
+    /// A file that a shape is made from, chosen in the file dialog.
+    ShapeFilePicked(PathBuf),
+    /// A shape read from a file (and made ready to trace) on another
+    /// thread.
+    ShapeRead(PathBuf, Box<Result<NewShape, String>>),
     /// SIGUSR1: drop the GPU device, as a driver reset would, to test the
     /// recovery.
     LoseDevice,
@@ -295,8 +296,8 @@ impl ApplicationHandler<UserEvent> for App {
             UserEvent::FileChanged(watch::Change::SceneFile) => self.reload_scene_file(),
             UserEvent::FileChanged(watch::Change::ShapeFile(path)) => self.reload_shape_file(&path),
             UserEvent::PipelinesBuilt(built) => self.viewer.pipelines_built(*built),
-            UserEvent::MeshFilePicked(path) => self.add_mesh_file(&path),
-            UserEvent::MeshRead(path, mesh) => self.mesh_read(&path, *mesh),
+            UserEvent::ShapeFilePicked(path) => self.add_shape_file(&path),
+            UserEvent::ShapeRead(path, shape) => self.shape_read(&path, *shape),
             UserEvent::LoseDevice => {
                 if let Some(gfx) = &self.viewer.gfx {
                     lose_device(&gfx.gpu);
@@ -318,10 +319,11 @@ impl ApplicationHandler<UserEvent> for App {
             WindowEvent::Resized(size) => self.viewer.resize(size),
             WindowEvent::RedrawRequested => self.redraw(event_loop),
             WindowEvent::DroppedFile(path) => {
-                // A mesh file dropped on the window is added to the scene;
-                // any other file opens as the panel's "Open" does.
-                let action = if mesh_files::is_mesh_file(&path) {
-                    PanelAction::AddMeshFile(path)
+                // A file a shape is made from (a mesh's model) dropped on
+                // the window is added to the scene; any other file opens
+                // as the panel's "Open" does.
+                let action = if ShapeKind::for_file(&path).is_some() {
+                    PanelAction::AddShapeFile(path)
                 } else {
                     PanelAction::Open(path)
                 };
@@ -494,66 +496,70 @@ impl App {
         match self.viewer.doc.reload_file(path) {
             Ok(0) => {}
             Ok(_) => {
-                self.viewer.editor.panel.mesh_error = None;
+                self.viewer.editor.panel.file_error = None;
                 self.scene_changed(None);
                 self.event(&format!("mesh-reloaded {}", path.display()));
             }
             Err(e) => {
                 log::error!("{e}");
                 self.event(&format!("mesh-error {e}"));
-                self.viewer.editor.panel.mesh_error = Some(e);
+                self.viewer.editor.panel.file_error = Some(e);
             }
         }
     }
 
-    /// Reads the mesh in `path` (picked, typed or dropped) and builds its
-    /// BVH on another thread, so that the window keeps drawing while a
-    /// large model loads; [`App::mesh_read`] adds it.
-    fn add_mesh_file(&mut self, path: &Path) {
-        let read = self.viewer.doc.mesh_reader(path);
+    /// Reads the shape in `path` (picked, typed or dropped) and makes it
+    /// ready to trace (a mesh's BVH) on another thread, so that the window
+    /// keeps drawing while a large model loads; [`App::shape_read`] adds
+    /// it.
+    fn add_shape_file(&mut self, path: &Path) {
+        let Some(kind) = ShapeKind::for_file(path) else {
+            return self.shape_read(path, Err(shape_files::not_a_shape_file(path)));
+        };
+        let read = self.viewer.doc.shape_reader(kind, path);
         let (proxy, path) = (self.proxy.clone(), path.to_path_buf());
         self.viewer.editor.message = Some(format!("reading {}…", path.display()));
         std::thread::spawn(move || {
-            let mesh = read().inspect(|mesh| {
-                crate::bvh::mesh_bvh(&mesh.geometry.0);
-            });
-            let _ = proxy.send_event(UserEvent::MeshRead(path, Box::new(mesh)));
+            let shape = read().inspect(crate::reference::prepare_ahead);
+            let _ = proxy.send_event(UserEvent::ShapeRead(path, Box::new(shape)));
         });
     }
 
-    /// Adds a mesh read by [`App::add_mesh_file`] in front of the camera,
+    /// Adds a shape read by [`App::add_shape_file`] in front of the camera,
     /// selected; a file that could not be read is reported in the panel and
-    /// the scene is left as it was.
-    fn mesh_read(&mut self, path: &Path, mesh: Result<Mesh, String>) {
-        match mesh {
-            Ok(mut mesh) => {
+    /// the scene is left as it was. (The events `mesh-added` and
+    /// `mesh-error` are what the viewer's tests wait for.)
+    fn shape_read(&mut self, path: &Path, shape: Result<NewShape, String>) {
+        match shape {
+            Ok(mut shape) => {
                 // Named for the scene open now (another may have been
                 // opened while the file was read).
-                mesh.file = Some(mesh_files::scene_relative(path, self.viewer.doc.path()));
-                let triangles = mesh.geometry.0.triangles.len();
+                if let Some(file) = shape.file_mut() {
+                    *file = shape_files::scene_relative(path, self.viewer.doc.path());
+                }
+                let summary = shape.summary();
                 let before = self.viewer.doc.scene.clone();
-                panel::add_mesh(
+                panel::add_in_view(
                     &mut self.viewer.doc.scene,
                     &mut self.viewer.editor.panel,
-                    mesh,
+                    shape,
                 );
                 self.scene_changed(Some(&before));
-                self.viewer.editor.message =
-                    Some(format!("added {} ({triangles} triangles)", path.display()));
+                self.viewer.editor.message = Some(format!("added {}{summary}", path.display()));
                 self.event(&format!("mesh-added {}", path.display()));
             }
             Err(e) => {
                 log::error!("{e}");
                 self.event(&format!("mesh-error {e}"));
                 self.viewer.editor.message = None;
-                self.viewer.editor.panel.mesh_error = Some(e);
+                self.viewer.editor.panel.file_error = Some(e);
             }
         }
     }
 
-    /// Opens the file dialog for "Add mesh from file", in the scene's folder;
-    /// the window keeps drawing while it is open.
-    fn pick_mesh_file(&self) {
+    /// Opens the file dialog for "Add ... from file", in the scene's
+    /// folder; the window keeps drawing while it is open.
+    fn pick_shape_file(&self) {
         let proxy = self.proxy.clone();
         let start = self
             .viewer
@@ -561,8 +567,8 @@ impl App {
             .path()
             .and_then(Path::parent)
             .map(Path::to_path_buf);
-        mesh_files::pick_mesh_file(start, move |path| {
-            let _ = proxy.send_event(UserEvent::MeshFilePicked(path));
+        shape_files::pick_shape_file(start, move |path| {
+            let _ = proxy.send_event(UserEvent::ShapeFilePicked(path));
         });
     }
 
@@ -679,8 +685,8 @@ impl App {
             PanelAction::OpenExampleShader(_) => {}
             PanelAction::ResetCamera => self.viewer.reset_camera(),
             PanelAction::Screenshot => self.screenshot(),
-            PanelAction::PickMeshFile => self.pick_mesh_file(),
-            PanelAction::AddMeshFile(path) => self.add_mesh_file(&path),
+            PanelAction::PickShapeFile => self.pick_shape_file(),
+            PanelAction::AddShapeFile(path) => self.add_shape_file(&path),
         }
     }
 

@@ -21,6 +21,7 @@ use crate::compare;
 use crate::gpu::layout::PackedScene;
 use crate::gpu::{Gpu, ShaderOptions};
 use crate::scene::{CubeSize, Geometry, NamedOption, Scene, ShapeId, TriangleTest, load_file};
+use crate::stress::table::table;
 
 /// The meshes, smallest first: name and file relative to the project. The
 /// last two are not in the repository: scripts/fetch-meshes writes them.
@@ -425,32 +426,33 @@ fn console_line(r: &MeshRow) -> String {
 pub const MESH_COLUMNS: &str = "mesh,triangles,file_bytes,load_ms,bvh_build_ms,bvh_depth,gpu_bytes_per_triangle,floor_flip,floor_rmse,test,frame_ms,rmse,psnr_db,flip,mesh_rmse,mesh_over_8";
 
 fn csv(rows: &[MeshRow]) -> String {
-    let mut out = format!("{MESH_COLUMNS}\n");
-    for r in rows {
-        for t in &r.tests {
-            let _ = writeln!(
-                out,
-                "{},{},{},{:.3},{:.3},{},{:.2},{:.6},{:.6},{},{:.3},{:.6},{:.3},{:.6},{:.6},{:.6}",
-                r.name,
-                r.triangles,
-                r.file_bytes,
-                r.load_ms,
-                r.bvh_ms,
-                r.bvh_depth,
-                r.gpu_bytes_per_triangle,
-                r.floor_flip,
-                r.floor_rmse,
-                t.test.name(),
-                t.frame_ms,
-                t.rmse,
-                t.psnr,
-                t.flip,
-                t.mesh_rmse,
-                t.mesh_over_8
-            );
-        }
-    }
-    out
+    table(MESH_COLUMNS, tests_of(rows), |(r, t)| {
+        format!(
+            "{},{},{},{:.3},{:.3},{},{:.2},{:.6},{:.6},{},{:.3},{:.6},{:.3},{:.6},{:.6},{:.6}",
+            r.name,
+            r.triangles,
+            r.file_bytes,
+            r.load_ms,
+            r.bvh_ms,
+            r.bvh_depth,
+            r.gpu_bytes_per_triangle,
+            r.floor_flip,
+            r.floor_rmse,
+            t.test.name(),
+            t.frame_ms,
+            t.rmse,
+            t.psnr,
+            t.flip,
+            t.mesh_rmse,
+            t.mesh_over_8
+        )
+    })
+}
+
+/// Every test of every mesh, with its mesh.
+fn tests_of(rows: &[MeshRow]) -> impl Iterator<Item = (&MeshRow, &TestRow)> {
+    rows.iter()
+        .flat_map(|r| r.tests.iter().map(move |t| (r, t)))
 }
 
 fn markdown(
@@ -497,16 +499,13 @@ fn markdown(
             r.mesh_pixels
         );
     }
-    let _ = writeln!(
-        md,
-        "\n![frame time against triangles](meshes.png)\n\n\
-         | mesh | test | frame (ms) | RMSE | PSNR (dB) | FLIP | RMSE on the mesh | mesh pixels > 8/255 |\n\
-         | --- | --- | ---: | ---: | ---: | ---: | ---: | ---: |"
-    );
-    for r in rows {
-        for t in &r.tests {
-            let _ = writeln!(
-                md,
+    md += "\n![frame time against triangles](meshes.png)\n\n";
+    md += &table(
+        "| mesh | test | frame (ms) | RMSE | PSNR (dB) | FLIP | RMSE on the mesh | mesh pixels > 8/255 |\n\
+         | --- | --- | ---: | ---: | ---: | ---: | ---: | ---: |",
+        tests_of(rows),
+        |(r, t)| {
+            format!(
                 "| {} | {} | {:.2} | {:.5} | {:.1} | {:.5} | {:.5} | {:.3}% |",
                 r.name,
                 t.test.name(),
@@ -516,9 +515,9 @@ fn markdown(
                 t.flip,
                 t.mesh_rmse,
                 t.mesh_over_8 * 100.0
-            );
-        }
-    }
+            )
+        },
+    );
     let _ = writeln!(
         md,
         "\n## Targets\n\n- {} over {} frame time (rendered in turn, median of the per-pair ratios): \

@@ -19,6 +19,7 @@ use indicatif::{ProgressBar, ProgressStyle};
 
 use crate::gpu::{DEFAULT_MAX_SAMPLES, DEFAULT_MIN_WEIGHT, Gpu, ShaderOptions, Timing};
 use crate::scene::{Scene, bundled};
+use crate::stress::table::table;
 use measure::{ConvergedReference, REFERENCE_FACTOR};
 
 pub use measure::{median, process_cpu_time, sphere_field};
@@ -546,16 +547,6 @@ fn psnr_of(rmse: f64) -> f64 {
     -20.0 * rmse.log10()
 }
 
-/// A CSV file's text: the header `columns`, then one line per row.
-fn csv_of<T>(columns: &str, rows: &[T], line: impl Fn(&T) -> String) -> String {
-    let mut csv = format!("{columns}\n");
-    for r in rows {
-        csv += &line(r);
-        csv.push('\n');
-    }
-    csv
-}
-
 fn write_outputs(
     out: &Path,
     env: &Environment,
@@ -572,35 +563,48 @@ fn write_outputs(
         let path = out.join(name);
         std::fs::write(&path, text).map_err(|e| fail(&path, e))
     };
-    let csv = csv_of(ERROR_COLUMNS, errors, |r| {
-        let p = r.point;
-        format!(
-            "{},{},{},{},{},{:.4},{:.6},{:.3}",
-            r.scene, p.spp, p.depth, p.min_weight, p.scale, r.time_ms, r.rmse, r.psnr
-        )
-    });
-    write("time_vs_error.csv", csv)?;
-    let csv = csv_of(REFERENCE_COLUMNS, references, |r| {
-        format!(
-            "{},{},{:.6},{:.6}",
-            r.scene, r.spp, r.halves_rmse, r.noise_floor
-        )
-    });
-    write("reference.csv", csv)?;
-    let csv = csv_of(PIPELINE_COLUMNS, pipelines, |r| {
-        format!(
-            "{},{:.4},{:.4},{:.4}",
-            r.scene, r.specialized_ms, r.generic_ms, r.ratio
-        )
-    });
-    write("specialized_vs_generic.csv", csv)?;
-    let csv = csv_of(SCALING_COLUMNS, scaling, |r| {
-        format!(
-            "{},{:.4},{:.4},{:.4}",
-            r.spheres, r.bvh_ms, r.loop_ms, r.build_ms
-        )
-    });
-    write("scaling.csv", csv)?;
+    let tables = [
+        (
+            "time_vs_error.csv",
+            table(ERROR_COLUMNS, errors, |r| {
+                let p = r.point;
+                format!(
+                    "{},{},{},{},{},{:.4},{:.6},{:.3}",
+                    r.scene, p.spp, p.depth, p.min_weight, p.scale, r.time_ms, r.rmse, r.psnr
+                )
+            }),
+        ),
+        (
+            "reference.csv",
+            table(REFERENCE_COLUMNS, references, |r| {
+                format!(
+                    "{},{},{:.6},{:.6}",
+                    r.scene, r.spp, r.halves_rmse, r.noise_floor
+                )
+            }),
+        ),
+        (
+            "specialized_vs_generic.csv",
+            table(PIPELINE_COLUMNS, pipelines, |r| {
+                format!(
+                    "{},{:.4},{:.4},{:.4}",
+                    r.scene, r.specialized_ms, r.generic_ms, r.ratio
+                )
+            }),
+        ),
+        (
+            "scaling.csv",
+            table(SCALING_COLUMNS, scaling, |r| {
+                format!(
+                    "{},{:.4},{:.4},{:.4}",
+                    r.spheres, r.bvh_ms, r.loop_ms, r.build_ms
+                )
+            }),
+        ),
+    ];
+    for (name, text) in tables {
+        write(name, text)?;
+    }
 
     let mut md = String::new();
     let _ = writeln!(md, "# raysandbox bench\n");
@@ -718,30 +722,33 @@ fn write_outputs(
     let _ = writeln!(
         md,
         "Median frame times of the two pipelines rendered in turn, and the median over \
-         those frame pairs of generic / specialised; the bundled scenes, then the stress scenes.\n\n\
-         | scene | specialised (ms) | generic (ms) | generic / specialised |"
+         those frame pairs of generic / specialised; the bundled scenes, then the stress scenes.\n"
     );
-    let _ = writeln!(md, "| --- | --- | --- | --- |");
-    for r in pipelines {
-        let _ = writeln!(
-            md,
-            "| {} | {:.2} | {:.2} | {:.2} |",
-            r.scene, r.specialized_ms, r.generic_ms, r.ratio
-        );
-    }
+    md += &table(
+        "| scene | specialised (ms) | generic (ms) | generic / specialised |\n\
+         | --- | --- | --- | --- |",
+        pipelines,
+        |r| {
+            format!(
+                "| {} | {:.2} | {:.2} | {:.2} |",
+                r.scene, r.specialized_ms, r.generic_ms, r.ratio
+            )
+        },
+    );
     let _ = writeln!(
         md,
         "\n## Scaling with the number of spheres\n\n![scaling](scaling.png)\n"
     );
-    let _ = writeln!(md, "| spheres | BVH (ms) | loop (ms) | BVH build (ms) |");
-    let _ = writeln!(md, "| --- | --- | --- | --- |");
-    for r in scaling {
-        let _ = writeln!(
-            md,
-            "| {} | {:.2} | {:.2} | {:.3} |",
-            r.spheres, r.bvh_ms, r.loop_ms, r.build_ms
-        );
-    }
+    md += &table(
+        "| spheres | BVH (ms) | loop (ms) | BVH build (ms) |\n| --- | --- | --- | --- |",
+        scaling,
+        |r| {
+            format!(
+                "| {} | {:.2} | {:.2} | {:.3} |",
+                r.spheres, r.bvh_ms, r.loop_ms, r.build_ms
+            )
+        },
+    );
     plot::scaling(&out.join("scaling.png"), scaling)
         .map_err(|e| fail(&out.join("scaling.png"), e))?;
     write("results.md", md)

@@ -9,7 +9,7 @@ use crate::gpu::{
     Gpu, GpuWaitError, OffscreenRenderer, RenderError, ShaderOptions, ShaderSource, View,
 };
 use crate::reference;
-use crate::scene::{KindOptions, NamedOption, TorusMethod, TriangleTest};
+use crate::scene::{KindOptions, NamedOption};
 
 #[derive(clap::Args)]
 pub struct Args {
@@ -42,17 +42,9 @@ pub struct Args {
     /// shape.
     #[arg(long, value_enum, default_value_t = Switch::On)]
     bvh: Switch,
-    /// The ray-triangle test of meshes: cramer (Cramer's rule),
-    /// moller-trumbore, or watertight (Woop, Benthin and Wald). Default:
-    /// the scene's `triangles` in `[render]`, else watertight.
-    #[arg(long, value_parser = TriangleTest::from_name)]
-    triangles: Option<TriangleTest>,
-    /// How the GPU solves a torus's quartic: bisection, newton (the
-    /// slope's zeros in closed form, Newton steps kept inside the bracket),
-    /// or closed-form (the quartic's own roots in closed form, one Newton
-    /// step).
-    #[arg(long, default_value = "newton", value_parser = TorusMethod::from_name)]
-    torus: TorusMethod,
+    /// The shape kinds' own flags (`--triangles`, `--torus`).
+    #[command(flatten)]
+    kinds: KindFlags,
     /// Render the image this many times after one warm-up render and print
     /// the median, fastest and slowest GPU time.
     #[arg(long, default_value_t = 1, value_parser = clap::value_parser!(u32).range(1..=10000))]
@@ -64,6 +56,53 @@ pub struct Args {
     /// (against the f64 reference, traced at every pixel).
     #[arg(long, default_value = "shaded", value_parser = View::from_name)]
     view: View,
+}
+
+/// The flags the shape kinds declare (`Shape::FLAG`, gathered by
+/// `KindOptions::flags`), each with the value given, which chooses that
+/// kind's options in place of the scene's.
+#[derive(Clone, Default)]
+struct KindFlags(Vec<(&'static str, String)>);
+
+impl clap::FromArgMatches for KindFlags {
+    fn from_arg_matches(matches: &clap::ArgMatches) -> Result<Self, clap::Error> {
+        let given = KindOptions::flags().into_iter().filter_map(|(flag, _)| {
+            let value = matches.get_one::<String>(flag)?;
+            Some((flag, value.clone()))
+        });
+        Ok(KindFlags(given.collect()))
+    }
+
+    fn update_from_arg_matches(&mut self, matches: &clap::ArgMatches) -> Result<(), clap::Error> {
+        *self = Self::from_arg_matches(matches)?;
+        Ok(())
+    }
+}
+
+impl clap::Args for KindFlags {
+    fn augment_args(command: clap::Command) -> clap::Command {
+        KindOptions::flags()
+            .into_iter()
+            .fold(command, |command, (flag, help)| {
+                // The value is checked as the kind reads it, so a wrong name
+                // is reported with the names there are.
+                let check = move |value: &str| {
+                    KindOptions::default()
+                        .set_named(flag, value)
+                        .map(|()| value.to_owned())
+                };
+                command.arg(
+                    clap::Arg::new(flag)
+                        .long(flag)
+                        .help(help)
+                        .value_parser(check),
+                )
+            })
+    }
+
+    fn augment_args_for_update(command: clap::Command) -> clap::Command {
+        Self::augment_args(command)
+    }
 }
 
 #[derive(Clone, Copy, PartialEq, Eq, clap::ValueEnum)]
@@ -93,10 +132,10 @@ impl Args {
     /// command line in place of its own.
     fn kinds(&self, scene: &crate::scene::Scene) -> KindOptions {
         let mut kinds = KindOptions::of(scene);
-        if let Some(triangles) = self.triangles {
-            kinds.meshes = triangles;
+        for (flag, value) in &self.kinds.0 {
+            // Checked by clap's value parser already.
+            let _ = kinds.set_named(flag, value);
         }
-        kinds.tori = self.torus;
         kinds
     }
 

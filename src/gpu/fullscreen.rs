@@ -126,6 +126,22 @@ pub fn uniform_entry(binding: u32) -> wgpu::BindGroupLayoutEntry {
     }
 }
 
+/// A `texture_2d<u32>` at `binding`, read with `textureLoad` by the
+/// fragment stage: the scene's data textures and the id pass's ids that
+/// the selection outline reads.
+pub fn uint_texture_entry(binding: u32) -> wgpu::BindGroupLayoutEntry {
+    wgpu::BindGroupLayoutEntry {
+        binding,
+        visibility: wgpu::ShaderStages::FRAGMENT,
+        ty: wgpu::BindingType::Texture {
+            sample_type: wgpu::TextureSampleType::Uint,
+            view_dimension: wgpu::TextureViewDimension::D2,
+            multisampled: false,
+        },
+        count: None,
+    }
+}
+
 /// A bind group layout of one texture read with `textureLoad` in the
 /// fragment stage (unfilterable, so `Rgba32Float` works everywhere): how a
 /// pass reads the image an earlier pass wrote.

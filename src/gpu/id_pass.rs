@@ -15,7 +15,7 @@ use super::outline::{ID_FORMAT, id_pipeline};
 use super::shaders::ShaderSource;
 use super::shapes::glue::ALL_KINDS_BOUND;
 use super::texture::readback_target;
-use super::tracer::{PipelineError, SceneBuffers, scene_layout_entries};
+use super::tracer::{PipelineError, SceneBuffers, in_error_scope, scene_layout_entries};
 use crate::scene::{Scene, ShapeId};
 
 /// What the ray through one pixel centre hits first.
@@ -63,12 +63,9 @@ impl IdRenderer {
         let source = &source.with_generated(&options.kinds);
         source.validate()?;
         let device = &gpu.device;
-        let scope = device.push_error_scope(wgpu::ErrorFilter::Validation);
-        let renderer = Self::build(device, source, options);
-        match pollster::block_on(scope.pop()) {
-            Some(error) => Err(PipelineError::Wgpu(error.to_string())),
-            None => Ok(renderer),
-        }
+        pollster::block_on(in_error_scope(device, || {
+            Self::build(device, source, options)
+        }))
     }
 
     fn build(device: &wgpu::Device, source: &ShaderSource, options: &ShaderOptions) -> Self {

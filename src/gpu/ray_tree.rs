@@ -17,7 +17,7 @@ use super::offscreen::{RenderError, read_texels};
 use super::outline::ID_FORMAT;
 use super::shaders::ShaderSource;
 use super::texture::render_target;
-use super::tracer::{PipelineError, SceneBuffers, scene_layout_entries};
+use super::tracer::{PipelineError, SceneBuffers, in_error_scope, scene_layout_entries};
 use crate::reference::{RayKind, RayTree, TreeRay};
 use crate::scene::{Scene, ShapeId, ShapeKind};
 
@@ -86,12 +86,9 @@ impl RayTreeRenderer {
             .with_generated(&options.kinds);
         source.validate()?;
         let device = &gpu.device;
-        let scope = device.push_error_scope(wgpu::ErrorFilter::Validation);
-        let renderer = Self::build(device, source, &options);
-        match pollster::block_on(scope.pop()) {
-            Some(error) => Err(PipelineError::Wgpu(error.to_string())),
-            None => Ok(renderer),
-        }
+        pollster::block_on(in_error_scope(device, || {
+            Self::build(device, source, &options)
+        }))
     }
 
     fn build(device: &wgpu::Device, source: &ShaderSource, options: &ShaderOptions) -> Self {

@@ -19,7 +19,10 @@ use crate::reference::intersect::Hit;
 use crate::reference::ray::Ray;
 use crate::reference::shapes::placement::Placed;
 use crate::reference::shapes::{Prepare, Trace};
-use crate::scene::{self, Check, Folder, Instance, Issue, KeyPath, Material, Placement, Shape};
+use crate::scene::{
+    self, Check, Folder, Instance, Issue, KeyPath, Material, NEW_SHAPE_SIZE, Placement, Scene,
+    Shape, bundled,
+};
 
 /// `[[disks]]`: a disk of `radius` about the origin in the local xy plane,
 /// placed by the shared `translate`, `scale` and `rotation`.
@@ -45,6 +48,17 @@ impl Shape for Disk {
     fn bounds(&self, placement: &Placement) -> [DVec3; 2] {
         let r = self.radius;
         placement.bounds([DVec3::new(-r, -r, 0.0), DVec3::new(r, r, 0.0)])
+    }
+
+    /// A `.disk` file holds its radius.
+    const FILE_EXTENSIONS: &[&str] = &["disk"];
+
+    fn from_bytes(name: &str, bytes: &[u8]) -> Result<Disk, String> {
+        let text = String::from_utf8_lossy(bytes);
+        match text.trim().parse() {
+            Ok(radius) => Ok(Disk { radius }),
+            Err(e) => Err(format!("{name}:1: {e}")),
+        }
     }
 }
 
@@ -144,7 +158,7 @@ fn read(table: &str) -> Result<Instance<Disk>, String> {
     let materials = materials();
     let context = scene::Context {
         materials: &materials,
-        meshes: &Folder(None),
+        files: &Folder(None),
     };
     let path = KeyPath::default().key("disks").index(0);
     disk.validate(&path, &context)
@@ -167,6 +181,25 @@ fn a_disk_reads_its_keys_beside_the_shared_placement_and_material() {
     assert!(unknown.contains("unknown field `colour`"), "{unknown}");
     let material = read(&TABLE.replace("\"red\"", "\"blue\"")).unwrap_err();
     assert!(material.starts_with("disks[0].material"), "{material}");
+}
+
+#[test]
+fn a_disk_made_from_a_file_is_placed_in_view_as_any_kind_is() {
+    let disk = Disk::from_bytes("a.disk", b"3\n").unwrap();
+    assert_eq!(
+        Disk::from_bytes("b.disk", b"wide").unwrap_err(),
+        "b.disk:1: invalid float literal"
+    );
+    let scene = Scene::from_toml_str(bundled::text("whitted").unwrap(), None).unwrap();
+    let placed = scene.placed_in_view(disk);
+    let [lo, hi] = placed.bounds();
+    let centre = 0.5 * (lo + hi);
+    assert!((centre - scene.camera.to).length() < 1e-9, "{centre}");
+    let longest = (hi - lo).max_element();
+    assert!(
+        (longest - NEW_SHAPE_SIZE * scene.view_scale()).abs() < 1e-9,
+        "{longest}"
+    );
 }
 
 #[test]

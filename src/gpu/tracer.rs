@@ -48,6 +48,21 @@ pub enum PipelineError {
     Wgpu(String),
 }
 
+/// What `build` makes, or the validation error wgpu raised while it ran:
+/// a pass builds its pipelines inside an error scope, so that a shader
+/// wgpu rejects is an error its caller reports rather than a panic.
+pub(super) async fn in_error_scope<T>(
+    device: &wgpu::Device,
+    build: impl FnOnce() -> T,
+) -> Result<T, PipelineError> {
+    let scope = device.push_error_scope(wgpu::ErrorFilter::Validation);
+    let built = build();
+    match scope.pop().await {
+        Some(error) => Err(PipelineError::Wgpu(error.to_string())),
+        None => Ok(built),
+    }
+}
+
 impl Pipelines {
     /// Validates `source` with naga, then builds the pipelines. On any error
     /// nothing is built, so a caller can keep its previous pipelines. The
@@ -96,12 +111,10 @@ impl Pipelines {
             .specialised(options.stack_size, options.features.shape_kinds)
             .with_generated(&options.kinds);
         source.validate()?;
-        let scope = device.push_error_scope(wgpu::ErrorFilter::Validation);
-        let pipelines = Self::build(device, source, output_formats, options, outline);
-        match scope.pop().await {
-            Some(error) => Err(PipelineError::Wgpu(error.to_string())),
-            None => Ok(pipelines),
-        }
+        in_error_scope(device, || {
+            Self::build(device, source, output_formats, options, outline)
+        })
+        .await
     }
 
     fn build(
@@ -193,16 +206,7 @@ impl Pipelines {
 pub(super) fn scene_layout_entries(bound_kinds: u32) -> Vec<wgpu::BindGroupLayoutEntry> {
     bound_bindings(bound_kinds)
         .into_iter()
-        .map(|i| wgpu::BindGroupLayoutEntry {
-            binding: i,
-            visibility: wgpu::ShaderStages::FRAGMENT,
-            ty: wgpu::BindingType::Texture {
-                sample_type: wgpu::TextureSampleType::Uint,
-                view_dimension: wgpu::TextureViewDimension::D2,
-                multisampled: false,
-            },
-            count: None,
-        })
+        .map(fullscreen::uint_texture_entry)
         .collect()
 }
 

@@ -49,7 +49,8 @@ pub use ray_tree::{
 };
 pub use record::RayKind;
 pub use sampling::{r4, r4_rotated};
-pub use views::{ViewHit, sphere_uv, view_hit};
+pub use shapes::prepare_ahead;
+pub use views::{ViewHit, view_hit};
 
 use intersect::nearest_hit;
 use sampling::concentric_disk;

@@ -9,8 +9,7 @@
 //! mesh uses, so that every error names the file and the line (OBJ) or the
 //! element (PLY).
 
-use std::collections::HashMap;
-use std::path::{Path, PathBuf};
+use std::path::Path;
 use std::sync::{Arc, Mutex, Weak};
 
 use glam::DVec3;
@@ -90,81 +89,10 @@ struct Raw {
     normals: Vec<DVec3>,
 }
 
-/// Where a scene's mesh files are read from (docs/scene-format.md,
-/// `[[meshes]]`): natively the file system ([`Folder`]); in the web page,
-/// which has no file system, bytes its caller fetched first
-/// ([`GivenFiles`]). Either way the bytes go through [`load_bytes`].
-pub trait MeshFiles {
-    /// The geometry of `file`, as the scene writes it; errors name the file.
-    fn load(&self, file: &Path, smooth: bool) -> Result<Geometry, String>;
-}
-
-/// Mesh files on disk, relative to a folder (the scene file's) unless
-/// absolute; `Folder(None)`: relative to the working directory.
-pub struct Folder<'a>(pub Option<&'a Path>);
-
-impl Folder<'_> {
-    /// Where `file`, as the scene writes it, is on disk.
-    pub fn path(&self, file: &Path) -> PathBuf {
-        match self.0 {
-            Some(dir) => dir.join(file),
-            None => file.to_path_buf(),
-        }
-    }
-}
-
-impl MeshFiles for Folder<'_> {
-    fn load(&self, file: &Path, smooth: bool) -> Result<Geometry, String> {
-        load_file(&self.path(file), smooth)
-    }
-}
-
-/// Mesh files given as bytes, by `file` as the scene writes it (the web
-/// page fetches them over http before it parses the scene). Nothing is read
-/// from disk: a file not given is an error that names it and says why.
-pub struct GivenFiles {
-    files: HashMap<PathBuf, Vec<u8>>,
-    /// What an error about a file that was not given says after its name.
-    missing: String,
-}
-
-impl GivenFiles {
-    /// No file yet; `missing` explains, after a file's name, why a file
-    /// the scene names is not there.
-    pub fn new(missing: &str) -> Self {
-        GivenFiles {
-            files: HashMap::new(),
-            missing: missing.to_owned(),
-        }
-    }
-
-    /// Gives the `bytes` of `file` (as the scene writes it).
-    pub fn insert(&mut self, file: PathBuf, bytes: Vec<u8>) {
-        self.files.insert(file, bytes);
-    }
-
-    /// Whether `file` was given.
-    pub fn has(&self, file: &Path) -> bool {
-        self.files.contains_key(file)
-    }
-}
-
-impl MeshFiles for GivenFiles {
-    fn load(&self, file: &Path, smooth: bool) -> Result<Geometry, String> {
-        let name = file.display();
-        let bytes = self
-            .files
-            .get(file)
-            .ok_or_else(|| format!("{name}: {}", self.missing))?;
-        load_bytes(&name.to_string(), bytes, smooth)
-    }
-}
-
 /// Reads `path` (`.obj` or `.ply`, by extension). Errors are messages that
 /// start with the file and line or element: `bunny.obj:12: ...`.
 pub fn load_file(path: &Path, smooth: bool) -> Result<Geometry, String> {
-    let name = path.display().to_string();
-    let bytes = std::fs::read(path).map_err(|e| format!("{name}: cannot read the file: {e}"))?;
+    let (name, bytes) = super::files::read_file(path)?;
     load_bytes(&name, &bytes, smooth)
 }
 

@@ -8,6 +8,7 @@ pub mod bundled;
 mod camera;
 mod document;
 mod error;
+mod files;
 mod key_path;
 mod mesh_file;
 mod named;
@@ -28,8 +29,9 @@ use serde::{Deserialize, Serialize};
 
 pub use camera::{Film, camera_basis, normalize_or};
 pub use error::SceneError;
+pub use files::{Folder, GivenFiles, SceneFiles};
 pub use key_path::KeyPath;
-pub use mesh_file::{Folder, Geometry, GivenFiles, MeshFiles, PerGeometry, load_bytes, load_file};
+pub use mesh_file::{Geometry, PerGeometry, load_bytes, load_file};
 pub use named::{NamedOption, named_option};
 pub use shapes::Context;
 pub use shapes::{
@@ -115,6 +117,25 @@ macro_rules! scene_with_shapes {
                 }
             }
 
+            /// The kind a new shape is made from when the user adds the
+            /// file at `path` or drops it, by the file's extension in any
+            /// case ([`Shape::FILE_EXTENSIONS`]); `None` for a file no kind
+            /// reads.
+            pub fn for_file(path: &Path) -> Option<ShapeKind> {
+                let extension = path.extension()?.to_str()?.to_ascii_lowercase();
+                ShapeKind::ALL
+                    .iter()
+                    .copied()
+                    .find(|kind| kind.file_extensions().contains(&extension.as_str()))
+            }
+
+            /// The extensions of the files it is made from ([`Shape::FILE_EXTENSIONS`]).
+            pub fn file_extensions(self) -> &'static [&'static str] {
+                match self {
+                    $(ShapeKind::$kind => <$kind as Shape>::FILE_EXTENSIONS,)*
+                }
+            }
+
             /// Its keys whose arrays are not vectors of 3 ([`Shape::NOT_VECTORS`]).
             pub fn not_vectors(self) -> &'static [&'static str] {
                 match self {
@@ -167,6 +188,48 @@ macro_rules! scene_with_shapes {
             }
         }
 
+        /// A shape made from a file the user added or dropped, not yet in
+        /// a scene ([`Shape::from_file`]): read on any thread, then added
+        /// in front of the camera ([`Scene::add_in_view`]).
+        #[derive(Debug, Clone, PartialEq)]
+        pub enum NewShape {
+            $($kind(Box<$kind>),)*
+        }
+
+        impl NewShape {
+            /// The shape of kind `kind` read from `file`, named as the
+            /// scene writes it (relative to `base`, the scene file's folder).
+            pub fn from_file(kind: ShapeKind, file: PathBuf, base: Option<&Path>) -> Result<NewShape, String> {
+                match kind {
+                    $(ShapeKind::$kind => <$kind as Shape>::from_file(file, base).map(|s| NewShape::$kind(Box::new(s))),)*
+                }
+            }
+
+            /// The shape of kind `kind` from the `bytes` of a file named
+            /// `name` that has no path (a file dropped on the web page).
+            pub fn from_bytes(kind: ShapeKind, name: &str, bytes: &[u8]) -> Result<NewShape, String> {
+                match kind {
+                    $(ShapeKind::$kind => <$kind as Shape>::from_bytes(name, bytes).map(|s| NewShape::$kind(Box::new(s))),)*
+                }
+            }
+
+            /// The file it reads, to name it for the scene open now.
+            pub fn file_mut(&mut self) -> Option<&mut PathBuf> {
+                match self {
+                    $(NewShape::$kind(s) => s.file_mut(),)*
+                }
+            }
+
+            /// For a message: " (12 triangles)" ([`Shape::parts`]); empty
+            /// for a shape of one piece.
+            pub fn summary(&self) -> String {
+                let parts = match self {
+                    $(NewShape::$kind(s) => s.parts(),)*
+                };
+                parts_summary(parts.into_iter())
+            }
+        }
+
         $(
             impl ShapeList for $kind {
                 const KIND: ShapeKind = ShapeKind::$kind;
@@ -196,6 +259,21 @@ macro_rules! scene_with_shapes {
                 KindOptions {
                     $($field: <$kind as Shape>::options(scene),)*
                 }
+            }
+
+            /// Every kind's flag ([`Shape::FLAG`]): its name and help.
+            pub fn flags() -> Vec<(&'static str, &'static str)> {
+                [$(<$kind as Shape>::FLAG),*].into_iter().flatten().collect()
+            }
+
+            /// The options of the kind whose flag is `flag` replaced by the
+            /// ones its value `name` names ([`Shape::options_named`]).
+            pub fn set_named(&mut self, flag: &str, name: &str) -> Result<(), String> {
+                $(if <$kind as Shape>::FLAG.is_some_and(|(f, _)| f == flag) {
+                    self.$field = <$kind as Shape>::options_named(name)?;
+                    return Ok(());
+                })*
+                Err(format!("--{flag}: no shape kind has this flag"))
             }
         }
 
@@ -259,9 +337,16 @@ macro_rules! scene_with_shapes {
                 true $(&& self.$field == other.$field)*
             }
 
-            /// "2 spheres, 1 planes, 0 cubes": the count of every kind.
+            /// "2 spheres, 1 planes, 0 cubes, ..., 1 meshes (12 triangles)":
+            /// the count of every kind, and of the parts of its shapes
+            /// ([`Shape::parts`]) if it has any.
             fn shape_summary(&self) -> String {
-                let counts = [$(format!("{} {}", self.$field.len(), stringify!($field))),*];
+                let counts = [$(format!(
+                    "{} {}{}",
+                    self.$field.len(),
+                    stringify!($field),
+                    parts_summary(self.$field.iter().filter_map(|s| s.parts())),
+                )),*];
                 counts.join(", ")
             }
 
@@ -301,14 +386,35 @@ macro_rules! scene_with_shapes {
                 Ok(count)
             }
 
+            /// Renames every file the shapes read ([`Shape::file_mut`]) as
+            /// `rename` says: the scene saved in another folder names the
+            /// same files by new relative paths.
+            pub fn rename_files(&mut self, mut rename: impl FnMut(&Path) -> PathBuf) {
+                $(for file in self.$field.iter_mut().filter_map(|s| s.shape.file_mut()) {
+                    *file = rename(file);
+                })*
+            }
+
+            /// Adds `shape` (made from a file) in front of the camera
+            /// ([`Scene::placed_in_view`]) and returns its id.
+            pub fn add_in_view(&mut self, shape: NewShape) -> ShapeId {
+                match shape {
+                    $(NewShape::$kind(s) => {
+                        let instance = self.placed_in_view(*s);
+                        self.$field.push(instance);
+                        ShapeId::$kind(self.$field.len() - 1)
+                    })*
+                }
+            }
+
             /// Moves every shape by `offset`.
             fn translate_shapes(&mut self, offset: DVec3) {
                 $(self.$field.iter_mut().for_each(|s| s.translate(offset));)*
             }
 
             /// Validates every shape, kind by kind in registry order.
-            fn validate_shapes(&mut self, root: &key_path::KeyPath, meshes: &dyn MeshFiles) -> validate::Check {
-                let context = shapes::Context { materials: &self.materials, meshes };
+            fn validate_shapes(&mut self, root: &key_path::KeyPath, files: &dyn SceneFiles) -> validate::Check {
+                let context = shapes::Context { materials: &self.materials, files };
                 $(for (i, shape) in self.$field.iter_mut().enumerate() {
                     shape.validate(&root.key(stringify!($field)).index(i), &context)?;
                 })*
@@ -318,6 +424,19 @@ macro_rules! scene_with_shapes {
     };
 }
 for_each_shape_kind!(scene_with_shapes);
+
+/// " (12 triangles)": the sum of the `parts` of some shapes of a kind,
+/// empty if none has parts.
+fn parts_summary(parts: impl Iterator<Item = (usize, &'static str)>) -> String {
+    let mut total = None;
+    for (count, name) in parts {
+        let (sum, _) = total.get_or_insert((0, name));
+        *sum += count;
+    }
+    total
+        .map(|(sum, name)| format!(" ({sum} {name})"))
+        .unwrap_or_default()
+}
 
 /// The array of one shape kind in a scene.
 pub trait ShapeList: Shape + Sized {
@@ -509,9 +628,9 @@ pub struct Checker {
     pub size: f64,
 }
 
-/// How large a mesh from a file appears beside the target, as a fraction
+/// How large a shape from a file appears beside the target, as a fraction
 /// of the scene's [`Scene::view_scale`]: seen whole.
-pub const NEW_MESH_SIZE: f64 = 0.4;
+pub const NEW_SHAPE_SIZE: f64 = 0.4;
 
 impl Scene {
     /// Parses and validates a scene from TOML text. `origin` names the file in
@@ -521,31 +640,25 @@ impl Scene {
         validate::parse_and_validate(text, origin, &folder)
     }
 
-    /// As [`Scene::from_toml_str`], with the mesh files read from `meshes`
-    /// rather than from the scene file's folder (the web page gives the
-    /// bytes it fetched).
-    pub fn from_toml_with_meshes(
+    /// As [`Scene::from_toml_str`], with the files its shapes read (a
+    /// mesh's model) taken from `files` rather than from the scene file's
+    /// folder (the web page gives the bytes it fetched).
+    pub fn from_toml_with_files(
         text: &str,
         origin: Option<&Path>,
-        meshes: &dyn MeshFiles,
+        files: &dyn SceneFiles,
     ) -> Result<Scene, SceneError> {
-        validate::parse_and_validate(text, origin, meshes)
+        validate::parse_and_validate(text, origin, files)
     }
 
-    /// The `file` of each of the scene text's `[[meshes]]`, as written,
-    /// without reading them: what a caller with no file system must fetch
-    /// before [`Scene::from_toml_with_meshes`]. Empty for a text that does
-    /// not parse (parsing it reports why).
-    pub fn mesh_files(text: &str) -> Vec<PathBuf> {
+    /// The file each shape of the scene's text reads ([`Shape::file`]),
+    /// as written, each once, without reading them: what a caller with no
+    /// file system must fetch before [`Scene::from_toml_with_files`].
+    /// Empty for a text that does not parse (parsing it reports why).
+    pub fn files_named(text: &str) -> Vec<PathBuf> {
         let scene = document::Document::parse(text).and_then(|doc| parse::deserialize(&doc));
         scene
-            .map(|scene| {
-                scene
-                    .meshes
-                    .into_iter()
-                    .filter_map(|m| m.shape.file)
-                    .collect()
-            })
+            .map(|scene| scene.files_read(None))
             .unwrap_or_default()
     }
 
@@ -585,21 +698,16 @@ impl Scene {
         }
     }
 
-    /// Appends a mesh just read from a file in front of the camera: the
-    /// centre of its box on the target, scaled uniformly so that its longest
-    /// side is [`NEW_MESH_SIZE`] of the [`Scene::view_scale`] (files come in
-    /// any unit: the bunny is 0.15 across, the teapot 6). Returns its index.
-    pub fn add_mesh_in_view(&mut self, mesh: Mesh) -> usize {
-        let [lo, hi] = mesh.bounds(&Placement::default());
-        let extent = (hi - lo).max_element().max(f64::MIN_POSITIVE);
-        let size = NEW_MESH_SIZE * self.view_scale() / extent;
-        let placement = Placement {
-            translate: self.camera.to - 0.5 * (lo + hi) * size,
-            scale: CubeSize::Uniform(size),
-            rotation: DVec3::ZERO,
-        };
-        self.meshes.push(Instance::new(mesh, placement));
-        self.meshes.len() - 1
+    /// `shape` (just made from a file) in front of the camera: the centre
+    /// of its box on the target, scaled uniformly so that its longest side
+    /// is [`NEW_SHAPE_SIZE`] of the [`Scene::view_scale`] (files come in
+    /// any unit: the bunny is 0.15 across, the teapot 6); a kind that
+    /// cannot be so placed keeps the place it has ([`Place::fitted`]).
+    pub fn placed_in_view<K: Shape>(&self, shape: K) -> Instance<K> {
+        let local = shape.bounds(&K::Placement::default());
+        let placement =
+            K::Placement::fitted(local, self.camera.to, NEW_SHAPE_SIZE * self.view_scale());
+        Instance::new(shape, placement)
     }
 
     /// The scene moved by `offset` (in f64): camera, lights and shapes. The
@@ -627,18 +735,8 @@ impl Scene {
 
     /// A one-line summary for `raysandbox check`.
     pub fn summary(&self) -> String {
-        let triangles: usize = self
-            .meshes
-            .iter()
-            .map(|m| m.geometry.0.triangles.len())
-            .sum();
-        let triangles = if self.meshes.is_empty() {
-            String::new()
-        } else {
-            format!(" ({triangles} triangles)")
-        };
         format!(
-            "{}{triangles}, {} materials, {} lights",
+            "{}, {} materials, {} lights",
             self.shape_summary(),
             self.materials.len(),
             self.lights.len()

@@ -1260,7 +1260,8 @@ const SQUARE_OBJ: &str = "v 0 0 0\nv 1 0 0\nv 1 1 0\nv 0 1 0\nf 1 2 3 4\n";
 
 #[test]
 fn a_mesh_from_bytes_is_inline_and_its_scene_text_carries_it() {
-    let mesh = super::Mesh::inline_from_bytes("square.obj", SQUARE_OBJ.as_bytes()).unwrap();
+    let mesh =
+        <super::Mesh as super::Shape>::from_bytes("square.obj", SQUARE_OBJ.as_bytes()).unwrap();
     assert_eq!(mesh.file, None);
     assert_eq!(mesh.positions.len(), 4);
     assert_eq!(mesh.triangles.len(), 2);
@@ -1274,9 +1275,9 @@ fn a_mesh_from_bytes_is_inline_and_its_scene_text_carries_it() {
 #[test]
 fn a_malformed_mesh_from_bytes_names_the_file_and_line() {
     let bad = "v 0 0 0\nv 1 0 0\nf 1 2 7\n";
-    let e = super::Mesh::inline_from_bytes("bad.obj", bad.as_bytes()).unwrap_err();
+    let e = <super::Mesh as super::Shape>::from_bytes("bad.obj", bad.as_bytes()).unwrap_err();
     assert!(e.starts_with("bad.obj:3:"), "{e}");
-    let e = super::Mesh::inline_from_bytes("model.stl", b"solid").unwrap_err();
+    let e = <super::Mesh as super::Shape>::from_bytes("model.stl", b"solid").unwrap_err();
     assert!(e.starts_with("model.stl:"), "{e}");
 }
 
@@ -1287,17 +1288,17 @@ const NAMED_SQUARE: &str =
     "[camera]\nfrom = [0, 1, 5]\nto = [0, 0, 0]\n[[meshes]]\nfile = \"models/square.obj\"\n";
 
 #[test]
-fn mesh_files_lists_the_files_as_written_without_reading_them() {
+fn files_named_lists_the_files_as_written_without_reading_them() {
     assert_eq!(
-        Scene::mesh_files(NAMED_SQUARE),
+        Scene::files_named(NAMED_SQUARE),
         [PathBuf::from("models/square.obj")]
     );
     assert!(
-        Scene::mesh_files(FULL).is_empty(),
+        Scene::files_named(FULL).is_empty(),
         "inline meshes name no file"
     );
     assert!(
-        Scene::mesh_files("[camera\n").is_empty(),
+        Scene::files_named("[camera\n").is_empty(),
         "a broken text names none"
     );
 }
@@ -1306,7 +1307,7 @@ fn mesh_files_lists_the_files_as_written_without_reading_them() {
 fn given_mesh_bytes_replace_the_file_system() {
     let mut given = super::GivenFiles::new("not given");
     given.insert(PathBuf::from("models/square.obj"), SQUARE_OBJ.into());
-    let scene = Scene::from_toml_with_meshes(NAMED_SQUARE, None, &given).unwrap();
+    let scene = Scene::from_toml_with_files(NAMED_SQUARE, None, &given).unwrap();
     let geometry = &scene.meshes[0].geometry.0;
     assert_eq!(geometry.positions.len(), 4);
     assert_eq!(geometry.triangles.len(), 2);
@@ -1322,8 +1323,8 @@ fn given_mesh_bytes_replace_the_file_system() {
 /// gives the same scene.
 fn assert_round_trip_text(scene: &Scene, original: &str, given: &super::GivenFiles) {
     let text = scene.to_toml_string();
-    assert_eq!(Scene::mesh_files(&text), Scene::mesh_files(original));
-    let again = Scene::from_toml_with_meshes(&text, None, given).unwrap();
+    assert_eq!(Scene::files_named(&text), Scene::files_named(original));
+    let again = Scene::from_toml_with_files(&text, None, given).unwrap();
     assert_eq!(&again, scene);
 }
 
@@ -1331,7 +1332,7 @@ fn assert_round_trip_text(scene: &Scene, original: &str, given: &super::GivenFil
 fn a_mesh_file_not_given_is_reported_at_its_line_and_never_read_from_disk() {
     let given = super::GivenFiles::new("the page cannot read it");
     let e =
-        Scene::from_toml_with_meshes(NAMED_SQUARE, Some(Path::new("a.toml")), &given).unwrap_err();
+        Scene::from_toml_with_files(NAMED_SQUARE, Some(Path::new("a.toml")), &given).unwrap_err();
     assert_eq!(e.line, Some(5), "{e}");
     assert_eq!(e.key.as_deref(), Some("meshes[0].file"), "{e}");
     assert_eq!(e.message, "models/square.obj: the page cannot read it");
@@ -1342,7 +1343,7 @@ fn a_mesh_file_not_given_is_reported_at_its_line_and_never_read_from_disk() {
         .join("glass_bunny.toml");
     let text = super::bundled::text("glass_bunny").unwrap();
     assert!(Scene::from_toml_str(text, Some(&origin)).is_ok());
-    let e = Scene::from_toml_with_meshes(text, Some(&origin), &given).unwrap_err();
+    let e = Scene::from_toml_with_files(text, Some(&origin), &given).unwrap_err();
     assert!(e.message.starts_with("../../meshes/bunny.obj: "), "{e}");
 }
 
@@ -1352,11 +1353,11 @@ fn given_bytes_load_like_the_file_on_disk_and_their_errors_name_the_file_and_lin
     let text = super::bundled::text("glass_bunny").unwrap();
     let from_disk = Scene::from_toml_str(text, Some(&folder.join("glass_bunny.toml"))).unwrap();
     let mut given = super::GivenFiles::new("not given");
-    for file in Scene::mesh_files(text) {
+    for file in Scene::files_named(text) {
         let bytes = std::fs::read(folder.join(&file)).unwrap();
         given.insert(file, bytes);
     }
-    let from_bytes = Scene::from_toml_with_meshes(text, None, &given).unwrap();
+    let from_bytes = Scene::from_toml_with_files(text, None, &given).unwrap();
     assert_eq!(from_bytes, from_disk, "same triangles, same smooth normals");
 
     let mut broken = super::GivenFiles::new("not given");
@@ -1364,7 +1365,7 @@ fn given_bytes_load_like_the_file_on_disk_and_their_errors_name_the_file_and_lin
         PathBuf::from("models/square.obj"),
         b"v 0 0 0\nf 1 2 3\n".to_vec(),
     );
-    let e = Scene::from_toml_with_meshes(NAMED_SQUARE, None, &broken).unwrap_err();
+    let e = Scene::from_toml_with_files(NAMED_SQUARE, None, &broken).unwrap_err();
     assert_eq!(e.line, Some(5), "{e}");
     assert!(e.message.starts_with("models/square.obj:2:"), "{e}");
 }

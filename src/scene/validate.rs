@@ -10,8 +10,8 @@ use glam::DVec3;
 use indexmap::IndexMap;
 
 use super::document::Document;
+use super::files::SceneFiles;
 use super::key_path::KeyPath;
-use super::mesh_file::MeshFiles;
 use super::parse;
 use super::{Camera, Light, MAX_DEPTH, Material, RenderSettings, Scene, SceneError};
 
@@ -20,19 +20,19 @@ use super::{Camera, Light, MAX_DEPTH, Material, RenderSettings, Scene, SceneErro
 const UNIT_TOLERANCE: f64 = 8.0 * f64::EPSILON;
 
 /// Parses and checks a scene; `origin` names the file in the error,
-/// `meshes` reads the mesh files it names.
+/// `files` gives the files its shapes read.
 pub(super) fn parse_and_validate(
     text: &str,
     origin: Option<&Path>,
-    meshes: &dyn MeshFiles,
+    files: &dyn SceneFiles,
 ) -> Result<Scene, SceneError> {
-    load(text, meshes).map_err(|e| e.in_file(origin))
+    load(text, files).map_err(|e| e.in_file(origin))
 }
 
-fn load(text: &str, meshes: &dyn MeshFiles) -> Result<Scene, SceneError> {
+fn load(text: &str, files: &dyn SceneFiles) -> Result<Scene, SceneError> {
     let doc = Document::parse(text)?;
     let mut scene = parse::deserialize(&doc)?;
-    validate(&mut scene, meshes).map_err(|issue| doc.error(&issue.path, issue.message))?;
+    validate(&mut scene, files).map_err(|issue| doc.error(&issue.path, issue.message))?;
     Ok(scene)
 }
 
@@ -80,7 +80,7 @@ const FIELD_OF_VIEW: Rule = Rule {
 
 /// Checks every rule, first problem first (sections in the order of the
 /// example file in docs/scene-format.md), and normalises plane normals.
-fn validate(scene: &mut Scene, meshes: &dyn MeshFiles) -> Check {
+fn validate(scene: &mut Scene, files: &dyn SceneFiles) -> Check {
     let root = KeyPath::default();
     render(&scene.render, &root.key("render"))?;
     camera(&scene.camera, &root.key("camera"))?;
@@ -90,7 +90,7 @@ fn validate(scene: &mut Scene, meshes: &dyn MeshFiles) -> Check {
     for (name, material) in &scene.materials {
         self::material(material, &root.key("materials").key(name))?;
     }
-    scene.validate_shapes(&root, meshes)
+    scene.validate_shapes(&root, files)
 }
 
 fn render(r: &RenderSettings, path: &KeyPath) -> Check {

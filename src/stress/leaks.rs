@@ -8,13 +8,13 @@
 //! kernel, `leaks.wgsl`), on a tessellated sphere, the bunny, and a fan of
 //! 1000 slivers around one vertex.
 
-use std::fmt::Write as _;
 use std::path::Path;
 
 use bytemuck::{Pod, Zeroable};
 use glam::DVec3;
 use rayon::prelude::*;
 
+use super::table::table;
 use crate::gpu::compute::{Kernel, with_kernel};
 use crate::gpu::{Gpu, ShaderSource};
 use crate::reference::ray::Ray;
@@ -366,41 +366,37 @@ pub fn measure(gpu: &Gpu, source: &ShaderSource, rays: usize) -> Result<Vec<Leak
 
 /// The leak table, per mesh and test.
 pub fn markdown(rows: &[LeakRow]) -> String {
-    let mut out = String::from(
+    table(
         "| mesh | test | rays | leaks f64 | per million f64 | leaks f32 GPU | per million f32 GPU |\n\
-         | --- | --- | ---: | ---: | ---: | ---: | ---: |\n",
-    );
-    for r in rows {
-        let _ = writeln!(
-            out,
-            "| {} | {} | {} | {} | {:.0} | {} | {:.0} |",
-            r.mesh,
-            r.test.name(),
-            r.rays,
-            r.f64_leaks,
-            r.f64_per_million(),
-            r.gpu_leaks,
-            r.gpu_per_million()
-        );
-    }
-    out
+         | --- | --- | ---: | ---: | ---: | ---: | ---: |",
+        rows,
+        |r| {
+            format!(
+                "| {} | {} | {} | {} | {:.0} | {} | {:.0} |",
+                r.mesh,
+                r.test.name(),
+                r.rays,
+                r.f64_leaks,
+                r.f64_per_million(),
+                r.gpu_leaks,
+                r.gpu_per_million()
+            )
+        },
+    )
 }
 
 /// The leak rows as CSV.
 pub fn csv(rows: &[LeakRow]) -> String {
-    let mut out = String::from("mesh,test,rays,f64_leaks,gpu_f32_leaks\n");
-    for r in rows {
-        let _ = writeln!(
-            out,
+    table("mesh,test,rays,f64_leaks,gpu_f32_leaks", rows, |r| {
+        format!(
             "{},{},{},{},{}",
             r.mesh,
             r.test.name(),
             r.rays,
             r.f64_leaks,
             r.gpu_leaks
-        );
-    }
-    out
+        )
+    })
 }
 
 #[cfg(test)]

@@ -11,6 +11,7 @@ pub mod leaks;
 pub mod metrics;
 mod report;
 pub mod scenes;
+pub mod table;
 
 use std::path::PathBuf;
 use std::time::Instant;

@@ -102,9 +102,9 @@ pub enum PageEvent {
     Work(WorkEvent),
     /// A file dropped on the canvas, read.
     Dropped(Result<DroppedFile, String>),
-    /// A mesh file of a bundled mesh scene (`file` as the scene writes
-    /// it), fetched over http, or why not.
-    MeshFetched(PathBuf, Result<Vec<u8>, String>),
+    /// A file that a bundled scene's shapes read (a mesh scene's model,
+    /// `file` as the scene writes it), fetched over http, or why not.
+    FileFetched(PathBuf, Result<Vec<u8>, String>),
 }
 
 /// A scene the page opens once the mesh files it names are fetched
@@ -147,8 +147,8 @@ pub struct Graphics {
 pub fn start() {
     std::panic::set_hook(Box::new(|info| page::show_error(&info.to_string())));
     page::timing("start");
-    let mesh_files = PageMeshes::default();
-    let (text, doc, link_waits) = match initial_document(&mesh_files) {
+    let models = PageMeshes::default();
+    let (text, doc, link_waits) = match initial_document(&models) {
         Ok(doc) => doc,
         Err(e) => {
             page::show_error(&e);
@@ -225,7 +225,7 @@ pub fn start() {
         window: None,
         menu: [MenuItem::bundled_scenes(), MenuItem::example_shaders()].concat(),
         address_due: None,
-        meshes: mesh_files,
+        meshes: models,
         waiting: None,
         graphics_started: false,
         recovering: None,
@@ -275,7 +275,7 @@ fn initial_document(meshes: &PageMeshes) -> Result<(String, Document, Option<Str
     let mut waits = None;
     match page::hash().as_deref().and_then(link::scene_in_hash) {
         Some(Ok(text)) if !meshes.missing(&text).is_empty() => waits = Some(text),
-        Some(Ok(text)) => match Scene::from_toml_with_meshes(&text, None, meshes.files()) {
+        Some(Ok(text)) => match Scene::from_toml_with_files(&text, None, meshes.files()) {
             Ok(scene) => {
                 page::event("scene from-link");
                 return Ok((text, Document::untitled(scene), None));
@@ -417,7 +417,7 @@ impl ApplicationHandler<PageEvent> for Page {
                 self.follow(outcome);
             }
             PageEvent::Dropped(file) => self.dropped(file),
-            PageEvent::MeshFetched(file, bytes) => self.mesh_fetched(&file, bytes),
+            PageEvent::FileFetched(file, bytes) => self.mesh_fetched(&file, bytes),
         }
         self.viewer.request_redraw();
     }
@@ -580,11 +580,11 @@ impl Page {
         });
         match dropped {
             Ok((Dropped::Scene(text), name)) => self.open(Opening::Dropped(name, text)),
-            Ok((Dropped::Mesh(mesh), name)) => {
+            Ok((Dropped::Shape(shape), name)) => {
                 // In front of the camera, as natively (not selected: the
                 // picture stays the scene's alone).
                 let before = self.viewer.doc.scene.clone();
-                self.viewer.doc.scene.add_mesh_in_view(*mesh);
+                self.viewer.doc.scene.add_in_view(shape);
                 self.viewer.scene_changed(Some(&before));
                 self.viewer.request_redraw();
                 self.address_due = Some(Instant::now());
@@ -734,12 +734,12 @@ impl Page {
         let Some(address) = meshes::address(&file) else {
             // Not reached (only served files are waited for), but a scene
             // must never wait for a file nobody fetches.
-            let _ = proxy.send_event(PageEvent::MeshFetched(file, Err("not served".into())));
+            let _ = proxy.send_event(PageEvent::FileFetched(file, Err("not served".into())));
             return;
         };
         wasm_bindgen_futures::spawn_local(async move {
             let bytes = page::fetch_bytes(&address).await;
-            let _ = proxy.send_event(PageEvent::MeshFetched(file, bytes));
+            let _ = proxy.send_event(PageEvent::FileFetched(file, bytes));
         });
     }
 
@@ -801,7 +801,7 @@ impl Page {
     fn opened(&mut self, opening: Opening) {
         let files = self.meshes.files();
         match opening {
-            Opening::Bundled(name) => match Document::bundled_with_meshes(name, files) {
+            Opening::Bundled(name) => match Document::bundled_with_files(name, files) {
                 Ok(doc) => {
                     self.viewer.replace(doc);
                     page::event(&format!("scene {name}"));
@@ -812,7 +812,7 @@ impl Page {
                     page::show_error(&e.to_string());
                 }
             },
-            Opening::Link(text) => match Scene::from_toml_with_meshes(&text, None, files) {
+            Opening::Link(text) => match Scene::from_toml_with_files(&text, None, files) {
                 Ok(scene) => {
                     self.work.scene_opened(&text, &scene);
                     self.viewer.replace(Document::untitled(scene));
@@ -826,7 +826,7 @@ impl Page {
                 self.follow(outcome);
             }
             Opening::Dropped(name, text) => {
-                match Scene::from_toml_with_meshes(&text, Some(Path::new(&name)), files) {
+                match Scene::from_toml_with_files(&text, Some(Path::new(&name)), files) {
                     Ok(_) => {
                         let outcome = self.work.open(Doc::Scene, &text);
                         self.follow(outcome);

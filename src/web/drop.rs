@@ -10,7 +10,7 @@ use wasm_bindgen::JsCast;
 use wasm_bindgen::prelude::*;
 use wasm_bindgen_futures::JsFuture;
 
-use crate::scene::Mesh;
+use crate::scene::{NewShape, ShapeKind};
 
 /// A dropped file, read.
 pub struct DroppedFile {
@@ -22,8 +22,9 @@ pub struct DroppedFile {
 pub enum Dropped {
     /// A scene's TOML text: it replaces the scene.
     Scene(String),
-    /// An OBJ or PLY model, added to the scene in front of the camera.
-    Mesh(Box<Mesh>),
+    /// A file a shape is made from (an OBJ or PLY model), the shape added
+    /// to the scene in front of the camera.
+    Shape(NewShape),
     /// A sandbox shader (WGSL, or GLSL in GLSL Sandbox or Shadertoy style).
     Shader(String),
     /// A PNG or JPEG image, for a multipass shader's texture channels.
@@ -35,12 +36,12 @@ impl Dropped {
     /// the file (and the line, for a model that cannot be read).
     pub fn of(name: &str, bytes: Vec<u8>) -> Result<Dropped, String> {
         let text = |bytes| String::from_utf8(bytes).map_err(|_| format!("{name}: not UTF-8 text"));
+        if let Some(kind) = ShapeKind::for_file(std::path::Path::new(name)) {
+            return NewShape::from_bytes(kind, name, &bytes).map(Dropped::Shape);
+        }
         let extension = name.rsplit_once('.').map(|(_, e)| e.to_ascii_lowercase());
         match extension.as_deref() {
             Some("toml") => text(bytes).map(Dropped::Scene),
-            Some("obj" | "ply") => {
-                Mesh::inline_from_bytes(name, &bytes).map(|mesh| Dropped::Mesh(Box::new(mesh)))
-            }
             // A Shadertoy JSON export is a multipass shader (docs/web.md).
             Some("wgsl" | "glsl" | "frag" | "json") => text(bytes).map(Dropped::Shader),
             // Read as `--channel0` reads a file (docs/sandbox.md, "Textures").

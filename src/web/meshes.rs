@@ -3,7 +3,7 @@
 //! copies the files these scenes name into `dist/web/meshes/`, and the page
 //! fetches each over http, once, before it parses a scene that names it.
 //! The scene is then parsed from the fetched bytes
-//! ([`Scene::from_toml_with_meshes`]), by the same parser as natively.
+//! ([`Scene::from_toml_with_files`]), by the same parser as natively.
 
 use std::collections::BTreeSet;
 use std::path::{Path, PathBuf};
@@ -19,7 +19,7 @@ fn bundled_files() -> &'static BTreeSet<PathBuf> {
     FILES.get_or_init(|| {
         bundled::mesh_scene_names()
             .into_iter()
-            .flat_map(|name| Scene::mesh_files(bundled::text(name).unwrap_or_default()))
+            .flat_map(|name| Scene::files_named(bundled::text(name).unwrap_or_default()))
             .collect()
     })
 }
@@ -69,7 +69,7 @@ impl PageMeshes {
     /// does not serve is reported by the parse, at its line.)
     pub fn missing(&self, text: &str) -> Vec<PathBuf> {
         let mut named = BTreeSet::new();
-        let mut files = Scene::mesh_files(text);
+        let mut files = Scene::files_named(text);
         files.retain(|f| address(f).is_some() && !self.files.has(f) && named.insert(f.clone()));
         files
     }
@@ -176,7 +176,7 @@ mod tests {
                 .unwrap();
         meshes.fetched(&bunny, Some(bytes));
         assert!(meshes.missing(text).is_empty());
-        let scene = Scene::from_toml_with_meshes(text, None, meshes.files()).unwrap();
+        let scene = Scene::from_toml_with_files(text, None, meshes.files()).unwrap();
         assert!(!scene.meshes[0].geometry.0.triangles.is_empty());
     }
 
@@ -186,7 +186,7 @@ mod tests {
         let text =
             "[camera]\nfrom = [0, 1, 5]\nto = [0, 0, 0]\n[[meshes]]\nfile = \"my_model.obj\"\n";
         assert!(meshes.missing(text).is_empty(), "nothing to fetch");
-        let e = Scene::from_toml_with_meshes(text, None, meshes.files()).unwrap_err();
+        let e = Scene::from_toml_with_files(text, None, meshes.files()).unwrap_err();
         assert_eq!(e.line, Some(5));
         let message = e.to_string();
         for part in [

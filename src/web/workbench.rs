@@ -17,7 +17,7 @@ use super::sandbox_page::{Built, ShaderView};
 use super::{link, page};
 use crate::gpu::Gpu;
 use crate::sandbox::bundled as shaders;
-use crate::scene::{MeshFiles, Scene};
+use crate::scene::{Scene, SceneFiles};
 
 /// The example shader in the shader document when no link brings one.
 const FIRST_SHADER: &str = "blobs.glsl";
@@ -123,11 +123,12 @@ impl Workbench {
     }
 
     /// Handles an event of the editor or of a pipeline build.
-    /// A scene's mesh files are read from `meshes` (the page fetched them).
-    pub fn handle(&mut self, event: WorkEvent, meshes: &dyn MeshFiles) -> Outcome {
+    /// The files a scene's shapes read come from `files` (the page fetched
+    /// them).
+    pub fn handle(&mut self, event: WorkEvent, files: &dyn SceneFiles) -> Outcome {
         match event {
             WorkEvent::Editor(EditorEvent::Changed(Doc::Scene, text)) => {
-                self.scene_text(&text, meshes)
+                self.scene_text(&text, files)
             }
             WorkEvent::Editor(EditorEvent::Changed(Doc::Shader, text)) => {
                 self.pending_shader = Some(text);
@@ -190,9 +191,9 @@ impl Workbench {
 
     /// A scene text from the editor: parsed and validated; a good one
     /// replaces the page's scene.
-    fn scene_text(&mut self, text: &str, meshes: &dyn MeshFiles) -> Outcome {
+    fn scene_text(&mut self, text: &str, files: &dyn SceneFiles) -> Outcome {
         let start = Instant::now();
-        let result = Scene::from_toml_with_meshes(text, None, meshes).map_err(|e| Problem {
+        let result = Scene::from_toml_with_files(text, None, files).map_err(|e| Problem {
             message: e.to_string(),
             line: e.line,
         });

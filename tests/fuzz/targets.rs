@@ -419,11 +419,11 @@ fn run_scene(input: &[u8]) -> std::result::Result<(), String> {
         return Ok(());
     };
     let origin = Path::new(SCENE_FILE);
-    match Scene::from_toml_with_meshes(text, Some(origin), &*MESHES) {
+    match Scene::from_toml_with_files(text, Some(origin), &*MESHES) {
         Ok(scene) => {
             let _ = scene.summary();
             let written = scene.to_toml_string();
-            Scene::from_toml_with_meshes(&written, Some(origin), &*MESHES)
+            Scene::from_toml_with_files(&written, Some(origin), &*MESHES)
                 .map(|_| ())
                 .map_err(|e| format!("a valid scene, written out, does not load: {e}\n{written}"))
         }

@@ -6,7 +6,7 @@
 use glam::DVec3;
 
 use super::shapes::{self, InView};
-use crate::scene::{Camera, Checker, Light, Material, Mesh, Scene, ShapeId, ShapeKind};
+use crate::scene::{Camera, Checker, Light, Material, Scene, ShapeId, ShapeKind};
 
 /// A power of ten near a fifth of the scene scale: a round size for new
 /// checker cells (1 for the bundled scenes).
@@ -161,12 +161,6 @@ pub(super) fn add_shape(scene: &mut Scene, kind: ShapeKind) -> ShapeId {
     shapes::add(scene, kind, &at)
 }
 
-/// Appends a mesh just read from a file in front of the camera
-/// ([`Scene::add_mesh_in_view`]). Returns its id.
-pub(super) fn add_mesh(scene: &mut Scene, mesh: Mesh) -> ShapeId {
-    ShapeId::Mesh(scene.add_mesh_in_view(mesh))
-}
-
 /// Copies the selected shape to the end of its list, moved to the right of
 /// the view by its own size (a plane: along its normal) so that both stay
 /// visible, and selects the copy.
@@ -203,6 +197,7 @@ fn selection_after_removal(selected: ShapeId, removed: ShapeId) -> Option<ShapeI
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::scene::{Mesh, NewShape};
 
     fn scene() -> Scene {
         let text = r#"
@@ -455,13 +450,13 @@ mod tests {
             DVec3::new(10.0, 0.0, 1.0),
         ];
         let mesh = Mesh::inline(&positions, &[[0, 1, 2], [0, 2, 3]]).unwrap();
-        let id = add_mesh(&mut s, mesh);
+        let id = s.add_in_view(NewShape::Mesh(Box::new(mesh)));
         assert_eq!(id, ShapeId::Mesh(0));
         let [lo, hi] = s.meshes[0].bounds();
         let centre = 0.5 * (lo + hi);
         assert!((centre - s.camera.to).length() < 1e-9, "{centre}");
         let longest = (hi - lo).max_element();
-        assert!((longest - crate::scene::NEW_MESH_SIZE * s.view_scale()).abs() < 1e-9);
+        assert!((longest - crate::scene::NEW_SHAPE_SIZE * s.view_scale()).abs() < 1e-9);
         assert!(Scene::from_toml_str(&s.to_toml_string(), None).is_ok());
     }
 

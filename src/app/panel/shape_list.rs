@@ -1,8 +1,10 @@
-//! The panel's Shapes section (add, duplicate, remove, mesh files) and
+//! The panel's Shapes section (add, duplicate, remove, shapes from files) and
 //! the Selected section, which edits the selected shape.
 
 use super::file::path_row;
 use super::{PanelAction, PanelState, edit, shapes};
+use crate::app::layout;
+use crate::app::shape_files::kinds_from_files;
 use crate::scene::{Scene, ShapeId, ShapeKind};
 use egui::{CollapsingHeader, ComboBox, Grid, Ui};
 
@@ -22,7 +24,7 @@ pub(super) fn shapes_section(
     })
     .response
     .on_hover_text("A new shape near the target, selected for editing");
-    mesh_file_rows(ui, state, actions);
+    shape_file_rows(ui, state, actions);
     for id in edit::shape_ids(scene) {
         let selected = state.selection == Some(id);
         if ui
@@ -39,34 +41,47 @@ pub(super) fn shapes_section(
     }
 }
 
-/// "Add mesh file": the system's file dialog, or a typed path; and why the
-/// last mesh file could not be read.
-pub(super) fn mesh_file_rows(ui: &mut Ui, state: &mut PanelState, actions: &mut Vec<PanelAction>) {
+/// "Add mesh from file": the system's file dialog, or a typed path, for
+/// the kinds made from files ([`crate::scene::Shape::FILE_EXTENSIONS`]).
+fn shape_file_rows(ui: &mut Ui, state: &mut PanelState, actions: &mut Vec<PanelAction>) {
+    let extensions: Vec<String> = ShapeKind::ALL
+        .iter()
+        .flat_map(|kind| kind.file_extensions())
+        .map(|e| e.to_ascii_uppercase())
+        .collect();
     if ui
-        .button("Add mesh from file…")
-        .on_hover_text("An OBJ or PLY file, placed at the target (or drop the file on the window)")
+        .button(format!("Add {} from file…", kinds_from_files()))
+        .on_hover_text(format!(
+            "An {} file, placed at the target (or drop the file on the window)",
+            extensions.join(" or ")
+        ))
         .clicked()
     {
-        actions.push(PanelAction::PickMeshFile);
+        actions.push(PanelAction::PickShapeFile);
     }
-    if let Some(path) = path_row(ui, "Add file", "models/bunny.obj", &mut state.mesh_path) {
-        actions.push(PanelAction::AddMeshFile(path));
+    let row = ui.scope(|ui| path_row(ui, "Add file", "models/bunny.obj", &mut state.shape_path));
+    layout::note(ui.ctx(), "add-file", row.response.rect);
+    if let Some(path) = row.inner {
+        actions.push(PanelAction::AddShapeFile(path));
     }
 }
 
-/// Why the last mesh file could not be read, outside the (folded) Shapes
-/// section so that it is seen; the scene keeps what it showed.
-pub(super) fn mesh_error_row(ui: &mut Ui, state: &mut PanelState) {
-    let Some(error) = &state.mesh_error else {
+/// Why the last file a shape reads could not be read, outside the
+/// (folded) Shapes section so that it is seen; the scene keeps what it
+/// showed.
+pub(super) fn file_error_row(ui: &mut Ui, state: &mut PanelState) {
+    let Some(error) = &state.file_error else {
         return;
     };
     let mut dismiss = false;
     ui.horizontal_wrapped(|ui| {
-        ui.colored_label(ui.visuals().error_fg_color, format!("Mesh file: {error}"));
+        let kinds = kinds_from_files();
+        let label = format!("{}{} file: {error}", kinds[..1].to_uppercase(), &kinds[1..]);
+        ui.colored_label(ui.visuals().error_fg_color, label);
         dismiss = ui.small_button("OK").clicked();
     });
     if dismiss {
-        state.mesh_error = None;
+        state.file_error = None;
     }
 }
 

@@ -25,6 +25,13 @@ pub trait Prepare: Shape {
     type Traced: Trace;
 
     fn prepare(shape: &Instance<Self>) -> Self::Traced;
+
+    /// What the barycentric view shows at `hit` (docs/views.md): a
+    /// triangle's weights, which its hit carries; zeros unless the kind
+    /// says otherwise (a sphere's texture coordinates).
+    fn view_coordinates(hit: &Hit) -> [f64; 3] {
+        hit.barycentric.unwrap_or([0.0; 3])
+    }
 }
 
 /// The hit test of one prepared shape.
@@ -118,11 +125,33 @@ macro_rules! prepared_shapes {
                 false $(|| self.$field.iter().any(|p| p.traced.uses_pixel_angle()))*
             }
 
+            /// What the barycentric view shows at `hit` of shape `id`
+            /// ([`Prepare::view_coordinates`]).
+            pub fn view_coordinates(id: ShapeId, hit: &Hit) -> [f64; 3] {
+                match id {
+                    $(ShapeId::$kind(_) => <scene::$kind as Prepare>::view_coordinates(hit),)*
+                }
+            }
+
             /// The material slot of shape `id`.
             pub fn material(&self, id: ShapeId) -> usize {
                 match id {
                     $(ShapeId::$kind(i) => self.$field[i].material,)*
                 }
+            }
+        }
+
+        /// Prepares `shape` once, on the caller's thread, and drops it:
+        /// what the kind derives from its data and shares between copies
+        /// (a mesh's BVH, in its cache) is then made before the shape
+        /// joins a scene, so a large model read on a thread of its own
+        /// does not stall the window when it is added.
+        pub fn prepare_ahead(shape: &scene::NewShape) {
+            match shape {
+                $(scene::NewShape::$kind(s) => {
+                    let instance = Instance::new((**s).clone(), Default::default());
+                    scene::$kind::prepare(&instance);
+                })*
             }
         }
     };

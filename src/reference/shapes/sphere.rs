@@ -29,6 +29,23 @@ impl Prepare for scene::Sphere {
     fn prepare(shape: &Instance<Self>) -> Sphere {
         Sphere::new(shape.center, shape.radius)
     }
+
+    /// The sphere's texture coordinates ([`uv`]).
+    fn view_coordinates(hit: &Hit) -> [f64; 3] {
+        uv(hit.n)
+    }
+}
+
+/// A sphere's texture coordinates at the outward normal `n`: `u` the
+/// longitude about +y from -x (`0.5 + atan2(n.z, n.x) / 2 pi`), `v` the
+/// colatitude from +y (`acos(n.y) / pi`); the third is 0.
+pub fn uv(n: DVec3) -> [f64; 3] {
+    use std::f64::consts::PI;
+    [
+        0.5 + n.z.atan2(n.x) / (2.0 * PI),
+        n.y.clamp(-1.0, 1.0).acos() / PI,
+        0.0,
+    ]
 }
 
 /// The sphere hit nearest to the ray origin with `0 < t < t_max`.

@@ -9,8 +9,9 @@ use glam::DVec3;
 use serde::{Deserialize, Serialize};
 
 use super::{Context, CubeSize, Placement, Shape};
+use crate::scene::NamedOption;
 use crate::scene::key_path::KeyPath;
-use crate::scene::mesh_file::{self, Folder, Geometry};
+use crate::scene::mesh_file::{self, Geometry};
 use crate::scene::validate::{Check, Issue};
 
 /// A mesh's own keys: where its triangles come from and how they are
@@ -85,31 +86,6 @@ impl Mesh {
         })
     }
 
-    /// A mesh read from `file` (an OBJ or PLY file, relative to `base`, the
-    /// scene file's folder, as `file` is in a scene), flat shaded, unplaced.
-    /// The error names the file and its line or element.
-    pub fn from_file(file: PathBuf, base: Option<&Path>) -> Result<Mesh, String> {
-        let mut mesh = Mesh {
-            file: Some(file),
-            ..Mesh::with_geometry(Geometry::default())
-        };
-        mesh.reload(base)?;
-        Ok(mesh)
-    }
-
-    /// A mesh from the `bytes` of a file named `name` that the scene cannot
-    /// name by a path (a file dropped on the web page): its geometry is
-    /// written inline (`positions`, `triangles`), so that the scene's text
-    /// and a link to it carry the mesh. Errors name the file and line.
-    pub fn inline_from_bytes(name: &str, bytes: &[u8]) -> Result<Mesh, String> {
-        let geometry = mesh_file::load_bytes(name, bytes, false)?;
-        Ok(Mesh {
-            positions: geometry.positions.clone(),
-            triangles: geometry.triangles.clone(),
-            ..Mesh::with_geometry(geometry)
-        })
-    }
-
     /// `geometry`, flat shaded, with no source yet.
     fn with_geometry(geometry: Geometry) -> Mesh {
         Mesh {
@@ -122,17 +98,11 @@ impl Mesh {
         }
     }
 
-    /// The mesh's file, relative to `base` (the scene file's folder) unless
-    /// absolute; `None` for an inline mesh.
-    pub fn file_path(&self, base: Option<&Path>) -> Option<PathBuf> {
-        Some(Folder(base).path(self.file.as_ref()?))
-    }
-
     /// Reads the mesh's file again (it changed on disk). On an error the
     /// geometry in use is kept: a bad save in another program never leaves
     /// the mesh without triangles.
     pub fn reload(&mut self, base: Option<&Path>) -> Result<(), String> {
-        let full = self.file_path(base).ok_or("an inline mesh has no file")?;
+        let full = self.file_read(base).ok_or("an inline mesh has no file")?;
         let geometry = mesh_file::load_file(&full, self.smooth)?;
         self.geometry = Loaded(Arc::new(geometry));
         Ok(())
@@ -151,8 +121,9 @@ impl Mesh {
                 "needs a file or inline positions and triangles".to_owned(),
             )),
             (Some(file), false) => context
-                .meshes
-                .load(file, self.smooth)
+                .files
+                .read(file)
+                .and_then(|(name, bytes)| mesh_file::load_bytes(&name, &bytes, self.smooth))
                 .map_err(|message| Issue::new(&path.key("file"), message)),
             (None, true) => {
                 mesh_file::from_arrays(&self.positions, &self.triangles, &self.normals, self.smooth)
@@ -171,8 +142,51 @@ impl Shape for Mesh {
         scene.render.triangles
     }
 
-    fn file_read(&self, base: Option<&Path>) -> Option<PathBuf> {
-        self.file_path(base)
+    const FLAG: Option<(&'static str, &'static str)> = Some((
+        "triangles",
+        "The ray-triangle test of meshes: cramer (Cramer's rule), moller-trumbore, or \
+         watertight (Woop, Benthin and Wald). Default: the scene's `triangles` in \
+         `[render]`, else watertight",
+    ));
+
+    fn options_named(name: &str) -> Result<TriangleTest, String> {
+        TriangleTest::from_name(name)
+    }
+
+    fn file(&self) -> Option<&Path> {
+        self.file.as_deref()
+    }
+
+    fn file_mut(&mut self) -> Option<&mut PathBuf> {
+        self.file.as_mut()
+    }
+
+    /// OBJ and PLY (docs/scene-format.md, `[[meshes]]`).
+    const FILE_EXTENSIONS: &[&str] = &["obj", "ply"];
+
+    /// Flat shaded; the file is read again when it changes.
+    fn from_file(file: PathBuf, base: Option<&Path>) -> Result<Mesh, String> {
+        let mut mesh = Mesh {
+            file: Some(file),
+            ..Mesh::with_geometry(Geometry::default())
+        };
+        mesh.reload(base)?;
+        Ok(mesh)
+    }
+
+    /// Flat shaded, its geometry written inline (`positions`,
+    /// `triangles`), so that the scene's text and a link to it carry it.
+    fn from_bytes(name: &str, bytes: &[u8]) -> Result<Mesh, String> {
+        let geometry = mesh_file::load_bytes(name, bytes, false)?;
+        Ok(Mesh {
+            positions: geometry.positions.clone(),
+            triangles: geometry.triangles.clone(),
+            ..Mesh::with_geometry(geometry)
+        })
+    }
+
+    fn parts(&self) -> Option<(usize, &'static str)> {
+        Some((self.geometry.0.triangles.len(), "triangles"))
     }
 
     /// One read per shading (`smooth` changes the normals), shared.

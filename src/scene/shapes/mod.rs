@@ -34,8 +34,8 @@ use serde::Serialize;
 use serde::de::DeserializeOwned;
 
 use super::Material;
+use super::files::{Folder, SceneFiles};
 use super::key_path::KeyPath;
-use super::mesh_file::MeshFiles;
 use super::validate::Check;
 
 /// The registry of shape kinds: calls `$m!` once with the whole list, as
@@ -60,10 +60,11 @@ macro_rules! for_each_shape_kind {
 pub use for_each_shape_kind;
 
 /// What validation knows besides the shape: the materials defined, and
-/// where mesh files are read from (the scene file's folder, natively).
+/// where the files shapes read come from (the scene file's folder,
+/// natively).
 pub struct Context<'a> {
     pub materials: &'a IndexMap<String, Material>,
-    pub meshes: &'a dyn MeshFiles,
+    pub files: &'a dyn SceneFiles,
 }
 
 /// `Rz(rz) Ry(ry) Rx(rx)` for angles in degrees (docs/rendering-model.md,
@@ -122,9 +123,62 @@ pub trait Shape: Clone + PartialEq + std::fmt::Debug + Serialize + DeserializeOw
         Self::Options::default()
     }
 
-    /// The file the shape reads (a mesh's model), relative to `base` (the
-    /// scene file's folder) unless absolute; the viewer watches it.
-    fn file_read(&self, _base: Option<&Path>) -> Option<PathBuf> {
+    /// The flag of `raysandbox render` that chooses the kind's options in
+    /// place of the scene's (`--torus newton`), as its name and its help;
+    /// `None` for a kind without one.
+    const FLAG: Option<(&'static str, &'static str)> = None;
+
+    /// The options that the value `name` of [`Shape::FLAG`] names; the
+    /// error lists the names there are.
+    fn options_named(name: &str) -> Result<Self::Options, String> {
+        Err(format!("{name}: this kind has no options to choose"))
+    }
+
+    /// The file the shape reads (a mesh's model) as the scene writes it:
+    /// relative to the scene file's folder unless absolute.
+    fn file(&self) -> Option<&Path> {
+        None
+    }
+
+    /// The same file, to rename it (the scene saved in another folder,
+    /// a shape read from a file named for the scene open now).
+    fn file_mut(&mut self) -> Option<&mut PathBuf> {
+        None
+    }
+
+    /// The shape's [`Shape::file`] relative to `base` (the scene file's
+    /// folder) unless absolute: what the viewer watches.
+    fn file_read(&self, base: Option<&Path>) -> Option<PathBuf> {
+        self.file().map(|file| Folder(base).path(file))
+    }
+
+    /// The extensions (lower case) of the files a new shape of this kind
+    /// is made from, when the user adds one from a file or drops one on the
+    /// window or the page (a mesh's `obj` and `ply`); none for a kind that
+    /// only the scene's text makes.
+    const FILE_EXTENSIONS: &[&str] = &[];
+
+    /// A new shape from `file` (one of [`Shape::FILE_EXTENSIONS`], named as
+    /// the scene will write it, relative to `base`), unplaced; the error
+    /// names the file and its line.
+    fn from_file(file: PathBuf, _base: Option<&Path>) -> Result<Self, String> {
+        Err(format!(
+            "{}: no shape is made from this file",
+            file.display()
+        ))
+    }
+
+    /// A new shape from the `bytes` of a file named `name` that the scene
+    /// cannot name by a path (a file dropped on the web page), so written
+    /// into the scene itself; errors as [`Shape::from_file`]'s.
+    fn from_bytes(name: &str, _bytes: &[u8]) -> Result<Self, String> {
+        Err(format!("{name}: no shape is made from this file"))
+    }
+
+    /// How many parts make the shape and what they are called, for
+    /// messages (a mesh's triangles: `(12, "triangles")`); `None` for a
+    /// kind of one piece.
+    fn parts(&self) -> Option<(usize, &'static str)> {
         None
     }
 

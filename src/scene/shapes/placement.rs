@@ -54,6 +54,9 @@ pub trait Scale: Copy + PartialEq + Debug + Serialize {
     /// No scaling: the default of `scale`.
     const ONE: Self;
 
+    /// The same factor `s` along every axis.
+    fn uniform(s: f64) -> Self;
+
     /// The factors along the local x, y, z axes.
     fn axes(self) -> DVec3;
 
@@ -63,6 +66,10 @@ pub trait Scale: Copy + PartialEq + Debug + Serialize {
 
 impl Scale for f64 {
     const ONE: f64 = 1.0;
+
+    fn uniform(s: f64) -> f64 {
+        s
+    }
 
     fn axes(self) -> DVec3 {
         DVec3::splat(self)
@@ -75,6 +82,10 @@ impl Scale for f64 {
 
 impl Scale for CubeSize {
     const ONE: CubeSize = CubeSize::Uniform(1.0);
+
+    fn uniform(s: f64) -> CubeSize {
+        CubeSize::Uniform(s)
+    }
 
     fn axes(self) -> DVec3 {
         self.edges()
@@ -145,13 +156,22 @@ impl Placement {
 
 /// Where a shape of one kind is and how it moves: the part of an
 /// [`super::Instance`] that every kind of the same form shares, validated
-/// and moved here once.
-pub trait Place: Clone + PartialEq + Debug + Serialize + serde::de::DeserializeOwned {
+/// and moved here once. The default is where a shape sits in its own
+/// coordinates (at the origin, unscaled).
+pub trait Place:
+    Clone + Default + PartialEq + Debug + Serialize + serde::de::DeserializeOwned
+{
     /// Checks its keys in the shape's table at `path`.
     fn validate(&self, path: &KeyPath) -> Check;
 
     /// Moves it by `offset` (`Scene::translated`).
     fn translate(&mut self, offset: DVec3);
+
+    /// The placement that puts a shape whose own box is `local` with the
+    /// centre of that box on `center`, scaled uniformly to a longest side
+    /// of `size`: how a shape made from a file joins the scene in view.
+    /// A form without a scale keeps the shape where it is.
+    fn fitted(local: [DVec3; 2], center: DVec3, size: f64) -> Self;
 }
 
 impl<S: Scale + serde::de::DeserializeOwned> Place for Placement<S> {
@@ -162,12 +182,21 @@ impl<S: Scale + serde::de::DeserializeOwned> Place for Placement<S> {
     fn translate(&mut self, offset: DVec3) {
         self.translate += offset;
     }
+
+    fn fitted([lo, hi]: [DVec3; 2], center: DVec3, size: f64) -> Self {
+        let factor = size / (hi - lo).max_element().max(f64::MIN_POSITIVE);
+        Placement {
+            translate: center - 0.5 * (lo + hi) * factor,
+            scale: S::uniform(factor),
+            rotation: DVec3::ZERO,
+        }
+    }
 }
 
 /// A cube's placement: the shared [`Placement`] of a unit box, whose keys
 /// the scene file names `center` and `size` (both required) and `rotation`
 /// (docs/scene-format.md, "`[[cubes]]`").
-#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
+#[derive(Debug, Clone, Copy, Default, PartialEq, Serialize, Deserialize)]
 #[serde(from = "CenteredKeys", into = "CenteredKeys")]
 pub struct Centered(pub Placement<CubeSize>);
 
@@ -222,6 +251,10 @@ impl Place for Centered {
     fn translate(&mut self, offset: DVec3) {
         self.0.translate += offset;
     }
+
+    fn fitted(local: [DVec3; 2], center: DVec3, size: f64) -> Self {
+        Centered(Placement::fitted(local, center, size))
+    }
 }
 
 /// No placement keys: the kind places itself by its own (a sphere's
@@ -243,4 +276,8 @@ impl Place for Unplaced {
     }
 
     fn translate(&mut self, _offset: DVec3) {}
+
+    fn fitted(_local: [DVec3; 2], _center: DVec3, _size: f64) -> Self {
+        Unplaced
+    }
 }

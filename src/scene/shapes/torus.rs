@@ -4,6 +4,7 @@ use glam::DVec3;
 use serde::{Deserialize, Serialize};
 
 use super::{Context, Placement, Shape};
+use crate::scene::NamedOption;
 use crate::scene::key_path::KeyPath;
 use crate::scene::validate::{Check, Issue, POSITIVE, number};
 
@@ -38,6 +39,17 @@ impl Shape for Torus {
     /// How the GPU solves the quartic; the scene file does not choose it
     /// (the reference always brackets).
     type Options = TorusMethod;
+
+    const FLAG: Option<(&'static str, &'static str)> = Some((
+        "torus",
+        "How the GPU solves a torus's quartic: bisection, newton (the slope's zeros in \
+         closed form, Newton steps kept inside the bracket), or closed-form (the quartic's \
+         own roots in closed form, one Newton step). Default: newton",
+    ));
+
+    fn options_named(name: &str) -> Result<TorusMethod, String> {
+        TorusMethod::from_name(name)
+    }
 
     fn validate(&mut self, path: &KeyPath, _context: &Context) -> Check {
         number(&path.key("major_radius"), self.major_radius, &POSITIVE)?;

@@ -1,19 +1,12 @@
-//! Mesh files in the viewer: which dropped files are meshes, the file
-//! dialog of "Add mesh from file", and the `file` a scene stores for them:
+//! Files that shapes are made from in the viewer (a mesh's model): the file
+//! dialog of "Add ... from file", and the `file` a scene stores for them:
 //! relative to the scene file, as docs/scene-format.md (`[[meshes]]`) asks,
-//! so that the scene and its models can move together.
+//! so that the scene and its files can move together. Which kinds are made
+//! from which files the kinds say ([`ShapeKind::for_file`]).
 
 use std::path::{Component, Path, PathBuf};
 
-/// The extensions the mesh loader reads (docs/scene-format.md, `[[meshes]]`).
-const MESH_EXTENSIONS: [&str; 2] = ["obj", "ply"];
-
-/// Whether `path` names an OBJ or PLY file (by its extension, in any case).
-pub fn is_mesh_file(path: &Path) -> bool {
-    path.extension()
-        .and_then(|e| e.to_str())
-        .is_some_and(|e| MESH_EXTENSIONS.contains(&e.to_ascii_lowercase().as_str()))
-}
+use crate::scene::ShapeKind;
 
 /// `path` as an absolute path (against the working folder) with `..`
 /// steps folded, without resolving links: what the user picked is what the
@@ -33,7 +26,7 @@ fn absolute(path: &Path) -> PathBuf {
     folded
 }
 
-/// What a scene at `scene_file` writes as `file` for the mesh at `mesh`:
+/// What a scene at `scene_file` writes as `file` for the file at `mesh`:
 /// the path from the scene's folder, or the absolute path while the scene
 /// has no file yet (a built-in scene; saving it rewrites the path, see
 /// [`rebased`]).
@@ -46,8 +39,8 @@ pub fn scene_relative(mesh: &Path, scene_file: Option<&Path>) -> PathBuf {
     pathdiff::diff_paths(&mesh, &dir).unwrap_or(mesh)
 }
 
-/// A mesh's `file` as written by a scene at `from`, rewritten for the
-/// same scene saved at `to` (the model stays where it is). An absolute
+/// A shape's `file` as written by a scene at `from`, rewritten for the
+/// same scene saved at `to` (the file stays where it is). An absolute
 /// `file` in a scene file is kept as written; in a scene without a file it
 /// is the viewer's own (see [`scene_relative`]) and becomes relative.
 pub fn rebased(file: &Path, from: Option<&Path>, to: &Path) -> PathBuf {
@@ -58,16 +51,51 @@ pub fn rebased(file: &Path, from: Option<&Path>, to: &Path) -> PathBuf {
     }
 }
 
-/// Opens the system's file dialog for an OBJ or PLY file on a thread of its
-/// own, so that the window keeps drawing while it is open; `picked` gets
-/// the chosen path (nothing if the dialog is cancelled or there is no
-/// dialog service).
+/// The kinds made from files ([`ShapeKind::file_extensions`]), by name in
+/// lower case: "mesh", for the panel's button and the file dialog.
+pub fn kinds_from_files() -> String {
+    let names: Vec<String> = ShapeKind::ALL
+        .iter()
+        .filter(|kind| !kind.file_extensions().is_empty())
+        .map(|kind| kind.name().to_ascii_lowercase())
+        .collect();
+    names.join(" or ")
+}
+
+/// Why no shape is made from the file at `path`: which files are.
+pub fn not_a_shape_file(path: &Path) -> String {
+    let known: Vec<String> = ShapeKind::ALL
+        .iter()
+        .flat_map(|kind| kind.file_extensions())
+        .map(|e| format!(".{e}"))
+        .collect();
+    format!(
+        "{}: no shape is made from this file (the file name must end in {})",
+        path.display(),
+        known.join(" or ")
+    )
+}
+
+/// Opens the system's file dialog for a file that a shape is made from, on
+/// a thread of its own, so that the window keeps drawing while it is open;
+/// `picked` gets the chosen path (nothing if the dialog is cancelled or
+/// there is no dialog service).
 #[cfg(not(target_arch = "wasm32"))]
-pub fn pick_mesh_file(start: Option<PathBuf>, picked: impl FnOnce(PathBuf) + Send + 'static) {
+pub fn pick_shape_file(start: Option<PathBuf>, picked: impl FnOnce(PathBuf) + Send + 'static) {
     std::thread::spawn(move || {
-        let mut dialog = rfd::AsyncFileDialog::new()
-            .set_title("Add a mesh (OBJ or PLY)")
-            .add_filter("Triangle meshes", &MESH_EXTENSIONS);
+        let mut dialog =
+            rfd::AsyncFileDialog::new().set_title(format!("Add a {}", kinds_from_files()));
+        for kind in ShapeKind::ALL {
+            let extensions = kind.file_extensions();
+            if !extensions.is_empty() {
+                let upper: Vec<String> =
+                    extensions.iter().map(|e| e.to_ascii_uppercase()).collect();
+                dialog = dialog.add_filter(
+                    format!("{} ({})", kind.name(), upper.join(", ")),
+                    extensions,
+                );
+            }
+        }
         if let Some(dir) = start {
             dialog = dialog.set_directory(dir);
         }
@@ -84,11 +112,20 @@ mod tests {
     #[test]
     fn mesh_files_are_told_by_their_extension() {
         for name in ["bunny.obj", "dragon.PLY", "a/b/teapot.Obj"] {
-            assert!(is_mesh_file(Path::new(name)), "{name}");
+            assert_eq!(
+                ShapeKind::for_file(Path::new(name)),
+                Some(ShapeKind::Mesh),
+                "{name}"
+            );
         }
         for name in ["scene.toml", "obj", "mesh.stl", "noext"] {
-            assert!(!is_mesh_file(Path::new(name)), "{name}");
+            assert_eq!(ShapeKind::for_file(Path::new(name)), None, "{name}");
         }
+        assert_eq!(kinds_from_files(), "mesh");
+        assert_eq!(
+            not_a_shape_file(Path::new("a.stl")),
+            "a.stl: no shape is made from this file (the file name must end in .obj or .ply)"
+        );
     }
 
     #[test]
