@@ -16,16 +16,26 @@
 /// from `tri_start`, its triangles in leaf order (three vec4: p0, p1, p2);
 /// from `normal_start` (smooth meshes only), their vertex normals (three
 /// vec4 each, in the same order).
+///
+/// What the walk reads comes first, in four texels: a texel fetch is the
+/// walk's price on lavapipe (docs/performance.md, "Fewer fetches per
+/// mesh"), so `to_local` is stored by columns, a start offset beside each.
 struct Mesh {
-    to_local: mat3x3<f32>,        // inverse of R diag(scale)
-    origin: vec3<f32>,            // `translate`, relative to the frame origin
-    material: u32,
-    normal_to_world: mat3x3<f32>, // transpose of to_local
-    to_world: mat3x3<f32>,        // R diag(scale)
+    to_local_x: vec3<f32>,        // to_local = inverse of R diag(scale), by columns
     node_start: u32,
+    to_local_y: vec3<f32>,
     tri_start: u32,
+    to_local_z: vec3<f32>,
     normal_start: u32,
+    origin: vec3<f32>,            // `translate`, relative to the frame origin
     error_scale: f32,
+    to_world: mat3x3<f32>,        // R diag(scale)
+    material: u32,
+}
+
+/// Mesh coordinates from world ones (relative to the mesh's origin).
+fn mesh_to_local(m: Mesh) -> mat3x3<f32> {
+    return mat3x3(m.to_local_x, m.to_local_y, m.to_local_z);
 }
 
 /// Which ray-triangle test (src/scene/shapes/mesh.rs, `TriangleTest`):
@@ -150,12 +160,14 @@ fn hit_triangle(ray: Ray, p0: vec3<f32>, p1: vec3<f32>, p2: vec3<f32>, t_max: f3
 
 /// The nearest triangle of the mesh through its BVH, nearer than best.t.
 fn hit_mesh(ray: Ray, m: Mesh, index: u32, best: Hit) -> Hit {
-    let local = Ray(m.to_local * (ray.origin - m.origin), m.to_local * ray.dir, ray.t_min);
+    let to_local = mesh_to_local(m);
+    let local = Ray(to_local * (ray.origin - m.origin), to_local * ray.dir, ray.t_min);
     let inv_d = select(1.0 / local.dir, vec3(0.0), abs(local.dir) < vec3(1e-20));
     var t_best = best.t;
     var found = false;
     var tri = 0u;
     var weights = vec3(0.0);
+    var vertices = array<vec3<f32>, 3>();
     var stack: array<u32, BVH_STACK>;
     stack[0] = 0u;
     var top = 1u;
@@ -195,13 +207,15 @@ fn hit_mesh(ray: Ray, m: Mesh, index: u32, best: Hit) -> Hit {
             var k = first;
             loop {
                 let v = m.tri_start + 3u * k;
+                let p = array(data_vec3(v), data_vec3(v + 1u), data_vec3(v + 2u));
                 count_test();
-                let h = hit_triangle(local, data_vec3(v), data_vec3(v + 1u), data_vec3(v + 2u), t_best);
+                let h = hit_triangle(local, p[0], p[1], p[2], t_best);
                 if h.hit {
                     t_best = h.t;
                     found = true;
                     tri = k;
                     weights = h.b;
+                    vertices = p;
                 }
                 k++;
                 if k >= first + count {
@@ -217,21 +231,24 @@ fn hit_mesh(ray: Ray, m: Mesh, index: u32, best: Hit) -> Hit {
         return best;
     }
     note_barycentric(weights);
-    let v = m.tri_start + 3u * tri;
-    let p0 = data_vec3(v);
-    let n = normalize(m.normal_to_world * cross(data_vec3(v + 1u) - p0, data_vec3(v + 2u) - p0));
+    // The nearest triangle's vertices were kept from the walk, and normals
+    // go to world coordinates by the transpose of to_local: three texel
+    // fetches fewer each (docs/performance.md, "Fewer fetches per mesh").
+    let normal_to_world = transpose(to_local);
+    let p0 = vertices[0];
+    let n = normalize(normal_to_world * cross(vertices[1] - p0, vertices[2] - p0));
     var shading = n;
     if m.normal_start != 0u {
         let w = m.normal_start + 3u * tri;
         let local_n = weights.x * data_vec3(w) + weights.y * data_vec3(w + 1u) + weights.z * data_vec3(w + 2u);
-        let s = m.normal_to_world * local_n;
+        let s = normal_to_world * local_n;
         if dot(s, s) > 0.0 {
             shading = normalize(s);
         }
     }
     // The point from the weights, as the reference computes it: on the
     // triangle up to the rounding of the vertices, whatever t's error.
-    let local_p = weights.x * p0 + weights.y * data_vec3(v + 1u) + weights.z * data_vec3(v + 2u);
+    let local_p = weights.x * p0 + weights.y * vertices[1] + weights.z * vertices[2];
     let p = m.origin + m.to_world * local_p;
     return Hit(t_best, p, n, KIND_MESH, index, m.error_scale, shading);
 }

@@ -14,17 +14,24 @@ use crate::bvh::mesh_bvh;
 use crate::scene::{self, Geometry, Instance, PerGeometry, Scene};
 
 packed_struct! {
+    /// The fields a BVH walk reads come first, in four texels (a texel
+    /// fetch is the walk's price on lavapipe: docs/performance.md, "Fewer
+    /// fetches per mesh"): `to_local` (the inverse of R diag(scale)) by
+    /// columns, each with a start offset in its fourth word, and `origin`.
+    /// The hit reads `to_world` too; `material` only the shading.
     pub struct Mesh for scene::Mesh, "../../../shaders/shapes/mesh.wgsl" {
-        /// `mat3x3<f32>`: three columns, each padded to 16 bytes.
-        pub to_local: [[f32; 4]; 3],
-        pub origin: [f32; 3],
-        pub material: u32,
-        pub normal_to_world: [[f32; 4]; 3],
-        pub to_world: [[f32; 4]; 3],
+        pub to_local_x: [f32; 3],
         pub node_start: u32,
+        pub to_local_y: [f32; 3],
         pub tri_start: u32,
+        pub to_local_z: [f32; 3],
         pub normal_start: u32,
+        /// `translate`, relative to the frame origin.
+        pub origin: [f32; 3],
         pub error_scale: f32,
+        /// `mat3x3<f32>`: three columns, each padded to 16 bytes.
+        pub to_world: [[f32; 4]; 3],
+        pub material: u32,
     }
 }
 
@@ -44,16 +51,15 @@ impl PackShape for scene::Mesh {
             .abs()
             .max((hi - frame.origin).abs())
             .max_element();
+        let [x, y, z] = [to_local.x_axis, to_local.y_axis, to_local.z_axis];
         Mesh {
-            to_local: columns(to_local),
+            to_local_x: x.as_vec3().to_array(),
+            to_local_y: y.as_vec3().to_array(),
+            to_local_z: z.as_vec3().to_array(),
             origin: frame.point(m.placement.translate),
-            material,
-            normal_to_world: columns(to_local.transpose()),
-            to_world: columns(linear),
-            node_start: 0,
-            tri_start: 0,
-            normal_start: 0,
             error_scale: error_scale as f32,
+            to_world: columns(linear),
+            material,
             ..Zeroable::zeroed()
         }
     }
