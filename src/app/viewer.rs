@@ -34,6 +34,10 @@ const OUTLINE_WIDTH: f64 = 2.0;
 /// Width of the ray tree's lines over the picture in logical pixels.
 const RAY_WIDTH: f64 = 2.0;
 
+/// How often a sample still being traced tells where its time went so far
+/// (`refining ...`): a heavy scene's first sample can take minutes.
+const PROGRESS_EVERY: Duration = Duration::from_secs(10);
+
 /// Pipelines to build for `options` from `source`, handed to the program's
 /// worker: a thread natively, a future in the browser. The worker reports
 /// the [`pipelines::Built`] result through its event loop to
@@ -109,6 +113,8 @@ pub struct Viewer {
     layout: LayoutReport,
     /// The wall time of a sample, for the status line.
     sample_clock: SampleClock,
+    /// When the sample in progress last told where its time went.
+    progress_told: Option<Instant>,
     /// A scene whose pipelines are being built: it reaches the GPU with
     /// them, and the last picture stays meanwhile (not the new scene drawn
     /// by pipelines that lack its shape kinds).
@@ -186,6 +192,7 @@ impl Viewer {
             repaint_at: None,
             layout: LayoutReport::default(),
             sample_clock: SampleClock::default(),
+            progress_told: None,
             deferred: None,
             drawing: None,
             error_view: ErrorView::default(),
@@ -763,6 +770,8 @@ impl Viewer {
         if new_samples > 0 {
             self.settled = false;
         }
+        self.tell_sample_times();
+        let Some(gfx) = &mut self.gfx else { return };
         self.sample_clock.update(samples, Instant::now());
         let fitted = shown.scalar() && traced && !dragging && samples > 0;
         if fitted && !shown.is_error() {
@@ -824,6 +833,31 @@ impl Viewer {
         }
         if shown.is_error() {
             self.error_view_frame(fitted);
+        }
+    }
+
+    /// Tells where a sample's time went (docs/web.md, "Where a sample's
+    /// time goes"): `sample-time` once it is traced to its end, and every
+    /// [`PROGRESS_EVERY`] while it is traced, `refining`.
+    fn tell_sample_times(&mut self) {
+        let Some(gfx) = &mut self.gfx else { return };
+        let samples = gfx.viewport.samples();
+        let finished = gfx.viewport.take_finished_sample();
+        let (tally, pixels) = gfx.viewport.sample_in_progress();
+        let (width, height) = gfx.viewport.traced_resolution();
+        if let Some(done) = finished {
+            self.event(&format!("sample-time n={samples} {}", done.fields()));
+            self.progress_told = None;
+        }
+        let told = *self.progress_told.get_or_insert_with(Instant::now);
+        if tally.jobs > 0 && told.elapsed() >= PROGRESS_EVERY {
+            self.progress_told = Some(Instant::now());
+            self.event(&format!(
+                "refining pixels={pixels}/{} elapsed_ms={:.0} {}",
+                width * height,
+                tally.elapsed().as_secs_f64() * 1e3,
+                tally.fields()
+            ));
         }
     }
 

@@ -9,7 +9,7 @@
 
 use std::ops::Range;
 
-use web_time::Duration;
+use web_time::{Duration, Instant};
 
 /// What one submission should cost: short enough that input is answered
 /// within a frame at 30 fps, long enough that the cost of a submission
@@ -237,11 +237,10 @@ impl JobPlanner {
     /// estimate (its cost, or the guess from the cells above), all scaled
     /// together to the measured time: what finer jobs learnt about their
     /// differences (the edge of an object inside a job) is kept. Cells
-    /// with no estimate get the job's average.
-    pub fn measured(&mut self, time: Duration) {
-        let Some((span, size, predicted)) = self.pending.take() else {
-            return;
-        };
+    /// with no estimate get the job's average. Returns whether the job
+    /// ended a sample; `None` for a job of a sample restarted since.
+    pub fn measured(&mut self, time: Duration) -> Option<bool> {
+        let (span, size, predicted) = self.pending.take()?;
         let pixels = span.len() as u32;
         let seconds = time.as_secs_f64();
         let per_pixel = seconds / f64::from(pixels.max(1));
@@ -292,9 +291,11 @@ impl JobPlanner {
         }
         self.jobs += 1;
         self.sample_time += time;
-        if span.end >= size.0 * size.1 {
+        let ended = span.end >= size.0 * size.1;
+        if ended {
             self.last_sample_time = Some(std::mem::take(&mut self.sample_time));
         }
+        Some(ended)
     }
 
     /// Forgets the sample in progress (the view changed): its time so far
@@ -316,6 +317,58 @@ impl JobPlanner {
         self.jobs = 0;
         self.longest = LongestJob::default();
         taken
+    }
+}
+
+/// Where a sample's wall time goes (docs/web.md, "Where a sample's time
+/// goes"): its jobs, their GPU time together, the frames presented while it
+/// was traced, and the wall time from its first job's submission to the
+/// moment its last job's time came back. The wall time less the jobs' GPU
+/// time is what refining in jobs costs around them.
+#[derive(Debug, Clone, Copy, Default, PartialEq)]
+pub struct SampleTally {
+    pub jobs: u32,
+    pub gpu: Duration,
+    pub frames: u32,
+    pub wall: Duration,
+    /// When its first job was submitted; `None` before.
+    started: Option<Instant>,
+}
+
+impl SampleTally {
+    /// A job of the sample was submitted.
+    pub fn job_submitted(&mut self) {
+        self.started.get_or_insert_with(Instant::now);
+        self.jobs += 1;
+    }
+
+    /// A job's GPU time came back.
+    pub fn job_measured(&mut self, time: Duration) {
+        self.gpu += time;
+        self.wall = self.started.map_or(Duration::ZERO, |s| s.elapsed());
+    }
+
+    /// A frame was presented while the sample was traced.
+    pub fn frame_presented(&mut self) {
+        if self.started.is_some() {
+            self.frames += 1;
+        }
+    }
+
+    /// The wall time since the first job, so far.
+    pub fn elapsed(&self) -> Duration {
+        self.started.map_or(Duration::ZERO, |s| s.elapsed())
+    }
+
+    /// As an event line's fields: `jobs=J gpu_ms=G wall_ms=W frames=F`.
+    pub fn fields(&self) -> String {
+        format!(
+            "jobs={} gpu_ms={:.1} wall_ms={:.1} frames={}",
+            self.jobs,
+            self.gpu.as_secs_f64() * 1e3,
+            self.wall.as_secs_f64() * 1e3,
+            self.frames
+        )
     }
 }
 

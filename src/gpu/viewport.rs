@@ -10,7 +10,7 @@ use web_time::{Duration, Instant};
 use super::context::{Gpu, GpuWaitError};
 use super::id_pass::FirstHit;
 use super::interaction::MIN_SCALE;
-use super::jobs::{JOB_BUDGET, JobPlanner, LongestJob};
+use super::jobs::{JOB_BUDGET, JobPlanner, LongestJob, SampleTally};
 use super::layout::PackedScene;
 use super::limits::BufferLimitError;
 use super::offscreen::TexelRead;
@@ -77,6 +77,10 @@ pub struct Viewport {
     whole_frame: bool,
     whole_frame_time: Option<Duration>,
     timer: Option<GpuTimer>,
+    /// Where the time of the sample in progress goes, and of the last one
+    /// traced to its end until the viewer takes it.
+    tally: SampleTally,
+    finished: Option<SampleTally>,
     /// The selected shape's outline, drawn over the image.
     outline: Outline,
 }
@@ -123,6 +127,8 @@ impl Viewport {
             whole_frame: false,
             whole_frame_time: None,
             timer,
+            tally: SampleTally::default(),
+            finished: None,
             outline: Outline::new(&gpu.device),
         }
     }
@@ -284,6 +290,7 @@ impl Viewport {
                 self.last_job_start = None;
                 // Any sample in progress is traced over, whole.
                 self.jobs.restart();
+                self.tally = SampleTally::default();
                 let mut encoder = gpu.device.create_command_encoder(&Default::default());
                 let (width, height) = self.accum.size();
                 let timed = self.trace_job(gpu, &mut encoder, 0..width * height);
@@ -301,6 +308,7 @@ impl Viewport {
                 let mut encoder = gpu.device.create_command_encoder(&Default::default());
                 let timed = self.trace_job(gpu, &mut encoder, span);
                 self.submit_timed(gpu, encoder, timed);
+                self.tally.job_submitted();
                 self.whole_frame = false;
             }
         }
@@ -332,6 +340,7 @@ impl Viewport {
         buffers.push(encoder.finish());
         gpu.queue.submit(buffers);
         gpu.queue.present(frame);
+        self.tally.frame_presented();
         FrameStatus::Presented
     }
 
@@ -420,7 +429,14 @@ impl Viewport {
         }
         match time {
             Some(time) if self.whole_frame => self.whole_frame_time = Some(time),
-            Some(time) => self.jobs.measured(time),
+            Some(time) => {
+                if let Some(ended) = self.jobs.measured(time) {
+                    self.tally.job_measured(time);
+                    if ended {
+                        self.finished = Some(std::mem::take(&mut self.tally));
+                    }
+                }
+            }
             None => {}
         }
     }
@@ -429,6 +445,18 @@ impl Viewport {
     fn restart_refinement(&mut self) {
         self.accum.reset();
         self.jobs.restart();
+        self.tally = SampleTally::default();
+    }
+
+    /// Where the time of the sample in progress has gone so far, and the
+    /// pixels of it traced.
+    pub fn sample_in_progress(&self) -> (SampleTally, u32) {
+        (self.tally, self.accum.pixels_done())
+    }
+
+    /// Where the time of the last sample traced to its end went, once.
+    pub fn take_finished_sample(&mut self) -> Option<SampleTally> {
+        self.finished.take()
     }
 
     /// The number of jobs measured and the longest of them since the last
