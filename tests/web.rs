@@ -194,6 +194,10 @@ fn refine(page: &mut Browser, url: &str, name: &str, samples: u32, patience: Dur
             if line.starts_with("first-frame") {
                 first = Some(Instant::now());
             }
+            // Where the samples' time goes (docs/web.md), with --nocapture.
+            if line.starts_with("sample-time") || line.starts_with("refining") {
+                eprintln!("{name}: {line}");
+            }
             if let Some(ready) = line.strip_prefix("ready ") {
                 let first = first.expect("the first frame before 'ready'");
                 return Refined {

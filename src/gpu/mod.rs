@@ -45,4 +45,4 @@ pub use tracer::{
     PipelineError, Pipelines, SceneBuffers, encode_frame,
 };
 pub use view::{ColourBar, View, colour_bar};
-pub use viewport::{EXPORT_FORMAT, FrameStatus, Refine, Viewport};
+pub use viewport::{EXPORT_FORMAT, FrameStatus, JobWaker, Refine, Viewport};

@@ -105,6 +105,9 @@ pub enum PageEvent {
     /// A mesh file of a bundled mesh scene (`file` as the scene writes
     /// it), fetched over http, or why not.
     MeshFetched(PathBuf, Result<Vec<u8>, String>),
+    /// The GPU has done a job of refinement: the next one goes at once
+    /// (`Viewer::refine_between_frames`).
+    JobDone,
 }
 
 /// A scene the page opens once the mesh files it names are fetched
@@ -253,8 +256,17 @@ fn platform(proxy: EventLoopProxy<PageEvent>) -> Platform {
         }),
         // Asked for at once, samples pile up in the browser's GPU process
         // faster than SwiftShader draws them, and the page gets no input
-        // until the refinement ends (docs/web.md, "Start-up time").
-        next_sample_after_gpu: true,
+        // until the refinement ends (docs/web.md, "Start-up time"); asked
+        // for at the next animation frame, after a display pass and the
+        // panel, the GPU waits for the page between jobs (docs/web.md,
+        // "Where a sample's time goes"). The next job goes when the GPU
+        // has done the last.
+        job_done: Some({
+            let proxy = proxy.clone();
+            Arc::new(move || {
+                let _ = proxy.send_event(PageEvent::JobDone);
+            })
+        }),
         build: Box::new(move |request| {
             let proxy = proxy.clone();
             wasm_bindgen_futures::spawn_local(async move {
@@ -418,6 +430,13 @@ impl ApplicationHandler<PageEvent> for Page {
             }
             PageEvent::Dropped(file) => self.dropped(file),
             PageEvent::MeshFetched(file, bytes) => self.mesh_fetched(&file, bytes),
+            // No frame: the viewer asks for one when the picture is due.
+            PageEvent::JobDone => {
+                if !self.work.shows_shader() {
+                    self.viewer.refine_between_frames();
+                }
+                return;
+            }
         }
         self.viewer.request_redraw();
     }
