@@ -884,9 +884,7 @@ impl Viewer {
             return;
         }
         let samples = gfx.viewport.samples();
-        let stale = self
-            .shown_at
-            .is_none_or(|at| at.elapsed() >= REPAINT_EVERY);
+        let stale = self.shown_at.is_none_or(|at| at.elapsed() >= REPAINT_EVERY);
         if samples != self.shown_samples || samples >= max_samples || stale {
             gfx.window.request_redraw();
         }

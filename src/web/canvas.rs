@@ -453,7 +453,12 @@ impl ApplicationHandler<PageEvent> for Page {
             // The sandbox has the canvas: the pointer is the shader's mouse,
             // the keys its keyboard texture.
             self.work.input(&event);
-        } else if gfx.egui.state.on_window_event(&gfx.window, &event).repaint {
+        } else if gfx.egui.state.on_window_event(&gfx.window, &event).repaint
+            && !matches!(event, WindowEvent::RedrawRequested)
+        {
+            // egui asks for a frame at every frame too; asked for here, the
+            // page drew one frame after another for as long as it was open
+            // (docs/web.md, "Where a sample's time goes").
             gfx.window.request_redraw();
         }
         match event {
