@@ -258,11 +258,10 @@ impl Viewer {
         let cache = PipelineCache::new(source, options.clone(), first.clone());
         let size = window.inner_size();
         let shown = self.shown_scene();
-        let viewport = Viewport::new(&gpu, surface, (size.width, size.height), first, &shown);
+        let mut viewport = Viewport::new(&gpu, surface, (size.width, size.height), first, &shown);
+        viewport.wake_after_jobs(self.platform.job_done.clone());
         let egui = EguiLayer::new(&window, &gpu, viewport.surface_format());
         let lines = LineOverlay::new(&gpu.device, viewport.surface_format());
-        let mut viewport = viewport;
-        viewport.wake_after_jobs(self.platform.job_done.clone());
         self.gfx = Some(Graphics {
             window,
             gpu,
@@ -779,6 +778,7 @@ impl Viewer {
         if status == FrameStatus::Skipped {
             gfx.window.request_redraw();
         } else if self.between_frames.is_some() {
+            // The next job goes when the GPU has done the one on its way.
         } else if new_samples > 0 && self.platform.job_done.is_some() {
             let window = gfx.window.clone();
             gfx.gpu
