@@ -153,16 +153,23 @@ struct Refined {
     ready: String,
     to_first: Duration,
     first_to_last: Duration,
+    /// The `sample-time` lines, one a sample (docs/web.md, "Where a
+    /// sample's time goes").
+    sample_times: Vec<String>,
 }
 
 impl Refined {
     /// A field `name=VALUE` of the `ready` line.
     fn field(&self, name: &str) -> &str {
-        self.ready
-            .split_whitespace()
-            .find_map(|f| f.strip_prefix(name)?.strip_prefix('='))
-            .unwrap_or_else(|| panic!("no {name} in 'ready {}'", self.ready))
+        field(&self.ready, name)
     }
+}
+
+/// A field `name=VALUE` of an event line.
+fn field<'a>(line: &'a str, name: &str) -> &'a str {
+    line.split_whitespace()
+        .find_map(|f| f.strip_prefix(name)?.strip_prefix('='))
+        .unwrap_or_else(|| panic!("no {name} in '{line}'"))
 }
 
 /// Opens bundled scene `name` from a link with its panel shown and waits
@@ -179,6 +186,7 @@ fn refine(page: &mut Browser, url: &str, name: &str, samples: u32, patience: Dur
     let deadline = start + patience;
     let mut lines = Vec::new();
     let mut first = None;
+    let mut sample_times = Vec::new();
     loop {
         for line in page.events_within(Duration::from_millis(200)) {
             assert!(
@@ -188,12 +196,20 @@ fn refine(page: &mut Browser, url: &str, name: &str, samples: u32, patience: Dur
             if line.starts_with("first-frame") {
                 first = Some(Instant::now());
             }
+            // Where the samples' time goes (docs/web.md), with --nocapture.
+            if line.starts_with("sample-time") || line.starts_with("refining") {
+                eprintln!("{name}: {line}");
+            }
+            if line.starts_with("sample-time") {
+                sample_times.push(line.clone());
+            }
             if let Some(ready) = line.strip_prefix("ready ") {
                 let first = first.expect("the first frame before 'ready'");
                 return Refined {
                     ready: ready.to_string(),
                     to_first: first - start,
                     first_to_last: first.elapsed(),
+                    sample_times,
                 };
             }
             lines.push(line);
@@ -250,6 +266,26 @@ fn the_heaviest_scenes_refine_in_short_jobs_without_losing_the_device() {
             jobs >= 4 * samples,
             "{name}: {jobs} jobs for {samples} samples"
         );
+        // Each sample told where its time went: its jobs (among those the
+        // ready line counts), their GPU time within its wall time (one job
+        // on the GPU at a time).
+        let told = &refined.sample_times;
+        assert_eq!(told.len() as u32, samples, "{name}: {told:?}");
+        let jobs_told: u32 = told
+            .iter()
+            .map(|l| field(l, "jobs").parse::<u32>().unwrap())
+            .sum();
+        assert!(
+            jobs_told >= samples && jobs_told <= jobs,
+            "{name}: {told:?}"
+        );
+        for line in told {
+            let ms = |key| field(line, key).parse::<f64>().unwrap();
+            assert!(
+                ms("gpu_ms") > 0.0 && ms("gpu_ms") <= ms("wall_ms"),
+                "{name}: {line}"
+            );
+        }
     }
 }
 

@@ -20,8 +20,8 @@ use super::status::SampleClock;
 use super::ui::{self, Command, Editor, Host, Status, ViewInput};
 use super::{camera_model, orbit, panel};
 use crate::gpu::{
-    ColourBar, FrameStatus, Gpu, LineOverlay, Pipelines, Refine, ShaderOptions, ShaderSource,
-    TexelRead, View, Viewport,
+    ColourBar, FrameStatus, Gpu, JobWaker, LineOverlay, Pipelines, Refine, ShaderOptions,
+    ShaderSource, TexelRead, View, Viewport,
 };
 use crate::reference;
 use crate::scene::{Camera, NamedOption, Scene, SceneError};
@@ -33,6 +33,17 @@ const OUTLINE_WIDTH: f64 = 2.0;
 
 /// Width of the ray tree's lines over the picture in logical pixels.
 const RAY_WIDTH: f64 = 2.0;
+
+/// How often a sample still being traced tells where its time went so far
+/// (`refining ...`): a heavy scene's first sample can take minutes.
+const PROGRESS_EVERY: Duration = Duration::from_secs(10);
+
+/// While the page refines between frames, the picture and the status line
+/// are presented again at least this often (the rows traced so far, during
+/// a first sample), besides once per sample and whenever input or the UI
+/// ask: a frame of the page at 1280 x 900 costs SwiftShader more than a
+/// job (docs/web.md, "Where a sample's time goes").
+const REPAINT_EVERY: Duration = Duration::from_secs(1);
 
 /// Pipelines to build for `options` from `source`, handed to the program's
 /// worker: a thread natively, a future in the browser. The worker reports
@@ -79,9 +90,11 @@ pub struct Platform {
     pub event: Box<dyn Fn(&str)>,
     /// Starts a pipeline build off the input path.
     pub build: Box<dyn Fn(BuildRequest)>,
-    /// Ask for the next refinement sample only once the GPU has finished
-    /// the last (the browser: see the page's `platform`); natively at once.
-    pub next_sample_after_gpu: bool,
+    /// In the browser, what wakes the page when the GPU has done a job: the
+    /// page then calls [`Viewer::refine_between_frames`], which submits the
+    /// next job without a frame. Natively `None`: a job is waited for
+    /// where it is submitted, one a frame.
+    pub job_done: Option<JobWaker>,
 }
 
 pub struct Viewer {
@@ -109,6 +122,14 @@ pub struct Viewer {
     layout: LayoutReport,
     /// The wall time of a sample, for the status line.
     sample_clock: SampleClock,
+    /// When the sample in progress last told where its time went.
+    progress_told: Option<Instant>,
+    /// While a resting picture refines in the page: the samples it
+    /// refines to, job after job between frames.
+    between_frames: Option<u32>,
+    /// The samples in the picture last presented, and when.
+    shown_samples: u32,
+    shown_at: Option<Instant>,
     /// A scene whose pipelines are being built: it reaches the GPU with
     /// them, and the last picture stays meanwhile (not the new scene drawn
     /// by pipelines that lack its shape kinds).
@@ -186,6 +207,10 @@ impl Viewer {
             repaint_at: None,
             layout: LayoutReport::default(),
             sample_clock: SampleClock::default(),
+            progress_told: None,
+            between_frames: None,
+            shown_samples: 0,
+            shown_at: None,
             deferred: None,
             drawing: None,
             error_view: ErrorView::default(),
@@ -233,7 +258,8 @@ impl Viewer {
         let cache = PipelineCache::new(source, options.clone(), first.clone());
         let size = window.inner_size();
         let shown = self.shown_scene();
-        let viewport = Viewport::new(&gpu, surface, (size.width, size.height), first, &shown);
+        let mut viewport = Viewport::new(&gpu, surface, (size.width, size.height), first, &shown);
+        viewport.wake_after_jobs(self.platform.job_done.clone());
         let egui = EguiLayer::new(&window, &gpu, viewport.surface_format());
         let lines = LineOverlay::new(&gpu.device, viewport.surface_format());
         self.gfx = Some(Graphics {
@@ -742,17 +768,28 @@ impl Viewer {
         // After a frame that added samples, draw once more: either the next
         // sample, or (refinement done) only the display pass, so the status
         // line shows the final count. Then nothing is drawn until something
-        // changes, and an idle window costs no CPU.
+        // changes, and an idle window costs no CPU. In the page a resting
+        // picture refines between frames instead, job after job as the GPU
+        // reports each done ([`Viewer::refine_between_frames`]); other
+        // frames wait for the GPU too, so that they never queue up there.
         let samples = gfx.viewport.samples();
+        let between = refine == Refine::NextJob && shown == View::Shaded;
+        self.between_frames = (between && self.platform.job_done.is_some()).then_some(max_samples);
         if status == FrameStatus::Skipped {
             gfx.window.request_redraw();
-        } else if new_samples > 0 && self.platform.next_sample_after_gpu {
+        } else if self.between_frames.is_some() {
+            // The next job goes when the GPU has done the one on its way.
+        } else if new_samples > 0 && self.platform.job_done.is_some() {
             let window = gfx.window.clone();
             gfx.gpu
                 .queue
                 .on_submitted_work_done(move || window.request_redraw());
         } else if new_samples > 0 {
             gfx.window.request_redraw();
+        }
+        if status == FrameStatus::Presented {
+            self.shown_samples = samples;
+            self.shown_at = Some(Instant::now());
         }
         let resolution = gfx.viewport.traced_resolution();
         let traced = status == FrameStatus::Presented && new_samples > 0;
@@ -763,6 +800,8 @@ impl Viewer {
         if new_samples > 0 {
             self.settled = false;
         }
+        self.tell_sample_times();
+        let Some(gfx) = &mut self.gfx else { return };
         self.sample_clock.update(samples, Instant::now());
         let fitted = shown.scalar() && traced && !dragging && samples > 0;
         if fitted && !shown.is_error() {
@@ -824,6 +863,60 @@ impl Viewer {
         }
         if shown.is_error() {
             self.error_view_frame(fitted);
+        }
+    }
+
+    /// In the page, once the GPU has done a job (the platform's
+    /// [`Platform::job_done`]): the next job of a resting picture's sample,
+    /// at once and without a frame. A frame of the page (the display pass,
+    /// the outline, the panel) at 1280 x 900 costs SwiftShader more than a
+    /// job, and waiting for the next animation frame for each job left the
+    /// GPU idle; so the picture is presented again only when a sample is
+    /// done, every [`REPAINT_EVERY`] meanwhile, and when input or the UI
+    /// ask (docs/web.md, "Where a sample's time goes"). Input is handled
+    /// between two jobs, as before.
+    pub fn refine_between_frames(&mut self) {
+        let Some(max_samples) = self.between_frames else {
+            return;
+        };
+        let Some(gfx) = &mut self.gfx else { return };
+        if gfx.viewport.job_in_flight() {
+            return;
+        }
+        let samples = gfx.viewport.samples();
+        let stale = self.shown_at.is_none_or(|at| at.elapsed() >= REPAINT_EVERY);
+        if samples != self.shown_samples || samples >= max_samples || stale {
+            gfx.window.request_redraw();
+        }
+        if samples < max_samples {
+            gfx.viewport.next_job(&gfx.gpu);
+            self.settled = false;
+        }
+        self.tell_sample_times();
+    }
+
+    /// Tells where a sample's time went (docs/web.md, "Where a sample's
+    /// time goes"): `sample-time` once it is traced to its end, and every
+    /// [`PROGRESS_EVERY`] while it is traced, `refining`.
+    fn tell_sample_times(&mut self) {
+        let Some(gfx) = &mut self.gfx else { return };
+        let samples = gfx.viewport.samples();
+        let finished = gfx.viewport.take_finished_sample();
+        let (tally, pixels) = gfx.viewport.sample_in_progress();
+        let (width, height) = gfx.viewport.traced_resolution();
+        if let Some(done) = finished {
+            self.event(&format!("sample-time n={samples} {}", done.fields()));
+            self.progress_told = None;
+        }
+        let told = *self.progress_told.get_or_insert_with(Instant::now);
+        if tally.jobs > 0 && told.elapsed() >= PROGRESS_EVERY {
+            self.progress_told = Some(Instant::now());
+            self.event(&format!(
+                "refining pixels={pixels}/{} elapsed_ms={:.0} {}",
+                width * height,
+                tally.elapsed().as_secs_f64() * 1e3,
+                tally.fields()
+            ));
         }
     }
 

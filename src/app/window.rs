@@ -117,7 +117,7 @@ pub fn run(options: ViewerOptions) -> Result<(), ViewerError> {
                 let _ = proxy.send_event(UserEvent::PipelinesBuilt(Box::new(built)));
             });
         }),
-        next_sample_after_gpu: false,
+        job_done: None,
     };
     #[cfg(unix)]
     lose_device_on_sigusr1(proxy.clone(), || UserEvent::LoseDevice);

@@ -9,7 +9,7 @@
 
 use std::ops::Range;
 
-use web_time::Duration;
+use web_time::{Duration, Instant};
 
 /// What one submission should cost: short enough that input is answered
 /// within a frame at 30 fps, long enough that the cost of a submission
@@ -75,9 +75,11 @@ pub struct JobPlanner {
     /// Seconds per pixel, by cell (row of cells times [`CELL_COLUMNS`]
     /// plus column); 0: not measured.
     cost: Vec<f64>,
-    /// The job planned last and not measured yet: its pixels, in an image
-    /// of that width and height, and the seconds it was predicted to take.
-    pending: Option<(Range<u32>, (u32, u32), f64)>,
+    /// The job planned last and not measured yet.
+    pending: Option<Pending>,
+    /// The next job is the first drawn with new pipelines
+    /// ([`JobPlanner::pipelines_changed`]).
+    first_draw: bool,
     /// Pixels of the last measured job (at most those that fitted in the
     /// budget), and its seconds per pixel; none before the first.
     last: Option<(u32, f64)>,
@@ -94,6 +96,17 @@ pub struct JobPlanner {
     overhead: Option<Duration>,
     /// A job is at least a row ([`JobPlanner::in_whole_rows`]).
     whole_rows: bool,
+}
+
+/// A job planned and not measured yet: its pixels, in an image of that
+/// width and height, the seconds it was predicted to take, and whether it
+/// is the first drawn with new pipelines.
+#[derive(Debug, Clone)]
+struct Pending {
+    span: Range<u32>,
+    size: (u32, u32),
+    predicted: f64,
+    first_draw: bool,
 }
 
 /// The longest job measured: its GPU time, what the planner predicted for
@@ -113,6 +126,7 @@ impl JobPlanner {
             budget,
             cost: vec![0.0; CELL_ROWS * CELL_COLUMNS],
             pending: None,
+            first_draw: false,
             last: None,
             sample_time: Duration::ZERO,
             last_sample_time: None,
@@ -220,7 +234,12 @@ impl JobPlanner {
         }
         let span = start..end.max(start + self.min_pixels(width)).min(total);
         let predicted = self.predict(&span, (width, height), last_cost);
-        self.pending = Some((span.clone(), (width, height), predicted));
+        self.pending = Some(Pending {
+            span: span.clone(),
+            size: (width, height),
+            predicted,
+            first_draw: std::mem::take(&mut self.first_draw),
+        });
         span
     }
 
@@ -233,25 +252,66 @@ impl JobPlanner {
             .sum()
     }
 
-    /// The GPU time the job last planned took. Each of its cells gets its
-    /// estimate (its cost, or the guess from the cells above), all scaled
-    /// together to the measured time: what finer jobs learnt about their
-    /// differences (the edge of an object inside a job) is kept. Cells
-    /// with no estimate get the job's average.
-    pub fn measured(&mut self, time: Duration) {
-        let Some((span, size, predicted)) = self.pending.take() else {
-            return;
-        };
+    /// The GPU time the job last planned took: counted, and learnt from
+    /// ([`Self::learn`]) unless it was the first draw with new pipelines.
+    /// Returns whether the job ended a sample; `None` for a job of a
+    /// sample restarted since.
+    pub fn measured(&mut self, time: Duration) -> Option<bool> {
+        let Pending {
+            span,
+            size,
+            predicted,
+            first_draw,
+        } = self.pending.take()?;
         let pixels = span.len() as u32;
         let seconds = time.as_secs_f64();
-        let per_pixel = seconds / f64::from(pixels.max(1));
         log::debug!(
-            "job start={} pixels={pixels} predicted_ms={:.2} ms={:.2}",
+            "job start={} pixels={pixels} predicted_ms={:.2} ms={:.2} first_draw={first_draw}",
             span.start,
             predicted * 1e3,
             seconds * 1e3
         );
-        let cells = pixels_by_cell(&span, size);
+        if !first_draw {
+            self.learn(&span, size, seconds);
+        }
+        self.last_time = time;
+        if time > self.longest.time {
+            self.longest = LongestJob {
+                time,
+                predicted: Duration::from_secs_f64(predicted),
+                pixels,
+            };
+        }
+        self.jobs += 1;
+        self.sample_time += time;
+        let ended = span.end >= size.0 * size.1;
+        if ended {
+            self.last_sample_time = Some(std::mem::take(&mut self.sample_time));
+        }
+        Some(ended)
+    }
+
+    /// The next job is the first drawn with new pipelines: its time holds
+    /// what the GPU does at a pipeline's first draw, not the pixels'. On
+    /// SwiftShader that is compiling the shader, about a second for 64
+    /// pixels that cost a millisecond later; learnt as their cost, it made
+    /// every next job of the sample the fewest pixels, hundreds of them
+    /// (docs/web.md, "Where a sample's time goes"). It is counted, and not
+    /// learnt from.
+    pub fn pipelines_changed(&mut self) {
+        self.first_draw = true;
+    }
+
+    /// What a job of `span` taking `seconds` says of the costs: each cell
+    /// it crossed gets its estimate (its cost, or the guess from the cells
+    /// above), all scaled together to the measured time, so that what finer
+    /// jobs learnt about their differences (the edge of an object inside a
+    /// job) is kept; cells with no estimate get the job's average. And how
+    /// far the next job may grow.
+    fn learn(&mut self, span: &Range<u32>, size: (u32, u32), seconds: f64) {
+        let pixels = span.len() as u32;
+        let per_pixel = seconds / f64::from(pixels.max(1));
+        let cells = pixels_by_cell(span, size);
         let estimates: Vec<Option<f64>> = cells.iter().map(|&(c, _)| self.estimate(c)).collect();
         let guessed: f64 = cells
             .iter()
@@ -282,19 +342,6 @@ impl JobPlanner {
         // would have fitted.
         let fitted = (self.budget().as_secs_f64() / per_pixel.max(f64::MIN_POSITIVE)) as u32;
         self.last = Some((pixels.min(fitted.max(MIN_PIXELS)), per_pixel));
-        self.last_time = time;
-        if time > self.longest.time {
-            self.longest = LongestJob {
-                time,
-                predicted: Duration::from_secs_f64(predicted),
-                pixels,
-            };
-        }
-        self.jobs += 1;
-        self.sample_time += time;
-        if span.end >= size.0 * size.1 {
-            self.last_sample_time = Some(std::mem::take(&mut self.sample_time));
-        }
     }
 
     /// Forgets the sample in progress (the view changed): its time so far
@@ -316,6 +363,58 @@ impl JobPlanner {
         self.jobs = 0;
         self.longest = LongestJob::default();
         taken
+    }
+}
+
+/// Where a sample's wall time goes (docs/web.md, "Where a sample's time
+/// goes"): its jobs, their GPU time together, the frames presented while it
+/// was traced, and the wall time from its first job's submission to the
+/// moment its last job's time came back. The wall time less the jobs' GPU
+/// time is what refining in jobs costs around them.
+#[derive(Debug, Clone, Copy, Default, PartialEq)]
+pub struct SampleTally {
+    pub jobs: u32,
+    pub gpu: Duration,
+    pub frames: u32,
+    pub wall: Duration,
+    /// When its first job was submitted; `None` before.
+    started: Option<Instant>,
+}
+
+impl SampleTally {
+    /// A job of the sample was submitted.
+    pub fn job_submitted(&mut self) {
+        self.started.get_or_insert_with(Instant::now);
+        self.jobs += 1;
+    }
+
+    /// A job's GPU time came back.
+    pub fn job_measured(&mut self, time: Duration) {
+        self.gpu += time;
+        self.wall = self.started.map_or(Duration::ZERO, |s| s.elapsed());
+    }
+
+    /// A frame was presented while the sample was traced.
+    pub fn frame_presented(&mut self) {
+        if self.started.is_some() {
+            self.frames += 1;
+        }
+    }
+
+    /// The wall time since the first job, so far.
+    pub fn elapsed(&self) -> Duration {
+        self.started.map_or(Duration::ZERO, |s| s.elapsed())
+    }
+
+    /// As an event line's fields: `jobs=J gpu_ms=G wall_ms=W frames=F`.
+    pub fn fields(&self) -> String {
+        format!(
+            "jobs={} gpu_ms={:.1} wall_ms={:.1} frames={}",
+            self.jobs,
+            self.gpu.as_secs_f64() * 1e3,
+            self.wall.as_secs_f64() * 1e3,
+            self.frames
+        )
     }
 }
 
@@ -553,7 +652,7 @@ mod tests {
         let mut start = 0;
         while start < width * height {
             let span = planner.next(start, (width, height));
-            let (_, _, predicted) = planner.pending.clone().unwrap();
+            let predicted = planner.pending.clone().unwrap().predicted;
             assert!(
                 predicted <= 0.030 + 1e-9 || span.len() as u32 == MIN_PIXELS,
                 "{span:?} predicted {predicted} s"
@@ -562,6 +661,27 @@ mod tests {
             planner.measured(Duration::from_secs_f64(ms / 1000.0));
             start = span.end;
         }
+    }
+
+    /// The first job drawn with new pipelines takes a second whatever its
+    /// pixels (SwiftShader compiling the shader at its first draw): the
+    /// next job is sized as if it had not been measured, not cut to the
+    /// fewest pixels as that second learnt as their cost would make it.
+    #[test]
+    fn the_first_draw_with_new_pipelines_does_not_size_the_next_jobs() {
+        let size = (WIDTH, 600);
+        let second_job = |first_draw: bool| {
+            let mut planner = JobPlanner::new(Duration::from_millis(30));
+            if first_draw {
+                planner.pipelines_changed();
+            }
+            let first = planner.next(0, size);
+            assert_eq!(first.len() as u32, FIRST_PIXELS);
+            planner.measured(Duration::from_secs(1));
+            planner.next(first.end, size).len() as u32
+        };
+        assert_eq!(second_job(true), FIRST_PIXELS);
+        assert_eq!(second_job(false), MIN_PIXELS);
     }
 
     /// A grid of cells counts each pixel of a span once, in its cell, at

@@ -10,7 +10,7 @@ use web_time::{Duration, Instant};
 use super::context::{Gpu, GpuWaitError};
 use super::id_pass::FirstHit;
 use super::interaction::MIN_SCALE;
-use super::jobs::{JOB_BUDGET, JobPlanner, LongestJob};
+use super::jobs::{JOB_BUDGET, JobPlanner, LongestJob, SampleTally};
 use super::layout::PackedScene;
 use super::limits::BufferLimitError;
 use super::offscreen::TexelRead;
@@ -38,6 +38,11 @@ pub enum Refine {
     /// ([`super::jobs`]).
     NextJob,
 }
+
+/// What the viewport calls once a job's time is back: in the browser the
+/// page's event loop then submits the next job between frames (docs/web.md,
+/// "Where a sample's time goes").
+pub type JobWaker = Arc<dyn Fn() + Send + Sync>;
 
 /// What happened to a frame.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
@@ -73,10 +78,16 @@ pub struct Viewport {
     /// it (its measured time growing with the queue, and input waiting
     /// behind them all). Natively a job is waited for where it is submitted.
     job_in_flight: bool,
+    /// Called once a job's time is back ([`Viewport::wake_after_jobs`]).
+    job_waker: Option<JobWaker>,
     /// Whether the last sample was traced whole (a moving view), and its time.
     whole_frame: bool,
     whole_frame_time: Option<Duration>,
     timer: Option<GpuTimer>,
+    /// Where the time of the sample in progress goes, and of the last one
+    /// traced to its end until the viewer takes it.
+    tally: SampleTally,
+    finished: Option<SampleTally>,
     /// The selected shape's outline, drawn over the image.
     outline: Outline,
 }
@@ -101,7 +112,8 @@ impl Viewport {
             .expect("a scene without shapes fits any GPU's buffers");
         let accum = Accumulator::new(&gpu.device, &pipelines, size.0.max(1), size.1.max(1));
         let timer = GpuTimer::for_passes(gpu);
-        let jobs = JobPlanner::new(JOB_BUDGET);
+        let mut jobs = JobPlanner::new(JOB_BUDGET);
+        jobs.pipelines_changed();
         // Natively a job is waited for alone; in the browser only its
         // timestamps leave out the frames queued before it.
         let jobs = if cfg!(target_arch = "wasm32") && timer.is_none() {
@@ -120,9 +132,12 @@ impl Viewport {
             jobs,
             last_job_start: None,
             job_in_flight: false,
+            job_waker: None,
             whole_frame: false,
             whole_frame_time: None,
             timer,
+            tally: SampleTally::default(),
+            finished: None,
             outline: Outline::new(&gpu.device),
         }
     }
@@ -207,6 +222,7 @@ impl Viewport {
         let (w, h) = self.accum.size();
         self.accum = Accumulator::new(&gpu.device, &self.pipelines, w, h);
         self.outline.forget_layouts();
+        self.jobs.pipelines_changed();
     }
 
     /// Outlines `shape` (or nothing) with a band `radius` pixels wide; only
@@ -284,6 +300,7 @@ impl Viewport {
                 self.last_job_start = None;
                 // Any sample in progress is traced over, whole.
                 self.jobs.restart();
+                self.tally = SampleTally::default();
                 let mut encoder = gpu.device.create_command_encoder(&Default::default());
                 let (width, height) = self.accum.size();
                 let timed = self.trace_job(gpu, &mut encoder, 0..width * height);
@@ -292,17 +309,7 @@ impl Viewport {
             }
             // Shows what is done while the last job runs (the browser only).
             Refine::NextJob if self.job_in_flight => {}
-            Refine::NextJob => {
-                let now = Instant::now();
-                if let Some(last) = self.last_job_start.replace(now) {
-                    self.jobs.cycle(now - last);
-                }
-                let span = self.jobs.next(self.accum.pixels_done(), self.accum.size());
-                let mut encoder = gpu.device.create_command_encoder(&Default::default());
-                let timed = self.trace_job(gpu, &mut encoder, span);
-                self.submit_timed(gpu, encoder, timed);
-                self.whole_frame = false;
-            }
+            Refine::NextJob => self.next_job(gpu),
         }
         self.record_job_time();
         let mut encoder = gpu.device.create_command_encoder(&Default::default());
@@ -332,7 +339,39 @@ impl Viewport {
         buffers.push(encoder.finish());
         gpu.queue.submit(buffers);
         gpu.queue.present(frame);
+        self.tally.frame_presented();
         FrameStatus::Presented
+    }
+
+    /// Traces the next job of the sample in progress (the first of a new
+    /// one after the last), sized by the job planner. In a frame, or
+    /// between frames in the page ([`Self::job_in_flight`] first).
+    pub fn next_job(&mut self, gpu: &Gpu) {
+        let now = Instant::now();
+        if let Some(last) = self.last_job_start.replace(now) {
+            self.jobs.cycle(now - last);
+        }
+        let span = self.jobs.next(self.accum.pixels_done(), self.accum.size());
+        let mut encoder = gpu.device.create_command_encoder(&Default::default());
+        let timed = self.trace_job(gpu, &mut encoder, span);
+        self.submit_timed(gpu, encoder, timed);
+        self.tally.job_submitted();
+        self.whole_frame = false;
+    }
+
+    /// In the browser: whether the last job's time has not come back yet
+    /// (after taking it if it has); no other job may be submitted then.
+    pub fn job_in_flight(&mut self) -> bool {
+        self.record_job_time();
+        self.job_in_flight
+    }
+
+    /// `waker` is called each time a job's time is back (in the browser,
+    /// when the GPU has done the job): the page then submits the next job
+    /// at once, between frames, instead of at the next animation frame
+    /// after a display pass and the UI.
+    pub fn wake_after_jobs(&mut self, waker: Option<JobWaker>) {
+        self.job_waker = waker;
     }
 
     /// The surface's next texture, reconfiguring the surface when it asks.
@@ -394,9 +433,13 @@ impl Viewport {
         let start = Instant::now();
         gpu.queue.submit([encoder.finish()]);
         let slot = Arc::clone(&self.job_time);
+        let waker = self.job_waker.clone();
         let store = move |time: Option<Duration>| {
             let time = time.unwrap_or_else(|| start.elapsed());
             *slot.lock().unwrap_or_else(PoisonError::into_inner) = Some(time);
+            if let Some(wake) = waker {
+                wake();
+            }
         };
         match self.timer.as_ref().filter(|_| timed) {
             Some(timer) if cfg!(target_arch = "wasm32") => timer.read_later(store),
@@ -420,7 +463,14 @@ impl Viewport {
         }
         match time {
             Some(time) if self.whole_frame => self.whole_frame_time = Some(time),
-            Some(time) => self.jobs.measured(time),
+            Some(time) => {
+                if let Some(ended) = self.jobs.measured(time) {
+                    self.tally.job_measured(time);
+                    if ended {
+                        self.finished = Some(std::mem::take(&mut self.tally));
+                    }
+                }
+            }
             None => {}
         }
     }
@@ -429,6 +479,18 @@ impl Viewport {
     fn restart_refinement(&mut self) {
         self.accum.reset();
         self.jobs.restart();
+        self.tally = SampleTally::default();
+    }
+
+    /// Where the time of the sample in progress has gone so far, and the
+    /// pixels of it traced.
+    pub fn sample_in_progress(&self) -> (SampleTally, u32) {
+        (self.tally, self.accum.pixels_done())
+    }
+
+    /// Where the time of the last sample traced to its end went, once.
+    pub fn take_finished_sample(&mut self) -> Option<SampleTally> {
+        self.finished.take()
     }
 
     /// The number of jobs measured and the longest of them since the last

@@ -105,6 +105,9 @@ pub enum PageEvent {
     /// A file that a bundled scene's shapes read (a mesh scene's model,
     /// `file` as the scene writes it), fetched over http, or why not.
     FileFetched(PathBuf, Result<Vec<u8>, String>),
+    /// The GPU has done a job of refinement: the next one goes at once
+    /// (`Viewer::refine_between_frames`).
+    JobDone,
 }
 
 /// A scene the page opens once the mesh files it names are fetched
@@ -253,8 +256,17 @@ fn platform(proxy: EventLoopProxy<PageEvent>) -> Platform {
         }),
         // Asked for at once, samples pile up in the browser's GPU process
         // faster than SwiftShader draws them, and the page gets no input
-        // until the refinement ends (docs/web.md, "Start-up time").
-        next_sample_after_gpu: true,
+        // until the refinement ends (docs/web.md, "Start-up time"); asked
+        // for at the next animation frame, after a display pass and the
+        // panel, the GPU waits for the page between jobs (docs/web.md,
+        // "Where a sample's time goes"). The next job goes when the GPU
+        // has done the last.
+        job_done: Some({
+            let proxy = proxy.clone();
+            Arc::new(move || {
+                let _ = proxy.send_event(PageEvent::JobDone);
+            })
+        }),
         build: Box::new(move |request| {
             let proxy = proxy.clone();
             wasm_bindgen_futures::spawn_local(async move {
@@ -417,7 +429,14 @@ impl ApplicationHandler<PageEvent> for Page {
                 self.follow(outcome);
             }
             PageEvent::Dropped(file) => self.dropped(file),
-            PageEvent::FileFetched(file, bytes) => self.mesh_fetched(&file, bytes),
+            PageEvent::FileFetched(file, bytes) => self.file_fetched(&file, bytes),
+            // No frame: the viewer asks for one when the picture is due.
+            PageEvent::JobDone => {
+                if !self.work.shows_shader() {
+                    self.viewer.refine_between_frames();
+                }
+                return;
+            }
         }
         self.viewer.request_redraw();
     }
@@ -434,7 +453,12 @@ impl ApplicationHandler<PageEvent> for Page {
             // The sandbox has the canvas: the pointer is the shader's mouse,
             // the keys its keyboard texture.
             self.work.input(&event);
-        } else if gfx.egui.state.on_window_event(&gfx.window, &event).repaint {
+        } else if gfx.egui.state.on_window_event(&gfx.window, &event).repaint
+            && !matches!(event, WindowEvent::RedrawRequested)
+        {
+            // egui asks for a frame at every frame too; asked for here, the
+            // page drew one frame after another for as long as it was open
+            // (docs/web.md, "Where a sample's time goes").
             gfx.window.request_redraw();
         }
         match event {
@@ -748,7 +772,7 @@ impl Page {
     /// for it is not opened (the last good one stays). A failure no waiting
     /// scene cares about any more (a newer scene replaced it) is only
     /// logged, not shown over the scene now on screen.
-    fn mesh_fetched(&mut self, file: &Path, bytes: Result<Vec<u8>, String>) {
+    fn file_fetched(&mut self, file: &Path, bytes: Result<Vec<u8>, String>) {
         match bytes {
             Ok(bytes) => {
                 page::event(&format!(
