@@ -36,13 +36,18 @@ impl SceneFiles for Folder<'_> {
 }
 
 /// The bytes of the file at `path`, with its name for messages; the error
-/// starts with the name.
+/// starts with the name. Only a regular file is read: a device such as
+/// `/dev/zero` or a named pipe never ends, and reading it whole would fill
+/// the memory or wait for ever.
 pub fn read_file(path: &Path) -> Result<(String, Vec<u8>), String> {
     let name = path.display().to_string();
-    match std::fs::read(path) {
-        Ok(bytes) => Ok((name, bytes)),
-        Err(e) => Err(format!("{name}: cannot read the file: {e}")),
+    let cannot = |e: std::io::Error| format!("{name}: cannot read the file: {e}");
+    if !std::fs::metadata(path).map_err(cannot)?.is_file() {
+        return Err(format!("{name}: cannot read the file: not a file"));
     }
+    std::fs::read(path)
+        .map(|bytes| (name.clone(), bytes))
+        .map_err(cannot)
 }
 
 /// Files given as bytes, by `file` as the scene writes it (the web page
@@ -82,5 +87,23 @@ impl SceneFiles for GivenFiles {
             Some(bytes) => Ok((name, Cow::Borrowed(bytes))),
             None => Err(format!("{name}: {}", self.missing)),
         }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// A device never ends: refused by name, not read.
+    #[cfg(unix)]
+    #[test]
+    fn a_device_is_refused_not_read() {
+        let e = read_file(Path::new("/dev/zero")).unwrap_err();
+        assert_eq!(e, "/dev/zero: cannot read the file: not a file");
+        let e = read_file(Path::new("/no/such/model.obj")).unwrap_err();
+        assert!(
+            e.starts_with("/no/such/model.obj: cannot read the file: "),
+            "{e}"
+        );
     }
 }
