@@ -1,8 +1,28 @@
-//! Small file-system helpers shared by every layer that writes the user's
-//! files (scenes, shader parameters): below everything else, using nothing.
+//! Small file-system helpers shared by every layer that reads or writes
+//! the user's files (scenes, models, shaders, shader parameters): below
+//! everything else, using nothing.
 
-use std::io::Write;
+use std::io::{Read, Write};
 use std::path::Path;
+
+/// The bytes of the regular file at `path`, at most `limit + 1` of them (a
+/// caller that gets more knows the file is over its limit without holding
+/// it whole). Anything but a regular file is refused with `InvalidInput`,
+/// "not a file": a device such as `/dev/zero` or a named pipe never ends,
+/// and reading it would fill the memory or wait for ever.
+pub fn read_regular(path: &Path, limit: u64) -> std::io::Result<Vec<u8>> {
+    if !std::fs::metadata(path)?.is_file() {
+        return Err(std::io::Error::new(
+            std::io::ErrorKind::InvalidInput,
+            "not a file",
+        ));
+    }
+    let mut bytes = Vec::new();
+    std::fs::File::open(path)?
+        .take(limit.saturating_add(1))
+        .read_to_end(&mut bytes)?;
+    Ok(bytes)
+}
 
 /// Writes `text` to `path` so that a crash or a full disk mid-write never
 /// leaves a truncated file: write a temporary file in the same folder, flush

@@ -190,15 +190,8 @@ fn expand_into(
 /// `budget` bytes long (read no further than that, so that a huge file is
 /// never held whole).
 fn read_included(path: &Path, budget: usize) -> Result<String, String> {
-    use std::io::Read;
-    let cannot = |e: std::io::Error| format!("cannot read {}: {e}", path.display());
-    if !std::fs::metadata(path).map_err(cannot)?.is_file() {
-        return Err(format!("cannot read {}: not a file", path.display()));
-    }
-    let mut bytes = Vec::new();
-    std::fs::File::open(path)
-        .and_then(|file| file.take(budget as u64 + 1).read_to_end(&mut bytes))
-        .map_err(cannot)?;
+    let bytes = crate::files::read_regular(path, budget as u64)
+        .map_err(|e| format!("cannot read {}: {e}", path.display()))?;
     if bytes.len() > budget {
         return Err(format!(
             "the includes make the shader longer than {} MB",

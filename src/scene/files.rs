@@ -35,19 +35,15 @@ impl SceneFiles for Folder<'_> {
     }
 }
 
-/// The bytes of the file at `path`, with its name for messages; the error
-/// starts with the name. Only a regular file is read: a device such as
-/// `/dev/zero` or a named pipe never ends, and reading it whole would fill
-/// the memory or wait for ever.
+/// The bytes of the regular file at `path` (`crate::files::read_regular`:
+/// a device is refused, not read), with its name for messages; the error
+/// starts with the name.
 pub fn read_file(path: &Path) -> Result<(String, Vec<u8>), String> {
     let name = path.display().to_string();
-    let cannot = |e: std::io::Error| format!("{name}: cannot read the file: {e}");
-    if !std::fs::metadata(path).map_err(cannot)?.is_file() {
-        return Err(format!("{name}: cannot read the file: not a file"));
+    match crate::files::read_regular(path, u64::MAX) {
+        Ok(bytes) => Ok((name, bytes)),
+        Err(e) => Err(format!("{name}: cannot read the file: {e}")),
     }
-    std::fs::read(path)
-        .map(|bytes| (name.clone(), bytes))
-        .map_err(cannot)
 }
 
 /// Files given as bytes, by `file` as the scene writes it (the web page
