@@ -78,10 +78,11 @@ fn count_shadow_ray() {
     }
 }
 
-/// Barycentric weights of the last mesh triangle that became the nearest
-/// hit (set by hit_mesh in the barycentric view): later shapes replace a
-/// hit only when strictly nearer, so when the final hit is a mesh these
-/// are its weights.
+/// Coordinates a kind's hit noted for the barycentric view (a mesh's
+/// triangle weights, which only its hit knows): later shapes replace a hit
+/// only when strictly nearer, so when the final hit is of that kind these
+/// are its own. `view_coordinates` (generated, src/gpu/shapes/glue.rs)
+/// asks the kind hit.
 var<private> view_barycentric: vec3<f32>;
 
 fn note_barycentric(b: vec3<f32>) {
@@ -124,26 +125,10 @@ fn view_quantity(pixel: vec2<f32>) -> vec4<f32> {
         case VIEW_GEOMETRIC: { return vec4(hit.normal, 1.0); }
         case VIEW_DEPTH: { return vec4(hit.t - ray.t_min, 0.0, 0.0, 1.0); }
         case VIEW_ID: { return vec4(f32(hit.kind), f32(hit.index), 0.0, 1.0); }
-        default: { return vec4(barycentric_of(hit), 1.0); }
+        default: { return vec4(view_coordinates(hit), 1.0); }
     }
 }
 
-/// A mesh's triangle weights; a sphere's (u, v) = (longitude / 2 pi,
-/// colatitude / pi) of its outward normal about +y; 0 for other shapes.
-fn barycentric_of(hit: Hit) -> vec3<f32> {
-    if hit.kind == KIND_MESH {
-        return view_barycentric;
-    }
-    if hit.kind == KIND_SPHERE {
-        let n = hit.normal;
-        let u = 0.5 + atan2(n.z, n.x) / (2.0 * PI);
-        let v = acos(clamp(n.y, -1.0, 1.0)) / PI;
-        return vec3(u, v, 0.0);
-    }
-    return vec3(0.0);
-}
-
-const PI: f32 = 3.14159265358979;
 
 /// What fs_trace writes in a view: the quantity for the first sample, the
 /// texture's own value after (the pixel centre's ray does not change).

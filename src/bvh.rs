@@ -2,7 +2,9 @@
 //! kind but planes, which are infinite and stay outside), so that a ray
 //! meets a few dozen boxes instead of every shape. Built on the CPU whenever the
 //! scene changes, traversed by the reference here and by the shader in
-//! `shaders/intersect.wgsl` (the same tree, packed by `gpu::layout`).
+//! `shaders/intersect.wgsl` (the same tree, packed by `gpu::layout`). The
+//! same builder makes the tree over a loaded geometry's triangles
+//! ([`triangle_bvh`]), once per geometry.
 //!
 //! Construction is top-down with the surface area heuristic over binned
 //! centroids (Wald 2007, "On fast Construction of SAH-based Bounding Volume
@@ -15,7 +17,7 @@ use web_time::{Duration, Instant};
 
 use rayon::prelude::*;
 
-use crate::scene::{Geometry, PerGeometry, Scene, ShapeId};
+use crate::scene::{Geometry, Scene, ShapeId};
 
 /// An axis-aligned box.
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -96,7 +98,7 @@ pub struct Node {
 
 /// The hierarchy: `nodes[0]` is the root (absent when there are no bounded
 /// shapes). `P` is what the leaves hold: scene shapes, or the triangle
-/// indices of a mesh ([`mesh_bvh`]).
+/// indices of a mesh ([`triangle_bvh`]).
 #[derive(Debug, Clone, PartialEq)]
 pub struct Bvh<P = ShapeId> {
     pub nodes: Vec<Node>,
@@ -165,7 +167,7 @@ fn triangle_bounds(geometry: &Geometry) -> Vec<(u32, Aabb)> {
 /// A triangle BVH as built for one geometry, with what the viewer's panel
 /// shows of it.
 #[derive(Debug, Clone)]
-pub struct MeshBvh {
+pub struct TriangleBvh {
     pub bvh: Arc<Bvh<u32>>,
     /// [`Bvh::depth`], kept: it walks the whole tree.
     pub depth: usize,
@@ -173,34 +175,33 @@ pub struct MeshBvh {
     pub build_time: Duration,
 }
 
-/// Triangle BVHs built so far, by the geometry they were built for.
-static MESH_BVHS: PerGeometry<MeshBvh> = PerGeometry::new();
-
 /// The BVH over a mesh's triangles (leaves hold triangle indices) in the
-/// mesh's own coordinates. It is built once per loaded geometry and shared
-/// by every copy of the scene: moving, turning or scaling a mesh changes
-/// only its placement, which renderers apply to the ray, never this tree.
-pub fn mesh_bvh(geometry: &Arc<Geometry>) -> Arc<Bvh<u32>> {
-    mesh_bvh_built(geometry).bvh
+/// mesh's own coordinates. It is built once per loaded geometry, which
+/// keeps it ([`Geometry::derived`]) for every copy of the scene: moving,
+/// turning or scaling a mesh changes only its placement, which renderers
+/// apply to the ray, never this tree.
+pub fn triangle_bvh(geometry: &Geometry) -> Arc<Bvh<u32>> {
+    triangle_bvh_built(geometry).bvh
 }
 
-/// [`mesh_bvh`] with its depth and build time.
-pub fn mesh_bvh_built(geometry: &Arc<Geometry>) -> MeshBvh {
-    MESH_BVHS.get_or_make(geometry, || {
+/// [`triangle_bvh`] with its depth and build time.
+pub fn triangle_bvh_built(geometry: &Geometry) -> TriangleBvh {
+    let built = geometry.derived(|| {
         let start = Instant::now();
-        let bvh = build_mesh_bvh(geometry);
+        let bvh = build_triangle_bvh(geometry);
         let build_time = start.elapsed();
-        MeshBvh {
+        TriangleBvh {
             depth: bvh.depth(),
             bvh: Arc::new(bvh),
             build_time,
         }
-    })
+    });
+    TriangleBvh::clone(&built)
 }
 
 /// A new BVH over the triangles of `geometry`, in its own coordinates,
-/// bypassing the cache of [`mesh_bvh`] (the benchmark times builds).
-pub fn build_mesh_bvh(geometry: &Geometry) -> Bvh<u32> {
+/// bypassing the cache of [`triangle_bvh`] (the benchmark times builds).
+pub fn build_triangle_bvh(geometry: &Geometry) -> Bvh<u32> {
     Bvh::from_items(triangle_bounds(geometry))
 }
 

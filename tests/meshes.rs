@@ -297,8 +297,7 @@ fn both_storage_layouts_find_identical_hits() {
     let geometry = Geometry {
         positions,
         triangles,
-        normals: Vec::new(),
-        dropped: 0,
+        ..Geometry::default()
     };
     let layouts = storage::Layouts::new(&geometry, 1024, geometry.triangles.len());
     let leaf = storage::nearest_hits(&gpu, &layouts, false).unwrap();

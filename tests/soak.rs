@@ -281,7 +281,7 @@ fn shader_save(viewer: &mut Window, ws: &Workspace, n: usize) {
 
 fn mesh_reload(viewer: &mut Window, ws: &Workspace, n: usize) {
     save(&ws.mesh, &pyramid(n + 1));
-    viewer.wait_for("mesh-reloaded");
+    viewer.wait_for("file-reloaded");
     viewer.wait_for("ready");
 }
 

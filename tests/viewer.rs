@@ -477,7 +477,7 @@ fn a_model_typed_into_add_file_is_added_in_view_and_another_file_is_refused() {
     // scrolls to the selection, away from the field.
     let field = viewer.part("add-file").at(0.8, 0.5);
     type_into(&viewer, field, dir.join("notes.stl").to_str().unwrap());
-    let error = viewer.wait_for("mesh-error");
+    let error = viewer.wait_for("file-error");
     assert!(
         error.contains("notes.stl: no shape is made from this file"),
         "{error}"
@@ -493,7 +493,7 @@ fn a_model_typed_into_add_file_is_added_in_view_and_another_file_is_refused() {
 
     let field = viewer.part("add-file").at(0.8, 0.5);
     type_into(&viewer, field, dir.join("models/tet.obj").to_str().unwrap());
-    assert!(viewer.wait_for("mesh-added").ends_with("tet.obj"));
+    assert!(viewer.wait_for("shape-added").ends_with("tet.obj"));
     viewer.wait_for("ready");
     viewer.key("ctrl+s");
     viewer.wait_for("saved");
@@ -524,7 +524,7 @@ fn a_mesh_file_edited_on_disk_reloads_and_a_bad_edit_keeps_the_last_good_mesh() 
 
     // Another good mesh: it is drawn.
     std::fs::write(&obj, QUAD).unwrap();
-    assert!(viewer.wait_for("mesh-reloaded").ends_with("shape.obj"));
+    assert!(viewer.wait_for("file-reloaded").ends_with("shape.obj"));
     viewer.wait_for("ready");
     let quad = viewer.capture();
     let d = diff_images(&crop(&tetrahedron, area), &crop(&quad, area));
@@ -535,7 +535,7 @@ fn a_mesh_file_edited_on_disk_reloads_and_a_bad_edit_keeps_the_last_good_mesh() 
     // the panel shows the error.
     let bad = QUAD.replace("f 1 2 3 4", "f 1 2 3 9");
     std::fs::write(&obj, bad).unwrap();
-    let error = viewer.wait_for("mesh-error");
+    let error = viewer.wait_for("file-error");
     assert!(
         error.contains("shape.obj:5: face vertex index 9"),
         "{error}"
@@ -561,7 +561,7 @@ fn a_mesh_file_edited_on_disk_reloads_and_a_bad_edit_keeps_the_last_good_mesh() 
 
     // Fixed again: drawn again, the error is gone from the panel.
     std::fs::write(&obj, TETRAHEDRON).unwrap();
-    viewer.wait_for("mesh-reloaded");
+    viewer.wait_for("file-reloaded");
     viewer.wait_for("ready");
     let fixed = viewer.capture();
     assert_eq!(

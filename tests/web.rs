@@ -116,7 +116,7 @@ fn bundled_scene(text: &str) -> Scene {
 /// are relative to it.
 fn mesh_scene_origin() -> std::path::PathBuf {
     std::path::Path::new(env!("CARGO_MANIFEST_DIR"))
-        .join(bundled::MESH_SCENE_FOLDER)
+        .join(bundled::SCENES_WITH_FILES_FOLDER)
         .join("scene.toml")
 }
 
@@ -131,7 +131,7 @@ fn every_bundled_scene_from_a_link_is_drawn_like_the_reference() {
     let display = common::xwindow::Display::start();
     let url = browser::serve(browser::page_dir());
     let mut page = Browser::start(&display, browser::Options::default());
-    let names = [bundled::names(), bundled::mesh_scene_names()].concat();
+    let names = [bundled::names(), bundled::names_with_files()].concat();
     for (n, name) in names.into_iter().enumerate() {
         let text = bundled::text(name).unwrap();
         let scene = bundled_scene(text);
@@ -1282,7 +1282,7 @@ fn a_dropped_model_is_added_in_view_and_a_malformed_one_named_with_its_line() {
     let files = browser::TempDir::new("raysandbox-drop");
 
     drop_on_page(&mut page, &files, "cube.obj", CUBE_OBJ);
-    assert_eq!(page.wait_for("mesh-added"), "cube.obj");
+    assert_eq!(page.wait_for("shape-added"), "cube.obj");
     page.wait_for("ready");
     let text = page.evaluate("document.getElementById('scene-text').value");
     let scene = Scene::from_toml_str(text.as_str().unwrap(), None).unwrap();
@@ -1352,7 +1352,7 @@ fn the_scene_editor_follows_other_changes_but_never_overwrites_the_users_text() 
     page.wait_for("scene-error");
     let typed = scene_text(&mut page);
     page.drop_file(&model, on_canvas);
-    assert_eq!(page.wait_for("mesh-added"), "cube.obj");
+    assert_eq!(page.wait_for("shape-added"), "cube.obj");
     page.wait_for("ready");
     assert_eq!(scene_text(&mut page), typed, "the user's text stays");
 
@@ -1361,7 +1361,7 @@ fn the_scene_editor_follows_other_changes_but_never_overwrites_the_users_text() 
     replace_text(&mut page, "scene", &whitted().0);
     page.wait_for("scene ok");
     page.drop_file(&model, on_canvas);
-    assert_eq!(page.wait_for("mesh-added"), "cube.obj");
+    assert_eq!(page.wait_for("shape-added"), "cube.obj");
     page.wait_for("ready");
     let followed = Scene::from_toml_str(&scene_text(&mut page), None).unwrap();
     assert_eq!(followed.meshes.len(), 1, "the text has the dropped model");

@@ -252,3 +252,9 @@ fn hit_mesh(ray: Ray, m: Mesh, index: u32, best: Hit) -> Hit {
     let p = m.origin + m.to_world * local_p;
     return Hit(t_best, p, n, KIND_MESH, index, m.error_scale, shading);
 }
+
+/// The barycentric view on a mesh (docs/views.md): the weights of the
+/// nearest triangle, which hit_mesh noted.
+fn view_coordinates_mesh(hit: Hit) -> vec3<f32> {
+    return view_barycentric;
+}

@@ -135,3 +135,14 @@ fn hit_sphere_naive(ray: Ray, s: Sphere, index: u32, best: Hit) -> Hit {
     let p = ray.origin + t * ray.dir;
     return surface_hit(t, p, (p - s.center) / s.radius, KIND_SPHERE, index, 0.0);
 }
+
+/// The barycentric view on a sphere (docs/views.md): its (u, v) =
+/// (longitude / 2 pi, colatitude / pi) of the outward normal about +y, as
+/// `reference::shapes::sphere::uv`.
+fn view_coordinates_sphere(hit: Hit) -> vec3<f32> {
+    let n = hit.normal;
+    let pi = 3.14159265358979;
+    let u = 0.5 + atan2(n.z, n.x) / (2.0 * pi);
+    let v = acos(clamp(n.y, -1.0, 1.0)) / pi;
+    return vec3(u, v, 0.0);
+}

@@ -26,17 +26,17 @@ fn absolute(path: &Path) -> PathBuf {
     folded
 }
 
-/// What a scene at `scene_file` writes as `file` for the file at `mesh`:
+/// What a scene at `scene_file` writes as a shape's `file` key for the file at `file`:
 /// the path from the scene's folder, or the absolute path while the scene
 /// has no file yet (a built-in scene; saving it rewrites the path, see
 /// [`rebased`]).
-pub fn scene_relative(mesh: &Path, scene_file: Option<&Path>) -> PathBuf {
-    let mesh = absolute(mesh);
+pub fn scene_relative(file: &Path, scene_file: Option<&Path>) -> PathBuf {
+    let file = absolute(file);
     let Some(dir) = scene_file.map(absolute) else {
-        return mesh;
+        return file;
     };
     let dir = dir.parent().map(Path::to_path_buf).unwrap_or_default();
-    pathdiff::diff_paths(&mesh, &dir).unwrap_or(mesh)
+    pathdiff::diff_paths(&file, &dir).unwrap_or(file)
 }
 
 /// A shape's `file` as written by a scene at `from`, rewritten for the

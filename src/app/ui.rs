@@ -122,10 +122,10 @@ pub struct MenuItem {
 
 impl MenuItem {
     /// The bundled scenes, under "Scenes": those that need no file, then
-    /// those with mesh files (the web page fetches them).
+    /// those whose shapes read files (the web page fetches them).
     pub fn bundled_scenes() -> Vec<MenuItem> {
         use crate::scene::bundled;
-        [bundled::names(), bundled::mesh_scene_names()]
+        [bundled::names(), bundled::names_with_files()]
             .concat()
             .into_iter()
             .map(|name| MenuItem {

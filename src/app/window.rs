@@ -498,11 +498,11 @@ impl App {
             Ok(_) => {
                 self.viewer.editor.panel.file_error = None;
                 self.scene_changed(None);
-                self.event(&format!("mesh-reloaded {}", path.display()));
+                self.event(&format!("file-reloaded {}", path.display()));
             }
             Err(e) => {
                 log::error!("{e}");
-                self.event(&format!("mesh-error {e}"));
+                self.event(&format!("file-error {e}"));
                 self.viewer.editor.panel.file_error = Some(e);
             }
         }
@@ -527,8 +527,8 @@ impl App {
 
     /// Adds a shape read by [`App::add_shape_file`] in front of the camera,
     /// selected; a file that could not be read is reported in the panel and
-    /// the scene is left as it was. (The events `mesh-added` and
-    /// `mesh-error` are what the viewer's tests wait for.)
+    /// the scene is left as it was. (The events `shape-added` and
+    /// `file-error` are what the viewer's tests wait for.)
     fn shape_read(&mut self, path: &Path, shape: Result<NewShape, String>) {
         match shape {
             Ok(mut shape) => {
@@ -546,11 +546,11 @@ impl App {
                 );
                 self.scene_changed(Some(&before));
                 self.viewer.editor.message = Some(format!("added {}{summary}", path.display()));
-                self.event(&format!("mesh-added {}", path.display()));
+                self.event(&format!("shape-added {}", path.display()));
             }
             Err(e) => {
                 log::error!("{e}");
-                self.event(&format!("mesh-error {e}"));
+                self.event(&format!("file-error {e}"));
                 self.viewer.editor.message = None;
                 self.viewer.editor.panel.file_error = Some(e);
             }

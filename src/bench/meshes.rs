@@ -16,11 +16,11 @@ use glam::DVec3;
 use super::measure::{self, median_time};
 use super::storage::{self, StorageRow};
 use super::{BenchArgs, BenchError, cpu_model, fail, ms, timing_of};
-use crate::bvh::build_mesh_bvh;
+use crate::bvh::build_triangle_bvh;
 use crate::compare;
 use crate::gpu::layout::PackedScene;
 use crate::gpu::{Gpu, ShaderOptions};
-use crate::scene::{CubeSize, Geometry, NamedOption, Scene, ShapeId, TriangleTest, load_file};
+use crate::scene::{AxisScale, Geometry, NamedOption, Scene, ShapeId, TriangleTest, load_file};
 use crate::stress::table::table;
 
 /// The meshes, smallest first: name and file relative to the project. The
@@ -60,7 +60,7 @@ pub(super) fn staged(path: &Path) -> Result<Scene, String> {
         .fold(DVec3::NEG_INFINITY, |a, &p| a.max(p));
     let s = 1.0 / (hi - lo).max_element();
     let centre = 0.5 * (lo + hi);
-    mesh.placement.scale = CubeSize::Uniform(s);
+    mesh.placement.scale = AxisScale::Uniform(s);
     mesh.placement.translate = DVec3::new(-centre.x * s, -lo.y * s, -centre.z * s);
     Ok(scene)
 }
@@ -166,9 +166,9 @@ fn measure_mesh(
         std::hint::black_box(load_file(path, false).ok());
     }));
     let bvh_ms = ms(median_time(runs, || {
-        std::hint::black_box(build_mesh_bvh(&geometry));
+        std::hint::black_box(build_triangle_bvh(&geometry));
     }));
-    let bvh_depth = build_mesh_bvh(&geometry).depth();
+    let bvh_depth = build_triangle_bvh(&geometry).depth();
     let scene = staged(path).map_err(BenchError::Failed)?;
     let mut empty = scene.clone();
     empty.meshes.clear();

@@ -16,7 +16,7 @@ use bytemuck::{Pod, Zeroable};
 use glam::DVec3;
 
 use super::measure::median;
-use crate::bvh::build_mesh_bvh;
+use crate::bvh::build_triangle_bvh;
 use crate::gpu::compute::{Kernel, Prepared, with_kernel};
 use crate::gpu::{Gpu, ShaderSource};
 use crate::scene::{Geometry, TriangleTest};
@@ -48,7 +48,7 @@ impl Layouts {
     /// reaching one BVH leaf) is tested against the next `block` triangles
     /// in leaf order, so that the rays together read the whole mesh.
     pub fn new(geometry: &Geometry, rays: usize, block: usize) -> Layouts {
-        let order = build_mesh_bvh(geometry).prims;
+        let order = build_triangle_bvh(geometry).prims;
         let vertex = |p: DVec3| p.as_vec3().extend(0.0).to_array();
         let leaf_triangles = order
             .iter()

@@ -147,9 +147,9 @@ fn bundled_scenes() -> Result<Vec<(String, Scene)>, String> {
             Scene::from_toml_str(text, None).map_err(|e| e.to_string())?,
         ));
     }
-    for name in bundled::mesh_scene_names() {
+    for name in bundled::names_with_files() {
         let path = project()
-            .join(bundled::MESH_SCENE_FOLDER)
+            .join(bundled::SCENES_WITH_FILES_FOLDER)
             .join(format!("{name}.toml"));
         let scene = Scene::load(&path).map_err(|e| format!("{}: {e}", path.display()))?;
         scenes.push((format!("meshes/{name}"), scene));

@@ -33,12 +33,12 @@ const SCENES: [(&str, &str); 10] = [
     ),
 ];
 
-/// (name, TOML text) of each bundled scene with mesh files, from
-/// `assets/scenes/meshes/` ([`MESH_SCENE_FOLDER`]). Only their text is
+/// (name, TOML text) of each bundled scene whose shapes read files, from
+/// `assets/scenes/meshes/` ([`SCENES_WITH_FILES_FOLDER`]). Only their text is
 /// embedded: the models stay files (`file = "../../meshes/bunny.obj"`,
 /// relative to that folder), which the web page fetches (docs/web.md,
 /// "Scenes with mesh files").
-const MESH_SCENES: [(&str, &str); 3] = [
+const SCENES_WITH_FILES: [(&str, &str); 3] = [
     (
         "glass_bunny",
         include_str!("../../assets/scenes/meshes/glass_bunny.toml"),
@@ -53,25 +53,25 @@ const MESH_SCENES: [(&str, &str); 3] = [
     ),
 ];
 
-/// The project's folder of the scenes with mesh files: their `file`s are
+/// The project's folder of the scenes whose shapes read files: their `file`s are
 /// relative to it.
-pub const MESH_SCENE_FOLDER: &str = "assets/scenes/meshes";
+pub const SCENES_WITH_FILES_FOLDER: &str = "assets/scenes/meshes";
 
 /// Names of the bundled scenes that need no file, the default first.
 pub fn names() -> Vec<&'static str> {
     SCENES.iter().map(|(name, _)| *name).collect()
 }
 
-/// Names of the bundled scenes with mesh files.
-pub fn mesh_scene_names() -> Vec<&'static str> {
-    MESH_SCENES.iter().map(|(name, _)| *name).collect()
+/// Names of the bundled scenes whose shapes read files.
+pub fn names_with_files() -> Vec<&'static str> {
+    SCENES_WITH_FILES.iter().map(|(name, _)| *name).collect()
 }
 
-/// The TOML text of a bundled scene (with or without mesh files).
+/// The TOML text of a bundled scene (with or without files).
 pub fn text(name: &str) -> Option<&'static str> {
     SCENES
         .iter()
-        .chain(&MESH_SCENES)
+        .chain(&SCENES_WITH_FILES)
         .find(|(n, _)| *n == name)
         .map(|(_, text)| *text)
 }
@@ -114,12 +114,13 @@ mod tests {
     }
 
     #[test]
-    fn every_mesh_scene_file_is_bundled_and_valid_beside_its_models() {
-        let mut bundled: Vec<String> = mesh_scene_names().iter().map(|s| s.to_string()).collect();
+    fn every_scene_with_files_is_bundled_and_valid_beside_its_models() {
+        let mut bundled: Vec<String> = names_with_files().iter().map(|s| s.to_string()).collect();
         bundled.sort();
-        assert_eq!(bundled, toml_stems(MESH_SCENE_FOLDER));
-        let folder = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join(MESH_SCENE_FOLDER);
-        for name in mesh_scene_names() {
+        assert_eq!(bundled, toml_stems(SCENES_WITH_FILES_FOLDER));
+        let folder =
+            std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join(SCENES_WITH_FILES_FOLDER);
+        for name in names_with_files() {
             let origin = folder.join(format!("{name}.toml"));
             let scene = crate::scene::Scene::from_toml_str(text(name).unwrap(), Some(&origin))
                 .unwrap_or_else(|e| panic!("{name}: {e}"));

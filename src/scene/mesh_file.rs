@@ -9,8 +9,9 @@
 //! mesh uses, so that every error names the file and the line (OBJ) or the
 //! element (PLY).
 
+use std::any::Any;
 use std::path::Path;
-use std::sync::{Arc, Mutex, Weak};
+use std::sync::{Arc, Mutex, MutexGuard};
 
 use glam::DVec3;
 
@@ -25,58 +26,66 @@ pub struct Geometry {
     pub normals: Vec<DVec3>,
     /// Degenerate (zero-area) triangles dropped on load.
     pub dropped: usize,
+    /// What renderers derived from it ([`Geometry::derived`]).
+    pub derived: Derived,
 }
 
-/// Values derived from a loaded geometry (its BVH, its packed GPU data),
-/// made once and shared by every copy of the scene that holds the same
-/// geometry: moving a mesh copies the scene but not its triangles, so
-/// nothing derived from them is made again. Entries are held by a weak
-/// reference: a geometry no scene uses any more is dropped from here at the
-/// next look-up, and at most [`PER_GEOMETRY_LIMIT`] are kept, the oldest
-/// made again if needed (docs/reliability.md, "Memory under live editing").
-pub struct PerGeometry<T>(Mutex<Vec<(Weak<Geometry>, T)>>);
+/// Values derived from a loaded geometry (its triangles' BVH, its packed
+/// GPU data), made once on first use and owned by the geometry: every copy
+/// of the scene shares one `Arc<Geometry>` (moving a mesh copies the scene
+/// but not its triangles), so nothing derived is made twice, and what was
+/// derived is dropped with the geometry, when no scene holds it any more
+/// (docs/reliability.md, "Memory under live editing"). One value per type.
+/// A clone of the geometry (to be changed) starts without any; equality
+/// ignores them.
+#[derive(Default)]
+pub struct Derived(Mutex<Vec<Arc<dyn Any + Send + Sync>>>);
 
-/// How many geometries a [`PerGeometry`] keeps values for: more meshes than
-/// any scene of the lecture has, so that in use nothing is made twice, while
-/// a long session of mesh reloads cannot make the cache grow.
-pub const PER_GEOMETRY_LIMIT: usize = 16;
+impl Derived {
+    fn lock(&self) -> MutexGuard<'_, Vec<Arc<dyn Any + Send + Sync>>> {
+        self.0.lock().unwrap_or_else(|e| e.into_inner())
+    }
 
-impl<T: Clone> Default for PerGeometry<T> {
-    fn default() -> Self {
-        Self::new()
+    fn find<T: Any + Send + Sync>(values: &[Arc<dyn Any + Send + Sync>]) -> Option<Arc<T>> {
+        values
+            .iter()
+            .find_map(|value| Arc::clone(value).downcast::<T>().ok())
     }
 }
 
-impl<T: Clone> PerGeometry<T> {
-    /// An empty cache (`const`, for a `static`).
-    pub const fn new() -> Self {
-        PerGeometry(Mutex::new(Vec::new()))
+impl Clone for Derived {
+    fn clone(&self) -> Self {
+        Derived::default()
     }
+}
 
-    /// The value for `geometry`, made by `make` if there is none yet.
-    /// `make` runs without the lock held (it may take a second on a large
-    /// mesh); if two threads made one, the first stored wins.
-    pub fn get_or_make(&self, geometry: &Arc<Geometry>, make: impl FnOnce() -> T) -> T {
-        let cached = |entries: &mut Vec<(Weak<Geometry>, T)>| {
-            entries.retain(|(g, _)| g.strong_count() > 0);
-            entries
-                .iter()
-                .find(|(g, _)| std::ptr::eq(g.as_ptr(), Arc::as_ptr(geometry)))
-                .map(|(_, value)| value.clone())
-        };
-        let lock = || self.0.lock().unwrap_or_else(|e| e.into_inner());
-        if let Some(value) = cached(&mut lock()) {
+impl PartialEq for Derived {
+    fn eq(&self, _: &Derived) -> bool {
+        true
+    }
+}
+
+impl std::fmt::Debug for Derived {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        write!(f, "Derived({} values)", self.lock().len())
+    }
+}
+
+impl Geometry {
+    /// The value of type `T` derived from this geometry, made by `make` if
+    /// there is none yet. `make` runs without the lock held (it may take a
+    /// second on a large mesh); if two threads made one, the first stored
+    /// wins.
+    pub fn derived<T: Any + Send + Sync>(&self, make: impl FnOnce() -> T) -> Arc<T> {
+        if let Some(value) = Derived::find(&self.derived.lock()) {
             return value;
         }
-        let value = make();
-        let mut entries = lock();
-        if let Some(first) = cached(&mut entries) {
+        let value = Arc::new(make());
+        let mut values = self.derived.lock();
+        if let Some(first) = Derived::find(&values) {
             return first;
         }
-        entries.push((Arc::downgrade(geometry), value.clone()));
-        if entries.len() > PER_GEOMETRY_LIMIT {
-            entries.remove(0);
-        }
+        values.push(Arc::clone(&value) as Arc<dyn Any + Send + Sync>);
         value
     }
 }
@@ -178,6 +187,7 @@ fn prepare(raw: Raw, smooth: bool) -> Result<Geometry, String> {
         triangles,
         normals,
         dropped,
+        derived: Derived::default(),
     })
 }
 
@@ -447,33 +457,27 @@ mod tests {
     use super::*;
 
     #[test]
-    fn per_geometry_keeps_at_most_its_limit_and_forgets_dropped_geometries() {
-        let cache = PerGeometry::<usize>::new();
+    fn a_derived_value_is_made_once_per_geometry_and_dropped_with_it() {
+        let geometry = Arc::new(Geometry::default());
         let made = std::cell::Cell::new(0);
-        let get = |g: &Arc<Geometry>, i: usize| {
-            cache.get_or_make(g, || {
-                made.set(made.get() + 1);
-                i
-            })
+        let make = || {
+            made.set(made.get() + 1);
+            vec![1u32, 2, 3]
         };
-        let geometries: Vec<Arc<Geometry>> = (0..PER_GEOMETRY_LIMIT + 4)
-            .map(|_| Arc::new(Geometry::default()))
-            .collect();
-        for (i, g) in geometries.iter().enumerate() {
-            assert_eq!(get(g, i), i);
-        }
-        assert_eq!(made.get(), geometries.len());
-        let len = || cache.0.lock().unwrap().len();
-        assert_eq!(len(), PER_GEOMETRY_LIMIT);
-        // The newest is still there; the oldest was made again.
-        assert_eq!(get(geometries.last().unwrap(), 0), geometries.len() - 1);
-        assert_eq!(made.get(), geometries.len());
-        assert_eq!(get(&geometries[0], 0), 0);
-        assert_eq!(made.get(), geometries.len() + 1);
-        // Geometries no scene holds are dropped at the next look-up.
-        let kept = Arc::clone(&geometries[0]);
-        drop(geometries);
-        get(&kept, 0);
-        assert_eq!(len(), 1);
+        let first = geometry.derived(make);
+        let again = Arc::clone(&geometry).derived(make);
+        assert!(Arc::ptr_eq(&first, &again));
+        assert_eq!(made.get(), 1);
+        // Another type is another value; a clone (to be changed) has none.
+        assert_eq!(*geometry.derived(|| 7.5f64), 7.5);
+        assert_eq!(made.get(), 1);
+        let changed = (*geometry).clone();
+        changed.derived(make);
+        assert_eq!(made.get(), 2);
+        assert_eq!(changed, *geometry, "equality ignores derived values");
+        // The geometry owns them: dropping it drops them.
+        let weak = Arc::downgrade(&first);
+        drop((first, again, geometry));
+        assert!(weak.upgrade().is_none());
     }
 }

@@ -31,11 +31,11 @@ pub use camera::{Film, camera_basis, normalize_or};
 pub use error::SceneError;
 pub use files::{Folder, GivenFiles, SceneFiles};
 pub use key_path::KeyPath;
-pub use mesh_file::{Geometry, PerGeometry, load_bytes, load_file};
+pub use mesh_file::{Derived, Geometry, load_bytes, load_file};
 pub use named::{NamedOption, named_option};
 pub use shapes::Context;
 pub use shapes::{
-    Centered, Cube, CubeSize, Implicit, Instance, Julia, Loaded, Mesh, Place, Placement, Plane,
+    AxisScale, Centered, Cube, Implicit, Instance, Julia, Loaded, Mesh, Place, Placement, Plane,
     Scale, Shape, Sphere, Torus, TorusMethod, TriangleTest, Unplaced, for_each_shape_kind,
     implicit, julia, rotation_degrees,
 };

@@ -150,7 +150,7 @@ fn explain(doc: &Document<'_>, path: KeyPath, message: &str) -> (KeyPath, String
     if path == KeyPath::default().key("render").key("max_depth") {
         return (path, max_depth_message(doc, node));
     }
-    if message.contains("untagged enum CubeSize") {
+    if message.contains("untagged enum AxisScale") {
         let got = node.map(|node| doc.quote(node)).unwrap_or_default();
         return (
             path,

@@ -7,7 +7,7 @@ use glam::DVec3;
 
 use super::test_scenes::FULL;
 use super::{
-    CubeSize, Intersections, Material, Placement, RenderSettings, Scale, Scene, SceneError,
+    AxisScale, Intersections, Material, Placement, RenderSettings, Scale, Scene, SceneError,
 };
 
 /// A valid camera, for tests about other sections. Three lines long.
@@ -208,7 +208,7 @@ fn numbers_may_be_written_as_integers() {
     );
     assert_eq!(scene.spheres[0].radius, 1.0);
     assert_eq!(scene.spheres[0].center, DVec3::new(1.0, 2.0, 3.0));
-    assert_eq!(scene.cubes[0].placement.scale, CubeSize::Uniform(2.0));
+    assert_eq!(scene.cubes[0].placement.scale, AxisScale::Uniform(2.0));
     assert_eq!(scene.render.exposure, 2.0);
     assert_eq!(
         scene.materials["m"].checker.as_ref().map(|c| c.size),
@@ -854,7 +854,7 @@ fn cube_rotation_defaults_to_none() {
     assert_eq!(cube.placement.rotation, DVec3::ZERO);
     assert_eq!(
         cube.placement.scale,
-        CubeSize::PerAxis(DVec3::new(1.0, 2.0, 3.0))
+        AxisScale::PerAxis(DVec3::new(1.0, 2.0, 3.0))
     );
 }
 
@@ -951,10 +951,10 @@ fn assert_round_trip_at(scene: &Scene, origin: Option<&Path>) {
 #[test]
 fn every_feature_round_trips() {
     let scene = loads(FULL);
-    assert_eq!(scene.cubes[0].placement.scale, CubeSize::Uniform(1.0));
+    assert_eq!(scene.cubes[0].placement.scale, AxisScale::Uniform(1.0));
     assert_eq!(
         scene.cubes[1].placement.scale,
-        CubeSize::PerAxis(DVec3::new(1.0, 2.0, 3.0))
+        AxisScale::PerAxis(DVec3::new(1.0, 2.0, 3.0))
     );
     assert!(scene.materials["floor"].checker.is_some());
     assert_eq!(scene.camera.focus_distance, Some(6.0));
@@ -1027,8 +1027,8 @@ fn every_asset_scene_places_its_shapes_as_written() {
             .map(written_placement)
             .collect();
         assert_eq!(got, want, "{}", path.display());
-        let meshes: Vec<Placement<CubeSize>> = scene.meshes.iter().map(|m| m.placement).collect();
-        let want: Vec<Placement<CubeSize>> = tables(&file, "meshes")
+        let meshes: Vec<Placement<AxisScale>> = scene.meshes.iter().map(|m| m.placement).collect();
+        let want: Vec<Placement<AxisScale>> = tables(&file, "meshes")
             .into_iter()
             .map(written_placement)
             .collect();
@@ -1052,8 +1052,8 @@ mod properties {
     use proptest::sample::Index;
 
     use super::super::{
-        Camera, Centered, Checker, Cube, CubeSize, Implicit, Instance, Intersections, Julia, Light,
-        Material, Placement, Plane, RenderSettings, Scene, Sphere, Torus, Unplaced,
+        AxisScale, Camera, Centered, Checker, Cube, Implicit, Instance, Intersections, Julia,
+        Light, Material, Placement, Plane, RenderSettings, Scene, Sphere, Torus, Unplaced,
     };
     use super::FULL;
 
@@ -1143,10 +1143,10 @@ mod properties {
         }
     }
 
-    fn cube_size() -> impl Strategy<Value = CubeSize> {
+    fn cube_size() -> impl Strategy<Value = AxisScale> {
         prop_oneof![
-            positive().prop_map(CubeSize::Uniform),
-            vec3(positive()).prop_map(CubeSize::PerAxis),
+            positive().prop_map(AxisScale::Uniform),
+            vec3(positive()).prop_map(AxisScale::PerAxis),
         ]
     }
 
@@ -1339,7 +1339,7 @@ fn a_mesh_file_not_given_is_reported_at_its_line_and_never_read_from_disk() {
     // A bundled mesh scene's file exists on disk beside its scene, but
     // with given files nothing is read from there.
     let origin = Path::new(env!("CARGO_MANIFEST_DIR"))
-        .join(super::bundled::MESH_SCENE_FOLDER)
+        .join(super::bundled::SCENES_WITH_FILES_FOLDER)
         .join("glass_bunny.toml");
     let text = super::bundled::text("glass_bunny").unwrap();
     assert!(Scene::from_toml_str(text, Some(&origin)).is_ok());
@@ -1349,7 +1349,8 @@ fn a_mesh_file_not_given_is_reported_at_its_line_and_never_read_from_disk() {
 
 #[test]
 fn given_bytes_load_like_the_file_on_disk_and_their_errors_name_the_file_and_line() {
-    let folder = Path::new(env!("CARGO_MANIFEST_DIR")).join(super::bundled::MESH_SCENE_FOLDER);
+    let folder =
+        Path::new(env!("CARGO_MANIFEST_DIR")).join(super::bundled::SCENES_WITH_FILES_FOLDER);
     let text = super::bundled::text("glass_bunny").unwrap();
     let from_disk = Scene::from_toml_str(text, Some(&folder.join("glass_bunny.toml"))).unwrap();
     let mut given = super::GivenFiles::new("not given");

@@ -7,7 +7,7 @@ use std::sync::Arc;
 
 use glam::DVec3;
 
-use crate::scene::{CubeSize, Geometry, Loaded, Placement, Scene};
+use crate::scene::{AxisScale, Geometry, Loaded, Placement, Scene};
 
 /// Declares the embedded scene files: `(name, TOML text)`.
 macro_rules! stress_scenes {
@@ -171,9 +171,9 @@ pub fn round_to_f32(scene: &Scene) -> Scene {
         p.scale = r(p.scale);
         p.rotation = v(p.rotation);
     };
-    let per_axis = |p: &mut Placement<CubeSize>| {
+    let per_axis = |p: &mut Placement<AxisScale>| {
         p.translate = at(p.translate);
-        p.scale = CubeSize::PerAxis(v(p.scale.edges()));
+        p.scale = AxisScale::PerAxis(v(p.scale.edges()));
         p.rotation = v(p.rotation);
     };
     for cube in &mut s.cubes {
@@ -238,8 +238,8 @@ pub fn scaled(scene: &Scene, factor: f64) -> Scene {
         let p = &mut cube.placement;
         p.translate *= factor;
         p.scale = match p.scale {
-            CubeSize::Uniform(e) => CubeSize::Uniform(e * factor),
-            CubeSize::PerAxis(e) => CubeSize::PerAxis(e * factor),
+            AxisScale::Uniform(e) => AxisScale::Uniform(e * factor),
+            AxisScale::PerAxis(e) => AxisScale::PerAxis(e * factor),
         };
     }
     // The implicit surfaces are written in local units: scaling the scene

@@ -22,7 +22,7 @@ use winit::window::{Window, WindowId};
 
 use super::drop::{Dropped, DroppedFile};
 use super::editor::{Doc, EditorEvent};
-use super::meshes::{self, PageMeshes};
+use super::shape_files::{self, PageFiles};
 use super::workbench::{Outcome, WorkEvent, Workbench};
 use super::{drop, link, page, panel_width, split};
 use crate::app::document::Document;
@@ -150,7 +150,7 @@ pub struct Graphics {
 pub fn start() {
     std::panic::set_hook(Box::new(|info| page::show_error(&info.to_string())));
     page::timing("start");
-    let models = PageMeshes::default();
+    let models = PageFiles::default();
     let (text, doc, link_waits) = match initial_document(&models) {
         Ok(doc) => doc,
         Err(e) => {
@@ -228,7 +228,7 @@ pub fn start() {
         window: None,
         menu: [MenuItem::bundled_scenes(), MenuItem::example_shaders()].concat(),
         address_due: None,
-        meshes: models,
+        shape_files: models,
         waiting: None,
         graphics_started: false,
         recovering: None,
@@ -283,11 +283,11 @@ fn platform(proxy: EventLoopProxy<PageEvent>) -> Platform {
 /// scene names mesh files the page must fetch first comes back third: the
 /// canvas stays empty until they are there, so that the first pipelines and
 /// the first picture are that scene's own.
-fn initial_document(meshes: &PageMeshes) -> Result<(String, Document, Option<String>), String> {
+fn initial_document(files: &PageFiles) -> Result<(String, Document, Option<String>), String> {
     let mut waits = None;
     match page::hash().as_deref().and_then(link::scene_in_hash) {
-        Some(Ok(text)) if !meshes.missing(&text).is_empty() => waits = Some(text),
-        Some(Ok(text)) => match Scene::from_toml_with_files(&text, None, meshes.files()) {
+        Some(Ok(text)) if !files.missing(&text).is_empty() => waits = Some(text),
+        Some(Ok(text)) => match Scene::from_toml_with_files(&text, None, files.files()) {
             Ok(scene) => {
                 page::event("scene from-link");
                 return Ok((text, Document::untitled(scene), None));
@@ -321,7 +321,7 @@ struct Page {
     /// When the address must take the scene as it is (see [`ADDRESS_DELAY`]).
     address_due: Option<Instant>,
     /// The bundled mesh scenes' models fetched so far.
-    meshes: PageMeshes,
+    shape_files: PageFiles,
     /// The last scene opened, while its mesh files are fetched (the last
     /// picture stays meanwhile).
     waiting: Option<Waiting>,
@@ -425,7 +425,7 @@ impl ApplicationHandler<PageEvent> for Page {
                 self.open(Opening::Typed(text));
             }
             PageEvent::Work(event) => {
-                let outcome = self.work.handle(event, self.meshes.files());
+                let outcome = self.work.handle(event, self.shape_files.files());
                 self.follow(outcome);
             }
             PageEvent::Dropped(file) => self.dropped(file),
@@ -612,7 +612,7 @@ impl Page {
                 self.viewer.scene_changed(Some(&before));
                 self.viewer.request_redraw();
                 self.address_due = Some(Instant::now());
-                page::event(&format!("mesh-added {name}"));
+                page::event(&format!("shape-added {name}"));
             }
             Ok((Dropped::Shader(text), _)) => {
                 let outcome = self.work.open(Doc::Shader, &text);
@@ -734,7 +734,7 @@ impl Page {
         if self.waiting.take().is_some() {
             self.viewer.editor.message = None;
         }
-        let files = self.meshes.missing(opening.text());
+        let files = self.shape_files.missing(opening.text());
         if files.is_empty() {
             self.opened(opening);
             // It may have replaced a link's scene the GPU waited for.
@@ -745,7 +745,7 @@ impl Page {
         let message = format!("loading {}", names.join(", "));
         page::event(&message);
         self.viewer.editor.message = Some(message);
-        for file in self.meshes.start_fetching(&files) {
+        for file in self.shape_files.start_fetching(&files) {
             self.fetch(file);
         }
         self.waiting = Some(Waiting { files, opening });
@@ -755,7 +755,7 @@ impl Page {
     /// the event loop.
     fn fetch(&self, file: PathBuf) {
         let proxy = self.proxy.clone();
-        let Some(address) = meshes::address(&file) else {
+        let Some(address) = shape_files::address(&file) else {
             // Not reached (only served files are waited for), but a scene
             // must never wait for a file nobody fetches.
             let _ = proxy.send_event(PageEvent::FileFetched(file, Err("not served".into())));
@@ -780,14 +780,14 @@ impl Page {
                     file_name(file),
                     bytes.len()
                 ));
-                self.meshes.fetched(file, Some(bytes));
+                self.shape_files.fetched(file, Some(bytes));
                 self.open_when_fetched();
                 self.start_graphics();
             }
             Err(e) => {
-                self.meshes.fetched(file, None);
-                let address = meshes::address(file).unwrap_or_default();
-                let message = format!("cannot load the mesh file {address}: {e}");
+                self.shape_files.fetched(file, None);
+                let address = shape_files::address(file).unwrap_or_default();
+                let message = format!("cannot load the file {address}: {e}");
                 let waited = self
                     .waiting
                     .as_ref()
@@ -809,7 +809,7 @@ impl Page {
     /// [`Page::start_graphics`]).
     fn open_when_fetched(&mut self) {
         let ready = self.waiting.as_ref().is_some_and(|w| {
-            let fetched = w.files.iter().all(|f| self.meshes.files().has(f));
+            let fetched = w.files.iter().all(|f| self.shape_files.files().has(f));
             let link = matches!(w.opening, Opening::Link(_));
             fetched && (self.viewer.gfx.is_some() || link)
         });
@@ -823,7 +823,7 @@ impl Page {
     /// Opens a scene whose mesh files the page has (or that names none it
     /// serves: the parse reports those at their line).
     fn opened(&mut self, opening: Opening) {
-        let files = self.meshes.files();
+        let files = self.shape_files.files();
         match opening {
             Opening::Bundled(name) => match Document::bundled_with_files(name, files) {
                 Ok(doc) => {

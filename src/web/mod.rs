@@ -4,7 +4,7 @@
 //! the page ([`sandbox_page`]), and the scene or shader carried in the
 //! page's address ([`link`]), which the native program and the tests can
 //! write too, the bundled mesh scenes' models the page fetches
-//! ([`meshes`]), and the images dropped on it for a multipass shader's
+//! ([`shape_files`]), and the images dropped on it for a multipass shader's
 //! texture channels ([`dropped_images`]).
 
 #[cfg(target_arch = "wasm32")]
@@ -15,7 +15,6 @@ pub mod dropped_images;
 #[cfg(target_arch = "wasm32")]
 mod editor;
 pub mod link;
-pub mod meshes;
 #[cfg(target_arch = "wasm32")]
 mod multipass_page;
 #[cfg(target_arch = "wasm32")]
@@ -24,6 +23,7 @@ mod page;
 mod panel_width;
 #[cfg(target_arch = "wasm32")]
 mod sandbox_page;
+pub mod shape_files;
 #[cfg(target_arch = "wasm32")]
 mod split;
 #[cfg(target_arch = "wasm32")]

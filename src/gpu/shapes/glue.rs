@@ -85,6 +85,17 @@ pub(in crate::gpu) fn shape_glue(kinds: &[KindInfo], bound_kinds: u32) -> String
             )
         })
         .collect();
+    let coordinates: String = kinds
+        .iter()
+        .filter(|k| k.view_coordinates)
+        .map(|k| {
+            format!(
+                "        case {}: {{ return view_coordinates_{}(hit); }}\n",
+                kind_const(k),
+                k.name()
+            )
+        })
+        .collect();
     let thin = kind_test(kinds, |k| k.kind.thin());
     let opaque = kind_test(kinds, |k| k.kind.opaque());
     format!(
@@ -123,6 +134,13 @@ pub(in crate::gpu) fn shape_glue(kinds: &[KindInfo], bound_kinds: u32) -> String
          /// material's transparency counts as 0.\n\
          fn is_opaque(kind: u32) -> bool {{\n\
          \x20   return {opaque};\n\
+         }}\n\n\
+         /// What the barycentric view shows at the hit: the kind's own\n\
+         /// coordinates (a mesh's triangle weights), zeros for a kind without.\n\
+         fn view_coordinates(hit: Hit) -> vec3<f32> {{\n\
+         \x20   switch hit.kind {{\n{coordinates}\
+         \x20       default: {{ return vec3(0.0); }}\n\
+         \x20   }}\n\
          }}\n",
         kind_loops(&unbounded),
         kind_loops(&bounded),

@@ -10,8 +10,8 @@ use bytemuck::Zeroable;
 
 use super::placement::columns;
 use super::{Frame, PackShape, Words, material_slot, packed_struct, round_out};
-use crate::bvh::mesh_bvh;
-use crate::scene::{self, Geometry, Instance, PerGeometry, Scene};
+use crate::bvh::triangle_bvh;
+use crate::scene::{self, Geometry, Instance, Scene};
 
 packed_struct! {
     /// The fields a BVH walk reads come first, in four texels (a texel
@@ -37,6 +37,7 @@ packed_struct! {
 
 impl PackShape for scene::Mesh {
     const DATA: Option<&'static str> = Some("mesh_data");
+    const VIEW_COORDINATES: bool = true;
 
     fn constants(test: &scene::TriangleTest) -> Vec<(&'static str, u32)> {
         vec![("TRIANGLE_TEST", test.number())]
@@ -130,18 +131,17 @@ impl PackedGeometry {
     }
 }
 
-/// Each geometry is packed once: a mesh moved in the viewer reuses its
-/// block instead of walking a million triangles again.
-static PACKED: PerGeometry<Arc<PackedGeometry>> = PerGeometry::new();
-
-fn packed_geometry(geometry: &Arc<Geometry>) -> Arc<PackedGeometry> {
-    PACKED.get_or_make(geometry, || Arc::new(pack_geometry(geometry)))
+/// Each geometry is packed once ([`Geometry::derived`]): a mesh moved in
+/// the viewer reuses its block instead of walking a million triangles
+/// again.
+fn packed_geometry(geometry: &Geometry) -> Arc<PackedGeometry> {
+    geometry.derived(|| pack_geometry(geometry))
 }
 
 /// The block of `geometry` (see [`PackedGeometry`]), in the mesh's own
 /// coordinates: the same wherever the mesh is placed.
-fn pack_geometry(geometry: &Arc<Geometry>) -> PackedGeometry {
-    let bvh = mesh_bvh(geometry);
+fn pack_geometry(geometry: &Geometry) -> PackedGeometry {
+    let bvh = triangle_bvh(geometry);
     let bits = |v: [f32; 3], w: u32| [v[0].to_bits(), v[1].to_bits(), v[2].to_bits(), w];
     let mut words = Vec::with_capacity(2 * bvh.nodes.len() + 6 * bvh.prims.len());
     for node in &bvh.nodes {
@@ -178,9 +178,9 @@ mod tests {
     use glam::DVec3;
 
     use super::*;
-    use crate::bvh::mesh_bvh_built;
+    use crate::bvh::triangle_bvh_built;
     use crate::gpu::layout::PackedScene;
-    use crate::scene::{CubeSize, ShapeKind};
+    use crate::scene::{AxisScale, ShapeKind};
 
     /// What the viewer does when a mesh is moved, turned or scaled in the
     /// panel: the scene is copied and the placement edited. The geometry,
@@ -196,17 +196,17 @@ mod tests {
             triangles = [[0, 2, 1], [0, 1, 3], [1, 2, 3], [2, 0, 3]]
         "#;
         let scene = Scene::from_toml_str(text, None).unwrap();
-        let built = mesh_bvh_built(&scene.meshes[0].geometry.0);
+        let built = triangle_bvh_built(&scene.meshes[0].geometry.0);
         let before = PackedScene::new(&scene, 8, 8);
 
         let mut moved = scene.clone();
         let mesh = &mut moved.meshes[0];
         mesh.placement.translate = DVec3::new(0.5, -0.25, 1.0);
         mesh.placement.rotation = DVec3::new(10.0, 45.0, 0.0);
-        mesh.placement.scale = CubeSize::PerAxis(DVec3::new(2.0, 1.0, 0.5));
+        mesh.placement.scale = AxisScale::PerAxis(DVec3::new(2.0, 1.0, 0.5));
         let after = PackedScene::new(&moved, 8, 8);
 
-        let again = mesh_bvh_built(&moved.meshes[0].geometry.0);
+        let again = triangle_bvh_built(&moved.meshes[0].geometry.0);
         assert!(Arc::ptr_eq(&built.bvh, &again.bvh), "the BVH was rebuilt");
         assert_eq!(built.build_time, again.build_time);
         let data = crate::gpu::shapes::buffer_position(ShapeKind::Mesh) + 1;

@@ -170,6 +170,12 @@ pub trait PackShape: PackedKind {
     /// (docs/implementation.md, "Torus").
     const OCCLUDES: bool = false;
 
+    /// Whether the kind's WGSL has `view_coordinates_<kind>(hit) ->
+    /// vec3<f32>`, what the barycentric view shows on it (docs/views.md: a
+    /// mesh's triangle weights, a sphere's texture coordinates); zeros
+    /// elsewhere. The twin of the reference's `Prepare::view_coordinates`.
+    const VIEW_COORDINATES: bool = false;
+
     /// The kind's own pipeline constants (`override` in its WGSL) and their
     /// values for its options ([`crate::scene::Shape::Options`]): how it
     /// chooses between methods by name (a torus's `TORUS_METHOD`, a mesh's
@@ -241,6 +247,9 @@ pub struct KindInfo {
     pub data: Option<&'static str>,
     /// Whether shadow rays call its `occludes_<kind>` ([`PackShape::OCCLUDES`]).
     pub occludes: bool,
+    /// Whether the barycentric view calls its `view_coordinates_<kind>`
+    /// ([`PackShape::VIEW_COORDINATES`]).
+    pub view_coordinates: bool,
     /// The packed struct's fields and offsets ([`Layout`]).
     pub fields: &'static [(&'static str, usize)],
     /// The packed struct's fields' Rust types ([`Layout`]).
@@ -277,6 +286,7 @@ pub fn kinds() -> Vec<KindInfo> {
                 wgsl: <crate::scene::$kind as PackedKind>::WGSL,
                 data: <crate::scene::$kind as PackShape>::DATA,
                 occludes: <crate::scene::$kind as PackShape>::OCCLUDES,
+                view_coordinates: <crate::scene::$kind as PackShape>::VIEW_COORDINATES,
                 fields: <<crate::scene::$kind as PackedKind>::Packed as Layout>::FIELDS,
                 types: <<crate::scene::$kind as PackedKind>::Packed as Layout>::TYPES,
                 size: size_of::<<crate::scene::$kind as PackedKind>::Packed>(),

@@ -14,6 +14,8 @@ packed_struct! {
 }
 
 impl PackShape for scene::Sphere {
+    const VIEW_COORDINATES: bool = true;
+
     fn pack(_: &Scene, frame: &Frame, s: &Instance<scene::Sphere>, material: u32) -> Sphere {
         Sphere {
             center: frame.point(s.center),

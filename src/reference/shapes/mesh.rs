@@ -1,6 +1,6 @@
 //! A triangle mesh for the f64 tracer (docs/rendering-model.md, "Triangle
 //! meshes"): the ray is taken into the mesh's own coordinates, where its
-//! triangles sit in a BVH built once per loaded geometry (`bvh::mesh_bvh`),
+//! triangles sit in a BVH built once per loaded geometry (`bvh::triangle_bvh`),
 //! and each triangle is tested with the method [`ReferenceOptions`] names.
 
 use std::sync::Arc;
@@ -8,7 +8,7 @@ use std::sync::Arc;
 use glam::{DMat3, DVec3};
 
 use super::{Prepare, Trace};
-use crate::bvh::{Bvh, mesh_bvh};
+use crate::bvh::{Bvh, triangle_bvh};
 use crate::reference::ReferenceOptions;
 use crate::reference::hit::Hit;
 use crate::reference::ray::Ray;
@@ -36,7 +36,7 @@ impl Prepare for scene::Mesh {
         let linear = shape.placement.linear();
         Mesh {
             geometry: shape.geometry.0.clone(),
-            bvh: mesh_bvh(&shape.geometry.0),
+            bvh: triangle_bvh(&shape.geometry.0),
             translate: shape.placement.translate,
             linear,
             inverse: linear.inverse(),

@@ -8,7 +8,7 @@ use std::sync::Arc;
 use glam::DVec3;
 use serde::{Deserialize, Serialize};
 
-use super::{Context, CubeSize, Placement, Shape};
+use super::{AxisScale, Context, Placement, Shape};
 use crate::scene::NamedOption;
 use crate::scene::key_path::KeyPath;
 use crate::scene::mesh_file::{self, Geometry};
@@ -16,7 +16,7 @@ use crate::scene::validate::{Check, Issue};
 
 /// A mesh's own keys: where its triangles come from and how they are
 /// shaded. Its placement (`scale` a number or `[x, y, z]`, like a cube's
-/// size) is a `Placement<CubeSize>` beside it in the [`super::Instance`].
+/// size) is a `Placement<AxisScale>` beside it in the [`super::Instance`].
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
 pub struct Mesh {
     /// An OBJ or PLY file, relative to the scene file; kept as written, so
@@ -221,10 +221,10 @@ impl Shape for Mesh {
         Ok(())
     }
 
-    type Placement = Placement<CubeSize>;
+    type Placement = Placement<AxisScale>;
 
     /// The world box of the transformed vertices.
-    fn bounds(&self, placement: &Placement<CubeSize>) -> [DVec3; 2] {
+    fn bounds(&self, placement: &Placement<AxisScale>) -> [DVec3; 2] {
         let m = placement.linear();
         self.geometry.0.positions.iter().fold(
             [DVec3::INFINITY, DVec3::NEG_INFINITY],

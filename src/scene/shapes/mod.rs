@@ -21,7 +21,7 @@ pub use implicit::Implicit;
 pub use instance::Instance;
 pub use julia::Julia;
 pub use mesh::{Loaded, Mesh, TriangleTest};
-pub use placement::{Centered, CubeSize, Place, Placement, Scale, Unplaced};
+pub use placement::{AxisScale, Centered, Place, Placement, Scale, Unplaced};
 pub use plane::Plane;
 pub use sphere::Sphere;
 pub use torus::{Torus, TorusMethod};

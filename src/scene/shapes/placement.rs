@@ -32,24 +32,24 @@ pub struct Placement<S = f64> {
 /// takes the same two forms.
 #[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
 #[serde(untagged)]
-pub enum CubeSize {
+pub enum AxisScale {
     Uniform(f64),
     PerAxis(DVec3),
 }
 
-impl CubeSize {
+impl AxisScale {
     /// Edge lengths along the local x, y, z axes.
     pub fn edges(self) -> DVec3 {
         match self {
-            CubeSize::Uniform(s) => DVec3::splat(s),
-            CubeSize::PerAxis(v) => v,
+            AxisScale::Uniform(s) => DVec3::splat(s),
+            AxisScale::PerAxis(v) => v,
         }
     }
 }
 
 /// A placement's `scale`: one factor (`f64`, the implicit surfaces, whose
 /// distances and normals need a uniform scale) or a number or one factor
-/// per axis ([`CubeSize`], meshes and a cube's `size`).
+/// per axis ([`AxisScale`], meshes and a cube's `size`).
 pub trait Scale: Copy + PartialEq + Debug + Serialize {
     /// No scaling: the default of `scale`.
     const ONE: Self;
@@ -80,11 +80,11 @@ impl Scale for f64 {
     }
 }
 
-impl Scale for CubeSize {
-    const ONE: CubeSize = CubeSize::Uniform(1.0);
+impl Scale for AxisScale {
+    const ONE: AxisScale = AxisScale::Uniform(1.0);
 
-    fn uniform(s: f64) -> CubeSize {
-        CubeSize::Uniform(s)
+    fn uniform(s: f64) -> AxisScale {
+        AxisScale::Uniform(s)
     }
 
     fn axes(self) -> DVec3 {
@@ -93,8 +93,8 @@ impl Scale for CubeSize {
 
     fn validate(self, path: &KeyPath) -> Check {
         match self {
-            CubeSize::Uniform(s) => number(path, s, &POSITIVE),
-            CubeSize::PerAxis(s) => vector(path, s, &POSITIVE),
+            AxisScale::Uniform(s) => number(path, s, &POSITIVE),
+            AxisScale::PerAxis(s) => vector(path, s, &POSITIVE),
         }
     }
 }
@@ -130,7 +130,7 @@ impl<S: Scale> Placement<S> {
     }
 }
 
-impl Placement<CubeSize> {
+impl Placement<AxisScale> {
     /// The world box of the box of edge lengths `scale` centred on the
     /// local origin: along each world axis, `translate` plus or minus `|R|`
     /// times its half size.
@@ -198,13 +198,13 @@ impl<S: Scale + serde::de::DeserializeOwned> Place for Placement<S> {
 /// (docs/scene-format.md, "`[[cubes]]`").
 #[derive(Debug, Clone, Copy, Default, PartialEq, Serialize, Deserialize)]
 #[serde(from = "CenteredKeys", into = "CenteredKeys")]
-pub struct Centered(pub Placement<CubeSize>);
+pub struct Centered(pub Placement<AxisScale>);
 
 /// [`Centered`] as the scene file writes it.
 #[derive(Clone, Copy, Serialize, Deserialize)]
 struct CenteredKeys {
     center: DVec3,
-    size: CubeSize,
+    size: AxisScale,
     #[serde(default)]
     rotation: DVec3,
 }
@@ -230,15 +230,15 @@ impl From<Centered> for CenteredKeys {
 }
 
 impl std::ops::Deref for Centered {
-    type Target = Placement<CubeSize>;
+    type Target = Placement<AxisScale>;
 
-    fn deref(&self) -> &Placement<CubeSize> {
+    fn deref(&self) -> &Placement<AxisScale> {
         &self.0
     }
 }
 
 impl std::ops::DerefMut for Centered {
-    fn deref_mut(&mut self) -> &mut Placement<CubeSize> {
+    fn deref_mut(&mut self) -> &mut Placement<AxisScale> {
         &mut self.0
     }
 }

@@ -5,7 +5,7 @@ use egui::Ui;
 use glam::DVec3;
 
 use super::{EditShape, InView};
-use crate::scene::{Centered, Cube, CubeSize, Instance, Placement};
+use crate::scene::{AxisScale, Centered, Cube, Instance, Placement};
 
 /// A cube has no keys of its own: its rows are its placement's (centre,
 /// size, rotation).
@@ -14,7 +14,7 @@ impl EditShape for Cube {
     fn new_near(at: &InView) -> Instance<Cube> {
         let placement = Placement {
             translate: at.target - at.right * (0.25 * at.scale),
-            scale: CubeSize::Uniform(0.15 * at.scale),
+            scale: AxisScale::Uniform(0.15 * at.scale),
             rotation: DVec3::ZERO,
         };
         Instance::new(Cube {}, Centered(placement))
@@ -32,10 +32,10 @@ impl EditShape for Cube {
 
 /// Switches a cube between one edge length and three. Going back to one keeps
 /// the longest edge, so the cube encloses the box it was.
-pub(super) fn toggle_per_axis(size: CubeSize) -> CubeSize {
+pub(super) fn toggle_per_axis(size: AxisScale) -> AxisScale {
     match size {
-        CubeSize::Uniform(s) => CubeSize::PerAxis(DVec3::splat(s)),
-        CubeSize::PerAxis(v) => CubeSize::Uniform(v.max_element()),
+        AxisScale::Uniform(s) => AxisScale::PerAxis(DVec3::splat(s)),
+        AxisScale::PerAxis(v) => AxisScale::Uniform(v.max_element()),
     }
 }
 
@@ -45,11 +45,11 @@ mod tests {
 
     #[test]
     fn cube_size_toggles_keep_positive_edges() {
-        let uniform = CubeSize::Uniform(2.0);
+        let uniform = AxisScale::Uniform(2.0);
         let per_axis = toggle_per_axis(uniform);
-        assert_eq!(per_axis, CubeSize::PerAxis(DVec3::splat(2.0)));
+        assert_eq!(per_axis, AxisScale::PerAxis(DVec3::splat(2.0)));
         assert_eq!(toggle_per_axis(per_axis), uniform);
-        let boxed = CubeSize::PerAxis(DVec3::new(1.0, 3.0, 2.0));
-        assert_eq!(toggle_per_axis(boxed), CubeSize::Uniform(3.0));
+        let boxed = AxisScale::PerAxis(DVec3::new(1.0, 3.0, 2.0));
+        assert_eq!(toggle_per_axis(boxed), AxisScale::Uniform(3.0));
     }
 }

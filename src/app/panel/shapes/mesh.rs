@@ -6,8 +6,8 @@ use glam::DVec3;
 
 use super::{EditShape, InView};
 use crate::app::panel::field;
-use crate::bvh::{MAX_DEPTH, mesh_bvh_built};
-use crate::scene::{CubeSize, Instance, Mesh, Placement};
+use crate::bvh::{MAX_DEPTH, triangle_bvh_built};
+use crate::scene::{AxisScale, Instance, Mesh, Placement};
 
 impl EditShape for Mesh {
     /// A tetrahedron below the right of the target, a fifth of the scene
@@ -24,7 +24,7 @@ impl EditShape for Mesh {
             .expect("the tetrahedron has four non-degenerate faces");
         let placement = Placement {
             translate: at.target + at.right * (0.25 * at.scale) - at.up * (0.1 * at.scale),
-            scale: CubeSize::Uniform(0.1 * at.scale),
+            scale: AxisScale::Uniform(0.1 * at.scale),
             rotation: DVec3::ZERO,
         };
         Instance::new(mesh, placement)
@@ -44,7 +44,7 @@ impl EditShape for Mesh {
 
 /// Where the triangles come from, how many there are, and their BVH: its
 /// depth (against the traversal stack's limit) and how long it took to
-/// build. Moving, turning and scaling keep this tree ([`mesh_bvh_built`]).
+/// build. Moving, turning and scaling keep this tree ([`triangle_bvh_built`]).
 fn geometry_rows(ui: &mut Ui, mesh: &Mesh) {
     field(
         ui,
@@ -64,7 +64,7 @@ fn geometry_rows(ui: &mut Ui, mesh: &Mesh) {
     );
     ui.label(geometry.triangles.len().to_string());
     ui.end_row();
-    let built = mesh_bvh_built(&mesh.geometry.0);
+    let built = triangle_bvh_built(&mesh.geometry.0);
     field(
         ui,
         "BVH",

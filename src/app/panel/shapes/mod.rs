@@ -17,7 +17,7 @@ use egui::Ui;
 use glam::DVec3;
 
 use super::widgets::{MIN_POSITIVE, VALUE_LIMIT, number, vec3_row};
-use crate::scene::{self, CubeSize, Instance, Scene, Shape, ShapeId, ShapeKind};
+use crate::scene::{self, AxisScale, Instance, Scene, Shape, ShapeId, ShapeKind};
 use placement::EditPlacement;
 
 /// Where new shapes go and how big they are: from the view, so that a new
@@ -108,17 +108,17 @@ fn edit_instance<K: EditShape>(ui: &mut Ui, shape: &mut Instance<K>, scale: f64)
 
 /// One length or three (a cube's size, a mesh's scale), with a toggle
 /// between the two forms.
-pub(super) fn size_row(ui: &mut Ui, size: &mut CubeSize, speed: f64) {
+pub(super) fn size_row(ui: &mut Ui, size: &mut AxisScale, speed: f64) {
     ui.vertical(|ui| {
-        let mut per_axis = matches!(size, CubeSize::PerAxis(_));
+        let mut per_axis = matches!(size, AxisScale::PerAxis(_));
         if ui.checkbox(&mut per_axis, "per axis").changed() {
             *size = cube::toggle_per_axis(*size);
         }
         match size {
-            CubeSize::Uniform(s) => {
+            AxisScale::Uniform(s) => {
                 ui.add(number(s, speed, MIN_POSITIVE..=VALUE_LIMIT));
             }
-            CubeSize::PerAxis(edges) => {
+            AxisScale::PerAxis(edges) => {
                 vec3_row(ui, edges, speed, MIN_POSITIVE..=VALUE_LIMIT);
             }
         }

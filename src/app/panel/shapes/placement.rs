@@ -6,7 +6,7 @@ use egui::Ui;
 
 use crate::app::panel::field;
 use crate::app::panel::widgets::{COORDINATES, MIN_POSITIVE, VALUE_LIMIT, number, vec3_row};
-use crate::scene::{Centered, CubeSize, Placement, Scale, Unplaced};
+use crate::scene::{AxisScale, Centered, Placement, Scale, Unplaced};
 
 /// The row of a placement's `scale`: its hover text and its widget.
 pub(super) trait ScaleRow: Scale {
@@ -23,7 +23,7 @@ impl ScaleRow for f64 {
     }
 }
 
-impl ScaleRow for CubeSize {
+impl ScaleRow for AxisScale {
     const HINT: &'static str = "One factor, or factors along the local x, y, z (> 0)";
 
     fn row(&mut self, ui: &mut Ui, speed: f64) {

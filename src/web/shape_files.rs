@@ -1,4 +1,4 @@
-//! The models of the bundled mesh scenes in the web page (docs/web.md,
+//! The files that the shapes of the bundled scenes read (models), in the web page (docs/web.md,
 //! "Scenes with mesh files"). The page has no file system: `scripts/web`
 //! copies the files these scenes name into `dist/web/meshes/`, and the page
 //! fetches each over http, once, before it parses a scene that names it.
@@ -11,13 +11,13 @@ use std::sync::OnceLock;
 
 use crate::scene::{GivenFiles, Scene, bundled};
 
-/// The mesh files the bundled mesh scenes name, as they write them
+/// The files the bundled scenes' shapes read, as the scenes write them
 /// (`../../meshes/bunny.obj`), each once; read from the scenes' texts once
 /// (every debounced edit asks).
 fn bundled_files() -> &'static BTreeSet<PathBuf> {
     static FILES: OnceLock<BTreeSet<PathBuf>> = OnceLock::new();
     FILES.get_or_init(|| {
-        bundled::mesh_scene_names()
+        bundled::names_with_files()
             .into_iter()
             .flat_map(|name| Scene::files_named(bundled::text(name).unwrap_or_default()))
             .collect()
@@ -25,7 +25,7 @@ fn bundled_files() -> &'static BTreeSet<PathBuf> {
 }
 
 /// Where the page serves `file` (as a scene writes it), relative to the
-/// page's address: `meshes/NAME` for a file a bundled mesh scene names,
+/// page's address: `meshes/NAME` for a file a bundled scene names,
 /// `None` for any other file.
 pub fn address(file: &Path) -> Option<String> {
     let name = file.file_name()?.to_str()?;
@@ -34,37 +34,38 @@ pub fn address(file: &Path) -> Option<String> {
         .then(|| format!("meshes/{name}"))
 }
 
-/// The mesh files the page fetched, and those it is fetching.
-pub struct PageMeshes {
+/// The files the page fetched for shapes, and those it is fetching.
+pub struct PageFiles {
     files: GivenFiles,
     fetching: BTreeSet<PathBuf>,
 }
 
-impl Default for PageMeshes {
+impl Default for PageFiles {
     fn default() -> Self {
         let bundled: Vec<String> = bundled_files()
             .iter()
             .map(|f| f.display().to_string())
             .collect();
         let missing = format!(
-            "the page cannot read this file: in the page, a mesh must be one of the bundled \
-             models ({}), a model dropped on the page, or written inline (positions, triangles)",
+            "the page cannot read this file: in the page, a file a shape reads must be one of \
+             the bundled models ({}) or a model dropped on the page; a shape may also be \
+             written inline in the scene",
             bundled.join(", ")
         );
-        PageMeshes {
+        PageFiles {
             files: GivenFiles::new(&missing),
             fetching: BTreeSet::new(),
         }
     }
 }
 
-impl PageMeshes {
+impl PageFiles {
     /// The files fetched so far, to parse scenes with.
     pub fn files(&self) -> &GivenFiles {
         &self.files
     }
 
-    /// The files `text`'s meshes name that the page serves and has not
+    /// The files `text`'s shapes name that the page serves and has not
     /// fetched yet: what to wait for before the text is parsed. (A file it
     /// does not serve is reported by the parse, at its line.)
     pub fn missing(&self, text: &str) -> Vec<PathBuf> {
@@ -103,7 +104,7 @@ mod tests {
     /// fetches is such a file.
     #[test]
     fn the_page_serves_each_model_of_the_bundled_mesh_scenes_by_its_name() {
-        let folder = Path::new(env!("CARGO_MANIFEST_DIR")).join(bundled::MESH_SCENE_FOLDER);
+        let folder = Path::new(env!("CARGO_MANIFEST_DIR")).join(bundled::SCENES_WITH_FILES_FOLDER);
         let files = bundled_files();
         assert_eq!(files.len(), 3, "{files:?}");
         for file in files {
@@ -128,7 +129,7 @@ mod tests {
     /// copied.
     #[test]
     fn scripts_web_finds_every_model_the_bundled_mesh_scenes_name() {
-        let by_line: BTreeSet<PathBuf> = bundled::mesh_scene_names()
+        let by_line: BTreeSet<PathBuf> = bundled::names_with_files()
             .into_iter()
             .flat_map(|name| bundled::text(name).unwrap_or_default().lines())
             .filter_map(|line| {
@@ -144,7 +145,7 @@ mod tests {
 
     #[test]
     fn a_scene_waits_for_the_served_files_it_names_until_they_are_fetched() {
-        let mut meshes = PageMeshes::default();
+        let mut meshes = PageFiles::default();
         let text = bundled::text("glass_bunny").unwrap();
         let bunny = PathBuf::from("../../meshes/bunny.obj");
         let only_bunny = vec![bunny.clone()];
@@ -182,7 +183,7 @@ mod tests {
 
     #[test]
     fn a_file_the_page_does_not_serve_is_reported_at_its_line_with_what_the_page_reads() {
-        let meshes = PageMeshes::default();
+        let meshes = PageFiles::default();
         let text =
             "[camera]\nfrom = [0, 1, 5]\nto = [0, 0, 0]\n[[meshes]]\nfile = \"my_model.obj\"\n";
         assert!(meshes.missing(text).is_empty(), "nothing to fetch");
