@@ -56,7 +56,7 @@ fn concentric_disk(s: vec2<f32>) -> vec2<f32> {
 
 /// The ray through film position `pixel` (in pixels, y down from the top) with
 /// lens sample `lens` in the unit disk. The direction is built from the basis
-/// (`globals.u`, `v`, `w`, computed once in f64 on the CPU: `Camera::film`
+/// (`globals().u`, `v`, `w`, computed once in f64 on the CPU: `Camera::film`
 /// in src/scene/camera.rs), x u + y v - w, never as the difference of two
 /// far-away world points.
 ///
@@ -70,20 +70,20 @@ fn concentric_disk(s: vec2<f32>) -> vec2<f32> {
 /// eye: a small sphere framed from 1e6 units stays where it is
 /// (docs/accuracy.md). The textbook ray (ROBUST = false) starts at the eye.
 fn camera_ray(pixel: vec2<f32>, lens: vec2<f32>) -> Ray {
-    let size = vec2<f32>(globals.resolution);
-    let h = globals.film_height;
+    let size = vec2<f32>(globals().resolution);
+    let h = globals().film_height;
     let x = h * (size.x / size.y) * (pixel.x / size.x - 0.5);
     let y = h * (0.5 - pixel.y / size.y);
-    let to_film = x * globals.u + y * globals.v - globals.w;
-    let target_distance = globals.target_distance;
+    let to_film = x * globals().u + y * globals().v - globals().w;
+    let target_distance = globals().target_distance;
     var focus = target_distance;
     var lens_offset = vec3(0.0);
-    if HAS_LENS && globals.aperture > 0.0 {
+    if HAS_LENS && globals().aperture > 0.0 {
         // Thin lens: aim from the lens point at P = e + focus_distance * to_film.
-        focus = globals.focus_distance;
-        lens_offset = globals.aperture * (lens.x * globals.u + lens.y * globals.v);
+        focus = globals().focus_distance;
+        lens_offset = globals().aperture * (lens.x * globals().u + lens.y * globals().v);
     } else if !ROBUST {
-        return Ray(globals.camera_from, normalize(to_film), 0.0);
+        return Ray(globals().camera_from, normalize(to_film), 0.0);
     }
     // Its -w component is -focus, so it is zero only for a zero focus
     // distance (eye == target in f32): then the pinhole ray from the eye. The
@@ -92,8 +92,8 @@ fn camera_ray(pixel: vec2<f32>, lens: vec2<f32>) -> Ray {
     let dir = normalize_or(to_focus, normalize(to_film));
     let reach = dot(to_focus, dir);
     if !ROBUST || !(reach > 0.0) {
-        return Ray(globals.camera_from + lens_offset, dir, 0.0);
+        return Ray(globals().camera_from + lens_offset, dir, 0.0);
     }
-    let on_focus_plane = (target_distance - focus) * globals.w + focus * (x * globals.u + y * globals.v);
-    return Ray(globals.camera_to + on_focus_plane, dir, -reach);
+    let on_focus_plane = (target_distance - focus) * globals().w + focus * (x * globals().u + y * globals().v);
+    return Ray(globals().camera_to + on_focus_plane, dir, -reach);
 }

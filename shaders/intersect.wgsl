@@ -138,7 +138,7 @@ fn narrow_bracket(a: ptr<function, f32>, b: ptr<function, f32>, x: f32, g_x: f32
 /// misses it leaves at once.
 fn hit_bounded_bvh(ray: Ray, best_in: Hit, any: bool) -> Hit {
     var best = best_in;
-    if globals.bvh_node_count == 0u {
+    if globals().bvh_node_count == 0u {
         return best;
     }
     let inv_d = select(1.0 / ray.dir, vec3(0.0), abs(ray.dir) < vec3(1e-20));

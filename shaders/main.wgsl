@@ -16,7 +16,6 @@ fn vs_fullscreen(@builtin(vertex_index) i: u32) -> @builtin(position) vec4<f32> 
 
 @fragment
 fn fs_trace(@builtin(position) frag: vec4<f32>) -> @location(0) vec4<f32> {
-    globals = load_globals(0u);
     if VIEW != VIEW_SHADED {
         return view_trace(frag.xy);
     }
@@ -26,13 +25,13 @@ fn fs_trace(@builtin(position) frag: vec4<f32>) -> @location(0) vec4<f32> {
     // loop that tests first made every frame measured slower
     // (docs/performance.md, "The torus against its sphere").
     var k = 0u;
-    if globals.sample_count > 0u {
+    if globals().sample_count > 0u {
         loop {
-            let s = sample_r4(globals.sample_start + k);
+            let s = sample_r4(globals().sample_start + k);
             sum += trace(camera_ray(pixel + s.xy, concentric_disk(s.zw)));
             continuing {
                 k++;
-                break if k >= globals.sample_count;
+                break if k >= globals().sample_count;
             }
         }
     }
@@ -40,12 +39,12 @@ fn fs_trace(@builtin(position) frag: vec4<f32>) -> @location(0) vec4<f32> {
         // The counting variant sums its counts over the passes, as the
         // others sum radiance.
         var counts = ray_counts;
-        if globals.sample_start > 0u {
+        if globals().sample_start > 0u {
             counts += textureLoad(accumulated, vec2<i32>(frag.xy), 0);
         }
         return counts;
     }
-    if globals.sample_start > 0u {
+    if globals().sample_start > 0u {
         sum += textureLoad(accumulated, vec2<i32>(frag.xy), 0).rgb;
     }
     return vec4(sum, 1.0);
@@ -70,18 +69,17 @@ fn srgb_encode(c: vec3<f32>) -> vec3<f32> {
 
 @fragment
 fn fs_display(@builtin(position) frag: vec4<f32>) -> @location(0) vec4<f32> {
-    globals = load_globals(0u);
     // The image may be traced at a lower resolution than it is shown
     // (resolution scale): each output pixel shows the traced pixel under it.
-    let scale = vec2<f32>(globals.resolution) / vec2<f32>(globals.output_size);
-    let texel = min(vec2<u32>(frag.xy * scale), globals.resolution - 1u);
+    let scale = vec2<f32>(globals().resolution) / vec2<f32>(globals().output_size);
+    let texel = min(vec2<u32>(frag.xy * scale), globals().resolution - 1u);
     if VIEW != VIEW_SHADED {
         // A view's colours are display values: the sRGB target's own
         // encoding is undone in advance.
         let c = view_colour(textureLoad(accumulated, texel, 0));
         return vec4(select(srgb_decode(c), c, ENCODE_SRGB), 1.0);
     }
-    let total = f32(max(globals.sample_start + globals.sample_count, 1u));
+    let total = f32(max(globals().sample_start + globals().sample_count, 1u));
     let radiance = textureLoad(accumulated, texel, 0).rgb / total;
     // WGSL gives no guarantee for inf and NaN (clamp may pass them through),
     // so a non-finite sum is caught from its bits and shown as magenta: a
@@ -89,7 +87,7 @@ fn fs_display(@builtin(position) frag: vec4<f32>) -> @location(0) vec4<f32> {
     if any(!is_finite(radiance)) {
         return vec4(1.0, 0.0, 1.0, 1.0);
     }
-    let c = clamp(globals.exposure * radiance, vec3(0.0), vec3(1.0));
+    let c = clamp(globals().exposure * radiance, vec3(0.0), vec3(1.0));
     if !ENCODE_SRGB {
         return vec4(c, 1.0);
     }
@@ -106,7 +104,6 @@ fn fs_display(@builtin(position) frag: vec4<f32>) -> @location(0) vec4<f32> {
 /// `reference::pick`, and the two are compared pixel by pixel.
 @fragment
 fn fs_id(@builtin(position) frag: vec4<f32>) -> @location(0) vec4<u32> {
-    globals = load_globals(0u);
     let pixel = vec2<f32>(floor(frag.xy)) + vec2(0.5);
     let ray = camera_ray(pixel, vec2(0.0));
     let hit = hit_scene(ray, T_FAR);

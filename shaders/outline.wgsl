@@ -27,7 +27,7 @@ struct Selection {
 /// accumulated image of `fs_display` is.
 fn shows_selected(p: vec2<i32>) -> bool {
     let size = vec2<i32>(textureDimensions(first_hits));
-    let scale = vec2<f32>(size) / vec2<f32>(globals.output_size);
+    let scale = vec2<f32>(size) / vec2<f32>(globals().output_size);
     let texel = clamp(vec2<i32>(vec2<f32>(p) * scale), vec2(0), size - 1);
     let id = textureLoad(first_hits, texel, 0);
     return id.x == selection.kind && id.y == selection.index;
@@ -35,7 +35,6 @@ fn shows_selected(p: vec2<i32>) -> bool {
 
 @fragment
 fn fs_outline(@builtin(position) frag: vec4<f32>) -> @location(0) vec4<f32> {
-    globals = load_globals(0u);
     let p = vec2<i32>(floor(frag.xy));
     if selection.kind == KIND_NONE || shows_selected(p) {
         discard;

@@ -165,7 +165,6 @@ const TREE_ROWS: u32 = 7u;
 /// the rays kept and the rays traced.
 @fragment
 fn fs_ray_tree(@builtin(position) frag: vec4<f32>) -> @location(0) vec4<u32> {
-    globals = load_globals(0u);
     tree_capture = u32(frag.x);
     _ = trace(camera_ray(tree_pixel.xy, vec2(0.0)));
     let n = tree_node;

@@ -108,14 +108,14 @@ fn refract_dir(d: vec3<f32>, ns: vec3<f32>, eta: f32) -> vec3<f32> {
 /// Local illumination: ambient, plus Lambert and Blinn-Phong for every light
 /// that the point sees (a shadow ray to it hits nothing).
 fn shade_local(hit: Hit, ns: vec3<f32>, d: vec3<f32>, m: Material, albedo: vec3<f32>) -> vec3<f32> {
-    var color = globals.ambient * albedo * m.diffuse;
+    var color = globals().ambient * albedo * m.diffuse;
     if !HAS_LIGHTS {
         return color;
     }
     // Off the surface along the geometric normal, on the lit side.
     let ng = select(-hit.normal, hit.normal, dot(hit.normal, ns) >= 0.0);
     let shadow_origin = offset_ray(hit.point, ng, hit.error_scale);
-    for (var i = 0u; i < globals.light_count; i++) {
+    for (var i = 0u; i < globals().light_count; i++) {
         let light = load_light(i);
         // A light at p (or nearer than length() can resolve) has no
         // direction and lights nothing: never divide by a zero length.
@@ -189,7 +189,7 @@ struct PendingRay {
 
 /// Whether the rendering model allows a child ray of this depth and weight.
 fn worth_tracing(depth: u32, weight: f32) -> bool {
-    return depth <= globals.max_depth && weight > 0.0 && weight >= globals.min_weight;
+    return depth <= globals().max_depth && weight > 0.0 && weight >= globals().min_weight;
 }
 
 /// trace = local + wr * trace(reflected) + wt * albedo * trace(refracted),
@@ -210,8 +210,8 @@ fn trace(primary: Ray) -> vec3<f32> {
         tree_begin(top, ray, job.depth, job.throughput);
         let hit = hit_scene(ray, T_FAR);
         if hit.kind == KIND_NONE {
-            tree_missed(job.throughput * globals.background);
-            radiance += job.throughput * globals.background;
+            tree_missed(job.throughput * globals().background);
+            radiance += job.throughput * globals().background;
             continue;
         }
         var m = load_material(material_of(hit));

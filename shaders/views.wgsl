@@ -133,7 +133,7 @@ fn view_quantity(pixel: vec2<f32>) -> vec4<f32> {
 /// What fs_trace writes in a view: the quantity for the first sample, the
 /// texture's own value after (the pixel centre's ray does not change).
 fn view_trace(frag: vec2<f32>) -> vec4<f32> {
-    if globals.sample_start > 0u {
+    if globals().sample_start > 0u {
         return textureLoad(accumulated, vec2<i32>(frag), 0);
     }
     return view_quantity(floor(frag));
@@ -167,15 +167,15 @@ fn view_colour(q: vec4<f32>) -> vec3<f32> {
     }
     if VIEW == VIEW_ERROR && q.w == ERROR_PENDING {
         // The GPU's picture, dimmed, until the reference reaches the pixel.
-        return 0.35 * srgb_encode(clamp(globals.exposure * q.xyz, vec3(0.0), vec3(1.0)));
+        return 0.35 * srgb_encode(clamp(globals().exposure * q.xyz, vec3(0.0), vec3(1.0)));
     }
     switch VIEW {
         case VIEW_NORMALS, VIEW_GEOMETRIC: { return clamp(0.5 * q.xyz + 0.5, vec3(0.0), vec3(1.0)); }
         case VIEW_ID: { return id_colour(u32(q.x), u32(q.y)); }
         case VIEW_BARYCENTRIC: { return clamp(q.xyz, vec3(0.0), vec3(1.0)); }
         default: {
-            let lo = globals.view_range.x;
-            let span = globals.view_range.y - lo;
+            let lo = globals().view_range.x;
+            let span = globals().view_range.y - lo;
             return heat(select(0.0, (q.x - lo) / span, span > 0.0));
         }
     }

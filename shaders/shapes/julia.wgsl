@@ -50,7 +50,7 @@ fn julia_epsilon(ray: Ray, s: Julia, l: LocalRay, u: f32) -> f32 {
     if s.footprint == 0u {
         return s.epsilon;
     }
-    let pixel_angle = globals.film_height / f32(globals.resolution.y);
+    let pixel_angle = globals().film_height / f32(globals().resolution.y);
     let travelled = l.s + l.scale * u - min(ray.t_min, 0.0);
     return max(s.epsilon, pixel_angle * travelled / l.scale);
 }

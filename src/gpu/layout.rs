@@ -13,7 +13,7 @@ use crate::scene::{self, Scene, ShapeKind};
 
 crate::packed_struct! {
     /// The camera, render settings and counts (`shaders/scene.wgsl`): a data
-    /// texture of one row, read once per pixel into `var<private> globals`.
+    /// texture of one row, read where used through `globals()` (shaders/scene.wgsl).
     pub struct Globals {
         /// The camera's `from` and `to` (`from` is a reserved word in WGSL).
         pub camera_from: [f32; 3],
