@@ -73,17 +73,17 @@ struct Light {
 
 // The globals live in an `Rgba32Uint` data texture (binding 0, generated
 // with its loader `load_globals`, src/gpu/shapes/glue.rs), read where used:
-// `globals().max_depth` fetches the one texel that holds it, which the
-// compiler keeps out of loops. Not a uniform buffer: lavapipe compiles a new
-// variant of a pipeline for every new set of uniform values its branches
-// read, and keeps each one (2.7 MB a frame at 640 x 360) as long as the
-// pipeline lives (docs/reliability.md, "Memory under live editing"). Not a
-// storage buffer: llvmpipe reads one in a fragment shader one lane at a
-// time, even at an index all lanes share, which made the camera ray alone
-// cost as much as all the output passes (docs/performance.md, "What each
-// change bought"). Not a private copy made once per pixel: llvmpipe keeps
-// a `var<private>` struct in memory, and its reads cost the mirror cube 27%
-// of its instructions (docs/performance.md, "The globals read where used").
+// `globals().max_depth` fetches the texel that holds it, at the index all
+// lanes share, which costs little. Not a private copy made once per pixel:
+// llvmpipe keeps a `var<private>` struct in memory, and its reads cost the
+// mirror cube 27% of its instructions (docs/performance.md, "The globals
+// read where used"). Not a uniform buffer: lavapipe compiles a new variant
+// of a pipeline for every new set of uniform values its branches read, and
+// keeps each one (2.7 MB a frame at 640 x 360) as long as the pipeline
+// lives (docs/reliability.md, "Memory under live editing"). Not a storage
+// buffer: llvmpipe reads one in a fragment shader one lane at a time, even
+// at an index all lanes share, which made the camera ray alone cost as much
+// as all the output passes (docs/performance.md, "What each change bought").
 fn globals() -> Globals {
     return load_globals(0u);
 }
