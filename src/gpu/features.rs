@@ -245,7 +245,7 @@ mod tests {
         use crate::reference::ReferenceOptions;
         use crate::scene::{Intersections, TriangleTest};
         let mut scene = bundled_scene("whitted");
-        scene.render.triangles = TriangleTest::Cramer;
+        scene.render.meshes.triangles = TriangleTest::Cramer;
         scene.render.intersections = Intersections::Textbook;
         for options in [
             ShaderOptions::for_scene(&scene),

@@ -20,8 +20,8 @@ use crate::reference::ray::Ray;
 use crate::reference::shapes::placement::Placed;
 use crate::reference::shapes::{Prepare, Trace};
 use crate::scene::{
-    self, Check, Folder, Instance, Issue, KeyPath, Material, NEW_SHAPE_SIZE, Placement, Scene,
-    Shape, bundled,
+    self, Check, Folder, Instance, Issue, KeyPath, Material, NEW_SHAPE_SIZE, NoSettings, Placement,
+    Scene, Shape, bundled,
 };
 
 /// `[[disks]]`: a disk of `radius` about the origin in the local xy plane,
@@ -34,6 +34,7 @@ struct Disk {
 impl Shape for Disk {
     type Placement = Placement;
     type Options = ();
+    type Settings = NoSettings;
     const THIN: bool = true;
 
     fn validate(&mut self, path: &KeyPath, _context: &scene::Context) -> Check {
@@ -117,22 +118,18 @@ struct Disk {
     material: u32,
 }
 
+/// The disk's plane through its centre, then the hit's squared distance
+/// from the centre against the squared radius. A ray along the plane has
+/// an infinite or NaN t, which fails the test.
 fn hit_disk(ray: Ray, s: Disk, index: u32, best: Hit) -> Hit {
-    let denom = dot(s.normal, ray.dir);
-    if abs(denom) < 1e-8 {
-        return best;
-    }
-    let t = dot(s.center - ray.origin, s.normal) / denom;
-    if t <= ray.t_min || t >= best.t {
-        return best;
-    }
+    let t = dot(s.center - ray.origin, s.normal) / dot(s.normal, ray.dir);
     let p = ray.origin + t * ray.dir;
-    if length(p - s.center) > s.radius {
+    let d = p - s.center;
+    if !(t > ray.t_min && t < best.t && dot(d, d) <= s.radius * s.radius) {
         return best;
     }
     return surface_hit(t, p, s.normal, KIND_NONE, index, max3(abs(s.center)));
-}
-";
+}";
 
 fn pack(frame: &Frame, shape: &Instance<Disk>, material: u32) -> PackedDisk {
     let placement = &shape.placement;

@@ -9,10 +9,12 @@ mod camera;
 mod document;
 mod error;
 mod files;
+mod flattened;
 mod key_path;
 mod mesh_file;
 mod named;
 mod parse;
+mod render;
 mod shapes;
 #[cfg(test)]
 pub mod test_scenes;
@@ -33,11 +35,13 @@ pub use files::{Folder, GivenFiles, SceneFiles};
 pub use key_path::KeyPath;
 pub use mesh_file::{Derived, Geometry, load_bytes, load_file};
 pub use named::{NamedOption, named_option};
+use render::render_with_kinds;
+pub use render::{Intersections, MAX_DEPTH, RenderSettings};
 pub use shapes::Context;
 pub use shapes::{
-    AxisScale, Centered, Cube, Implicit, Instance, Julia, Loaded, Mesh, Place, Placement, Plane,
-    Scale, Shape, Sphere, Torus, TorusMethod, TriangleTest, Unplaced, for_each_shape_kind,
-    implicit, julia, rotation_degrees,
+    AxisScale, Centered, Cube, Implicit, Instance, Julia, Loaded, Mesh, MeshSettings, NoSettings,
+    Place, Placement, Plane, Scale, Shape, Sphere, Torus, TorusMethod, TriangleTest, Unplaced,
+    for_each_shape_kind, implicit, julia, rotation_degrees,
 };
 pub use validate::{Check, Issue};
 
@@ -51,7 +55,7 @@ macro_rules! scene_with_shapes {
         #[serde(deny_unknown_fields)]
         pub struct Scene {
             #[serde(default)]
-            pub render: RenderSettings,
+            pub render: Render,
             pub camera: Camera,
             #[serde(default, skip_serializing_if = "Vec::is_empty")]
             pub lights: Vec<Light>,
@@ -424,6 +428,7 @@ macro_rules! scene_with_shapes {
     };
 }
 for_each_shape_kind!(scene_with_shapes);
+for_each_shape_kind!(render_with_kinds);
 
 /// " (12 triangles)": the sum of the `parts` of some shapes of a kind,
 /// empty if none has parts.
@@ -443,88 +448,6 @@ pub trait ShapeList: Shape + Sized {
     const KIND: ShapeKind;
     fn list(scene: &Scene) -> &[Instance<Self>];
     fn list_mut(scene: &mut Scene) -> &mut Vec<Instance<Self>>;
-}
-
-/// Deepest secondary ray a scene may ask for (`max_depth` in
-/// docs/scene-format.md): the shader's ray-tree stack is sized from it.
-pub const MAX_DEPTH: u32 = 16;
-
-/// `[render]`: global shading settings (defaults in docs/scene-format.md).
-#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
-#[serde(deny_unknown_fields, default)]
-pub struct RenderSettings {
-    /// Deepest secondary ray, 0..=16; 0 = primary rays only.
-    pub max_depth: u32,
-    /// Secondary rays whose weight falls below this are not traced.
-    pub min_weight: f64,
-    pub background: DVec3,
-    pub ambient: DVec3,
-    pub exposure: f64,
-    /// The lecture's switches (docs/rendering-model.md, "Lecture
-    /// switches"): shadow rays, reflected rays and refracted rays, each on
-    /// unless the scene turns it off. Written to a file only when off.
-    #[serde(skip_serializing_if = "is_on")]
-    pub shadows: bool,
-    #[serde(skip_serializing_if = "is_on")]
-    pub reflection: bool,
-    #[serde(skip_serializing_if = "is_on")]
-    pub refraction: bool,
-    /// The intersection and offset routines both renderers use: the robust
-    /// ones, or the lecture's textbook ones, to show the leaks and acne
-    /// they cause (docs/rendering-model.md, "Lecture switches"). Written to
-    /// a file only when textbook.
-    #[serde(skip_serializing_if = "Intersections::is_robust")]
-    pub intersections: Intersections,
-    /// The ray-triangle test of meshes in both renderers: watertight, or
-    /// Cramer's rule or Möller-Trumbore, whose cracks between triangles
-    /// the lecture shows (docs/rendering-model.md, "Lecture switches").
-    /// Written to a file only when not watertight.
-    #[serde(skip_serializing_if = "TriangleTest::is_watertight")]
-    pub triangles: TriangleTest,
-}
-
-crate::named_option! {
-    /// `intersections` in `[render]`: which intersection routines trace
-    /// the scene (docs/accuracy.md compares them).
-    #[derive(Serialize, Deserialize)]
-    #[serde(rename_all = "lowercase")]
-    pub enum Intersections {
-        /// The robust routines (docs/implementation.md): camera-relative
-        /// positions, stable roots, offsets that scale with the scene.
-        #[default]
-        Robust = "robust",
-        /// The lecture's: the naive quadratic, the plain slab test, world
-        /// coordinates and a fixed offset of 1e-3.
-        Textbook = "textbook",
-    }
-}
-
-impl Intersections {
-    pub fn is_robust(&self) -> bool {
-        *self == Intersections::Robust
-    }
-}
-
-/// A lecture switch left at its default, on: not written to the file.
-fn is_on(switch: &bool) -> bool {
-    *switch
-}
-
-impl Default for RenderSettings {
-    fn default() -> Self {
-        Self {
-            max_depth: 5,
-            min_weight: 0.0,
-            background: DVec3::ZERO,
-            ambient: DVec3::splat(0.1),
-            exposure: 1.0,
-            shadows: true,
-            reflection: true,
-            refraction: true,
-            intersections: Intersections::Robust,
-            triangles: TriangleTest::Watertight,
-        }
-    }
 }
 
 /// `[camera]`: the lecture's pinhole camera with an optional thin lens.

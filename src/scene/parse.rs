@@ -65,7 +65,7 @@ fn serde_error(doc: &Document<'_>, e: &toml::de::Error) -> SceneError {
     // serde reads a flattened vector of 4 numbers as an error that a table
     // read alone does not see (glam ignores the fourth): the check of the
     // vectors' lengths names it.
-    if is_shape_table(doc, &table)
+    if is_flattened_table(doc, &table)
         && let Err(wrong_length) = check_vector_lengths(doc)
     {
         return wrong_length;
@@ -73,13 +73,16 @@ fn serde_error(doc: &Document<'_>, e: &toml::de::Error) -> SceneError {
     located_error(doc, e, &root)
 }
 
-/// Whether `path` is the table of a shape (`spheres[2]`).
-fn is_shape_table(doc: &Document<'_>, path: &KeyPath) -> bool {
-    let [Step::Key(array), Step::Index(_)] = path.steps() else {
-        return false;
-    };
+/// Whether `path` is a table that serde reads from flattened parts: a
+/// shape's (`spheres[2]`) or `[render]`.
+fn is_flattened_table(doc: &Document<'_>, path: &KeyPath) -> bool {
     let table = doc.get(path).is_some_and(|node| node.get_ref().is_table());
-    table && ShapeKind::from_key(array).is_some()
+    let flattened = match path.steps() {
+        [Step::Key(key)] => key == "render",
+        [Step::Key(array), Step::Index(_)] => ShapeKind::from_key(array).is_some(),
+        _ => false,
+    };
+    table && flattened
 }
 
 /// The path of the value or key that serde's error points at, `otherwise`
@@ -106,16 +109,20 @@ fn located_error(doc: &Document<'_>, e: &toml::de::Error, otherwise: &KeyPath) -
 }
 
 /// serde reads a shape's kind, placement and material flattened into its
-/// table (`Instance`, docs/implementation.md, "Adding a shape kind"), from
-/// keys that no longer know their place in the text, and blames an error in
-/// one on the shape's table at `table`. Read alone from the table, each
-/// gives the error at the key.
-fn flattened_error(doc: &Document<'_>, table: &KeyPath) -> Option<toml::de::Error> {
-    let [Step::Key(array), Step::Index(_)] = table.steps() else {
+/// table (`Instance`, docs/implementation.md, "Adding a shape kind"), and
+/// `[render]`'s shared keys beside every kind's (`Render`), from keys that
+/// no longer know their place in the text, and blames an error in one part
+/// on the table at `table`. Read alone from the table, each part gives the
+/// error at the key (src/scene/flattened.rs).
+fn flattened_error(doc: &Document<'_>, path: &KeyPath) -> Option<toml::de::Error> {
+    let node = doc.get(path).filter(|node| node.get_ref().is_table())?;
+    let table = || ValueDeserializer::from(node.clone());
+    if *path == KeyPath::default().key("render") {
+        return super::Render::error_at_key(table);
+    }
+    let [Step::Key(array), Step::Index(_)] = path.steps() else {
         return None;
     };
-    let node = doc.get(table).filter(|node| node.get_ref().is_table())?;
-    let table = || ValueDeserializer::from(node.clone());
     macro_rules! read_flattened {
         ($($kind:ident: $field:ident),* $(,)?) => {
             match array.as_str() {

@@ -6,9 +6,7 @@ use std::path::{Path, PathBuf};
 use glam::DVec3;
 
 use super::test_scenes::FULL;
-use super::{
-    AxisScale, Intersections, Material, Placement, RenderSettings, Scale, Scene, SceneError,
-};
+use super::{AxisScale, Intersections, Material, Placement, Render, Scale, Scene, SceneError};
 
 /// A valid camera, for tests about other sections. Three lines long.
 const CAMERA: &str = "[camera]\nfrom = [0, 1, 5]\nto = [0, 0, 0]\n";
@@ -761,7 +759,7 @@ fn render_defaults_follow_the_spec() {
          intersections = \"robust\"\n",
     );
     assert_eq!(loads("").render, spec.render);
-    assert_eq!(RenderSettings::default(), spec.render);
+    assert_eq!(Render::default(), spec.render);
     assert_eq!(loads("[render]\nexposure = 2\n").render.max_depth, 5);
 }
 
@@ -803,7 +801,10 @@ fn named_switch_round_trips(key: &str, value: &str, default: &str, a_name: &str)
 #[test]
 fn a_triangle_test_round_trips_and_a_bad_name_is_refused() {
     let scene = named_switch_round_trips("triangles", "moller-trumbore", "watertight", "cramer");
-    assert_eq!(scene.render.triangles, super::TriangleTest::MollerTrumbore);
+    assert_eq!(
+        scene.render.meshes.triangles,
+        super::TriangleTest::MollerTrumbore
+    );
 }
 
 #[test]
@@ -1053,7 +1054,7 @@ mod properties {
 
     use super::super::{
         AxisScale, Camera, Centered, Checker, Cube, Implicit, Instance, Intersections, Julia,
-        Light, Material, Placement, Plane, RenderSettings, Scene, Sphere, Torus, Unplaced,
+        Light, Material, Placement, Plane, Render, RenderSettings, Scene, Sphere, Torus, Unplaced,
     };
     use super::FULL;
 
@@ -1087,8 +1088,8 @@ mod properties {
             exposure in positive(),
             switches in 0..16u32,
             triangles in 0..3usize,
-        ) -> RenderSettings {
-            RenderSettings {
+        ) -> Render {
+            let settings = RenderSettings {
                 max_depth,
                 min_weight,
                 background,
@@ -1102,8 +1103,10 @@ mod properties {
                 } else {
                     Intersections::Robust
                 },
-                triangles: super::super::TriangleTest::ALL[triangles],
-            }
+            };
+            let mut render = Render { settings, ..Render::default() };
+            render.meshes.triangles = super::super::TriangleTest::ALL[triangles];
+            render
         }
     }
 

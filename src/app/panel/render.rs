@@ -1,17 +1,17 @@
 //! The panel's Render section: the scene's render settings and the
 //! viewer's own (sample limit, frame budget).
 
-use super::widgets::{MIN_POSITIVE, VALUE_LIMIT, color_row, slider};
+use super::widgets::{MIN_POSITIVE, VALUE_LIMIT, color_row, named_row, slider};
 use super::{ViewSettings, field};
 use crate::gpu::MIN_SCALE;
-use crate::scene::{Intersections, NamedOption, RenderSettings, TriangleTest};
-use egui::{ComboBox, Grid, Slider, Ui};
+use crate::scene::{Intersections, Render};
+use egui::{Grid, Slider, Ui};
 
-pub(super) fn render_section(ui: &mut Ui, render: &mut RenderSettings, view: &mut ViewSettings) {
+pub(super) fn render_section(ui: &mut Ui, render: &mut Render, view: &mut ViewSettings) {
     Grid::new("render").num_columns(2).show(ui, |ui| {
         super::view_menu::lecture_switches(ui, render);
         intersections_row(ui, &mut render.intersections);
-        triangles_row(ui, &mut render.triangles);
+        super::shapes::settings_rows(ui, render);
         field(
             ui,
             "max depth",
@@ -129,31 +129,4 @@ fn intersections_row(ui: &mut Ui, intersections: &mut Intersections) {
          of the textbook ones far from the origin or at small scales",
         intersections,
     );
-}
-
-/// The ray-triangle test of meshes, a lecture switch saved with the scene
-/// (docs/rendering-model.md, "Lecture switches").
-fn triangles_row(ui: &mut Ui, triangles: &mut TriangleTest) {
-    named_row(
-        ui,
-        "triangle test",
-        "The ray-triangle test of meshes, saved with the scene: watertight (no ray \
-         slips between two triangles that share an edge), or Cramer's rule or \
-         Möller-Trumbore, the lecture's, whose rounding can let a ray through an \
-         edge (what is behind shows in the crack)",
-        triangles,
-    );
-}
-
-/// A grid row choosing one of a named option's values.
-fn named_row<T: NamedOption + PartialEq>(ui: &mut Ui, label: &str, tooltip: &str, value: &mut T) {
-    field(ui, label, tooltip);
-    ComboBox::from_id_salt(label)
-        .selected_text(value.name())
-        .show_ui(ui, |ui| {
-            for &v in T::all() {
-                ui.selectable_value(value, v, v.name());
-            }
-        });
-    ui.end_row();
 }

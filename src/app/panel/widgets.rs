@@ -1,4 +1,4 @@
-//! Small widgets over the scene's f64 values. Each writes only values the rendering model
+//! Small widgets over the scene's values. Each writes only values the rendering model
 //! accepts: finite and inside the field's range. That needs care with egui:
 //! a number field parses what the user types with `str::parse`, which takes
 //! "inf" and "nan", so every field here has a finite range (egui clamps typed
@@ -7,8 +7,11 @@
 
 use std::ops::RangeInclusive;
 
-use egui::{DragValue, Response, Slider, SliderClamping, Ui};
+use egui::{ComboBox, DragValue, Response, Slider, SliderClamping, Ui};
 use glam::DVec3;
+
+use super::field;
+use crate::scene::NamedOption;
 
 /// Largest coordinate the panel writes: far beyond any teaching scene, and
 /// small enough that differences and squared lengths of points stay finite.
@@ -154,4 +157,22 @@ pub(super) fn color_row(ui: &mut Ui, color: &mut DVec3) -> bool {
         changed
     })
     .inner
+}
+
+/// A grid row choosing one of a named option's values.
+pub(super) fn named_row<T: NamedOption + PartialEq>(
+    ui: &mut Ui,
+    label: &str,
+    tooltip: &str,
+    value: &mut T,
+) {
+    field(ui, label, tooltip);
+    ComboBox::from_id_salt(label)
+        .selected_text(value.name())
+        .show_ui(ui, |ui| {
+            for &v in T::all() {
+                ui.selectable_value(value, v, v.name());
+            }
+        });
+    ui.end_row();
 }

@@ -3,7 +3,7 @@
 use glam::DVec3;
 use serde::{Deserialize, Serialize};
 
-use super::{Centered, Context, Shape};
+use super::{Centered, Context, NoSettings, Shape};
 use crate::scene::key_path::KeyPath;
 use crate::scene::validate::Check;
 
@@ -15,6 +15,7 @@ pub struct Cube {}
 
 impl Shape for Cube {
     type Options = ();
+    type Settings = NoSettings;
     type Placement = Centered;
 
     fn validate(&mut self, _path: &KeyPath, _context: &Context) -> Check {

@@ -4,7 +4,7 @@
 use glam::DVec3;
 use serde::{Deserialize, Serialize};
 
-use super::{Context, Placement, Shape};
+use super::{Context, NoSettings, Placement, Shape};
 use crate::expr::Function;
 use crate::scene::Scene;
 use crate::scene::key_path::KeyPath;
@@ -33,6 +33,7 @@ impl Shape for Implicit {
     /// The scene's distinct functions ([`functions`]), which the shader is
     /// written from.
     type Options = Vec<String>;
+    type Settings = NoSettings;
 
     fn options(scene: &crate::scene::Scene) -> Vec<String> {
         functions(scene)

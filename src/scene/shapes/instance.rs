@@ -3,16 +3,14 @@
 //! read flattened into the shape's table, so the scene file is unchanged,
 //! and are validated and moved here, once for every kind.
 
-use std::cell::Cell;
 use std::ops::{Deref, DerefMut};
 
 use glam::DVec3;
-use indexmap::IndexMap;
-use serde::de::{Error as _, IgnoredAny, Visitor};
 use serde::{Deserialize, Serialize};
 
 use super::placement::Place;
 use super::{Context, Shape};
+use crate::scene::flattened::{keys_of, unknown_key};
 use crate::scene::key_path::KeyPath;
 use crate::scene::validate::{Check, material_name};
 
@@ -84,55 +82,11 @@ impl<K: Shape> Instance<K> {
             #[serde(default, rename = "material")]
             _material: Option<String>,
         }
-        let known: Vec<&str> = [keys_of::<K>(), keys_of::<K::Placement>(), &["material"]].concat();
-        let keys = IndexMap::<String, IgnoredAny>::deserialize(table()).ok()?;
-        if let Some(unknown) = keys.keys().find(|key| !known.contains(&key.as_str())) {
-            let expected: Vec<String> = known.iter().map(|key| format!("`{key}`")).collect();
-            let expected = expected.join(", ");
-            let message = format!("unknown field `{unknown}`, expected one of {expected}");
-            return Some(D::Error::custom(message));
-        }
-        let shape = K::deserialize(table()).err();
-        let placement = || K::Placement::deserialize(table()).err();
-        shape
-            .or_else(placement)
+        let known = [keys_of::<K>(), keys_of::<K::Placement>(), &["material"]].concat();
+        unknown_key(table(), &known)
+            .or_else(|| K::deserialize(table()).err())
+            .or_else(|| K::Placement::deserialize(table()).err())
             .or_else(|| MaterialKey::deserialize(table()).err())
-    }
-}
-
-/// The keys a derived serde struct reads, as it names them to the
-/// deserializer (none for a type that reads no struct, `Unplaced`).
-fn keys_of<'de, T: Deserialize<'de>>() -> &'static [&'static str] {
-    let keys = Cell::new(&[][..]);
-    let _ = T::deserialize(KeyNames(&keys));
-    keys.get()
-}
-
-/// A deserializer that only records the field names of the struct asked
-/// of it.
-struct KeyNames<'a>(&'a Cell<&'static [&'static str]>);
-
-impl<'de> serde::Deserializer<'de> for KeyNames<'_> {
-    type Error = serde::de::value::Error;
-
-    fn deserialize_any<V: Visitor<'de>>(self, _: V) -> Result<V::Value, Self::Error> {
-        Err(Self::Error::custom("not a struct"))
-    }
-
-    fn deserialize_struct<V: Visitor<'de>>(
-        self,
-        _name: &'static str,
-        fields: &'static [&'static str],
-        _: V,
-    ) -> Result<V::Value, Self::Error> {
-        self.0.set(fields);
-        Err(Self::Error::custom("only the names were read"))
-    }
-
-    serde::forward_to_deserialize_any! {
-        bool i8 i16 i32 i64 i128 u8 u16 u32 u64 u128 f32 f64 char str string
-        bytes byte_buf option unit unit_struct newtype_struct seq tuple
-        tuple_struct map enum identifier ignored_any
     }
 }
 

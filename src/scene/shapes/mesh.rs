@@ -64,6 +64,16 @@ impl TriangleTest {
     }
 }
 
+/// A mesh's key in `[render]`: `triangles`, the ray-triangle test of every
+/// mesh in both renderers, a lecture switch (docs/rendering-model.md,
+/// "Lecture switches"). Written to a file only when not watertight.
+#[derive(Debug, Clone, Default, PartialEq, Serialize, Deserialize)]
+#[serde(default)]
+pub struct MeshSettings {
+    #[serde(skip_serializing_if = "TriangleTest::is_watertight")]
+    pub triangles: TriangleTest,
+}
+
 /// The loaded geometry of a mesh (empty before validation). Two are equal
 /// when they are the same load or hold the same triangles.
 #[derive(Debug, Clone, Default)]
@@ -136,10 +146,11 @@ impl Mesh {
 impl Shape for Mesh {
     /// The ray-triangle test.
     type Options = TriangleTest;
+    type Settings = MeshSettings;
 
     /// The scene's `triangles` in `[render]`.
     fn options(scene: &crate::scene::Scene) -> TriangleTest {
-        scene.render.triangles
+        scene.render.meshes.triangles
     }
 
     const FLAG: Option<(&'static str, &'static str)> = Some((

@@ -20,7 +20,7 @@ pub use cube::Cube;
 pub use implicit::Implicit;
 pub use instance::Instance;
 pub use julia::Julia;
-pub use mesh::{Loaded, Mesh, TriangleTest};
+pub use mesh::{Loaded, Mesh, MeshSettings, TriangleTest};
 pub use placement::{AxisScale, Centered, Place, Placement, Scale, Unplaced};
 pub use plane::Plane;
 pub use sphere::Sphere;
@@ -74,6 +74,10 @@ pub fn rotation_degrees(degrees: DVec3) -> DMat3 {
     DMat3::from_rotation_z(r.z) * DMat3::from_rotation_y(r.y) * DMat3::from_rotation_x(r.x)
 }
 
+/// The [`Shape::Settings`] of a kind that adds no key to `[render]`.
+#[derive(Debug, Clone, Default, PartialEq, Serialize, serde::Deserialize)]
+pub struct NoSettings {}
+
 /// What every shape kind of the scene provides: its own keys, read
 /// flattened into an [`Instance`] beside its placement and material (a
 /// kind is not `deny_unknown_fields`: the instance is).
@@ -117,8 +121,13 @@ pub trait Shape: Clone + PartialEq + std::fmt::Debug + Serialize + DeserializeOw
     /// without any.
     type Options: Clone + std::fmt::Debug + Default + PartialEq + Eq + std::hash::Hash;
 
-    /// The options `scene` asks for (its `[render]` keys, its shapes'
-    /// functions); the default unless the kind says otherwise.
+    /// The kind's own keys in `[render]` (a mesh's `triangles`), read
+    /// flattened into [`super::Render`] beside the shared ones and the
+    /// other kinds'; [`NoSettings`] for a kind without any.
+    type Settings: Clone + std::fmt::Debug + Default + PartialEq + Serialize + DeserializeOwned;
+
+    /// The options `scene` asks for (its kind's keys in `[render]`, its
+    /// shapes' functions); the default unless the kind says otherwise.
     fn options(_scene: &super::Scene) -> Self::Options {
         Self::Options::default()
     }

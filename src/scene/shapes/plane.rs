@@ -3,7 +3,7 @@
 use glam::DVec3;
 use serde::{Deserialize, Serialize};
 
-use super::{Context, Shape, Unplaced};
+use super::{Context, NoSettings, Shape, Unplaced};
 use crate::scene::key_path::KeyPath;
 use crate::scene::validate::{Check, FINITE, direction, unit, vector};
 
@@ -16,6 +16,7 @@ pub struct Plane {
 
 impl Shape for Plane {
     type Options = ();
+    type Settings = NoSettings;
     type Placement = Unplaced;
     const THIN: bool = true;
     const BOUNDED: bool = false;

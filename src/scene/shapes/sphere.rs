@@ -3,7 +3,7 @@
 use glam::DVec3;
 use serde::{Deserialize, Serialize};
 
-use super::{Context, Shape, Unplaced};
+use super::{Context, NoSettings, Shape, Unplaced};
 use crate::scene::key_path::KeyPath;
 use crate::scene::validate::{Check, FINITE, POSITIVE, number, vector};
 
@@ -15,6 +15,7 @@ pub struct Sphere {
 
 impl Shape for Sphere {
     type Options = ();
+    type Settings = NoSettings;
     type Placement = Unplaced;
 
     fn validate(&mut self, path: &KeyPath, _context: &Context) -> Check {

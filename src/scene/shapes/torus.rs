@@ -3,7 +3,7 @@
 use glam::DVec3;
 use serde::{Deserialize, Serialize};
 
-use super::{Context, Placement, Shape};
+use super::{Context, NoSettings, Placement, Shape};
 use crate::scene::NamedOption;
 use crate::scene::key_path::KeyPath;
 use crate::scene::validate::{Check, Issue, POSITIVE, number};
@@ -39,6 +39,7 @@ impl Shape for Torus {
     /// How the GPU solves the quartic; the scene file does not choose it
     /// (the reference always brackets).
     type Options = TorusMethod;
+    type Settings = NoSettings;
 
     const FLAG: Option<(&'static str, &'static str)> = Some((
         "torus",

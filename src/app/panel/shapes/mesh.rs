@@ -6,8 +6,9 @@ use glam::DVec3;
 
 use super::{EditShape, InView};
 use crate::app::panel::field;
+use crate::app::panel::widgets::named_row;
 use crate::bvh::{MAX_DEPTH, triangle_bvh_built};
-use crate::scene::{AxisScale, Instance, Mesh, Placement};
+use crate::scene::{AxisScale, Instance, Mesh, MeshSettings, Placement};
 
 impl EditShape for Mesh {
     /// A tetrahedron below the right of the target, a fifth of the scene
@@ -39,6 +40,20 @@ impl EditShape for Mesh {
     fn edit(&mut self, ui: &mut Ui, _scale: f64) -> bool {
         geometry_rows(ui, self);
         false
+    }
+
+    /// `triangles`, a lecture switch saved with the scene
+    /// (docs/rendering-model.md, "Lecture switches").
+    fn edit_settings(ui: &mut Ui, settings: &mut MeshSettings) {
+        named_row(
+            ui,
+            "triangle test",
+            "The ray-triangle test of meshes, saved with the scene: watertight (no ray \
+             slips between two triangles that share an edge), or Cramer's rule or \
+             Möller-Trumbore, the lecture's, whose rounding can let a ray through an \
+             edge (what is behind shows in the crack)",
+            &mut settings.triangles,
+        );
     }
 }
 

@@ -51,6 +51,10 @@ pub(super) trait EditShape: Shape<Placement: EditPlacement> {
     /// Makes values canonical again once no edit holds them (a plane's
     /// normal becomes unit length, as the renderers expect).
     fn settle(&mut self) {}
+
+    /// The rows of the kind's own keys in `[render]` ([`Shape::Settings`])
+    /// in the Render section's grid; none for a kind without any.
+    fn edit_settings(_ui: &mut Ui, _settings: &mut Self::Settings) {}
 }
 
 macro_rules! editors {
@@ -85,6 +89,12 @@ macro_rules! editors {
             match id {
                 $(ShapeId::$kind(i) => scene.$field.get_mut(i).is_some_and(|s| edit_instance(ui, s, scale)),)*
             }
+        }
+
+        /// Every kind's rows in the Render section's grid
+        /// ([`EditShape::edit_settings`]), in registry order.
+        pub(super) fn settings_rows(ui: &mut Ui, render: &mut scene::Render) {
+            $(<scene::$kind as EditShape>::edit_settings(ui, &mut render.$field);)*
         }
 
         /// [`EditShape::settle`] on every shape but `held`.
