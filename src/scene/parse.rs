@@ -112,7 +112,7 @@ fn located_error(doc: &Document<'_>, e: &toml::de::Error, otherwise: &KeyPath) -
 /// table (`Instance`, docs/implementation.md, "Adding a shape kind"), and
 /// `[render]`'s shared keys beside every kind's (`Render`), from keys that
 /// no longer know their place in the text, and blames an error in one part
-/// on the table at `table`. Read alone from the table, each part gives the
+/// on the table at `path`. Read alone from the table, each part gives the
 /// error at the key (src/scene/flattened.rs).
 fn flattened_error(doc: &Document<'_>, path: &KeyPath) -> Option<toml::de::Error> {
     let node = doc.get(path).filter(|node| node.get_ref().is_table())?;

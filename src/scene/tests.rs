@@ -599,11 +599,15 @@ fn unknown_nested_keys_are_named_with_their_line() {
     let text = "[materials.m]\nchecker = { color = [0, 0, 0], size = 1, offset = 2 }\n";
     let e = rejects_with(text, "materials.m.checker.offset", "unknown key `offset`");
     assert_eq!((e.line, e.column), (Some(2), Some(42)));
-    rejects_with(
-        "[render]\ngamma = 2.2\n",
+    // `[render]` is read flattened too (the shared keys beside each
+    // kind's): the key, its line, and the keys it has, a kind's among them.
+    let e = rejects_with(
+        "[render]\nmax_depth = 2\ngamma = 2.2\n",
         "render.gamma",
-        "unknown key `gamma`",
+        "unknown key `gamma`, expected one of `max_depth`",
     );
+    assert_eq!(e.line, Some(3));
+    assert!(e.message.contains("`intersections`, `triangles`"), "{e}");
     rejects_with("[camera.lens]\n", "camera.lens", "unknown key `lens`");
 }
 
