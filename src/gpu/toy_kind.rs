@@ -119,10 +119,12 @@ struct Disk {
 }
 
 /// The disk's plane through its centre, then the hit's squared distance
-/// from the centre against the squared radius. A ray along the plane has
-/// an infinite or NaN t, which fails the test.
+/// from the centre against the squared radius. A ray along the plane, for
+/// which the division means nothing (WGSL does not promise an infinity),
+/// gets `best.t` and misses.
 fn hit_disk(ray: Ray, s: Disk, index: u32, best: Hit) -> Hit {
-    let t = dot(s.center - ray.origin, s.normal) / dot(s.normal, ray.dir);
+    let denom = dot(s.normal, ray.dir);
+    let t = select(dot(s.center - ray.origin, s.normal) / denom, best.t, abs(denom) < 1e-8);
     let p = ray.origin + t * ray.dir;
     let d = p - s.center;
     if !(t > ray.t_min && t < best.t && dot(d, d) <= s.radius * s.radius) {
