@@ -58,7 +58,7 @@ pub struct Args {
     view: View,
 }
 
-/// The flags the shape kinds declare (`Shape::FLAG`, gathered by
+/// The flags the shape kinds declare (`Choices::FLAG`, gathered by
 /// `KindOptions::flags`), each with the value given, which chooses that
 /// kind's options in place of the scene's.
 #[derive(Clone, Default)]

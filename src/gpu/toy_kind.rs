@@ -20,7 +20,7 @@ use crate::reference::ray::Ray;
 use crate::reference::shapes::placement::Placed;
 use crate::reference::shapes::{Prepare, Trace};
 use crate::scene::{
-    self, Check, Folder, Instance, Issue, KeyPath, Material, NEW_SHAPE_SIZE, NoSettings, Placement,
+    self, Check, Folder, Instance, Issue, KeyPath, Material, NEW_SHAPE_SIZE, NoChoices, Placement,
     Scene, Shape, bundled,
 };
 
@@ -31,10 +31,10 @@ struct Disk {
     radius: f64,
 }
 
+impl NoChoices for Disk {}
+
 impl Shape for Disk {
     type Placement = Placement;
-    type Options = ();
-    type Settings = NoSettings;
     const THIN: bool = true;
 
     fn validate(&mut self, path: &KeyPath, _context: &scene::Context) -> Check {

@@ -39,9 +39,9 @@ use render::render_with_kinds;
 pub use render::{Intersections, MAX_DEPTH, RenderSettings};
 pub use shapes::Context;
 pub use shapes::{
-    AxisScale, Centered, Cube, Implicit, Instance, Julia, Loaded, Mesh, MeshSettings, NoSettings,
-    Place, Placement, Plane, Scale, Shape, Sphere, Torus, TorusMethod, TriangleTest, Unplaced,
-    for_each_shape_kind, implicit, julia, rotation_degrees,
+    AxisScale, Centered, Choices, Cube, Implicit, Instance, Julia, Loaded, Mesh, MeshSettings,
+    NoChoices, Place, Placement, Plane, Scale, Shape, Sphere, Torus, TorusMethod, TriangleTest,
+    Unplaced, for_each_shape_kind, implicit, julia, rotation_degrees,
 };
 pub use validate::{Check, Issue};
 
@@ -248,33 +248,33 @@ macro_rules! scene_with_shapes {
             }
         )*
 
-        /// Every kind's options ([`Shape::Options`]), one field per kind
+        /// Every kind's options ([`Choices::Options`]), one field per kind
         /// named after the scene's array of it (`tori`): both renderers'
         /// options carry them without naming a kind, and each kind's code
         /// in a renderer reads its own.
         #[derive(Debug, Clone, Default, PartialEq, Eq, Hash)]
         pub struct KindOptions {
-            $(pub $field: <$kind as Shape>::Options,)*
+            $(pub $field: <$kind as Choices>::Options,)*
         }
 
         impl KindOptions {
-            /// What `scene` asks of every kind ([`Shape::options`]).
+            /// What `scene` asks of every kind ([`Choices::options`]).
             pub fn of(scene: &Scene) -> Self {
                 KindOptions {
-                    $($field: <$kind as Shape>::options(scene),)*
+                    $($field: <$kind as Choices>::options(scene),)*
                 }
             }
 
-            /// Every kind's flag ([`Shape::FLAG`]): its name and help.
+            /// Every kind's flag ([`Choices::FLAG`]): its name and help.
             pub fn flags() -> Vec<(&'static str, &'static str)> {
-                [$(<$kind as Shape>::FLAG),*].into_iter().flatten().collect()
+                [$(<$kind as Choices>::FLAG),*].into_iter().flatten().collect()
             }
 
             /// The options of the kind whose flag is `flag` replaced by the
-            /// ones its value `name` names ([`Shape::options_named`]).
+            /// ones its value `name` names ([`Choices::options_named`]).
             pub fn set_named(&mut self, flag: &str, name: &str) -> Result<(), String> {
-                $(if <$kind as Shape>::FLAG.is_some_and(|(f, _)| f == flag) {
-                    self.$field = <$kind as Shape>::options_named(name)?;
+                $(if <$kind as Choices>::FLAG.is_some_and(|(f, _)| f == flag) {
+                    self.$field = <$kind as Choices>::options_named(name)?;
                     return Ok(());
                 })*
                 Err(format!("--{flag}: no shape kind has this flag"))

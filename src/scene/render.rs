@@ -88,11 +88,11 @@ impl Default for RenderSettings {
 
 /// Writes [`Render`] from the registry `for_each_shape_kind!` (expanded
 /// in `scene`, where the kinds are): one field per kind, named after the
-/// scene's array of it (`meshes`), holding the kind's `Shape::Settings`.
+/// scene's array of it (`meshes`), holding the kind's `Choices::Settings`.
 macro_rules! render_with_kinds {
     ($($kind:ident: $field:ident),* $(,)?) => {
         /// The whole `[render]` table: the settings every scene has, and
-        /// each kind's own keys ([`Shape::Settings`], which only that kind's
+        /// each kind's own keys ([`Choices::Settings`], which only that kind's
         /// code reads), read flattened side by side so that the file has
         /// one table. It dereferences to the shared settings, so
         /// `render.max_depth` reads the shared key.
@@ -101,7 +101,7 @@ macro_rules! render_with_kinds {
         pub struct Render {
             #[serde(flatten)]
             pub settings: RenderSettings,
-            $(#[serde(flatten)] pub $field: <$kind as Shape>::Settings,)*
+            $(#[serde(flatten)] pub $field: <$kind as Choices>::Settings,)*
         }
 
         impl Render {
@@ -115,10 +115,10 @@ macro_rules! render_with_kinds {
             {
                 use serde::Deserialize as _;
                 use $crate::scene::flattened::{keys_of, unknown_key};
-                let known = [keys_of::<RenderSettings>() $(, keys_of::<<$kind as Shape>::Settings>())*].concat();
+                let known = [keys_of::<RenderSettings>() $(, keys_of::<<$kind as Choices>::Settings>())*].concat();
                 unknown_key(table(), &known)
                     .or_else(|| RenderSettings::deserialize(table()).err())
-                    $(.or_else(|| <<$kind as Shape>::Settings>::deserialize(table()).err()))*
+                    $(.or_else(|| <<$kind as Choices>::Settings>::deserialize(table()).err()))*
             }
         }
     };

@@ -177,7 +177,7 @@ pub trait PackShape: PackedKind {
     const VIEW_COORDINATES: bool = false;
 
     /// The kind's own pipeline constants (`override` in its WGSL) and their
-    /// values for its options ([`crate::scene::Shape::Options`]): how it
+    /// values for its options ([`crate::scene::Choices::Options`]): how it
     /// chooses between methods by name (a torus's `TORUS_METHOD`, a mesh's
     /// `TRIANGLE_TEST`).
     fn constants(_options: &Self::Options) -> Vec<(&'static str, u32)> {

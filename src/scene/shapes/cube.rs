@@ -3,7 +3,7 @@
 use glam::DVec3;
 use serde::{Deserialize, Serialize};
 
-use super::{Centered, Context, NoSettings, Shape};
+use super::{Centered, Context, NoChoices, Shape};
 use crate::scene::key_path::KeyPath;
 use crate::scene::validate::Check;
 
@@ -13,9 +13,9 @@ use crate::scene::validate::Check;
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
 pub struct Cube {}
 
+impl NoChoices for Cube {}
+
 impl Shape for Cube {
-    type Options = ();
-    type Settings = NoSettings;
     type Placement = Centered;
 
     fn validate(&mut self, _path: &KeyPath, _context: &Context) -> Check {

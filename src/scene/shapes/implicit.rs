@@ -4,7 +4,7 @@
 use glam::DVec3;
 use serde::{Deserialize, Serialize};
 
-use super::{Context, NoSettings, Placement, Shape};
+use super::{Choices, Context, NoSettings, Placement, Shape};
 use crate::expr::Function;
 use crate::scene::Scene;
 use crate::scene::key_path::KeyPath;
@@ -29,7 +29,7 @@ fn default_steps() -> u32 {
     256
 }
 
-impl Shape for Implicit {
+impl Choices for Implicit {
     /// The scene's distinct functions ([`functions`]), which the shader is
     /// written from.
     type Options = Vec<String>;
@@ -38,7 +38,9 @@ impl Shape for Implicit {
     fn options(scene: &crate::scene::Scene) -> Vec<String> {
         functions(scene)
     }
+}
 
+impl Shape for Implicit {
     fn validate(&mut self, path: &KeyPath, _context: &Context) -> Check {
         Function::parse(&self.f).map_err(|e| Issue::new(&path.key("f"), e.to_string()))?;
         let bounds = path.key("bounds");

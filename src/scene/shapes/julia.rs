@@ -4,7 +4,7 @@
 use glam::{DVec3, DVec4};
 use serde::{Deserialize, Serialize};
 
-use super::{Context, NoSettings, Placement, Shape};
+use super::{Context, NoChoices, Placement, Shape};
 use crate::scene::key_path::KeyPath;
 use crate::scene::validate::{Check, FINITE, Issue, POSITIVE, number};
 
@@ -43,9 +43,9 @@ fn is_false(b: &bool) -> bool {
     !*b
 }
 
+impl NoChoices for Julia {}
+
 impl Shape for Julia {
-    type Options = ();
-    type Settings = NoSettings;
     fn validate(&mut self, path: &KeyPath, _context: &Context) -> Check {
         let c_path = path.key("c");
         for (i, &x) in self.c.iter().enumerate() {

@@ -8,7 +8,7 @@ use std::sync::Arc;
 use glam::DVec3;
 use serde::{Deserialize, Serialize};
 
-use super::{AxisScale, Context, Placement, Shape};
+use super::{AxisScale, Choices, Context, Placement, Shape};
 use crate::scene::NamedOption;
 use crate::scene::key_path::KeyPath;
 use crate::scene::mesh_file::{self, Geometry};
@@ -143,7 +143,7 @@ impl Mesh {
     }
 }
 
-impl Shape for Mesh {
+impl Choices for Mesh {
     /// The ray-triangle test.
     type Options = TriangleTest;
     type Settings = MeshSettings;
@@ -163,7 +163,9 @@ impl Shape for Mesh {
     fn options_named(name: &str) -> Result<TriangleTest, String> {
         TriangleTest::from_name(name)
     }
+}
 
+impl Shape for Mesh {
     fn file(&self) -> Option<&Path> {
         self.file.as_deref()
     }

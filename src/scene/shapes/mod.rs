@@ -6,6 +6,7 @@
 //! kind that one of them does not handle is a compile error there (see
 //! docs/implementation.md, "Adding a shape kind").
 
+mod choices;
 mod cube;
 pub mod implicit;
 mod instance;
@@ -16,6 +17,7 @@ mod plane;
 mod sphere;
 mod torus;
 
+pub use choices::{Choices, NoChoices, NoSettings};
 pub use cube::Cube;
 pub use implicit::Implicit;
 pub use instance::Instance;
@@ -74,14 +76,12 @@ pub fn rotation_degrees(degrees: DVec3) -> DMat3 {
     DMat3::from_rotation_z(r.z) * DMat3::from_rotation_y(r.y) * DMat3::from_rotation_x(r.x)
 }
 
-/// The [`Shape::Settings`] of a kind that adds no key to `[render]`.
-#[derive(Debug, Clone, Default, PartialEq, Serialize, serde::Deserialize)]
-pub struct NoSettings {}
-
 /// What every shape kind of the scene provides: its own keys, read
 /// flattened into an [`Instance`] beside its placement and material (a
 /// kind is not `deny_unknown_fields`: the instance is).
-pub trait Shape: Clone + PartialEq + std::fmt::Debug + Serialize + DeserializeOwned {
+pub trait Shape:
+    Choices + Clone + PartialEq + std::fmt::Debug + Serialize + DeserializeOwned
+{
     /// How shapes of this kind are placed: a [`Placement`], a [`Centered`]
     /// one, or [`Unplaced`] for a kind placed by its own keys.
     type Placement: Place;
@@ -113,35 +113,6 @@ pub trait Shape: Clone + PartialEq + std::fmt::Debug + Serialize + DeserializeOw
     /// lets no light through: its material's transparency counts as 0
     /// (docs/rendering-model.md, "Implicit surfaces").
     const OPAQUE: bool = false;
-
-    /// The renderers' choices for the kind ([`super::KindOptions`] holds
-    /// every kind's): a method chosen by name (a torus's
-    /// [`TorusMethod`], a mesh's [`TriangleTest`]) or what the shader is
-    /// written from (an implicit surface's functions); `()` for a kind
-    /// without any.
-    type Options: Clone + std::fmt::Debug + Default + PartialEq + Eq + std::hash::Hash;
-
-    /// The kind's own keys in `[render]` (a mesh's `triangles`), read
-    /// flattened into [`super::Render`] beside the shared ones and the
-    /// other kinds'; [`NoSettings`] for a kind without any.
-    type Settings: Clone + std::fmt::Debug + Default + PartialEq + Serialize + DeserializeOwned;
-
-    /// The options `scene` asks for (its kind's keys in `[render]`, its
-    /// shapes' functions); the default unless the kind says otherwise.
-    fn options(_scene: &super::Scene) -> Self::Options {
-        Self::Options::default()
-    }
-
-    /// The flag of `raysandbox render` that chooses the kind's options in
-    /// place of the scene's (`--torus newton`), as its name and its help;
-    /// `None` for a kind without one.
-    const FLAG: Option<(&'static str, &'static str)> = None;
-
-    /// The options that the value `name` of [`Shape::FLAG`] names; the
-    /// error lists the names there are.
-    fn options_named(name: &str) -> Result<Self::Options, String> {
-        Err(format!("{name}: this kind has no options to choose"))
-    }
 
     /// The file the shape reads (a mesh's model) as the scene writes it:
     /// relative to the scene file's folder unless absolute.

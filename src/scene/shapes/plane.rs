@@ -3,7 +3,7 @@
 use glam::DVec3;
 use serde::{Deserialize, Serialize};
 
-use super::{Context, NoSettings, Shape, Unplaced};
+use super::{Context, NoChoices, Shape, Unplaced};
 use crate::scene::key_path::KeyPath;
 use crate::scene::validate::{Check, FINITE, direction, unit, vector};
 
@@ -14,9 +14,9 @@ pub struct Plane {
     pub normal: DVec3,
 }
 
+impl NoChoices for Plane {}
+
 impl Shape for Plane {
-    type Options = ();
-    type Settings = NoSettings;
     type Placement = Unplaced;
     const THIN: bool = true;
     const BOUNDED: bool = false;

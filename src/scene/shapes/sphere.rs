@@ -3,7 +3,7 @@
 use glam::DVec3;
 use serde::{Deserialize, Serialize};
 
-use super::{Context, NoSettings, Shape, Unplaced};
+use super::{Context, NoChoices, Shape, Unplaced};
 use crate::scene::key_path::KeyPath;
 use crate::scene::validate::{Check, FINITE, POSITIVE, number, vector};
 
@@ -13,9 +13,9 @@ pub struct Sphere {
     pub radius: f64,
 }
 
+impl NoChoices for Sphere {}
+
 impl Shape for Sphere {
-    type Options = ();
-    type Settings = NoSettings;
     type Placement = Unplaced;
 
     fn validate(&mut self, path: &KeyPath, _context: &Context) -> Check {

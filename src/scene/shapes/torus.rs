@@ -3,7 +3,7 @@
 use glam::DVec3;
 use serde::{Deserialize, Serialize};
 
-use super::{Context, NoSettings, Placement, Shape};
+use super::{Choices, Context, NoSettings, Placement, Shape};
 use crate::scene::NamedOption;
 use crate::scene::key_path::KeyPath;
 use crate::scene::validate::{Check, Issue, POSITIVE, number};
@@ -35,7 +35,7 @@ crate::named_option! {
     }
 }
 
-impl Shape for Torus {
+impl Choices for Torus {
     /// How the GPU solves the quartic; the scene file does not choose it
     /// (the reference always brackets).
     type Options = TorusMethod;
@@ -51,7 +51,9 @@ impl Shape for Torus {
     fn options_named(name: &str) -> Result<TorusMethod, String> {
         TorusMethod::from_name(name)
     }
+}
 
+impl Shape for Torus {
     fn validate(&mut self, path: &KeyPath, _context: &Context) -> Check {
         number(&path.key("major_radius"), self.major_radius, &POSITIVE)?;
         number(&path.key("minor_radius"), self.minor_radius, &POSITIVE)?;

@@ -52,7 +52,7 @@ pub(super) trait EditShape: Shape<Placement: EditPlacement> {
     /// normal becomes unit length, as the renderers expect).
     fn settle(&mut self) {}
 
-    /// The rows of the kind's own keys in `[render]` ([`Shape::Settings`])
+    /// The rows of the kind's own keys in `[render]` ([`Choices::Settings`])
     /// in the Render section's grid; none for a kind without any.
     fn edit_settings(_ui: &mut Ui, _settings: &mut Self::Settings) {}
 }
