@@ -708,3 +708,20 @@ fn the_flip_view_refines_in_the_window_and_ends_with_flip() {
     );
     assert!(status.starts_with("FLIP at every pixel: mean "), "{status}");
 }
+
+/// From the error view to its FLIP metric with `V`: both trace the same
+/// picture on the GPU (`View::traced`), so no pipelines are built and no
+/// sample is traced again, yet the FLIP view starts its reference on the
+/// picture there is and ends with FLIP, as when it is opened first.
+#[test]
+fn v_from_the_error_view_to_flip_starts_flip_on_the_same_picture() {
+    let display = Display::start();
+    let mut viewer = whitted_window(&display, &["--view", View::Error.name()]);
+    viewer.xdotool(&["mousemove", "1000", "700"]);
+    while viewer.wait_for("error-level ") != "stride=1" {}
+    viewer.key("v");
+    assert_eq!(viewer.wait_for("view-shown"), View::ErrorFlip.name());
+    while viewer.wait_for("error-level ") != "flip" {}
+    let status = viewer.wait_for("error-status ");
+    assert!(status.starts_with("FLIP at every pixel: mean "), "{status}");
+}

@@ -142,6 +142,12 @@ pub struct Viewer {
     /// A scalar view's quantities on their way back, to fit its colour bar
     /// to: mapped at once natively, a frame or more later in the page.
     bar_quantities: Option<TexelRead>,
+    /// Whether the samples now traced came after the last fit of a scalar
+    /// view's colour bar (or the error view's start): set when the view
+    /// changes and wherever a job is about to start a picture with no
+    /// sample, so that the first frame presenting one fits, whether that
+    /// frame traced it or the page's jobs between frames did.
+    fit_pending: bool,
     /// Ray trees asked for so far (numbers the trees).
     trees_asked: u64,
     /// What the line overlay holds ([`Lines`]); `None`: nothing.
@@ -215,6 +221,7 @@ impl Viewer {
             drawing: None,
             error_view: ErrorView::default(),
             bar_quantities: None,
+            fit_pending: true,
             trees_asked: 0,
             lines_for: None,
             pixel_rays: camera_model::PixelRays::default(),
@@ -519,6 +526,9 @@ impl Viewer {
             self.bar_quantities = None;
             self.editor.view.progress = None;
             self.error_view.cancel();
+            // A view that traces as the last one did (the error view's two
+            // metrics) fits the samples there are.
+            self.fit_pending = true;
             self.event(&format!("view-shown {}", self.editor.view.shown.name()));
             self.ensure_pipelines();
         }
@@ -746,6 +756,9 @@ impl Viewer {
             self.editor.view.max_samples
         };
         let new_samples = u32::from(gfx.viewport.samples() < max_samples);
+        if gfx.viewport.samples() == 0 {
+            self.fit_pending = true;
+        }
         // A moving view is traced whole at its moving scale; a resting one
         // refines in short jobs (docs/performance.md, "Short GPU jobs").
         let refine = match (new_samples, dragging) {
@@ -770,11 +783,12 @@ impl Viewer {
         // line shows the final count. Then nothing is drawn until something
         // changes, and an idle window costs no CPU. In the page a resting
         // picture refines between frames instead, job after job as the GPU
-        // reports each done ([`Viewer::refine_between_frames`]); other
-        // frames wait for the GPU too, so that they never queue up there.
+        // reports each done ([`Viewer::refine_between_frames`]), in every
+        // view; other frames wait for the GPU too, so that they never queue
+        // up there.
         let samples = gfx.viewport.samples();
-        let between = refine == Refine::NextJob && shown == View::Shaded;
-        self.between_frames = (between && self.platform.job_done.is_some()).then_some(max_samples);
+        let between = refine == Refine::NextJob && self.platform.job_done.is_some();
+        self.between_frames = between.then_some(max_samples);
         if status == FrameStatus::Skipped {
             gfx.window.request_redraw();
         } else if self.between_frames.is_some() {
@@ -803,7 +817,19 @@ impl Viewer {
         self.tell_sample_times();
         let Some(gfx) = &mut self.gfx else { return };
         self.sample_clock.update(samples, Instant::now());
-        let fitted = shown.scalar() && traced && !dragging && samples > 0;
+        // The first frame that presents the view's sample fits its bar, once
+        // the view's own pipelines traced it (not the last view's picture,
+        // kept while they build).
+        let presented = status == FrameStatus::Presented;
+        let own = self
+            .drawing
+            .as_ref()
+            .is_some_and(|d| d.view == shown.traced());
+        let fitted =
+            shown.scalar() && presented && self.fit_pending && !dragging && samples > 0 && own;
+        if fitted {
+            self.fit_pending = false;
+        }
         if fitted && !shown.is_error() {
             self.bar_quantities = Some(gfx.viewport.start_read_sums(&gfx.gpu));
             // Natively this maps the copy at once; in the page a later
@@ -818,10 +844,16 @@ impl Viewer {
         }
         // Not while a scene waits for its pipelines (the picture is the
         // last scene's), nor before the colour bar is fitted and shown.
+        let unfitted = shown.scalar() && self.fit_pending && own;
+        // In the page, not before the last job's time is back either (its
+        // sample's time is told first).
+        let timed = !gfx.viewport.job_in_flight();
         let ready = !self.settled
+            && timed
             && samples >= max_samples
             && !dragging
             && !fitted
+            && !unfitted
             && bar_fitted.is_none()
             && self.bar_quantities.is_none()
             && self.deferred.is_none();
@@ -876,17 +908,25 @@ impl Viewer {
     /// ask (docs/web.md, "Where a sample's time goes"). Input is handled
     /// between two jobs, as before.
     pub fn refine_between_frames(&mut self) {
-        let Some(max_samples) = self.between_frames else {
-            return;
-        };
         let Some(gfx) = &mut self.gfx else { return };
         if gfx.viewport.job_in_flight() {
             return;
         }
+        let Some(max_samples) = self.between_frames else {
+            // The time of a job that a frame submitted came back after a
+            // later frame had nothing more to refine: its sample's time is
+            // told now, and a frame says `ready`, which waits for it.
+            gfx.window.request_redraw();
+            self.tell_sample_times();
+            return;
+        };
         let samples = gfx.viewport.samples();
         let stale = self.shown_at.is_none_or(|at| at.elapsed() >= REPAINT_EVERY);
         if samples != self.shown_samples || samples >= max_samples || stale {
             gfx.window.request_redraw();
+        }
+        if samples == 0 {
+            self.fit_pending = true;
         }
         if samples < max_samples {
             gfx.viewport.next_job(&gfx.gpu);
