@@ -526,9 +526,16 @@ impl Viewer {
             self.bar_quantities = None;
             self.editor.view.progress = None;
             self.error_view.cancel();
-            // A view that traces as the last one did (the error view's two
-            // metrics) fits the samples there are.
             self.fit_pending = true;
+            // A view that traces as the last one did (the error view's two
+            // metrics) builds no pipelines, which would start the picture
+            // again: the last one's heat map took the radiance's place.
+            let traced = self.editor.view.shown.traced();
+            if let Some(gfx) = &mut self.gfx
+                && self.drawing.as_ref().is_some_and(|d| d.view == traced)
+            {
+                gfx.viewport.restart();
+            }
             self.event(&format!("view-shown {}", self.editor.view.shown.name()));
             self.ensure_pipelines();
         }
