@@ -142,12 +142,11 @@ pub struct Viewer {
     /// A scalar view's quantities on their way back, to fit its colour bar
     /// to: mapped at once natively, a frame or more later in the page.
     bar_quantities: Option<TexelRead>,
-    /// Whether the samples now traced came after the last fit of a scalar
-    /// view's colour bar (or the error view's start): set when the view
-    /// changes and wherever a job is about to start a picture with no
-    /// sample, so that the first frame presenting one fits, whether that
-    /// frame traced it or the page's jobs between frames did.
-    fit_pending: bool,
+    /// The viewport's picture ([`Viewport::picture`]) that a scalar view's
+    /// colour bar was last fitted to (or the error view started on): any
+    /// other picture waits for the first frame presenting a sample of it,
+    /// whether that frame traced it or the page's jobs between frames did.
+    fitted_picture: Option<u64>,
     /// Ray trees asked for so far (numbers the trees).
     trees_asked: u64,
     /// What the line overlay holds ([`Lines`]); `None`: nothing.
@@ -221,7 +220,7 @@ impl Viewer {
             drawing: None,
             error_view: ErrorView::default(),
             bar_quantities: None,
-            fit_pending: true,
+            fitted_picture: None,
             trees_asked: 0,
             lines_for: None,
             pixel_rays: camera_model::PixelRays::default(),
@@ -526,7 +525,6 @@ impl Viewer {
             self.bar_quantities = None;
             self.editor.view.progress = None;
             self.error_view.cancel();
-            self.fit_pending = true;
             // A view that traces as the last one did (the error view's two
             // metrics) builds no pipelines, which would start the picture
             // again: the last one's heat map took the radiance's place.
@@ -763,9 +761,6 @@ impl Viewer {
             self.editor.view.max_samples
         };
         let new_samples = u32::from(gfx.viewport.samples() < max_samples);
-        if gfx.viewport.samples() == 0 {
-            self.fit_pending = true;
-        }
         // A moving view is traced whole at its moving scale; a resting one
         // refines in short jobs (docs/performance.md, "Short GPU jobs").
         let refine = match (new_samples, dragging) {
@@ -832,10 +827,11 @@ impl Viewer {
             .drawing
             .as_ref()
             .is_some_and(|d| d.view == shown.traced());
-        let fitted =
-            shown.scalar() && presented && self.fit_pending && !dragging && samples > 0 && own;
+        let picture = gfx.viewport.picture();
+        let fit_pending = self.fitted_picture != Some(picture);
+        let fitted = shown.scalar() && presented && fit_pending && !dragging && samples > 0 && own;
         if fitted {
-            self.fit_pending = false;
+            self.fitted_picture = Some(picture);
         }
         if fitted && !shown.is_error() {
             self.bar_quantities = Some(gfx.viewport.start_read_sums(&gfx.gpu));
@@ -851,7 +847,7 @@ impl Viewer {
         }
         // Not while a scene waits for its pipelines (the picture is the
         // last scene's), nor before the colour bar is fitted and shown.
-        let unfitted = shown.scalar() && self.fit_pending && own;
+        let unfitted = shown.scalar() && self.fitted_picture != Some(picture) && own;
         // In the page, not before the last job's time is back either (its
         // sample's time is told first).
         let timed = !gfx.viewport.job_in_flight();
@@ -931,9 +927,6 @@ impl Viewer {
         let stale = self.shown_at.is_none_or(|at| at.elapsed() >= REPAINT_EVERY);
         if samples != self.shown_samples || samples >= max_samples || stale {
             gfx.window.request_redraw();
-        }
-        if samples == 0 {
-            self.fit_pending = true;
         }
         if samples < max_samples {
             gfx.viewport.next_job(&gfx.gpu);

@@ -90,6 +90,8 @@ pub struct Viewport {
     finished: Option<SampleTally>,
     /// The selected shape's outline, drawn over the image.
     outline: Outline,
+    /// Counts the pictures begun: every restart of refinement starts one.
+    picture: u64,
 }
 
 impl Viewport {
@@ -139,6 +141,7 @@ impl Viewport {
             tally: SampleTally::default(),
             finished: None,
             outline: Outline::new(&gpu.device),
+            picture: 0,
         }
     }
 
@@ -221,6 +224,7 @@ impl Viewport {
         .expect("the scene on the GPU fitted this device's buffers already");
         let (w, h) = self.accum.size();
         self.accum = Accumulator::new(&gpu.device, &self.pipelines, w, h);
+        self.picture += 1;
         self.outline.forget_layouts();
         self.jobs.pipelines_changed();
     }
@@ -235,6 +239,13 @@ impl Viewport {
     /// Forgets the accumulated samples (e.g. the camera moved).
     pub fn restart(&mut self) {
         self.restart_refinement();
+    }
+
+    /// Which picture the samples belong to: a number that changes whenever
+    /// refinement starts over (scene, view, size or pipelines changed), so
+    /// that what was made of one picture (a colour bar) is known to be stale.
+    pub fn picture(&self) -> u64 {
+        self.picture
     }
 
     /// Samples per pixel accumulated so far.
@@ -477,6 +488,7 @@ impl Viewport {
 
     /// Forgets the samples and the sample in progress.
     fn restart_refinement(&mut self) {
+        self.picture += 1;
         self.accum.reset();
         self.jobs.restart();
         self.tally = SampleTally::default();
