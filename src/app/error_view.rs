@@ -8,7 +8,10 @@
 //! new one, and the old one stops within a slice. The `error-flip` view
 //! shows the levels until the last, and then FLIP per pixel, computed on
 //! the worker (FLIP's filters need the whole image); `nv-flip` is C++,
-//! built natively only, so the page says it has no FLIP.
+//! built natively only, so the page says it has no FLIP. A reference at
+//! every pixel is kept until the picture changes, so that switching
+//! between the two metrics shows the other at once instead of tracing it
+//! again.
 
 use std::sync::Arc;
 use std::sync::atomic::{AtomicU64, Ordering};
@@ -72,31 +75,47 @@ impl Refinement {
 
     /// Traces up to `budget` pixels: the level they finished, if any.
     fn step(&mut self, budget: usize) -> Option<Level> {
-        self.image.refine_some(budget).then(|| Level {
-            generation: self.generation,
+        self.image
+            .refine_some(budget)
+            .then(|| self.level(self.generation))
+    }
+
+    /// |GPU - reference| in levels at the reference's current level.
+    fn level(&self, generation: u64) -> Level {
+        Level {
+            generation,
             stride: self.image.stride().unwrap_or(1),
             quantities: self.image.quantities(&self.gpu),
             flip: None,
             range: None,
-        })
+        }
     }
 
     /// FLIP per pixel of the GPU's picture against the reference's, once
     /// the reference is at every pixel.
     #[cfg(not(target_arch = "wasm32"))]
-    fn flip_level(&self) -> Level {
+    fn flip_level(&self, generation: u64) -> Level {
         let reference = self.image.rgba8();
         let gpu = self.image.gpu_rgba8(&self.gpu);
         let (quantities, mean) = crate::stress::metrics::flip_quantities(&reference, &gpu);
         let largest = quantities.iter().step_by(4).copied().fold(0.0, f32::max);
         Level {
-            generation: self.generation,
+            generation,
             stride: 1,
             quantities,
             flip: Some((mean, largest)),
             range: Some(crate::stress::metrics::FLIP_RANGE),
         }
     }
+}
+
+/// What the reference's tracer sends the view.
+enum Sent {
+    /// A level of the reference traced, or FLIP at every pixel.
+    Level(Level),
+    /// The reference at every pixel with the picture it was traced
+    /// against, to show as the other metric without tracing it again.
+    Whole(Arc<Refinement>),
 }
 
 /// The GPU's radiance on its way back, and the reference to trace
@@ -135,8 +154,8 @@ pub struct ErrorView {
     /// Bumped by every start and cancel; a refinement stops when it
     /// differs from its own.
     generation: Arc<AtomicU64>,
-    sender: Sender<Level>,
-    levels: Receiver<Level>,
+    sender: Sender<Sent>,
+    levels: Receiver<Sent>,
     /// The stride of the level on screen, `None` before the first.
     shown: Option<u32>,
     /// What the view asked for.
@@ -153,6 +172,8 @@ pub struct ErrorView {
     /// The level handed out by [`Self::poll`] and not yet reported as
     /// drawn ([`Self::take_drawn`]).
     handed_out: Option<String>,
+    /// The current picture's reference at every pixel, once traced.
+    whole: Option<Arc<Refinement>>,
 }
 
 impl Default for ErrorView {
@@ -170,6 +191,7 @@ impl Default for ErrorView {
             #[cfg(target_arch = "wasm32")]
             slices: Slices::default(),
             handed_out: None,
+            whole: None,
         }
     }
 }
@@ -186,6 +208,7 @@ impl ErrorView {
         self.shown = None;
         self.flip = None;
         self.handed_out = None;
+        self.whole = None;
         #[cfg(target_arch = "wasm32")]
         {
             self.slices = Slices::default();
@@ -213,6 +236,50 @@ impl ErrorView {
             size,
         });
         self.running = true;
+    }
+
+    /// Shows the reference at every pixel as `metric` instead (the view
+    /// switched between the error view's two metrics) without tracing it
+    /// again; FLIP is computed on a worker. False, and nothing changed,
+    /// when the current picture's reference is not at every pixel yet:
+    /// the caller starts over.
+    pub fn show_as(&mut self, metric: Metric) -> bool {
+        // The reference may have come after the last level was polled.
+        let current = self.generation.load(Ordering::Relaxed);
+        while let Ok(sent) = self.levels.try_recv() {
+            if let Sent::Whole(whole) = sent
+                && whole.generation == current
+            {
+                self.whole = Some(whole);
+            }
+        }
+        let Some(whole) = self.whole.clone() else {
+            return false;
+        };
+        let generation = self.generation.fetch_add(1, Ordering::Relaxed) + 1;
+        self.metric = metric;
+        self.flip = None;
+        self.handed_out = None;
+        self.running = !self.complete();
+        if !self.running {
+            let _ = self.sender.send(Sent::Level(whole.level(generation)));
+            return true;
+        }
+        #[cfg(not(target_arch = "wasm32"))]
+        {
+            let sender = self.sender.clone();
+            let flip = move || {
+                let _ = sender.send(Sent::Level(whole.flip_level(generation)));
+            };
+            if let Err(e) = std::thread::Builder::new()
+                .name("error view FLIP".into())
+                .spawn(flip)
+            {
+                log::error!("error view: no thread for FLIP: {e}");
+                self.running = false;
+            }
+        }
+        true
     }
 
     /// Starts tracing the awaited reference once the GPU's radiance is
@@ -253,14 +320,19 @@ impl ErrorView {
             let cancelled = || current.load(Ordering::Relaxed) != generation;
             while !refinement.image.finished() && !cancelled() {
                 if let Some(level) = refinement.step(CHUNK)
-                    && sender.send(level).is_err()
+                    && sender.send(Sent::Level(level)).is_err()
                 {
                     return;
                 }
             }
-            if flip && !cancelled() {
-                let _ = sender.send(refinement.flip_level());
+            if cancelled() {
+                return;
             }
+            let whole = Arc::new(refinement);
+            if flip {
+                let _ = sender.send(Sent::Level(whole.flip_level(generation)));
+            }
+            let _ = sender.send(Sent::Whole(whole));
         };
         match std::thread::Builder::new()
             .name("error view reference".into())
@@ -291,7 +363,7 @@ impl ErrorView {
         while !refinement.image.finished() && start.elapsed() < slice {
             if let Some(level) = refinement.step(SLICE_CHUNK) {
                 // The receiver is ours: sending cannot fail.
-                let _ = self.sender.send(level);
+                let _ = self.sender.send(Sent::Level(level));
             }
         }
         let end = web_time::Instant::now();
@@ -299,8 +371,10 @@ impl ErrorView {
         slices.count += 1;
         slices.tracing += end - start;
         slices.fraction = refinement.image.fraction();
-        if refinement.image.finished() {
-            slices.refinement = None;
+        if refinement.image.finished()
+            && let Some(whole) = slices.refinement.take()
+        {
+            let _ = self.sender.send(Sent::Whole(Arc::new(whole)));
         }
     }
 
@@ -314,10 +388,15 @@ impl ErrorView {
         self.trace_slice();
         let generation = self.generation.load(Ordering::Relaxed);
         let mut newest = None;
-        while let Ok(level) = self.levels.try_recv() {
-            if level.generation != generation {
-                continue;
-            }
+        while let Ok(sent) = self.levels.try_recv() {
+            let level = match sent {
+                Sent::Level(level) if level.generation == generation => level,
+                Sent::Whole(whole) if whole.generation == generation => {
+                    self.whole = Some(whole);
+                    continue;
+                }
+                _ => continue,
+            };
             self.shown = Some(level.stride);
             self.flip = level.flip;
             self.running &= !self.complete();

@@ -520,14 +520,23 @@ impl Viewer {
         if changed || observed || self.editor.view.min_weight != start.min_weight {
             self.scene_changed(Some(&start.scene));
         }
-        if self.editor.view.shown != start.shown {
+        let shown = self.editor.view.shown;
+        let between_metrics = shown != start.shown && start.shown.is_error() && shown.is_error();
+        if between_metrics && self.error_view.show_as(error_metric(shown)) {
+            // The same reference, shown the other way.
+            self.event(&format!("view-shown {}", shown.name()));
+            if let Some(gfx) = &self.gfx {
+                gfx.window.request_redraw();
+            }
+        } else if shown != start.shown {
             self.editor.view.colour_bar = None;
             self.bar_quantities = None;
             self.editor.view.progress = None;
             self.error_view.cancel();
             // A view that traces as the last one did (the error view's two
-            // metrics) builds no pipelines, which would start the picture
-            // again: the last one's heat map took the radiance's place.
+            // metrics, its reference not yet at every pixel) builds no
+            // pipelines, which would start the picture again: the last
+            // one's heat map took the radiance's place.
             let traced = self.editor.view.shown.traced();
             if let Some(gfx) = &mut self.gfx
                 && self.drawing.as_ref().is_some_and(|d| d.view == traced)
@@ -988,10 +997,7 @@ impl Viewer {
             if let Err(e) = gfx.gpu.wait() {
                 log::error!("error view: {e}");
             }
-            let metric = match self.editor.view.shown {
-                View::ErrorFlip => Metric::Flip,
-                _ => Metric::Levels,
-            };
+            let metric = error_metric(self.editor.view.shown);
             self.error_view.start(&scene, &options, size, sums, metric);
         }
         if let Some((errors, range)) = self.error_view.poll() {
@@ -1044,4 +1050,12 @@ fn take_colour_bar(read: &mut Option<TexelRead>, gfx: &mut Graphics) -> Option<O
             None
         }
     })
+}
+
+/// What an error view shows once its reference is at every pixel.
+fn error_metric(view: View) -> Metric {
+    match view {
+        View::ErrorFlip => Metric::Flip,
+        _ => Metric::Levels,
+    }
 }
