@@ -174,6 +174,9 @@ pub struct ErrorView {
     handed_out: Option<String>,
     /// The current picture's reference at every pixel, once traced.
     whole: Option<Arc<Refinement>>,
+    /// The viewport's picture the reference is traced against
+    /// (`Viewport::picture`).
+    picture: Option<u64>,
 }
 
 impl Default for ErrorView {
@@ -192,14 +195,17 @@ impl Default for ErrorView {
             slices: Slices::default(),
             handed_out: None,
             whole: None,
+            picture: None,
         }
     }
 }
 
 impl ErrorView {
     /// Stops the reference being traced: the picture changed. Its levels
-    /// not yet shown are dropped, so that at most the one a worker was
-    /// finishing waits in the channel (a few megabytes) until the next poll.
+    /// not yet shown and the reference kept are dropped, so that at most
+    /// what a worker was finishing (a level of a few megabytes, or the
+    /// reference at every pixel, some tens) waits in the channel until the
+    /// next poll or start.
     pub fn cancel(&mut self) {
         self.generation.fetch_add(1, Ordering::Relaxed);
         while self.levels.try_recv().is_ok() {}
@@ -209,26 +215,29 @@ impl ErrorView {
         self.flip = None;
         self.handed_out = None;
         self.whole = None;
+        self.picture = None;
         #[cfg(target_arch = "wasm32")]
         {
             self.slices = Slices::default();
         }
     }
 
-    /// Starts the reference of `scene` at `size` pixels, whose errors are
-    /// against `sums`, the GPU's radiance at the same pixel centres (four
-    /// floats per pixel) on its way back; cancels the last one. It is
-    /// traced once the radiance is here ([`Self::poll`]), and then shown
-    /// as `metric`.
+    /// Starts the reference of `scene` for `traced`, the viewport's picture
+    /// (its size in pixels and its number, `Viewport::picture`), whose
+    /// errors are against `sums`, the GPU's radiance at the same pixel
+    /// centres (four floats per pixel) on its way back; cancels the last
+    /// one. It is traced once the radiance is here ([`Self::poll`]), and
+    /// then shown as `metric`.
     pub fn start(
         &mut self,
         scene: &Scene,
         options: &ReferenceOptions,
-        size: (u32, u32),
+        (size, picture): ((u32, u32), u64),
         sums: TexelRead,
         metric: Metric,
     ) {
         self.cancel();
+        self.picture = Some(picture);
         self.metric = metric;
         self.awaited = Some(Awaited {
             sums,
@@ -241,9 +250,9 @@ impl ErrorView {
     /// Shows the reference at every pixel as `metric` instead (the view
     /// switched between the error view's two metrics) without tracing it
     /// again; FLIP is computed on a worker. False, and nothing changed,
-    /// when the current picture's reference is not at every pixel yet:
-    /// the caller starts over.
-    pub fn show_as(&mut self, metric: Metric) -> bool {
+    /// when the reference of `picture` (the viewport's, `None` without
+    /// one) is not at every pixel yet: the caller starts over.
+    pub fn show_as(&mut self, metric: Metric, picture: Option<u64>) -> bool {
         // The reference may have come after the last level was polled.
         let current = self.generation.load(Ordering::Relaxed);
         while let Ok(sent) = self.levels.try_recv() {
@@ -253,15 +262,18 @@ impl ErrorView {
                 self.whole = Some(whole);
             }
         }
-        let Some(whole) = self.whole.clone() else {
-            return false;
+        let whole = match &self.whole {
+            Some(whole) if picture.is_some() && picture == self.picture => Arc::clone(whole),
+            _ => return false,
         };
         let generation = self.generation.fetch_add(1, Ordering::Relaxed) + 1;
         self.metric = metric;
+        self.shown = Some(1);
         self.flip = None;
         self.handed_out = None;
-        self.running = !self.complete();
-        if !self.running {
+        let flip = metric == Metric::Flip && cfg!(not(target_arch = "wasm32"));
+        self.running = flip;
+        if !flip {
             let _ = self.sender.send(Sent::Level(whole.level(generation)));
             return true;
         }
@@ -330,7 +342,12 @@ impl ErrorView {
             }
             let whole = Arc::new(refinement);
             if flip {
-                let _ = sender.send(Sent::Level(whole.flip_level(generation)));
+                let level = whole.flip_level(generation);
+                // FLIP takes a while: the picture may have changed since.
+                if cancelled() {
+                    return;
+                }
+                let _ = sender.send(Sent::Level(level));
             }
             let _ = sender.send(Sent::Whole(whole));
         };

@@ -280,6 +280,9 @@ impl Viewer {
         #[cfg(not(target_arch = "wasm32"))]
         self.tree_worker.forget();
         self.deferred = None;
+        // A new viewport numbers its pictures from the start again.
+        self.fitted_picture = None;
+        self.error_view.cancel();
         self.drawing = Some(options);
         self.upload_scene(&shown);
     }
@@ -522,7 +525,8 @@ impl Viewer {
         }
         let shown = self.editor.view.shown;
         let between_metrics = shown != start.shown && start.shown.is_error() && shown.is_error();
-        if between_metrics && self.error_view.show_as(error_metric(shown)) {
+        let picture = self.gfx.as_ref().map(|gfx| gfx.viewport.picture());
+        if between_metrics && self.error_view.show_as(error_metric(shown), picture) {
             // The same reference, shown the other way.
             self.event(&format!("view-shown {}", shown.name()));
             if let Some(gfx) = &self.gfx {
@@ -998,7 +1002,10 @@ impl Viewer {
                 log::error!("error view: {e}");
             }
             let metric = error_metric(self.editor.view.shown);
-            self.error_view.start(&scene, &options, size, sums, metric);
+            let picture = gfx.viewport.picture();
+            let traced = (size, picture);
+            self.error_view
+                .start(&scene, &options, traced, sums, metric);
         }
         if let Some((errors, range)) = self.error_view.poll() {
             self.editor.view.colour_bar = gfx.viewport.show_quantities(&gfx.gpu, &errors, range);
