@@ -222,17 +222,17 @@ impl ErrorView {
         }
     }
 
-    /// Starts the reference of `scene` for `traced`, the viewport's picture
-    /// (its size in pixels and its number, `Viewport::picture`), whose
-    /// errors are against `sums`, the GPU's radiance at the same pixel
-    /// centres (four floats per pixel) on its way back; cancels the last
-    /// one. It is traced once the radiance is here ([`Self::poll`]), and
-    /// then shown as `metric`.
+    /// Starts the reference of `scene` at `size` pixels for the viewport's
+    /// `picture` (`Viewport::picture`), whose errors are against `sums`,
+    /// the GPU's radiance at the same pixel centres (four floats per pixel)
+    /// on its way back; cancels the last one. It is traced once the
+    /// radiance is here ([`Self::poll`]), and then shown as `metric`.
     pub fn start(
         &mut self,
         scene: &Scene,
         options: &ReferenceOptions,
-        (size, picture): ((u32, u32), u64),
+        size: (u32, u32),
+        picture: u64,
         sums: TexelRead,
         metric: Metric,
     ) {

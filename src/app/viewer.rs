@@ -1003,9 +1003,8 @@ impl Viewer {
             }
             let metric = error_metric(self.editor.view.shown);
             let picture = gfx.viewport.picture();
-            let traced = (size, picture);
             self.error_view
-                .start(&scene, &options, traced, sums, metric);
+                .start(&scene, &options, size, picture, sums, metric);
         }
         if let Some((errors, range)) = self.error_view.poll() {
             self.editor.view.colour_bar = gfx.viewport.show_quantities(&gfx.gpu, &errors, range);
