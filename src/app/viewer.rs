@@ -860,7 +860,7 @@ impl Viewer {
         }
         // Not while a scene waits for its pipelines (the picture is the
         // last scene's), nor before the colour bar is fitted and shown.
-        let unfitted = shown.scalar() && self.fitted_picture != Some(picture) && own;
+        let unfitted = shown.scalar() && fit_pending && own;
         // In the page, not before the last job's time is back either (its
         // sample's time is told first).
         let timed = !gfx.viewport.job_in_flight();
