@@ -725,7 +725,8 @@ fn a_lost_device_is_recovered_keeping_the_scene_and_its_edits() {
 
 /// While the view rests, each sample is traced in short GPU jobs of a few
 /// rows (docs/performance.md, "Short GPU jobs"): four samples take at least
-/// four jobs, the longest is logged against the budget, and the image the
+/// four jobs, the longest the planner sized is logged against its budget
+/// (never below [`JOB_BUDGET`](raysandbox::gpu::JOB_BUDGET)), and the image the
 /// jobs add up to is the headless render's at the same sample count.
 #[test]
 fn refinement_in_short_jobs_adds_up_to_the_headless_image() {
@@ -740,15 +741,22 @@ fn refinement_in_short_jobs_adds_up_to_the_headless_image() {
     let ready = &viewer.ready;
     let field = |name: &str| event_field(ready, name);
     let (samples, jobs, longest) = (field("samples"), field("jobs"), field("longest_job_ms"));
+    let (sized, budget) = (
+        field("longest_sized_job_ms"),
+        field("longest_sized_job_budget_ms"),
+    );
     println!(
         "{samples} samples in {jobs} jobs, the longest {longest} ms, predicted {} ms for its {} \
-         pixels (budget {} ms)",
+         pixels; the longest the planner sized (not the first draw) {sized} ms against its \
+         budget of {budget} ms",
         field("longest_job_predicted_ms"),
         field("longest_job_pixels"),
-        raysandbox::gpu::JOB_BUDGET.as_millis()
     );
     assert_eq!(samples, 4.0);
     assert!(jobs >= samples, "{ready}");
+    assert!(sized > 0.0 && sized <= longest, "{ready}");
+    let least = raysandbox::gpu::JOB_BUDGET.as_secs_f64() * 1e3;
+    assert!(budget >= least, "a budget below {least} ms: {ready}");
 
     let window = viewer.capture();
     let gpu = common::gpu();

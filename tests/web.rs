@@ -230,12 +230,14 @@ fn from_env(name: &str, default: u32) -> u32 {
 /// The heaviest bundled scenes (a glass model and a box of mirrors and
 /// triangles), their panel shown, are traced in many short jobs timed by
 /// their own timestamps (src/gpu/jobs.rs), and the device is never lost
-/// to Chromium's GPU watchdog. The longest job is printed, not bounded:
-/// it passes the planner's 200 ms by far on this machine (docs/web.md,
-/// "Heavy scenes"). One sample at the tests' size; `RAYSANDBOX_WEB_SAMPLES=N`
-/// and `RAYSANDBOX_WEB_WIDTH=1280 RAYSANDBOX_WEB_HEIGHT=900` measure more,
-/// and `RAYSANDBOX_WEB_SCENES=all` (or names, comma separated) measures
-/// other bundled scenes in their place.
+/// to Chromium's GPU watchdog. The longest job (the first draw with the
+/// scene's pipelines, where SwiftShader compiles them) and the longest the
+/// planner sized are printed in the ready line, not bounded: a job's time
+/// stretches with the load of the machine (docs/web.md, "Heavy scenes").
+/// One sample at the tests' size; `RAYSANDBOX_WEB_SAMPLES=N` and
+/// `RAYSANDBOX_WEB_WIDTH=1280 RAYSANDBOX_WEB_HEIGHT=900` measure more, and
+/// `RAYSANDBOX_WEB_SCENES=all` (or names, comma separated) measures other
+/// bundled scenes in their place.
 #[test]
 fn the_heaviest_scenes_refine_in_short_jobs_without_losing_the_device() {
     let display = common::xwindow::Display::start();

@@ -895,14 +895,20 @@ impl Viewer {
         // Ready once the view rests with all its samples. A drag whose
         // moving frames were already at full scale leaves nothing to refine
         // with one sample per pixel: the release itself makes it ready.
-        if let Some(((jobs, longest), timing)) = jobs {
+        if let Some((jobs, timing)) = jobs {
             self.settled = true;
+            let ms = |d: Duration| d.as_secs_f64() * 1e3;
+            let (longest, sized) = (jobs.longest, jobs.longest_sized);
             self.event(&format!(
-                "ready samples={samples} jobs={jobs} longest_job_ms={:.1} \
-                 longest_job_predicted_ms={:.1} longest_job_pixels={} timing={}",
-                longest.time.as_secs_f64() * 1e3,
-                longest.predicted.as_secs_f64() * 1e3,
+                "ready samples={samples} jobs={} longest_job_ms={:.1} \
+                 longest_job_predicted_ms={:.1} longest_job_pixels={} \
+                 longest_sized_job_ms={:.1} longest_sized_job_budget_ms={:.1} timing={}",
+                jobs.count,
+                ms(longest.time),
+                ms(longest.predicted),
                 longest.pixels,
+                ms(sized.time),
+                ms(sized.budget),
                 timing.name()
             ));
         }

@@ -87,9 +87,8 @@ pub struct JobPlanner {
     /// whole sample.
     sample_time: Duration,
     last_sample_time: Option<Duration>,
-    /// The longest job measured since [`JobPlanner::take_longest`].
-    longest: LongestJob,
-    jobs: u32,
+    /// The jobs measured since [`JobPlanner::take_longest`].
+    since: JobsSince,
     /// The GPU time of the last job measured, and the time around a job,
     /// averaged ([`JobPlanner::cycle`]).
     last_time: Duration,
@@ -99,25 +98,48 @@ pub struct JobPlanner {
 }
 
 /// A job planned and not measured yet: its pixels, in an image of that
-/// width and height, the seconds it was predicted to take, and whether it
-/// is the first drawn with new pipelines.
+/// width and height, the seconds it was predicted to take, the budget it
+/// was sized for, and whether it is the first drawn with new pipelines.
 #[derive(Debug, Clone)]
 struct Pending {
     span: Range<u32>,
     size: (u32, u32),
     predicted: f64,
+    budget: Duration,
     first_draw: bool,
 }
 
 /// The longest job measured: its GPU time, what the planner predicted for
-/// it and its pixels. A time far over its prediction is a misjudged cost
-/// (or a loaded machine); a prediction over the budget, a job that could
-/// not be cut smaller.
+/// it, the budget it was sized for, and its pixels. A time far over its
+/// prediction is a misjudged cost (or a loaded machine); a prediction over
+/// the budget, a job that could not be cut smaller.
 #[derive(Debug, Clone, Copy, Default, PartialEq)]
 pub struct LongestJob {
     pub time: Duration,
     pub predicted: Duration,
+    pub budget: Duration,
     pub pixels: u32,
+}
+
+impl LongestJob {
+    /// Keeps the longer of the two.
+    fn keep_longer(&mut self, job: LongestJob) {
+        if job.time > self.time {
+            *self = job;
+        }
+    }
+}
+
+/// The jobs measured since the last [`JobPlanner::take_longest`]: how many,
+/// the longest of all, and the longest of those the planner sized. The
+/// first job drawn with new pipelines is the one it cannot size: its time
+/// is the GPU's first draw (SwiftShader compiles the shader then), whatever
+/// its pixels ([`JobPlanner::pipelines_changed`]).
+#[derive(Debug, Clone, Copy, Default, PartialEq)]
+pub struct JobsSince {
+    pub count: u32,
+    pub longest: LongestJob,
+    pub longest_sized: LongestJob,
 }
 
 impl JobPlanner {
@@ -130,8 +152,7 @@ impl JobPlanner {
             last: None,
             sample_time: Duration::ZERO,
             last_sample_time: None,
-            longest: LongestJob::default(),
-            jobs: 0,
+            since: JobsSince::default(),
             last_time: Duration::ZERO,
             overhead: None,
             whole_rows: false,
@@ -199,7 +220,7 @@ impl JobPlanner {
         let width = width.max(1);
         let total = width * height;
         debug_assert!(start < total, "no pixels left from {start} of {total}");
-        let budget = self.budget().as_secs_f64();
+        let budget = self.budget();
         let (last_pixels, last_cost) = self.last.unwrap_or((FIRST_PIXELS / GROWTH, 0.0));
         let mut unknown_limit = start.saturating_add(last_pixels.max(1).saturating_mul(GROWTH));
         let mut unknown_met = false;
@@ -221,7 +242,7 @@ impl JobPlanner {
                 (_, guess) => (row_end.min(unknown_limit), guess.unwrap_or(last_cost)),
             };
             let fit = if per_pixel > 0.0 {
-                ((budget - spent) / per_pixel).max(0.0)
+                ((budget.as_secs_f64() - spent) / per_pixel).max(0.0)
             } else {
                 f64::INFINITY
             };
@@ -238,6 +259,7 @@ impl JobPlanner {
             span: span.clone(),
             size: (width, height),
             predicted,
+            budget,
             first_draw: std::mem::take(&mut self.first_draw),
         });
         span
@@ -261,28 +283,34 @@ impl JobPlanner {
             span,
             size,
             predicted,
+            budget,
             first_draw,
         } = self.pending.take()?;
         let pixels = span.len() as u32;
         let seconds = time.as_secs_f64();
         log::debug!(
-            "job start={} pixels={pixels} predicted_ms={:.2} ms={:.2} first_draw={first_draw}",
+            "job start={} pixels={pixels} predicted_ms={:.2} budget_ms={:.2} ms={:.2} \
+             first_draw={first_draw}",
             span.start,
             predicted * 1e3,
+            budget.as_secs_f64() * 1e3,
             seconds * 1e3
         );
         if !first_draw {
             self.learn(&span, size, seconds);
         }
         self.last_time = time;
-        if time > self.longest.time {
-            self.longest = LongestJob {
-                time,
-                predicted: Duration::from_secs_f64(predicted),
-                pixels,
-            };
+        let job = LongestJob {
+            time,
+            predicted: Duration::from_secs_f64(predicted),
+            budget,
+            pixels,
+        };
+        self.since.longest.keep_longer(job);
+        if !first_draw {
+            self.since.longest_sized.keep_longer(job);
         }
-        self.jobs += 1;
+        self.since.count += 1;
         self.sample_time += time;
         let ended = span.end >= size.0 * size.1;
         if ended {
@@ -356,13 +384,9 @@ impl JobPlanner {
         self.last_sample_time
     }
 
-    /// The number of jobs measured and the longest of them, since the last
-    /// call.
-    pub fn take_longest(&mut self) -> (u32, LongestJob) {
-        let taken = (self.jobs, self.longest);
-        self.jobs = 0;
-        self.longest = LongestJob::default();
-        taken
+    /// The jobs measured since the last call.
+    pub fn take_longest(&mut self) -> JobsSince {
+        std::mem::take(&mut self.since)
     }
 }
 
@@ -682,6 +706,27 @@ mod tests {
         };
         assert_eq!(second_job(true), FIRST_PIXELS);
         assert_eq!(second_job(false), MIN_PIXELS);
+    }
+
+    /// The longest job of all counts the first draw with new pipelines,
+    /// the longest sized job does not, and it keeps the budget it was sized
+    /// for; taking them starts the count again.
+    #[test]
+    fn the_longest_sized_job_leaves_out_the_first_draw() {
+        let mut planner = JobPlanner::new(Duration::from_millis(30));
+        planner.pipelines_changed();
+        let jobs = run(&mut planner, |_| 1.0, 40);
+        planner.pipelines_changed();
+        let first = planner.next(0, (WIDTH, 40));
+        planner.measured(Duration::from_secs(1));
+        let since = planner.take_longest();
+        assert_eq!(since.count as usize, jobs.len() + 1);
+        assert_eq!(since.longest.time, Duration::from_secs(1));
+        assert_eq!(since.longest.pixels as usize, first.len());
+        let sized = jobs[1..].iter().map(|j| j.1).fold(0.0, f64::max);
+        assert!((since.longest_sized.time.as_secs_f64() * 1e3 - sized).abs() < 1e-6);
+        assert_eq!(since.longest_sized.budget, Duration::from_millis(30));
+        assert_eq!(planner.take_longest(), JobsSince::default());
     }
 
     /// A grid of cells counts each pixel of a span once, in its cell, at

@@ -10,7 +10,7 @@ use web_time::{Duration, Instant};
 use super::context::{Gpu, GpuWaitError};
 use super::id_pass::FirstHit;
 use super::interaction::MIN_SCALE;
-use super::jobs::{JOB_BUDGET, JobPlanner, LongestJob, SampleTally};
+use super::jobs::{JOB_BUDGET, JobPlanner, JobsSince, SampleTally};
 use super::layout::PackedScene;
 use super::limits::BufferLimitError;
 use super::offscreen::TexelRead;
@@ -505,9 +505,10 @@ impl Viewport {
         self.finished.take()
     }
 
-    /// The number of jobs measured and the longest of them since the last
-    /// call: what the viewer reports once the image is refined.
-    pub fn take_longest_job(&mut self) -> (u32, LongestJob) {
+    /// The jobs measured since the last call, the longest of all and the
+    /// longest the planner sized: what the viewer reports once the image is
+    /// refined.
+    pub fn take_longest_job(&mut self) -> JobsSince {
         self.jobs.take_longest()
     }
 
