@@ -1418,6 +1418,24 @@ fn scene_in_address(page: &mut Browser) -> Scene {
     scene_of_address(&page.wait_for("address"))
 }
 
+/// The scene in the address after a change, once the page has refined the
+/// changed picture (its next `ready`; the two lines come in either order).
+/// A picture captured before that can be half black: during a new
+/// picture's first sample the rows not traced yet are, and on a loaded
+/// machine one job can outlast the half second in which
+/// [`capture_change`] sees the picture settle.
+fn scene_in_address_when_ready(page: &mut Browser) -> Scene {
+    let (mut fragment, mut ready) = (None, false);
+    while fragment.is_none() || !ready {
+        let line = page.wait_for("");
+        if let Some(address) = line.strip_prefix("address ") {
+            fragment = Some(address.to_string());
+        }
+        ready |= line.starts_with("ready");
+    }
+    scene_of_address(&fragment.unwrap())
+}
+
 /// The scene in the address fragment `fragment`.
 fn scene_of_address(fragment: &str) -> Scene {
     let text = link::scene_in_hash(fragment)
@@ -1454,16 +1472,8 @@ fn orbiting_with_the_mouse_changes_the_picture_and_the_address() {
     page.drag(Button::Left, (200.0, 135.0), (300.0, 150.0));
     // The address follows the drag, and the page is ready once the sample
     // after it is complete (at once if the drag's frames were at full
-    // scale already): either may come first.
-    let (mut fragment, mut ready) = (None, false);
-    while fragment.is_none() || !ready {
-        let line = page.wait_for("");
-        if let Some(address) = line.strip_prefix("address ") {
-            fragment = Some(address.to_string());
-        }
-        ready |= line.starts_with("ready");
-    }
-    let scene = scene_of_address(&fragment.unwrap());
+    // scale already).
+    let scene = scene_in_address_when_ready(&mut page);
     let (_, whitted) = whitted();
     assert_ne!(scene.camera, whitted.camera, "the orbit moved the camera");
     let mut unmoved = scene.clone();
@@ -1534,7 +1544,7 @@ fn choosing_a_bundled_scene_in_the_menu_shows_it() {
     assert_eq!(page.wait_for("scene"), "cornell");
     let scene = Scene::from_toml_str(bundled::text("cornell").unwrap(), None).unwrap();
     assert_eq!(
-        scene_in_address(&mut page),
+        scene_in_address_when_ready(&mut page),
         scene,
         "the address has the scene"
     );
@@ -1570,7 +1580,7 @@ fn choosing_a_bundled_mesh_scene_in_the_menu_fetches_its_model_and_shows_it() {
     assert_eq!(page.wait_for("scene"), "glass_bunny");
     let scene = bundled_scene(bundled::text("glass_bunny").unwrap());
     assert_eq!(
-        scene_in_address(&mut page),
+        scene_in_address_when_ready(&mut page),
         scene,
         "the address has the scene, models included"
     );
@@ -1601,7 +1611,7 @@ fn dragging_a_slider_in_the_panel_changes_the_picture() {
     let (x, y) = fov.at(0.1, 0.5);
     let (x, y) = (f64::from(x), f64::from(y));
     page.drag(Button::Left, (x, y), (x + 40.0, y));
-    let scene = scene_in_address(&mut page);
+    let scene = scene_in_address_when_ready(&mut page);
     let (_, whitted) = whitted();
     assert!(
         scene.camera.fov > whitted.camera.fov,
