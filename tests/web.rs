@@ -1786,6 +1786,10 @@ fn slow_drag(page: &mut Browser, a: (f64, f64), b: (f64, f64)) {
 #[test]
 fn the_scene_panels_width_is_kept_for_the_next_visit() {
     let (_display, mut page) = open_on_projector("?samples=1");
+    // Once the picture is refined the page draws a frame only for input:
+    // while it refines, a loaded machine's frames can hold the whole drag
+    // in one, which egui takes for a click.
+    page.wait_for("ready");
     wait_for_layout(&mut page, "the panel", |p| p.contains_key("panel"));
     let panel = page.part("panel");
     let y = f64::from(panel.y + panel.h / 2);
