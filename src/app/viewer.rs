@@ -873,7 +873,7 @@ impl Viewer {
             && bar_fitted.is_none()
             && self.bar_quantities.is_none()
             && self.deferred.is_none();
-        let jobs = ready.then(|| (gfx.viewport.take_longest_job(), gfx.viewport.timing()));
+        let jobs = ready.then(|| (gfx.viewport.take_jobs(), gfx.viewport.timing()));
         if let Some(Some(bar)) = bar_fitted {
             let [lo, hi] = bar.range;
             self.event(&format!("colour-bar {lo} {hi}"));

@@ -87,7 +87,7 @@ pub struct JobPlanner {
     /// whole sample.
     sample_time: Duration,
     last_sample_time: Option<Duration>,
-    /// The jobs measured since [`JobPlanner::take_longest`].
+    /// The jobs measured since [`JobPlanner::take_jobs`].
     since: JobsSince,
     /// The GPU time of the last job measured, and the time around a job,
     /// averaged ([`JobPlanner::cycle`]).
@@ -130,7 +130,7 @@ impl LongestJob {
     }
 }
 
-/// The jobs measured since the last [`JobPlanner::take_longest`]: how many,
+/// The jobs measured since the last [`JobPlanner::take_jobs`]: how many,
 /// the longest of all, and the longest of those the planner sized. The
 /// first job drawn with new pipelines is the one it cannot size: its time
 /// is the GPU's first draw (SwiftShader compiles the shader then), whatever
@@ -296,20 +296,18 @@ impl JobPlanner {
             budget.as_secs_f64() * 1e3,
             seconds * 1e3
         );
-        if !first_draw {
-            self.learn(&span, size, seconds);
-        }
-        self.last_time = time;
         let job = LongestJob {
             time,
             predicted: Duration::from_secs_f64(predicted),
             budget,
             pixels,
         };
-        self.since.longest.keep_longer(job);
         if !first_draw {
+            self.learn(&span, size, seconds);
             self.since.longest_sized.keep_longer(job);
         }
+        self.last_time = time;
+        self.since.longest.keep_longer(job);
         self.since.count += 1;
         self.sample_time += time;
         let ended = span.end >= size.0 * size.1;
@@ -385,7 +383,7 @@ impl JobPlanner {
     }
 
     /// The jobs measured since the last call.
-    pub fn take_longest(&mut self) -> JobsSince {
+    pub fn take_jobs(&mut self) -> JobsSince {
         std::mem::take(&mut self.since)
     }
 }
@@ -719,14 +717,14 @@ mod tests {
         planner.pipelines_changed();
         let first = planner.next(0, (WIDTH, 40));
         planner.measured(Duration::from_secs(1));
-        let since = planner.take_longest();
+        let since = planner.take_jobs();
         assert_eq!(since.count as usize, jobs.len() + 1);
         assert_eq!(since.longest.time, Duration::from_secs(1));
         assert_eq!(since.longest.pixels as usize, first.len());
         let sized = jobs[1..].iter().map(|j| j.1).fold(0.0, f64::max);
         assert!((since.longest_sized.time.as_secs_f64() * 1e3 - sized).abs() < 1e-6);
         assert_eq!(since.longest_sized.budget, Duration::from_millis(30));
-        assert_eq!(planner.take_longest(), JobsSince::default());
+        assert_eq!(planner.take_jobs(), JobsSince::default());
     }
 
     /// A grid of cells counts each pixel of a span once, in its cell, at

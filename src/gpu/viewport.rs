@@ -508,8 +508,8 @@ impl Viewport {
     /// The jobs measured since the last call, the longest of all and the
     /// longest the planner sized: what the viewer reports once the image is
     /// refined.
-    pub fn take_longest_job(&mut self) -> JobsSince {
-        self.jobs.take_longest()
+    pub fn take_jobs(&mut self) -> JobsSince {
+        self.jobs.take_jobs()
     }
 
     /// For a scalar view: fits the colour bar to `quantities`, the ones
