@@ -1,5 +1,6 @@
 //! The WGSL shader on the GPU against the f64 CPU reference, on the same
-//! samples: every bundled scene at 320x180 and 1 sample per pixel, and the
+//! samples: every bundled scene at 320x180 and 1 sample per pixel (with the
+//! data textures read both ways, `DataAccess`), and the
 //! whitted, cornell and thin-lens scenes at 16 samples per pixel accumulated
 //! over several submissions. Both must agree: mean absolute difference <= 0.5
 //! (8-bit units, all channels), at most 0.5% of pixels with a channel off by
@@ -24,7 +25,7 @@ fn check(name: &str, gpu_image: &RgbaImage, ref_image: &RgbaImage, failures: &mu
     let d = diff_images(gpu_image, ref_image);
     let nans = nan_pixels(gpu_image, ref_image);
     println!(
-        "{name:<24} {:>9.4} {:>9.4} {:>5} {:>5}",
+        "{name:<28} {:>9.4} {:>9.4} {:>5} {:>5}",
         d.mean_abs,
         d.frac_over_8 * 100.0,
         d.max_abs,
@@ -58,14 +59,16 @@ fn check(name: &str, gpu_image: &RgbaImage, ref_image: &RgbaImage, failures: &mu
 
 fn print_header() {
     println!(
-        "{:<24} {:>9} {:>9} {:>5} {:>5}",
+        "{:<28} {:>9} {:>9} {:>5} {:>5}",
         "scene", "mean|d|", ">8 (%)", "max", "NaN"
     );
 }
 
+/// Both ways of reading the data textures (`DataAccess`) against the
+/// reference.
 #[test]
 fn gpu_matches_reference_on_every_bundled_scene() {
-    let gpu = common::gpu();
+    let devices = common::both_data_accesses(&common::gpu());
     let scenes = common::toml_files(&common::scenes_dir());
     assert!(
         scenes.len() >= 5,
@@ -76,10 +79,17 @@ fn gpu_matches_reference_on_every_bundled_scene() {
     for path in &scenes {
         let name = path.file_stem().unwrap().to_string_lossy().to_string();
         let scene = Scene::load(path).unwrap_or_else(|e| panic!("{e}"));
-        let gpu_image =
-            render_image(&gpu, &scene, WIDTH, HEIGHT, 1).unwrap_or_else(|e| panic!("{e}"));
         let ref_image = reference::render_rgba8(&scene, WIDTH, HEIGHT, 1);
-        check(&name, &gpu_image, &ref_image, &mut failures);
+        for (device, access) in &devices {
+            let gpu_image =
+                render_image(device, &scene, WIDTH, HEIGHT, 1).unwrap_or_else(|e| panic!("{e}"));
+            check(
+                &format!("{name} ({access})"),
+                &gpu_image,
+                &ref_image,
+                &mut failures,
+            );
+        }
     }
     assert!(
         failures.is_empty(),

@@ -197,28 +197,29 @@ fn a_tessellated_cube_renders_like_the_analytic_cube() {
 
 #[test]
 fn gpu_matches_reference_on_the_mesh_scenes() {
-    let gpu = common::gpu();
-    let harness = Harness::new(&gpu, &ShaderSource::embedded()).unwrap();
     let mut scenes = common::toml_files(&mesh_scenes_dir());
     scenes.push(PathBuf::from("tessellated cube"));
     let mut failures = Vec::new();
-    for path in &scenes {
-        let scene = if path.exists() {
-            Scene::load(path).unwrap_or_else(|e| panic!("{e}"))
-        } else {
-            box_scene(true)
-        };
-        let m = harness.measure(&gpu, &scene, 160, 90).unwrap();
-        let c = m.robust_cmp;
-        println!(
-            "{}: FLIP {:.5}, first-hit mismatch {:.4}%, NaN {}",
-            path.display(),
-            c.flip_mean,
-            c.id_mismatch * 100.0,
-            c.nan_pixels
-        );
-        if !c.passes() {
-            failures.push(format!("{}: {c:?}", path.display()));
+    for (gpu, access) in common::both_data_accesses(&common::gpu()) {
+        let harness = Harness::new(&gpu, &ShaderSource::embedded()).unwrap();
+        for path in &scenes {
+            let scene = if path.exists() {
+                Scene::load(path).unwrap_or_else(|e| panic!("{e}"))
+            } else {
+                box_scene(true)
+            };
+            let m = harness.measure(&gpu, &scene, 160, 90).unwrap();
+            let c = m.robust_cmp;
+            println!(
+                "{} ({access}): FLIP {:.5}, first-hit mismatch {:.4}%, NaN {}",
+                path.display(),
+                c.flip_mean,
+                c.id_mismatch * 100.0,
+                c.nan_pixels
+            );
+            if !c.passes() {
+                failures.push(format!("{} ({access}): {c:?}", path.display()));
+            }
         }
     }
     assert!(failures.is_empty(), "{}", failures.join("\n"));

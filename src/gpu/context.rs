@@ -4,6 +4,7 @@
 use std::sync::{Arc, Mutex, PoisonError};
 use std::time::Duration;
 
+use super::shapes::glue::data_texture_count;
 use super::tracer::ACCUM_FORMAT;
 
 /// Adapter, device and queue, shared by everything that draws. A clone
@@ -85,9 +86,11 @@ pub const STORAGE_BUFFERS_NEEDED: u32 = 16;
 
 /// The default limits, with as many storage buffers per stage as the
 /// scene's shape kinds need (when the adapter has them; otherwise device
-/// creation names the limit), and buffers as large as the adapter allows,
-/// so that a large mesh fits wherever the GPU can hold it (the defaults stop
-/// at 128 MiB per storage binding).
+/// creation names the limit), storage textures enough for the tracer's
+/// data textures where the adapter has them (`DataAccess::for_device`),
+/// and buffers as large as the adapter allows, so that a large mesh fits
+/// wherever the GPU can hold it (the defaults stop at 128 MiB per storage
+/// binding).
 fn required_limits(adapter: &wgpu::Adapter) -> wgpu::Limits {
     let offered = adapter.limits();
     let defaults = wgpu::Limits::default();
@@ -95,6 +98,9 @@ fn required_limits(adapter: &wgpu::Adapter) -> wgpu::Limits {
         max_storage_buffers_per_shader_stage: STORAGE_BUFFERS_NEEDED
             .min(offered.max_storage_buffers_per_shader_stage)
             .max(8),
+        max_storage_textures_per_shader_stage: data_texture_count()
+            .min(offered.max_storage_textures_per_shader_stage)
+            .max(defaults.max_storage_textures_per_shader_stage),
         max_storage_buffer_binding_size: offered
             .max_storage_buffer_binding_size
             .max(defaults.max_storage_buffer_binding_size),

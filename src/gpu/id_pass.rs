@@ -13,7 +13,7 @@ use super::offscreen::RenderError;
 use super::offscreen::read_texels;
 use super::outline::{ID_FORMAT, id_pipeline};
 use super::shaders::ShaderSource;
-use super::shapes::glue::ALL_KINDS_BOUND;
+use super::shapes::glue::{ALL_KINDS_BOUND, DataAccess};
 use super::texture::readback_target;
 use super::tracer::{PipelineError, SceneBuffers, in_error_scope, scene_layout_entries};
 use crate::scene::{Scene, ShapeId};
@@ -75,7 +75,9 @@ impl IdRenderer {
         });
         let layout = device.create_bind_group_layout(&wgpu::BindGroupLayoutDescriptor {
             label: Some("scene (id pass)"),
-            entries: &scene_layout_entries(ALL_KINDS_BOUND),
+            // The source as given: its data textures are sampled
+            // (`ShaderSource::embedded`, `ShaderSource::from_dir`).
+            entries: &scene_layout_entries(ALL_KINDS_BOUND, DataAccess::Sampled),
         });
         IdRenderer {
             pipeline: id_pipeline(device, &module, &layout, options),

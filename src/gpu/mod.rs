@@ -38,6 +38,7 @@ pub use offscreen::{
 pub use outline::OUTLINE_COLOR;
 pub use ray_tree::{GpuRayTree, RayTreeRenderer, TREE_MAX};
 pub use shaders::{ShaderError, ShaderSource};
+pub use shapes::glue::{DataAccess, data_texture_count};
 pub use texture::{OwnedTexture, readback_target, render_target};
 pub use timer::{GpuTimer, Timing};
 pub use tracer::{

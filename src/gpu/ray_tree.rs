@@ -16,6 +16,7 @@ use super::layout::PackedScene;
 use super::offscreen::{RenderError, read_texels};
 use super::outline::ID_FORMAT;
 use super::shaders::ShaderSource;
+use super::shapes::glue::DataAccess;
 use super::texture::render_target;
 use super::tracer::{PipelineError, SceneBuffers, in_error_scope, scene_layout_entries};
 use crate::reference::{RayKind, RayTree, TreeRay};
@@ -81,17 +82,23 @@ impl RayTreeRenderer {
             ray_tree: true,
             ..options.clone()
         };
+        let device = &gpu.device;
+        let access = DataAccess::for_device(device);
         let source = &source
-            .specialised(options.stack_size, options.features.shape_kinds)
+            .specialised(options.stack_size, options.features.shape_kinds, access)
             .with_generated(&options.kinds);
         source.validate()?;
-        let device = &gpu.device;
         pollster::block_on(in_error_scope(device, || {
-            Self::build(device, source, &options)
+            Self::build(device, source, &options, access)
         }))
     }
 
-    fn build(device: &wgpu::Device, source: &ShaderSource, options: &ShaderOptions) -> Self {
+    fn build(
+        device: &wgpu::Device,
+        source: &ShaderSource,
+        options: &ShaderOptions,
+        access: DataAccess,
+    ) -> Self {
         let module = device.create_shader_module(wgpu::ShaderModuleDescriptor {
             label: Some("raysandbox ray tree"),
             source: wgpu::ShaderSource::Wgsl(source.text().into()),
@@ -103,7 +110,10 @@ impl RayTreeRenderer {
                 entries,
             })
         };
-        let scene_layout = layout("scene (ray tree)", &scene_layout_entries(bound_kinds));
+        let scene_layout = layout(
+            "scene (ray tree)",
+            &scene_layout_entries(bound_kinds, access),
+        );
         let empty_layout = layout("nothing", &[]);
         let pixel_layout = layout("ray tree pixel", &[fullscreen::uniform_entry(0)]);
         let pipeline_layout = device.create_pipeline_layout(&wgpu::PipelineLayoutDescriptor {

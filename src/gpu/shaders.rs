@@ -10,7 +10,7 @@ use std::path::{Path, PathBuf};
 
 use super::features::MAX_STACK_SIZE;
 use super::layout::fixed_arrays;
-use super::shapes::glue::{ALL_KINDS_BOUND, shape_glue};
+use super::shapes::glue::{ALL_KINDS_BOUND, DataAccess, shape_glue};
 use super::shapes::{KindInfo, generated_parts, kinds};
 use crate::scene::KindOptions;
 
@@ -116,9 +116,10 @@ impl std::error::Error for ShaderError {}
 const GENERATED: &str = "(generated) specialisation";
 
 /// The generated part: WGSL constants that cannot be pipeline-overridable
-/// because they size arrays, and the glue of the shape kinds, whose arrays
-/// are bound for the kinds in `bound_kinds`.
-fn generated_part(stack_size: u32, bound_kinds: u32) -> (String, String) {
+/// because they size arrays, the data textures' type for `access`, and the
+/// glue of the shape kinds, whose arrays are bound for the kinds in
+/// `bound_kinds`.
+fn generated_part(stack_size: u32, bound_kinds: u32, access: DataAccess) -> (String, String) {
     let stack_size = stack_size.clamp(1, MAX_STACK_SIZE);
     (
         GENERATED.to_string(),
@@ -126,8 +127,9 @@ fn generated_part(stack_size: u32, bound_kinds: u32) -> (String, String) {
             "// Written by raysandbox for the scene being drawn (src/gpu/shaders.rs).\n\
              const STACK_SIZE: u32 = {stack_size}u;\n\
              // The BVH traversal stack, for trees as deep as src/bvh.rs builds them.\n\
-             const BVH_STACK: u32 = {}u;\n{}{}",
+             const BVH_STACK: u32 = {}u;\n{}{}{}",
             crate::bvh::TRAVERSAL_STACK,
+            access.wgsl(),
             fixed_arrays(),
             shape_glue(&kinds(), bound_kinds)
         ),
@@ -145,26 +147,30 @@ impl ShaderSource {
             .into_iter()
             .map(|k| (format!("shaders/{}", k.file()), k.wgsl.to_string()));
         Self::join(
-            std::iter::once(generated_part(MAX_STACK_SIZE, ALL_KINDS_BOUND))
-                .chain(files)
-                .chain(shapes)
-                .chain(generated_parts(&KindOptions::default())),
+            std::iter::once(generated_part(
+                MAX_STACK_SIZE,
+                ALL_KINDS_BOUND,
+                DataAccess::Sampled,
+            ))
+            .chain(files)
+            .chain(shapes)
+            .chain(generated_parts(&KindOptions::default())),
         )
     }
 
     /// The same source with the ray-tree stack sized for `stack_size`
     /// entries (a scene's `max_depth + 1`).
     pub fn with_stack_size(&self, stack_size: u32) -> Self {
-        self.specialised(stack_size, ALL_KINDS_BOUND)
+        self.specialised(stack_size, ALL_KINDS_BOUND, DataAccess::Sampled)
     }
 
     /// The same source with the ray-tree stack sized for `stack_size`
-    /// entries and storage bindings only for the arrays of `bound_kinds`
-    /// (see `shape_glue`).
-    pub fn specialised(&self, stack_size: u32, bound_kinds: u32) -> Self {
+    /// entries, bindings only for the arrays of `bound_kinds` (see
+    /// `shape_glue`), and data textures read as `access` says.
+    pub fn specialised(&self, stack_size: u32, bound_kinds: u32, access: DataAccess) -> Self {
         let files = self.parts().filter(|(name, _)| *name != GENERATED);
         Self::join(
-            std::iter::once(generated_part(stack_size, bound_kinds))
+            std::iter::once(generated_part(stack_size, bound_kinds, access))
                 .chain(files.map(|(name, text)| (name.to_string(), text.to_string()))),
         )
     }
@@ -197,9 +203,13 @@ impl ShaderSource {
             files.push((path.display().to_string(), text));
         }
         Ok(Self::join(
-            std::iter::once(generated_part(MAX_STACK_SIZE, ALL_KINDS_BOUND))
-                .chain(files)
-                .chain(generated_parts(&KindOptions::default())),
+            std::iter::once(generated_part(
+                MAX_STACK_SIZE,
+                ALL_KINDS_BOUND,
+                DataAccess::Sampled,
+            ))
+            .chain(files)
+            .chain(generated_parts(&KindOptions::default())),
         ))
     }
 

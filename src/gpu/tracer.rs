@@ -15,7 +15,7 @@ use super::layout::{Globals, PackedScene};
 use super::limits::{BufferLimitError, check_buffers};
 use super::outline::OutlinePipelines;
 use super::shaders::{ShaderError, ShaderSource};
-use super::shapes::glue::{DATA_TEXTURE_WIDTH, FIRST_SHAPE_BINDING, is_bound};
+use super::shapes::glue::{DATA_TEXTURE_WIDTH, DataAccess, FIRST_SHAPE_BINDING, is_bound};
 use super::texture::{OwnedTexture, render_target};
 use wgpu::util::DeviceExt;
 
@@ -107,12 +107,13 @@ impl Pipelines {
         options: &ShaderOptions,
         outline: bool,
     ) -> Result<Self, PipelineError> {
+        let access = DataAccess::for_device(device);
         let source = &source
-            .specialised(options.stack_size, options.features.shape_kinds)
+            .specialised(options.stack_size, options.features.shape_kinds, access)
             .with_generated(&options.kinds);
         source.validate()?;
         in_error_scope(device, || {
-            Self::build(device, source, output_formats, options, outline)
+            Self::build(device, source, output_formats, options, outline, access)
         })
         .await
     }
@@ -123,6 +124,7 @@ impl Pipelines {
         output_formats: &[wgpu::TextureFormat],
         options: &ShaderOptions,
         outline: bool,
+        access: DataAccess,
     ) -> Self {
         let module = device.create_shader_module(wgpu::ShaderModuleDescriptor {
             label: Some("raysandbox tracer"),
@@ -130,7 +132,7 @@ impl Pipelines {
         });
         let scene_layout = device.create_bind_group_layout(&wgpu::BindGroupLayoutDescriptor {
             label: Some("scene"),
-            entries: &scene_layout_entries(options.features.shape_kinds),
+            entries: &scene_layout_entries(options.features.shape_kinds, access),
         });
         let accum_layout = fullscreen::texture_layout(device, "accumulated radiance");
         let layout = device.create_pipeline_layout(&wgpu::PipelineLayoutDescriptor {
@@ -202,11 +204,15 @@ impl Pipelines {
 /// order of `gpu::shapes`, each followed by its shared data if the kind has
 /// one (`mesh_data`), of which only those of `bound_kinds` are bound (see
 /// [`ShaderSource::specialised`]). Every one is a data texture
-/// (`Rgba32Uint`, read by the loaders `shapes::glue` generates).
-pub(super) fn scene_layout_entries(bound_kinds: u32) -> Vec<wgpu::BindGroupLayoutEntry> {
+/// (`Rgba32Uint`, read by the loaders `shapes::glue` generates), bound as
+/// `access` says.
+pub(super) fn scene_layout_entries(
+    bound_kinds: u32,
+    access: DataAccess,
+) -> Vec<wgpu::BindGroupLayoutEntry> {
     bound_bindings(bound_kinds)
         .into_iter()
-        .map(fullscreen::uint_texture_entry)
+        .map(|binding| access.layout_entry(binding))
         .collect()
 }
 
@@ -248,7 +254,7 @@ fn data_texture(device: &wgpu::Device, queue: &wgpu::Queue, words: &[u32]) -> Ow
             sample_count: 1,
             dimension: wgpu::TextureDimension::D2,
             format: wgpu::TextureFormat::Rgba32Uint,
-            usage: wgpu::TextureUsages::TEXTURE_BINDING,
+            usage: DATA_TEXTURE_USAGE,
             view_formats: &[],
         },
         wgpu::util::TextureDataOrder::LayerMajor,
@@ -266,10 +272,15 @@ fn globals_texture(device: &wgpu::Device) -> wgpu::Texture {
         sample_count: 1,
         dimension: wgpu::TextureDimension::D2,
         format: wgpu::TextureFormat::Rgba32Uint,
-        usage: wgpu::TextureUsages::TEXTURE_BINDING | wgpu::TextureUsages::COPY_DST,
+        usage: DATA_TEXTURE_USAGE.union(wgpu::TextureUsages::COPY_DST),
         view_formats: &[],
     })
 }
+
+/// A data texture is bound as a sampled or a read-only storage texture
+/// ([`DataAccess`]); `Rgba32Uint` allows both on every WebGPU device.
+const DATA_TEXTURE_USAGE: wgpu::TextureUsages =
+    wgpu::TextureUsages::TEXTURE_BINDING.union(wgpu::TextureUsages::STORAGE_BINDING);
 
 /// The size of the globals' texture: a texel per 16 bytes.
 fn globals_extent() -> wgpu::Extent3d {

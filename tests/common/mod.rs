@@ -8,7 +8,7 @@ pub mod xwindow;
 
 use std::path::{Path, PathBuf};
 
-use raysandbox::gpu::Gpu;
+use raysandbox::gpu::{DataAccess, Gpu, data_texture_count};
 
 /// A folder in which every GPU or window test leaves one file named after
 /// itself; `scripts/test` sets it and counts the files, so a run that tested
@@ -33,6 +33,31 @@ pub fn gpu() -> Gpu {
             panic!("this test needs a GPU adapter and found none: {e}\nTo run it, {INSTALL_HINT}.")
         }
     }
+}
+
+/// Both ways the tracer reads its data textures ([`DataAccess`]): `gpu`,
+/// which binds them as storage textures (lavapipe has enough of them; the
+/// test fails where it has not), and a device from the same adapter with
+/// WebGPU's default limit of storage textures, which samples them.
+pub fn both_data_accesses(gpu: &Gpu) -> [(Gpu, &'static str); 2] {
+    assert_eq!(
+        DataAccess::for_device(&gpu.device),
+        DataAccess::Storage,
+        "this test reads the data textures both ways: it needs a device that binds {} \
+         storage textures per shader stage, as lavapipe does",
+        data_texture_count()
+    );
+    let sampled = pollster::block_on(Gpu::request_with_limits(
+        gpu.instance.clone(),
+        gpu.adapter.clone(),
+        |limits| {
+            limits.max_storage_textures_per_shader_stage =
+                wgpu::Limits::default().max_storage_textures_per_shader_stage
+        },
+    ))
+    .expect("a device with WebGPU's default storage textures");
+    assert_eq!(DataAccess::for_device(&sampled.device), DataAccess::Sampled);
+    [(gpu.clone(), "storage"), (sampled, "sampled")]
 }
 
 /// For the tests that run the `raysandbox` binary, which makes its own

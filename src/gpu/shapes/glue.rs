@@ -185,14 +185,90 @@ fn data_texture(data: &str, binding: Option<u32>) -> String {
 /// differs between the lanes one lane at a time, with a bounds test each,
 /// and a texel fetch with one gather; two more texel fetches per BVH node
 /// cost a tenth of two more storage reads (docs/performance.md, "Where the
-/// time goes").
+/// time goes"). Its type, `DataTexture`, is the [`DataAccess`]'s.
 fn data_texels(name: &str, binding: u32) -> String {
     format!(
-        "@group(0) @binding({binding}) var {name}: texture_2d<u32>;\n\
+        "@group(0) @binding({binding}) var {name}: DataTexture;\n\
          fn {name}_texel(i: u32) -> vec4<u32> {{\n\
-         \x20   return textureLoad({name}, vec2(i % {DATA_TEXTURE_WIDTH}u, i / {DATA_TEXTURE_WIDTH}u), 0);\n\
+         \x20   return fetch_data({name}, i);\n\
          }}\n"
     )
+}
+
+/// How the tracer binds and reads its data textures: the same texels (an
+/// `Rgba32Uint` texture made for both uses) through either binding type,
+/// chosen per device by [`DataAccess::for_device`].
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum DataAccess {
+    /// `texture_2d<u32>`, read by `textureLoad(t, xy, 0)`: every device.
+    Sampled,
+    /// `texture_storage_2d<rgba32uint, read>`, read by `textureLoad(t, xy)`.
+    /// lavapipe (Mesa 22.3) compiles a sampled texel fetch into a call
+    /// that clamps a mip level and looks up its size for each of the 8
+    /// lanes (even for the constant level 0), a storage texel load into a
+    /// few inline instructions: the same pictures, to the bit, 1.2x to
+    /// 1.6x faster (docs/performance.md, "Data textures read as storage
+    /// textures").
+    Storage,
+}
+
+/// How many data textures the generic pipeline binds: the fixed arrays
+/// and every shape kind's.
+pub fn data_texture_count() -> u32 {
+    FIRST_SHAPE_BINDING + super::buffer_count() as u32
+}
+
+impl DataAccess {
+    /// Storage textures where the device binds as many per shader stage as
+    /// the generic pipeline needs (`gpu::context` asks for them where the
+    /// adapter has them; WebGPU's default is 4), else sampled ones. The
+    /// page keeps sampled textures: the gain was measured on lavapipe, not
+    /// on the browser's SwiftShader.
+    pub fn for_device(device: &wgpu::Device) -> Self {
+        let storage = device.limits().max_storage_textures_per_shader_stage;
+        if cfg!(target_arch = "wasm32") || storage < data_texture_count() {
+            DataAccess::Sampled
+        } else {
+            DataAccess::Storage
+        }
+    }
+
+    /// `DataTexture`, the type of every data texture, and `fetch_data(t,
+    /// i)`, its texel number i (row `i / DATA_TEXTURE_WIDTH`).
+    pub fn wgsl(self) -> String {
+        let (ty, level) = match self {
+            DataAccess::Sampled => ("texture_2d<u32>", ", 0"),
+            DataAccess::Storage => ("texture_storage_2d<rgba32uint, read>", ""),
+        };
+        format!(
+            "alias DataTexture = {ty};\n\
+             fn fetch_data(t: DataTexture, i: u32) -> vec4<u32> {{\n\
+             \x20   return textureLoad(t, vec2(i % {DATA_TEXTURE_WIDTH}u, i / {DATA_TEXTURE_WIDTH}u){level});\n\
+             }}\n"
+        )
+    }
+
+    /// The bind group layout entry of a data texture at `binding`.
+    pub fn layout_entry(self, binding: u32) -> wgpu::BindGroupLayoutEntry {
+        let ty = match self {
+            DataAccess::Sampled => wgpu::BindingType::Texture {
+                sample_type: wgpu::TextureSampleType::Uint,
+                view_dimension: wgpu::TextureViewDimension::D2,
+                multisampled: false,
+            },
+            DataAccess::Storage => wgpu::BindingType::StorageTexture {
+                access: wgpu::StorageTextureAccess::ReadOnly,
+                format: wgpu::TextureFormat::Rgba32Uint,
+                view_dimension: wgpu::TextureViewDimension::D2,
+            },
+        };
+        wgpu::BindGroupLayoutEntry {
+            binding,
+            visibility: wgpu::ShaderStages::FRAGMENT,
+            ty,
+            count: None,
+        }
+    }
 }
 
 /// What one element of a struct array is: its WGSL struct and the fields of
@@ -399,7 +475,7 @@ mod tests {
     #[test]
     fn a_struct_is_read_field_by_field_from_its_texels() {
         let wgsl = struct_array("spheres", "load_sphere", &sphere(), Some(6));
-        assert!(wgsl.contains("@group(0) @binding(6) var spheres: texture_2d<u32>;"));
+        assert!(wgsl.contains("@group(0) @binding(6) var spheres: DataTexture;"));
         assert!(wgsl.contains("let t0 = spheres_texel(i * 2u + 0u);"));
         assert!(wgsl.contains("let t1 = spheres_texel(i * 2u + 1u);"));
         assert!(
