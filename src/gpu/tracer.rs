@@ -659,3 +659,20 @@ pub fn encode_display(
         target.view,
     );
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::gpu::shapes::glue::{ALL_KINDS_BOUND, data_texture_count};
+
+    /// `DataAccess::for_device` and the device's limits count the generic
+    /// pipeline's data textures: every binding its layout has.
+    #[test]
+    fn the_generic_pipeline_binds_data_texture_count_textures() {
+        assert_eq!(
+            bound_bindings(ALL_KINDS_BOUND).len(),
+            data_texture_count() as usize
+        );
+        assert_eq!(data_texture_count(), 14);
+    }
+}

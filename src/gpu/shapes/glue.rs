@@ -206,9 +206,9 @@ pub enum DataAccess {
     /// lavapipe (Mesa 22.3) compiles a sampled texel fetch into a call
     /// that clamps a mip level and looks up its size for each of the 8
     /// lanes (even for the constant level 0), a storage texel load into a
-    /// few inline instructions: the same pictures, to the bit, 1.2x to
-    /// 1.6x faster (docs/performance.md, "Data textures read as storage
-    /// textures").
+    /// few inline instructions: the same texels, 1.1x to 1.6x faster by
+    /// scene, pictures within a few pixels of each other
+    /// (docs/performance.md, "Data textures read as storage textures").
     Storage,
 }
 
