@@ -250,23 +250,17 @@ impl DataAccess {
 
     /// The bind group layout entry of a data texture at `binding`.
     pub fn layout_entry(self, binding: u32) -> wgpu::BindGroupLayoutEntry {
-        let ty = match self {
-            DataAccess::Sampled => wgpu::BindingType::Texture {
-                sample_type: wgpu::TextureSampleType::Uint,
-                view_dimension: wgpu::TextureViewDimension::D2,
-                multisampled: false,
+        let sampled = crate::gpu::fullscreen::uint_texture_entry(binding);
+        match self {
+            DataAccess::Sampled => sampled,
+            DataAccess::Storage => wgpu::BindGroupLayoutEntry {
+                ty: wgpu::BindingType::StorageTexture {
+                    access: wgpu::StorageTextureAccess::ReadOnly,
+                    format: wgpu::TextureFormat::Rgba32Uint,
+                    view_dimension: wgpu::TextureViewDimension::D2,
+                },
+                ..sampled
             },
-            DataAccess::Storage => wgpu::BindingType::StorageTexture {
-                access: wgpu::StorageTextureAccess::ReadOnly,
-                format: wgpu::TextureFormat::Rgba32Uint,
-                view_dimension: wgpu::TextureViewDimension::D2,
-            },
-        };
-        wgpu::BindGroupLayoutEntry {
-            binding,
-            visibility: wgpu::ShaderStages::FRAGMENT,
-            ty,
-            count: None,
         }
     }
 }
