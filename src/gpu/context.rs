@@ -87,18 +87,24 @@ pub const STORAGE_BUFFERS_NEEDED: u32 = 16;
 /// The default limits, with as many storage buffers per stage as the
 /// scene's shape kinds need (when the adapter has them; otherwise device
 /// creation names the limit), storage textures enough for the tracer's
-/// data textures where the adapter has them (`DataAccess::for_device`),
-/// and buffers as large as the adapter allows, so that a large mesh fits
-/// wherever the GPU can hold it (the defaults stop at 128 MiB per storage
-/// binding).
+/// data textures on a CPU adapter that has them (`DataAccess::for_device`
+/// reads them as storage textures then; the gain was measured on lavapipe
+/// only, so a GPU keeps sampled ones), and buffers as large as the adapter
+/// allows, so that a large mesh fits wherever the GPU can hold it (the
+/// defaults stop at 128 MiB per storage binding).
 fn required_limits(adapter: &wgpu::Adapter) -> wgpu::Limits {
     let offered = adapter.limits();
     let defaults = wgpu::Limits::default();
+    let storage_textures = if adapter.get_info().device_type == wgpu::DeviceType::Cpu {
+        data_texture_count()
+    } else {
+        defaults.max_storage_textures_per_shader_stage
+    };
     wgpu::Limits {
         max_storage_buffers_per_shader_stage: STORAGE_BUFFERS_NEEDED
             .min(offered.max_storage_buffers_per_shader_stage)
             .max(8),
-        max_storage_textures_per_shader_stage: data_texture_count()
+        max_storage_textures_per_shader_stage: storage_textures
             .min(offered.max_storage_textures_per_shader_stage)
             .max(defaults.max_storage_textures_per_shader_stage),
         max_storage_buffer_binding_size: offered

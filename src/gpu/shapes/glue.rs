@@ -220,10 +220,11 @@ pub fn data_texture_count() -> u32 {
 
 impl DataAccess {
     /// Storage textures where the device binds as many per shader stage as
-    /// the generic pipeline needs (`gpu::context` asks for them where the
-    /// adapter has them; WebGPU's default is 4), else sampled ones. The
-    /// page keeps sampled textures: the gain was measured on lavapipe, not
-    /// on the browser's SwiftShader.
+    /// the generic pipeline needs, else sampled ones. `gpu::context` asks
+    /// for that many on a CPU adapter (lavapipe) that has them; WebGPU's
+    /// default is 4, so a GPU reads sampled textures, as does the page:
+    /// the gain was measured on lavapipe, not on GPUs or the browser's
+    /// SwiftShader.
     pub fn for_device(device: &wgpu::Device) -> Self {
         let storage = device.limits().max_storage_textures_per_shader_stage;
         if cfg!(target_arch = "wasm32") || storage < data_texture_count() {
