@@ -18,7 +18,9 @@ use super::outline::ID_FORMAT;
 use super::shaders::ShaderSource;
 use super::shapes::glue::DataAccess;
 use super::texture::render_target;
-use super::tracer::{PipelineError, SceneBuffers, in_error_scope, scene_layout_entries};
+use super::tracer::{
+    PipelineError, SceneBuffers, in_error_scope, pipeline_source, scene_layout_entries,
+};
 use crate::reference::{RayKind, RayTree, TreeRay};
 use crate::scene::{Scene, ShapeId, ShapeKind};
 
@@ -83,13 +85,10 @@ impl RayTreeRenderer {
             ..options.clone()
         };
         let device = &gpu.device;
-        let access = DataAccess::for_device(device);
-        let source = &source
-            .specialised(options.stack_size, options.features.shape_kinds, access)
-            .with_generated(&options.kinds);
+        let (source, access) = &pipeline_source(device, source, &options);
         source.validate()?;
         pollster::block_on(in_error_scope(device, || {
-            Self::build(device, source, &options, access)
+            Self::build(device, source, &options, *access)
         }))
     }
 

@@ -136,6 +136,13 @@ fn generated_part(stack_size: u32, bound_kinds: u32, access: DataAccess) -> (Str
     )
 }
 
+/// The generated part of a source not yet specialised for a scene: the
+/// largest stack, every kind's arrays, sampled data textures (what
+/// `IdRenderer` binds, which compiles such a source as it is).
+fn unspecialised_part() -> (String, String) {
+    generated_part(MAX_STACK_SIZE, ALL_KINDS_BOUND, DataAccess::Sampled)
+}
+
 impl ShaderSource {
     /// The shader files compiled into the binary.
     pub fn embedded() -> Self {
@@ -147,14 +154,10 @@ impl ShaderSource {
             .into_iter()
             .map(|k| (format!("shaders/{}", k.file()), k.wgsl.to_string()));
         Self::join(
-            std::iter::once(generated_part(
-                MAX_STACK_SIZE,
-                ALL_KINDS_BOUND,
-                DataAccess::Sampled,
-            ))
-            .chain(files)
-            .chain(shapes)
-            .chain(generated_parts(&KindOptions::default())),
+            std::iter::once(unspecialised_part())
+                .chain(files)
+                .chain(shapes)
+                .chain(generated_parts(&KindOptions::default())),
         )
     }
 
@@ -203,13 +206,9 @@ impl ShaderSource {
             files.push((path.display().to_string(), text));
         }
         Ok(Self::join(
-            std::iter::once(generated_part(
-                MAX_STACK_SIZE,
-                ALL_KINDS_BOUND,
-                DataAccess::Sampled,
-            ))
-            .chain(files)
-            .chain(generated_parts(&KindOptions::default())),
+            std::iter::once(unspecialised_part())
+                .chain(files)
+                .chain(generated_parts(&KindOptions::default())),
         ))
     }
 

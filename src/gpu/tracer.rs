@@ -107,13 +107,10 @@ impl Pipelines {
         options: &ShaderOptions,
         outline: bool,
     ) -> Result<Self, PipelineError> {
-        let access = DataAccess::for_device(device);
-        let source = &source
-            .specialised(options.stack_size, options.features.shape_kinds, access)
-            .with_generated(&options.kinds);
+        let (source, access) = &pipeline_source(device, source, options);
         source.validate()?;
         in_error_scope(device, || {
-            Self::build(device, source, output_formats, options, outline, access)
+            Self::build(device, source, output_formats, options, outline, *access)
         })
         .await
     }
@@ -196,6 +193,21 @@ impl Pipelines {
             .map(|(_, p)| p)
             .unwrap_or_else(|| panic!("no display pipeline was built for {format:?}"))
     }
+}
+
+/// `source` as a pipeline for `options` compiles it on `device` (the
+/// tracer's, the ray tree's): specialised for the scene, and with its data
+/// textures read as the device allows ([`DataAccess::for_device`]).
+pub(super) fn pipeline_source(
+    device: &wgpu::Device,
+    source: &ShaderSource,
+    options: &ShaderOptions,
+) -> (ShaderSource, DataAccess) {
+    let access = DataAccess::for_device(device);
+    let source = source
+        .specialised(options.stack_size, options.features.shape_kinds, access)
+        .with_generated(&options.kinds);
+    (source, access)
 }
 
 /// Binding 0: the globals (see `scene.wgsl`); 1..=5: materials, lights,
