@@ -14,6 +14,42 @@ struct Cube {
     half_size: vec3<f32>,
 }
 
+/// The slab test of hit_cube so far: the entry and exit parameters and
+/// their axes; `missed` once the ray runs parallel to a slab outside it.
+struct CubeSpan {
+    t_near: f32,
+    t_far: f32,
+    near_axis: u32,
+    far_axis: u32,
+    missed: bool,
+}
+
+/// One axis of hit_cube's slab test. hit_cube calls it once per axis rather
+/// than looping over the axes: lavapipe does not unroll shader loops, as
+/// for hit_box's `slab` (docs/performance.md, "Work moved out of loops").
+fn cube_slab(span: CubeSpan, o: f32, d: f32, h: f32, axis: u32) -> CubeSpan {
+    var next = span;
+    if abs(d) < 1e-20 {
+        next.missed = next.missed || abs(o) > h;
+        return next;
+    }
+    let inv = 1.0 / d;
+    let ta = (-h - o) * inv;
+    let tb = (h - o) * inv;
+    let t0 = min(ta, tb);
+    let t1 = max(ta, tb);
+    let t1_wide = t1 + 2.0 * GAMMA3 * abs(t1);
+    if t0 > next.t_near {
+        next.t_near = t0;
+        next.near_axis = axis;
+    }
+    if t1_wide < next.t_far {
+        next.t_far = t1_wide;
+        next.far_axis = axis;
+    }
+    return next;
+}
+
 /// Box: the slab test (Williams et al. 2005) in the box's own frame. From an
 /// origin far from the box (more than 16 half edges away) the test starts at
 /// the foot of the perpendicular from the centre (see `foot`), so that the
@@ -41,42 +77,22 @@ fn hit_cube(ray: Ray, cube: Cube, index: u32, best: Hit) -> Hit {
     }
     let o = to_local * rel;
     let d = to_local * ray.dir;
-    var t_near = -T_FAR;
-    var t_far = T_FAR;
-    var near_axis = 0u;
-    var far_axis = 0u;
-    for (var i = 0u; i < 3u; i++) {
-        if abs(d[i]) < 1e-20 {
-            if abs(o[i]) > h[i] {
-                return best;
-            }
-            continue;
-        }
-        let inv = 1.0 / d[i];
-        let ta = (-h[i] - o[i]) * inv;
-        let tb = (h[i] - o[i]) * inv;
-        let t0 = min(ta, tb);
-        let t1 = max(ta, tb);
-        let t1_wide = t1 + 2.0 * GAMMA3 * abs(t1);
-        if t0 > t_near {
-            t_near = t0;
-            near_axis = i;
-        }
-        if t1_wide < t_far {
-            t_far = t1_wide;
-            far_axis = i;
-        }
-    }
-    if t_near > t_far {
+    var span = CubeSpan(-T_FAR, T_FAR, 0u, 0u, false);
+    span = cube_slab(span, o.x, d.x, h.x, 0u);
+    span = cube_slab(span, o.y, d.y, h.y, 1u);
+    span = cube_slab(span, o.z, d.z, h.z, 2u);
+    if span.missed || span.t_near > span.t_far {
         return best;
     }
+    let t_near = span.t_near;
+    let t_far = span.t_far;
     // From the start of the test to the ray origin's parameter: t = s + t_local.
     var t_local = t_near;
-    var axis = near_axis;
+    var axis = span.near_axis;
     var side = -1.0;           // the entry face faces against the ray
     if s + t_near <= ray.t_min {
         t_local = t_far;
-        axis = far_axis;
+        axis = span.far_axis;
         side = 1.0;            // the exit face faces along it
     }
     let t = s + t_local;

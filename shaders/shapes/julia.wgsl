@@ -69,22 +69,32 @@ fn hit_julia(ray: Ray, s: Julia, index: u32, best: Hit) -> Hit {
     let h = sqrt(4.0 - qq);
     let end = min(h, local_u(l, best.t));
     var u = max(-h, local_u(l, ray.t_min));
+    // The hit (its normal takes six more estimates) is made after the
+    // loop, not inside it: lavapipe runs an `if`'s body for all 8 pixels
+    // it shades together, taken or not, so inside the loop it would cost
+    // every step (docs/performance.md, "Work moved out of loops").
+    var found = false;
+    var epsilon = 0.0;
     for (var i = 0u; i < 1024u; i++) {
         if u > end {
-            return best;
+            break;
         }
         count_step();
-        let p = l.q + u * l.d;
-        let de = julia_distance(s, p);
-        let epsilon = julia_epsilon(ray, s, l, u);
+        let de = julia_distance(s, l.q + u * l.d);
+        epsilon = julia_epsilon(ray, s, l, u);
         if de < epsilon {
-            let error_scale = max(
-                offset_scale_for(2.0 * epsilon * s.scale),
-                max3(abs(s.center)) + 2.0 * s.scale,
-            );
-            return placed_hit(ray, best, l, u, julia_normal(s, p, epsilon), s.center, s.rotation, KIND_JULIA, index, error_scale);
+            found = true;
+            break;
         }
         u += de;
     }
-    return best;
+    if !found {
+        return best;
+    }
+    let p = l.q + u * l.d;
+    let error_scale = max(
+        offset_scale_for(2.0 * epsilon * s.scale),
+        max3(abs(s.center)) + 2.0 * s.scale,
+    );
+    return placed_hit(ray, best, l, u, julia_normal(s, p, epsilon), s.center, s.rotation, KIND_JULIA, index, error_scale);
 }

@@ -57,6 +57,8 @@ fn functions_part(functions: &[String]) -> (String, String) {
 }
 
 impl PackShape for scene::Implicit {
+    const OCCLUDES: bool = true;
+
     fn generated(functions: &Vec<String>) -> Option<(String, String)> {
         Some(functions_part(functions))
     }
