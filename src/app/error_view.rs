@@ -118,6 +118,13 @@ enum Sent {
     Whole(Arc<Refinement>),
 }
 
+/// FLIP asked for a reference at every pixel, of generation `generation`.
+#[cfg(not(target_arch = "wasm32"))]
+struct FlipRequest {
+    generation: u64,
+    whole: Arc<Refinement>,
+}
+
 /// The GPU's radiance on its way back, and the reference to trace
 /// against it once it is here.
 struct Awaited {
@@ -177,6 +184,9 @@ pub struct ErrorView {
     /// The viewport's picture the reference is traced against
     /// (`Viewport::picture`).
     picture: Option<u64>,
+    /// The FLIP worker's inbox ([`Self::request_flip`]), once started.
+    #[cfg(not(target_arch = "wasm32"))]
+    flip_requests: Option<Sender<FlipRequest>>,
 }
 
 impl Default for ErrorView {
@@ -196,6 +206,8 @@ impl Default for ErrorView {
             handed_out: None,
             whole: None,
             picture: None,
+            #[cfg(not(target_arch = "wasm32"))]
+            flip_requests: None,
         }
     }
 }
@@ -278,20 +290,57 @@ impl ErrorView {
             return true;
         }
         #[cfg(not(target_arch = "wasm32"))]
-        {
-            let sender = self.sender.clone();
-            let flip = move || {
-                let _ = sender.send(Sent::Level(whole.flip_level(generation)));
-            };
-            if let Err(e) = std::thread::Builder::new()
-                .name("error view FLIP".into())
-                .spawn(flip)
-            {
-                log::error!("error view: no thread for FLIP: {e}");
-                self.running = false;
-            }
+        if !self.request_flip(FlipRequest { generation, whole }) {
+            self.running = false;
         }
         true
+    }
+
+    /// Hands FLIP of a reference to the FLIP worker, started at the first
+    /// request (or again if it has gone). One worker computes the newest
+    /// request it holds and drops the older ones, which belong to pictures
+    /// or metrics switched away from: however fast the metrics are toggled,
+    /// one FLIP at most is computed at a time and none is queued behind it.
+    /// False when no thread could be started.
+    #[cfg(not(target_arch = "wasm32"))]
+    fn request_flip(&mut self, request: FlipRequest) -> bool {
+        let request = match &self.flip_requests {
+            Some(requests) => match requests.send(request) {
+                Ok(()) => return true,
+                Err(unsent) => unsent.0,
+            },
+            None => request,
+        };
+        let (requests, inbox) = channel::<FlipRequest>();
+        let current = Arc::clone(&self.generation);
+        let sender = self.sender.clone();
+        let worker = move || {
+            while let Ok(mut request) = inbox.recv() {
+                while let Ok(newer) = inbox.try_recv() {
+                    request = newer;
+                }
+                if current.load(Ordering::Relaxed) != request.generation {
+                    continue;
+                }
+                let level = request.whole.flip_level(request.generation);
+                let _ = sender.send(Sent::Level(level));
+            }
+        };
+        match std::thread::Builder::new()
+            .name("error view FLIP".into())
+            .spawn(worker)
+        {
+            Ok(_) => {
+                // The worker holds the receiver: sending cannot fail.
+                let _ = requests.send(request);
+                self.flip_requests = Some(requests);
+                true
+            }
+            Err(e) => {
+                log::error!("error view: no thread for FLIP: {e}");
+                false
+            }
+        }
     }
 
     /// Starts tracing the awaited reference once the GPU's radiance is
@@ -498,5 +547,58 @@ impl ErrorView {
             }
         }
         String::new()
+    }
+}
+
+#[cfg(all(test, not(target_arch = "wasm32")))]
+mod tests {
+    use super::*;
+
+    /// The Whitted scene's reference at every pixel of a small picture,
+    /// against a black GPU picture.
+    fn whole() -> Arc<Refinement> {
+        let text = crate::scene::bundled::text("whitted").expect("bundled");
+        let scene = Scene::from_toml_str(text, None).expect("the Whitted scene");
+        let size = (32, 18);
+        let gpu = vec![0.0; 4 * 32 * 18];
+        let mut refinement = Refinement::new(0, &PreparedScene::new(&scene), size, gpu);
+        while !refinement.image.finished() {
+            refinement.step(CHUNK);
+        }
+        Arc::new(refinement)
+    }
+
+    #[test]
+    fn rapid_flip_requests_compute_the_newest_only() {
+        let whole = whole();
+        let mut view = ErrorView::default();
+        // Fifty toggles, each a generation: by the time the worker looks,
+        // all but the last are stale.
+        let toggles = 50;
+        let newest = view.generation.fetch_add(toggles, Ordering::Relaxed) + toggles;
+        for generation in 1..=newest {
+            let request = FlipRequest {
+                generation,
+                whole: Arc::clone(&whole),
+            };
+            assert!(view.request_flip(request));
+        }
+        let wait = std::time::Duration::from_secs(60);
+        match view.levels.recv_timeout(wait) {
+            Ok(Sent::Level(level)) => {
+                assert_eq!(level.generation, newest, "FLIP of a stale request");
+                assert!(level.flip.is_some(), "a FLIP level");
+            }
+            Ok(Sent::Whole(_)) => panic!("the FLIP worker sends levels only"),
+            Err(e) => panic!("no FLIP of the newest request: {e}"),
+        }
+        // A request after the first is served by the same worker.
+        let generation = view.generation.fetch_add(1, Ordering::Relaxed) + 1;
+        assert!(view.request_flip(FlipRequest { generation, whole }));
+        match view.levels.recv_timeout(wait) {
+            Ok(Sent::Level(level)) => assert_eq!(level.generation, generation),
+            _ => panic!("no FLIP of the request after the first"),
+        }
+        assert!(view.levels.try_recv().is_err(), "one FLIP per request kept");
     }
 }
