@@ -46,11 +46,11 @@ fn julia_normal(s: Julia, p: vec3<f32>, e: f32) -> vec3<f32> {
 /// with the footprint on at least the width one pixel subtends at the
 /// distance travelled along the ray (from the eye for camera rays, whose
 /// t_min reaches back to it, from the surface left for the others).
-fn julia_epsilon(ray: Ray, s: Julia, l: LocalRay, u: f32) -> f32 {
+/// `pixel_angle` is the film's height over its pixel rows.
+fn julia_epsilon(ray: Ray, s: Julia, l: LocalRay, u: f32, pixel_angle: f32) -> f32 {
     if s.footprint == 0u {
         return s.epsilon;
     }
-    let pixel_angle = globals().film_height / f32(globals().resolution.y);
     let travelled = l.s + l.scale * u - min(ray.t_min, 0.0);
     return max(s.epsilon, pixel_angle * travelled / l.scale);
 }
@@ -75,13 +75,15 @@ fn hit_julia(ray: Ray, s: Julia, index: u32, best: Hit) -> Hit {
     // every step (docs/performance.md, "Work moved out of loops").
     var found = false;
     var epsilon = 0.0;
+    // The angle one pixel subtends, read once rather than every step.
+    let pixel_angle = globals().film_height / f32(globals().resolution.y);
     for (var i = 0u; i < 1024u; i++) {
         if u > end {
             break;
         }
         count_step();
         let de = julia_distance(s, l.q + u * l.d);
-        epsilon = julia_epsilon(ray, s, l, u);
+        epsilon = julia_epsilon(ray, s, l, u, pixel_angle);
         if de < epsilon {
             found = true;
             break;

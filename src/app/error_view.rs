@@ -300,8 +300,9 @@ impl ErrorView {
     /// request (or again if it has gone). One worker computes the newest
     /// request it holds and drops the older ones, which belong to pictures
     /// or metrics switched away from: however fast the metrics are toggled,
-    /// one FLIP at most is computed at a time and none is queued behind it.
-    /// False when no thread could be started.
+    /// one FLIP at most is computed at a time, and the requests that came
+    /// meanwhile cost one more, the newest's. False when no thread could
+    /// be started.
     #[cfg(not(target_arch = "wasm32"))]
     fn request_flip(&mut self, request: FlipRequest) -> bool {
         let request = match &self.flip_requests {

@@ -24,14 +24,15 @@ const DEAD_BAND: f32 = 0.1;
 /// trace time of the last one. Tracing time grows with the number of pixels,
 /// the square of the scale, so the scale that fits the budget is
 /// `scale * sqrt(budget / time)`; the step is limited to [`MAX_STEP`] and
-/// changes within [`DEAD_BAND`] are skipped. The result lies in
-/// `MIN_SCALE..=1`.
+/// changes within [`DEAD_BAND`] are skipped, except a step up to full
+/// resolution: the band would otherwise hold a scale just below 1 for good
+/// though the budget allows 1. The result lies in `MIN_SCALE..=1`.
 pub fn next_scale(scale: f32, frame: Duration, budget: Duration) -> f32 {
     let time = frame.as_secs_f32().max(1e-6);
     let ideal = scale * (budget.as_secs_f32() / time).sqrt();
     let stepped = ideal.clamp(scale / MAX_STEP, scale * MAX_STEP);
     let next = stepped.clamp(MIN_SCALE, 1.0);
-    if (next - scale).abs() < DEAD_BAND * scale {
+    if next < 1.0 && (next - scale).abs() < DEAD_BAND * scale {
         scale.clamp(MIN_SCALE, 1.0)
     } else {
         next
@@ -66,6 +67,15 @@ mod tests {
     fn a_frame_near_the_budget_keeps_the_scale() {
         assert_eq!(next_scale(0.4, ms(95), ms(100)), 0.4);
         assert_eq!(next_scale(0.4, ms(110), ms(100)), 0.4);
+    }
+
+    /// Just below full resolution, a frame that would fit at 1 steps up
+    /// to 1 even by less than the dead band; one that would not stays.
+    #[test]
+    fn full_resolution_is_reached_from_just_below_it() {
+        assert_eq!(next_scale(0.96, ms(90), ms(100)), 1.0);
+        assert_eq!(next_scale(0.96, ms(95), ms(100)), 0.96);
+        assert_eq!(next_scale(1.0, ms(105), ms(100)), 1.0);
     }
 
     #[test]
