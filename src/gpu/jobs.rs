@@ -109,21 +109,22 @@ struct Pending {
     first_draw: bool,
 }
 
-/// The longest job measured: its GPU time, what the planner predicted for
-/// it, the budget it was sized for, and its pixels. A time far over its
+/// A job measured (the longest of some, in [`JobsSince`]): its GPU time,
+/// what the planner predicted for it, the budget it was sized for, and its
+/// pixels. A time far over its
 /// prediction is a misjudged cost (or a loaded machine); a prediction over
 /// the budget, a job that could not be cut smaller.
 #[derive(Debug, Clone, Copy, Default, PartialEq)]
-pub struct LongestJob {
+pub struct MeasuredJob {
     pub time: Duration,
     pub predicted: Duration,
     pub budget: Duration,
     pub pixels: u32,
 }
 
-impl LongestJob {
+impl MeasuredJob {
     /// Keeps the longer of the two.
-    fn keep_longer(&mut self, job: LongestJob) {
+    fn keep_longer(&mut self, job: MeasuredJob) {
         if job.time > self.time {
             *self = job;
         }
@@ -138,8 +139,8 @@ impl LongestJob {
 #[derive(Debug, Clone, Copy, Default, PartialEq)]
 pub struct JobsSince {
     pub count: u32,
-    pub longest: LongestJob,
-    pub longest_sized: LongestJob,
+    pub longest: MeasuredJob,
+    pub longest_sized: MeasuredJob,
 }
 
 impl JobPlanner {
@@ -296,7 +297,7 @@ impl JobPlanner {
             budget.as_secs_f64() * 1e3,
             seconds * 1e3
         );
-        let job = LongestJob {
+        let job = MeasuredJob {
             time,
             predicted: Duration::from_secs_f64(predicted),
             budget,

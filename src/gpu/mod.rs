@@ -29,7 +29,7 @@ pub use context::{Gpu, GpuError, GpuWaitError, SizeError, TIMER_FEATURES, WAIT_L
 pub use features::{Features, Rays, ShaderOptions};
 pub use id_pass::{FirstHit, IdRenderer};
 pub use interaction::MIN_SCALE;
-pub use jobs::{JOB_BUDGET, JobsSince, LongestJob, SampleTally};
+pub use jobs::{JOB_BUDGET, JobsSince, MeasuredJob, SampleTally};
 pub use limits::{BufferLimitError, check_buffers};
 pub use lines::{LineOverlay, Segment, project};
 pub use offscreen::{
