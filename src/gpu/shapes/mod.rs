@@ -166,8 +166,8 @@ pub trait PackShape: PackedKind {
     /// Whether the kind's WGSL also has `occludes_<kind>(ray, shape, t_max)
     /// -> bool`, which shadow rays call instead of `hit_<kind>`: they need
     /// only whether something blocks them, not the nearest hit, and a shape
-    /// whose hit is costly to refine (the torus) answers that for less
-    /// (docs/implementation.md, "Torus").
+    /// whose hit is costly to refine (the torus, an implicit surface)
+    /// answers that for less (docs/implementation.md, "Torus").
     const OCCLUDES: bool = false;
 
     /// Whether the kind's WGSL has `view_coordinates_<kind>(hit) ->
