@@ -296,22 +296,35 @@ impl ErrorView {
         true
     }
 
-    /// Hands FLIP of a reference to the FLIP worker, started at the first
-    /// request (or again if it has gone). One worker computes the newest
-    /// request it holds and drops the older ones, which belong to pictures
-    /// or metrics switched away from: however fast the metrics are toggled,
-    /// one FLIP at most is computed at a time, and the requests that came
-    /// meanwhile cost one more, the newest's. False when no thread could
-    /// be started.
+    /// Hands FLIP of a reference to the FLIP worker ([`Self::flip_inbox`]).
+    /// False when no thread could be started.
     #[cfg(not(target_arch = "wasm32"))]
     fn request_flip(&mut self, request: FlipRequest) -> bool {
-        let request = match &self.flip_requests {
-            Some(requests) => match requests.send(request) {
-                Ok(()) => return true,
-                Err(unsent) => unsent.0,
-            },
-            None => request,
+        let Some(inbox) = self.flip_inbox() else {
+            return false;
         };
+        match inbox.send(request) {
+            Ok(()) => true,
+            // The worker has gone (FLIP panicked): a new one takes it.
+            Err(unsent) => {
+                self.flip_requests = None;
+                self.flip_inbox()
+                    .is_some_and(|inbox| inbox.send(unsent.0).is_ok())
+            }
+        }
+    }
+
+    /// The FLIP worker's inbox, the worker started at the first call. It
+    /// computes the newest request it holds and drops the older ones, which
+    /// belong to pictures or metrics switched away from: however fast the
+    /// metrics are toggled, one FLIP at most is computed at a time, and the
+    /// requests that came meanwhile cost one more, the newest's. `None`
+    /// when no thread could be started.
+    #[cfg(not(target_arch = "wasm32"))]
+    fn flip_inbox(&mut self) -> Option<Sender<FlipRequest>> {
+        if let Some(inbox) = &self.flip_requests {
+            return Some(inbox.clone());
+        }
         let (requests, inbox) = channel::<FlipRequest>();
         let current = Arc::clone(&self.generation);
         let sender = self.sender.clone();
@@ -332,14 +345,12 @@ impl ErrorView {
             .spawn(worker)
         {
             Ok(_) => {
-                // The worker holds the receiver: sending cannot fail.
-                let _ = requests.send(request);
-                self.flip_requests = Some(requests);
-                true
+                self.flip_requests = Some(requests.clone());
+                Some(requests)
             }
             Err(e) => {
                 log::error!("error view: no thread for FLIP: {e}");
-                false
+                None
             }
         }
     }
@@ -374,7 +385,12 @@ impl ErrorView {
     /// The worker: one level after the other, each sent when done.
     #[cfg(not(target_arch = "wasm32"))]
     fn spawn(&mut self, mut refinement: Refinement) {
-        let flip = self.metric == Metric::Flip;
+        // FLIP, when asked for, is the FLIP worker's once the reference is
+        // at every pixel.
+        let flips = match self.metric {
+            Metric::Flip => self.flip_inbox(),
+            Metric::Levels => None,
+        };
         let current = Arc::clone(&self.generation);
         let sender = self.sender.clone();
         let work = move || {
@@ -391,13 +407,11 @@ impl ErrorView {
                 return;
             }
             let whole = Arc::new(refinement);
-            if flip {
-                let level = whole.flip_level(generation);
-                // FLIP takes a while: the picture may have changed since.
-                if cancelled() {
-                    return;
+            if let Some(flips) = flips {
+                let whole = Arc::clone(&whole);
+                if flips.send(FlipRequest { generation, whole }).is_err() {
+                    log::error!("error view: the FLIP worker has gone");
                 }
-                let _ = sender.send(Sent::Level(level));
             }
             let _ = sender.send(Sent::Whole(whole));
         };
