@@ -61,8 +61,10 @@ var<private> tree_current: u32 = TREE_NONE;
 var<private> tree_current_depth: u32;
 var<private> tree_current_throughput: vec3<f32>;
 /// For each entry of trace()'s stack: the ray that pushed it, and its kind.
-var<private> tree_slot_parent: array<u32, STACK_SIZE>;
-var<private> tree_slot_kind: array<u32, STACK_SIZE>;
+/// Entry TREE_HELD is the child that trace() holds outside the stack.
+var<private> tree_slot_parent: array<u32, STACK_SIZE + 1>;
+var<private> tree_slot_kind: array<u32, STACK_SIZE + 1>;
+const TREE_HELD: u32 = STACK_SIZE;
 
 /// A ray of `kind` was pushed into stack entry `slot` by the current ray.
 fn tree_pending(slot: u32, kind: u32) {

@@ -180,12 +180,14 @@ struct PendingRay {
     throughput: vec3<f32>,   // what this ray's radiance is multiplied by in the pixel
 }
 
-// The stack: depth-first, each hit pushes at most its two children and the
-// reflected one is popped at once, so at most one pending sibling waits per
-// level and max_depth + 1 entries suffice. STACK_SIZE is declared by the
-// program in a generated part in front of these files, as the scene's
-// max_depth + 1 (at most 17; src/gpu/shaders.rs): WGSL cannot size an array
-// with an `override`, and a stack no larger than needed is markedly faster.
+// The stack: depth-first, the reflected child traced at once and the
+// refracted one waiting, so at most one ray waits per level and max_depth
+// entries suffice (the generated STACK_SIZE is max_depth + 1, what an
+// earlier version of trace() needed, so that copies of these files made
+// before still work). STACK_SIZE is declared by the program in a generated
+// part in front of these files (at most 17; src/gpu/shaders.rs): WGSL
+// cannot size an array with an `override`, and a stack no larger than
+// needed is markedly faster.
 
 /// Whether the rendering model allows a child ray of this depth and weight.
 fn worth_tracing(depth: u32, weight: f32) -> bool {
@@ -193,80 +195,108 @@ fn worth_tracing(depth: u32, weight: f32) -> bool {
 }
 
 /// trace = local + wr * trace(reflected) + wt * albedo * trace(refracted),
-/// unrolled: each ray adds throughput * local to the pixel.
+/// unrolled: each ray adds throughput * local to the pixel. The ray being
+/// traced is held in `job`; a hit's reflected child takes its place at
+/// once (the recursion's first call), and only where it also has a
+/// refracted child does that one wait on the stack. On llvmpipe each read
+/// or write of the stack at an index that differs by pixel costs in
+/// proportion to its size (docs/performance.md, "The ray stack"), so a
+/// ray that has one child, and every ray of a scene without glass, never
+/// touches it.
 fn trace(primary: Ray) -> vec3<f32> {
     var stack: array<PendingRay, STACK_SIZE>;
     var top = 0u;
-    stack[0] = PendingRay(primary, 0u, 1.0, vec3(1.0));
-    top = 1u;
-    tree_pending(0u, TREE_CAMERA);
+    var job = PendingRay(primary, 0u, 1.0, vec3(1.0));
+    // Where `job` came from, for the ray-tree pass: the stack entry it was
+    // popped from, or TREE_HELD for a child traced at once.
+    var slot = TREE_HELD;
+    tree_pending(TREE_HELD, TREE_CAMERA);
     count_ray(0u);
     var radiance = vec3(0.0);
-    while top > 0u {
-        top -= 1u;
-        let job = stack[top];
+    loop {
         let ray = job.ray;
         count_depth(job.depth);
-        tree_begin(top, ray, job.depth, job.throughput);
+        tree_begin(slot, ray, job.depth, job.throughput);
+        var next = false;
         let hit = hit_scene(ray, T_FAR);
         if hit.kind == KIND_NONE {
             tree_missed(job.throughput * globals().background);
             radiance += job.throughput * globals().background;
-            continue;
-        }
-        var m = load_material(material_of(hit));
-        if is_opaque(hit.kind) {
-            m.transparency = 0.0;
-        }
-        let into_surface = dot(ray.dir, hit.normal) < 0.0;
-        // Shading (lighting, mirror) by the shading normal facing the ray;
-        // secondary rays leave along the geometric one.
-        let ns = select(-hit.shading, hit.shading, into_surface);
-        let ng = select(-hit.normal, hit.normal, into_surface);
-        let albedo = albedo_at(m, hit.point, hit.normal);
-        tree_hit(hit, ray, ns);
-        let local = shade_local(hit, ns, ray.dir, m, albedo);
-        radiance += job.throughput * local;
+        } else {
+            var m = load_material(material_of(hit));
+            if is_opaque(hit.kind) {
+                m.transparency = 0.0;
+            }
+            let into_surface = dot(ray.dir, hit.normal) < 0.0;
+            // Shading (lighting, mirror) by the shading normal facing the ray;
+            // secondary rays leave along the geometric one.
+            let ns = select(-hit.shading, hit.shading, into_surface);
+            let ng = select(-hit.normal, hit.normal, into_surface);
+            let albedo = albedo_at(m, hit.point, hit.normal);
+            tree_hit(hit, ray, ns);
+            let local = shade_local(hit, ns, ray.dir, m, albedo);
+            radiance += job.throughput * local;
 
-        // Fresnel only where the material has a dielectric part.
-        var f = 0.0;
-        var eta = 1.0;
-        if HAS_TRANSPARENCY && m.transparency > 0.0 {
-            let cos_i = -dot(ray.dir, ns);
-            if is_thin(hit.kind) || into_surface {
-                f = fresnel(cos_i, 1.0, m.ior);
-                eta = 1.0 / m.ior;
-            } else {
-                f = fresnel(cos_i, m.ior, 1.0);
-                eta = m.ior;
+            // Fresnel only where the material has a dielectric part.
+            var f = 0.0;
+            var eta = 1.0;
+            if HAS_TRANSPARENCY && m.transparency > 0.0 {
+                let cos_i = -dot(ray.dir, ns);
+                if is_thin(hit.kind) || into_surface {
+                    f = fresnel(cos_i, 1.0, m.ior);
+                    eta = 1.0 / m.ior;
+                } else {
+                    f = fresnel(cos_i, m.ior, 1.0);
+                    eta = m.ior;
+                }
+            }
+            let wr = m.mirror + m.transparency * f;
+            let wt = m.transparency * (1.0 - f);
+            tree_split(local, f, wr, wt);
+            let child_depth = job.depth + 1u;
+
+            let refracted_weight = job.weight * wt * max(albedo.r, max(albedo.g, albedo.b));
+            let refracts = HAS_TRANSPARENCY && REFRACTION && worth_tracing(child_depth, refracted_weight);
+            let reflected_weight = job.weight * wr;
+            let reflects = (HAS_MIRRORS || HAS_TRANSPARENCY) && REFLECTION
+                && worth_tracing(child_depth, reflected_weight);
+            if refracts {
+                var dir = ray.dir;             // thin planes pass the ray on unbent
+                if !is_thin(hit.kind) {
+                    dir = refract_dir(ray.dir, ns, eta);
+                }
+                let origin = offset_ray(hit.point, -ng, hit.error_scale);
+                let child = PendingRay(Ray(origin, dir, 0.0), child_depth, refracted_weight, job.throughput * wt * albedo);
+                count_ray(3u);
+                if !reflects {
+                    // The only child: traced next, in this ray's place.
+                    job = child;
+                    slot = TREE_HELD;
+                    tree_pending(TREE_HELD, TREE_REFRACTED);
+                    next = true;
+                } else if top < STACK_SIZE {
+                    stack[top] = child;
+                    tree_pending(top, TREE_REFRACTED);
+                    top += 1u;
+                }
+            }
+            if reflects {
+                count_ray(2u);
+                tree_pending(TREE_HELD, tree_reflected_kind(f, !into_surface && !is_thin(hit.kind), m.transparency > 0.0));
+                let origin = offset_ray(hit.point, ng, hit.error_scale);
+                job = PendingRay(Ray(origin, reflect_dir(ray.dir, ns), 0.0), child_depth, reflected_weight, job.throughput * wr);
+                slot = TREE_HELD;
+                next = true;
             }
         }
-        let wr = m.mirror + m.transparency * f;
-        let wt = m.transparency * (1.0 - f);
-        tree_split(local, f, wr, wt);
-        let child_depth = job.depth + 1u;
-
-        let refracted_weight = job.weight * wt * max(albedo.r, max(albedo.g, albedo.b));
-        let refracts = HAS_TRANSPARENCY && REFRACTION;
-        if refracts && worth_tracing(child_depth, refracted_weight) && top < STACK_SIZE {
-            var dir = ray.dir;             // thin planes pass the ray on unbent
-            if !is_thin(hit.kind) {
-                dir = refract_dir(ray.dir, ns, eta);
-            }
-            let origin = offset_ray(hit.point, -ng, hit.error_scale);
-            stack[top] = PendingRay(Ray(origin, dir, 0.0), child_depth, refracted_weight, job.throughput * wt * albedo);
-            tree_pending(top, TREE_REFRACTED);
-            top += 1u;
-            count_ray(3u);
+        if !next && top > 0u {
+            top -= 1u;
+            job = stack[top];
+            slot = top;
+            next = true;
         }
-        let reflected_weight = job.weight * wr;
-        let reflects = (HAS_MIRRORS || HAS_TRANSPARENCY) && REFLECTION;
-        if reflects && worth_tracing(child_depth, reflected_weight) && top < STACK_SIZE {
-            let origin = offset_ray(hit.point, ng, hit.error_scale);
-            stack[top] = PendingRay(Ray(origin, reflect_dir(ray.dir, ns), 0.0), child_depth, reflected_weight, job.throughput * wr);
-            tree_pending(top, tree_reflected_kind(f, !into_surface && !is_thin(hit.kind), m.transparency > 0.0));
-            top += 1u;
-            count_ray(2u);
+        if !next {
+            break;
         }
     }
     return radiance;
