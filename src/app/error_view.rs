@@ -385,12 +385,6 @@ impl ErrorView {
     /// The worker: one level after the other, each sent when done.
     #[cfg(not(target_arch = "wasm32"))]
     fn spawn(&mut self, mut refinement: Refinement) {
-        // FLIP, when asked for, is the FLIP worker's once the reference is
-        // at every pixel.
-        let flips = match self.metric {
-            Metric::Flip => self.flip_inbox(),
-            Metric::Levels => None,
-        };
         let current = Arc::clone(&self.generation);
         let sender = self.sender.clone();
         let work = move || {
@@ -406,14 +400,7 @@ impl ErrorView {
             if cancelled() {
                 return;
             }
-            let whole = Arc::new(refinement);
-            if let Some(flips) = flips {
-                let whole = Arc::clone(&whole);
-                if flips.send(FlipRequest { generation, whole }).is_err() {
-                    log::error!("error view: the FLIP worker has gone");
-                }
-            }
-            let _ = sender.send(Sent::Whole(whole));
+            let _ = sender.send(Sent::Whole(Arc::new(refinement)));
         };
         match std::thread::Builder::new()
             .name("error view reference".into())
@@ -473,7 +460,7 @@ impl ErrorView {
             let level = match sent {
                 Sent::Level(level) if level.generation == generation => level,
                 Sent::Whole(whole) if whole.generation == generation => {
-                    self.whole = Some(whole);
+                    self.keep_whole(whole);
                     continue;
                 }
                 _ => continue,
@@ -488,6 +475,23 @@ impl ErrorView {
             newest = Some((level.quantities, level.range));
         }
         newest
+    }
+
+    /// Keeps the current picture's reference at every pixel and, when
+    /// FLIP is shown, hands its FLIP to the FLIP worker
+    /// ([`Self::request_flip`]), as a switch of metric does.
+    fn keep_whole(&mut self, whole: Arc<Refinement>) {
+        #[cfg(not(target_arch = "wasm32"))]
+        if self.metric == Metric::Flip {
+            let request = FlipRequest {
+                generation: whole.generation,
+                whole: Arc::clone(&whole),
+            };
+            if !self.request_flip(request) {
+                self.running = false;
+            }
+        }
+        self.whole = Some(whole);
     }
 
     /// Whether what is on screen is the last that comes: every pixel, as
