@@ -3,7 +3,6 @@
 //! pixels, one sample each, so that frames keep coming. With a frame budget
 //! the scale follows the measured frame time (docs/performance.md, "Julia
 //! sets: dragging c"); the full image refines once the movement stops.
-//! `raysandbox bench --julia-drag` runs the same rule headless.
 
 use web_time::Duration;
 
