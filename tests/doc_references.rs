@@ -3,7 +3,8 @@
 //! that exists in that file: a comment, test or document that cites a
 //! section which was renamed or never written points the reader nowhere.
 //! Read in src/, shaders/, tests/, scripts/, docs/, web/ and README.md; a
-//! reference may wrap onto the next comment line.
+//! reference may wrap onto the next comment line. And every file that
+//! README.md or a page of docs/ links to or shows exists.
 
 mod common;
 
@@ -141,4 +142,68 @@ fn references_are_read_across_comment_lines_and_only_with_a_title() {
             ("web.md".to_string(), "Start-up time".to_string()),
         ]
     );
+}
+
+/// The targets of the Markdown links and images of `text` (`[text](path)`,
+/// `![alt](path)`), outside code (fenced blocks and spans), without their `#anchor`:
+/// the ones that name a file, not an address or a place in the page.
+fn linked_files(text: &str) -> Vec<String> {
+    let mut targets = Vec::new();
+    let mut fenced = false;
+    for line in text.lines() {
+        if line.trim_start().starts_with("```") {
+            fenced = !fenced;
+            continue;
+        }
+        if fenced {
+            continue;
+        }
+        // The parts between backticks are code: every other one.
+        let prose: String = line.split('`').step_by(2).collect::<Vec<_>>().join(" ");
+        let line = prose.as_str();
+        for (start, _) in line.match_indices("](") {
+            let rest = &line[start + 2..];
+            let Some(end) = rest.find(')') else { continue };
+            let target = rest[..end].split('#').next().unwrap_or("").trim();
+            let is_address = target.contains("://") || target.starts_with("mailto:");
+            if !target.is_empty() && !is_address {
+                targets.push(target.to_string());
+            }
+        }
+    }
+    targets
+}
+
+/// A link or image of README.md or docs/ to a file of the repository names
+/// a file that exists: a picture generated but never committed (a
+/// `.gitignore` rule keeps it out of every clone) is a broken image on the
+/// page, and this test fails on the fresh clone that CI runs.
+#[test]
+fn every_file_the_docs_link_to_exists() {
+    let mut pages: Vec<_> = files_below(Path::new("docs"))
+        .into_iter()
+        .filter(|p| p.extension().is_some_and(|e| e == "md"))
+        .collect();
+    pages.push(Path::new("README.md").to_path_buf());
+    let mut missing = Vec::new();
+    let mut checked = 0;
+    for page in &pages {
+        let text = std::fs::read_to_string(page).unwrap();
+        let folder = page.parent().unwrap_or(Path::new(""));
+        for target in linked_files(&text) {
+            checked += 1;
+            if !folder.join(&target).exists() {
+                missing.push(format!("{}: {target}", page.display()));
+            }
+        }
+    }
+    assert!(missing.is_empty(), "no such file:\n{}", missing.join("\n"));
+    assert!(checked > 20, "only {checked} links read");
+}
+
+#[test]
+fn linked_files_leave_out_addresses_anchors_and_code() {
+    let text = "![a](images/a.png) and [b](other.md#part), [c](https://x.org/y), \
+                [d](#here), `int[](1, 2)`\n```\n[e](in/code.md)\n```\n[f](../f.md)";
+    assert_eq!(linked_files(text), ["images/a.png", "other.md", "../f.md"]);
 }

@@ -34,7 +34,8 @@ pub const WINDOW: Help = Help {
             ("R / P", "reset camera / screenshot"),
             (
                 "V",
-                "next view: shaded, normals, depth, id, cost, steps, bounces...",
+                "next view: shaded, normals, geometric, depth, id, barycentric, nodes, tests, \
+                 steps, bounces, shadow rays, error...",
             ),
             (
                 "C",

@@ -25,7 +25,7 @@ pub enum RayKind {
 }
 
 impl RayKind {
-    /// The names the panel and `render --ray-tree` print.
+    /// The names the panel and `raysandbox ray-tree` print.
     pub fn name(self) -> &'static str {
         match self {
             RayKind::Camera => "camera",
