@@ -290,28 +290,32 @@ impl ErrorView {
             return true;
         }
         #[cfg(not(target_arch = "wasm32"))]
-        if !self.request_flip(FlipRequest { generation, whole }) {
-            self.running = false;
-        }
+        self.request_flip(generation, whole);
         true
     }
 
-    /// Hands FLIP of a reference to the FLIP worker ([`Self::flip_inbox`]).
-    /// False when no thread could be started.
+    /// Hands FLIP of the reference `whole` for `generation` to the FLIP
+    /// worker ([`Self::flip_inbox`]). False, and the view no longer
+    /// running, when no thread could be started.
     #[cfg(not(target_arch = "wasm32"))]
-    fn request_flip(&mut self, request: FlipRequest) -> bool {
-        let Some(inbox) = self.flip_inbox() else {
-            return false;
+    fn request_flip(&mut self, generation: u64, whole: Arc<Refinement>) -> bool {
+        let request = FlipRequest { generation, whole };
+        let sent = match self.flip_inbox() {
+            None => false,
+            Some(inbox) => match inbox.send(request) {
+                Ok(()) => true,
+                // The worker has gone (FLIP panicked): a new one takes it.
+                Err(unsent) => {
+                    self.flip_requests = None;
+                    self.flip_inbox()
+                        .is_some_and(|inbox| inbox.send(unsent.0).is_ok())
+                }
+            },
         };
-        match inbox.send(request) {
-            Ok(()) => true,
-            // The worker has gone (FLIP panicked): a new one takes it.
-            Err(unsent) => {
-                self.flip_requests = None;
-                self.flip_inbox()
-                    .is_some_and(|inbox| inbox.send(unsent.0).is_ok())
-            }
+        if !sent {
+            self.running = false;
         }
+        sent
     }
 
     /// The FLIP worker's inbox, the worker started at the first call. It
@@ -483,13 +487,7 @@ impl ErrorView {
     fn keep_whole(&mut self, whole: Arc<Refinement>) {
         #[cfg(not(target_arch = "wasm32"))]
         if self.metric == Metric::Flip {
-            let request = FlipRequest {
-                generation: whole.generation,
-                whole: Arc::clone(&whole),
-            };
-            if !self.request_flip(request) {
-                self.running = false;
-            }
+            self.request_flip(whole.generation, Arc::clone(&whole));
         }
         self.whole = Some(whole);
     }
@@ -596,11 +594,7 @@ mod tests {
         let toggles = 50;
         let newest = view.generation.fetch_add(toggles, Ordering::Relaxed) + toggles;
         for generation in 1..=newest {
-            let request = FlipRequest {
-                generation,
-                whole: Arc::clone(&whole),
-            };
-            assert!(view.request_flip(request));
+            assert!(view.request_flip(generation, Arc::clone(&whole)));
         }
         let wait = std::time::Duration::from_secs(60);
         match view.levels.recv_timeout(wait) {
@@ -613,7 +607,7 @@ mod tests {
         }
         // A request after the first is served by the same worker.
         let generation = view.generation.fetch_add(1, Ordering::Relaxed) + 1;
-        assert!(view.request_flip(FlipRequest { generation, whole }));
+        assert!(view.request_flip(generation, whole));
         match view.levels.recv_timeout(wait) {
             Ok(Sent::Level(level)) => assert_eq!(level.generation, generation),
             _ => panic!("no FLIP of the request after the first"),
