@@ -8,8 +8,10 @@ use std::path::Path;
 use std::process::Command;
 
 use raysandbox::bench::{
-    ERROR_COLUMNS, PIPELINE_COLUMNS, REFERENCE_COLUMNS, RayCounts, SCALING_COLUMNS, count_rays,
+    ERROR_COLUMNS, JULIA_DRAG_COLUMNS, PIPELINE_COLUMNS, REFERENCE_COLUMNS, RayCounts,
+    SCALING_COLUMNS, count_rays,
 };
+use raysandbox::gpu::{OffscreenRenderer, ShaderOptions, ShaderSource};
 use raysandbox::scene::{Scene, bundled};
 
 fn check_csv(path: &Path, columns: &str, text_columns: usize) -> usize {
@@ -140,4 +142,66 @@ fn the_tracer_counts_its_rays_by_kind() {
         c.shadow <= 2 * (c.primary + c.reflected + c.refracted),
         "{c:?}"
     );
+}
+
+/// `bench --julia-drag` times the Julia scene for each value of `c (i)`
+/// from 0.4 to 0.8 and says which fit the viewer's budget.
+#[test]
+fn the_julia_drag_bench_times_each_value_of_c() {
+    common::require_gpu();
+    let out = std::env::temp_dir().join(format!("raysandbox-julia-drag-{}", std::process::id()));
+    let status = Command::new(env!("CARGO_BIN_EXE_raysandbox"))
+        .args(["bench", "--julia-drag", "--quick", "--frames", "1", "--out"])
+        .arg(&out)
+        .status()
+        .expect("run raysandbox bench --julia-drag");
+    assert!(status.success());
+    let csv = out.join("julia_drag.csv");
+    assert_eq!(check_csv(&csv, JULIA_DRAG_COLUMNS, 0), 3);
+    let rows = std::fs::read_to_string(&csv).unwrap();
+    let c: Vec<&str> = rows.lines().skip(1).map(|l| &l[..4]).collect();
+    assert_eq!(c, ["0.40", "0.60", "0.80"]);
+    for line in rows.lines().skip(1) {
+        let scale: f64 = line.rsplit(',').next().unwrap().parse().unwrap();
+        assert!(scale > 0.0 && scale <= 1.0, "{line}");
+    }
+    let report = std::fs::read_to_string(out.join("julia_drag.md")).unwrap();
+    assert!(
+        report.contains("Within the budget at this size:"),
+        "{report}"
+    );
+    std::fs::remove_dir_all(&out).unwrap();
+}
+
+/// What the drag bench relies on: a renderer given a changed scene
+/// (`set_scene`, its pipelines kept) draws what a renderer made for that
+/// scene draws.
+#[test]
+fn a_scene_set_on_a_renderer_draws_as_a_new_renderer() {
+    let gpu = common::gpu();
+    let size = (96, 64);
+    let mut scene = Scene::from_toml_str(bundled::text("julia").unwrap(), None).unwrap();
+    let options = ShaderOptions::for_scene(&scene);
+    let draw = |renderer: &mut OffscreenRenderer| {
+        renderer.render(&gpu, 1).unwrap();
+        renderer.read_image(&gpu).unwrap()
+    };
+    let new_renderer = |scene: &Scene| {
+        OffscreenRenderer::new(
+            &gpu,
+            &ShaderSource::embedded(),
+            &options,
+            scene,
+            size.0,
+            size.1,
+        )
+        .unwrap()
+    };
+    let mut kept = new_renderer(&scene);
+    let before = draw(&mut kept);
+    scene.julias[0].c[1] = 0.8;
+    kept.set_scene(&gpu, &scene).unwrap();
+    let after = draw(&mut kept);
+    assert_ne!(before, after, "the new c changed nothing");
+    assert_eq!(after, draw(&mut new_renderer(&scene)));
 }

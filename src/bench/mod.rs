@@ -4,6 +4,7 @@
 
 #[cfg(feature = "embree")]
 mod embree;
+mod julia_drag;
 mod measure;
 mod meshes;
 mod plot;
@@ -22,6 +23,7 @@ use crate::scene::{Scene, bundled};
 use crate::stress::table::table;
 use measure::{ConvergedReference, REFERENCE_FACTOR};
 
+pub use julia_drag::JULIA_DRAG_COLUMNS;
 pub use measure::{median, process_cpu_time, sphere_field};
 pub use sweeps::spheres_in_place;
 pub use throughput::{RayCounts, count_rays};
@@ -56,6 +58,12 @@ pub struct BenchArgs {
     /// built with the `embree` feature. `throughput.md`.
     #[arg(long)]
     pub throughput: bool,
+    /// Only the Julia set's `c (i)` dragged from 0.4 to 0.8 at the
+    /// viewer's full resolution (docs/performance.md, "Julia sets:
+    /// dragging c"): GPU time per frame against the viewer's default
+    /// frame budget. `julia_drag.md`, `julia_drag.csv`.
+    #[arg(long)]
+    pub julia_drag: bool,
 }
 
 /// What one run sweeps.
@@ -266,6 +274,9 @@ pub fn run(args: &BenchArgs) -> Result<(), BenchError> {
     std::fs::create_dir_all(&args.out).map_err(|e| fail(&args.out, e))?;
     if args.throughput {
         return throughput::run(&gpu, &env, args);
+    }
+    if args.julia_drag {
+        return julia_drag::run(&gpu, &env, args);
     }
     if args.implicit {
         return sweeps::run(&gpu, &env, &args.out, args.quick, args.frames);

@@ -86,6 +86,23 @@ impl OffscreenRenderer {
         })
     }
 
+    /// Takes a changed scene of the same features (as the viewer does while
+    /// a slider moves): its buffers are made again, those whose contents
+    /// did not change shared, and the pipelines kept. The samples so far
+    /// are dropped. A scene too large for the device's buffers is refused
+    /// and the last one stays.
+    pub fn set_scene(&mut self, gpu: &Gpu, scene: &Scene) -> Result<(), BufferLimitError> {
+        let (width, height) = self.accum.size();
+        self.scene = SceneBuffers::reusing(
+            (&gpu.device, &gpu.queue),
+            &self.pipelines,
+            PackedScene::new(scene, width, height),
+            &self.scene,
+        )?;
+        self.accum.reset();
+        Ok(())
+    }
+
     /// How [`Self::render`] measures time.
     pub fn timing(&self) -> Timing {
         match self.timer {
