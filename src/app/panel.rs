@@ -26,7 +26,9 @@ mod widgets;
 use std::path::PathBuf;
 
 use super::layout;
-use crate::gpu::{ColourBar, DEFAULT_MAX_SAMPLES, DEFAULT_MIN_WEIGHT, View};
+use crate::gpu::{
+    ColourBar, DEFAULT_FRAME_BUDGET_MS, DEFAULT_MAX_SAMPLES, DEFAULT_MIN_WEIGHT, View,
+};
 use crate::scene::{NewShape, Scene, ShapeId};
 use egui::{CollapsingHeader, RichText, Ui};
 
@@ -68,10 +70,6 @@ pub struct ViewSettings {
     /// (the error view's reference, docs/views.md).
     pub progress: Option<String>,
 }
-
-/// The frame budget while the view moves: 100 ms, ten frames a second,
-/// where a dragged slider still feels live (docs/performance.md).
-pub const DEFAULT_FRAME_BUDGET_MS: f32 = 100.0;
 
 /// A frame drawn while the view moved.
 #[derive(Debug, Clone, Copy, PartialEq)]

@@ -11,8 +11,7 @@ use std::time::Duration;
 
 use super::measure::median;
 use super::{BenchArgs, BenchError, Environment};
-use crate::app::panel::DEFAULT_FRAME_BUDGET_MS;
-use crate::gpu::{Gpu, OffscreenRenderer, ShaderOptions, ShaderSource};
+use crate::gpu::{DEFAULT_FRAME_BUDGET_MS, Gpu, OffscreenRenderer, ShaderOptions, ShaderSource};
 use crate::scene::{Scene, bundled};
 
 /// The view beside the panel in the viewer's window at

@@ -6,6 +6,11 @@
 
 use web_time::Duration;
 
+/// The frame budget while the view moves, by default: 100 ms, ten frames
+/// a second, where a dragged slider still feels live (docs/performance.md,
+/// "Julia sets: dragging c").
+pub const DEFAULT_FRAME_BUDGET_MS: f32 = 100.0;
+
 /// The smallest traced fraction of the window resolution (1280 x 720 traces
 /// 160 x 90).
 pub const MIN_SCALE: f32 = 0.125;

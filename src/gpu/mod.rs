@@ -28,7 +28,7 @@ mod viewport;
 pub use context::{Gpu, GpuError, GpuWaitError, SizeError, TIMER_FEATURES, WAIT_LIMIT};
 pub use features::{Features, Rays, ShaderOptions};
 pub use id_pass::{FirstHit, IdRenderer};
-pub use interaction::MIN_SCALE;
+pub use interaction::{DEFAULT_FRAME_BUDGET_MS, MIN_SCALE};
 pub use jobs::{JOB_BUDGET, JobsSince, MeasuredJob, SampleTally};
 pub use limits::{BufferLimitError, check_buffers};
 pub use lines::{LineOverlay, Segment, project};
