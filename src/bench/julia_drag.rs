@@ -7,10 +7,9 @@
 //! full resolution, and for the others the resolution scale that would.
 
 use std::fmt::Write as _;
-use std::time::Duration;
 
 use super::measure::median;
-use super::{BenchArgs, BenchError, Environment};
+use super::{BenchArgs, BenchError, Environment, ms};
 use crate::gpu::{DEFAULT_FRAME_BUDGET_MS, Gpu, OffscreenRenderer, ShaderOptions, ShaderSource};
 use crate::scene::{Scene, bundled};
 
@@ -26,7 +25,7 @@ pub const JULIA_DRAG_COLUMNS: &str = "c_i,median_ms,fastest_ms,slowest_ms,scale"
 
 /// The values of `c (i)` a drag passes through, from 0.4 to 0.8: the
 /// range measured in the viewer, over which a frame's cost grows by about
-/// a quarter (the scene's own value is 0.6).
+/// a third (the scene's own value is 0.6).
 fn c_values(quick: bool) -> Vec<f64> {
     let steps = if quick { 2 } else { 8 };
     (0..=steps)
@@ -50,10 +49,6 @@ impl Row {
     fn scale(&self, budget_ms: f64) -> f64 {
         (budget_ms / self.median_ms).sqrt().min(1.0)
     }
-}
-
-fn ms(d: Duration) -> f64 {
-    d.as_secs_f64() * 1e3
 }
 
 /// Times `frames` frames of `scene` after a warm-up.
