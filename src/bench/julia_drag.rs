@@ -13,12 +13,13 @@ use super::{BenchArgs, BenchError, Environment, ms};
 use crate::gpu::{DEFAULT_FRAME_BUDGET_MS, Gpu, OffscreenRenderer, ShaderOptions, ShaderSource};
 use crate::scene::{Scene, bundled};
 
-/// The view beside the panel in the viewer's window at
-/// `raysandbox view --size 1280x720`: the full resolution of a drag.
-const FULL_SIZE: (u32, u32) = (950, 695);
+/// What the viewer traces at full resolution in a window of
+/// `raysandbox view --size 1280x720`: the whole window, whose left part
+/// the panel covers (the status line shows this size).
+const FULL_SIZE: (u32, u32) = (1280, 720);
 
 /// The quick run's size: a quarter of the pixels.
-const QUICK_SIZE: (u32, u32) = (475, 348);
+const QUICK_SIZE: (u32, u32) = (640, 360);
 
 /// The columns of `julia_drag.csv`.
 pub const JULIA_DRAG_COLUMNS: &str = "c_i,median_ms,fastest_ms,slowest_ms,scale";
