@@ -25,8 +25,8 @@ const QUICK_SIZE: (u32, u32) = (640, 360);
 pub const JULIA_DRAG_COLUMNS: &str = "c_i,median_ms,fastest_ms,slowest_ms,scale";
 
 /// The values of `c (i)` a drag passes through, from 0.4 to 0.8: the
-/// range measured in the viewer, over which a frame's cost grows by about
-/// a third (the scene's own value is 0.6).
+/// range measured in the viewer, over which a frame's cost grows by a
+/// quarter to a third (the scene's own value is 0.6).
 fn c_values(quick: bool) -> Vec<f64> {
     let steps = if quick { 2 } else { 8 };
     (0..=steps)
