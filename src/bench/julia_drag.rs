@@ -130,16 +130,14 @@ fn markdown(
     budget: f64,
     rows: &[Row],
 ) -> String {
-    let mut md = format!(
-        "# The Julia set's c dragged\n\nadapter: {}\n\ntiming: {}\n\ncpu: {}\n\n\
-         The bundled Julia scene at {w} x {h}, 1 sample per pixel, one pipeline, the scene \
+    let mut md = env.report_header("The Julia set's c dragged");
+    let _ = write!(
+        md,
+        "The bundled Julia scene at {w} x {h}, 1 sample per pixel, one pipeline, the scene \
          uploaded again for each value of `c (i)`; median of {frames} frames after a warm-up. \
          Budget: the viewer's default, {budget:.0} ms a frame.\n\n\
          | `c (i)` | median ms | fastest ms | slowest ms | within the budget | scale the budget allows |\n\
-         | ---: | ---: | ---: | ---: | --- | ---: |\n",
-        env.adapter,
-        env.timing.describe(),
-        env.cpu
+         | ---: | ---: | ---: | ---: | --- | ---: |\n"
     );
     for r in rows {
         let _ = writeln!(

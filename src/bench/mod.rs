@@ -246,6 +246,18 @@ pub struct Environment {
     pub cpu: String,
 }
 
+impl Environment {
+    /// A Markdown report's title and where its numbers were taken.
+    fn report_header(&self, title: &str) -> String {
+        format!(
+            "# {title}\n\nadapter: {}\n\ntiming: {}\n\ncpu: {}\n\n",
+            self.adapter,
+            self.timing.describe(),
+            self.cpu
+        )
+    }
+}
+
 #[derive(Debug, thiserror::Error)]
 pub enum BenchError {
     #[error("{0}")]

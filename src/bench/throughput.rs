@@ -433,11 +433,10 @@ fn markdown(
     scenes: &[SceneRow],
     meshes: &[MeshRow],
 ) -> String {
-    let mut md = format!(
-        "# Rays per second\n\nadapter: {}\n\ntiming: {}\n\ncpu: {}\n\n{w} x {h}, 1 sample per pixel, median of {frames} frames after a warm-up.\n\n",
-        env.adapter,
-        env.timing.describe(),
-        env.cpu
+    let mut md = env.report_header("Rays per second");
+    let _ = write!(
+        md,
+        "{w} x {h}, 1 sample per pixel, median of {frames} frames after a warm-up.\n\n"
     );
     md += "## Bundled scenes\n\n| scene | primary | shadow | reflected | refracted | GPU ms | CPU ms | Mrays/s |\n| --- | ---: | ---: | ---: | ---: | ---: | ---: | ---: |\n";
     for r in scenes {
