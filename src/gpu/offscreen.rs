@@ -92,12 +92,11 @@ impl OffscreenRenderer {
     /// are dropped. A scene too large for the device's buffers is refused
     /// and the last one stays.
     pub fn set_scene(&mut self, gpu: &Gpu, scene: &Scene) -> Result<(), BufferLimitError> {
-        let (width, height) = self.accum.size();
-        self.scene = SceneBuffers::reusing(
+        self.scene = self.scene.changed_to(
             (&gpu.device, &gpu.queue),
             &self.pipelines,
-            PackedScene::new(scene, width, height),
-            &self.scene,
+            scene,
+            self.accum.size(),
         )?;
         self.accum.reset();
         Ok(())

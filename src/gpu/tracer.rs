@@ -357,6 +357,20 @@ impl SceneBuffers {
         )
     }
 
+    /// The buffers of a changed `scene` packed for an image of `size`,
+    /// sharing this scene's buffers whose contents did not change (see
+    /// [`SceneBuffers::reusing`]): what a slider's edit costs.
+    pub fn changed_to(
+        &self,
+        (device, queue): (&wgpu::Device, &wgpu::Queue),
+        pipelines: &Pipelines,
+        scene: &crate::scene::Scene,
+        (width, height): (u32, u32),
+    ) -> Result<Self, BufferLimitError> {
+        let packed = PackedScene::new(scene, width, height);
+        Self::reusing((device, queue), pipelines, packed, self)
+    }
+
     /// The buffers and their bind group for any pipeline whose group 0 is
     /// [`scene_layout_entries`] (the tracer's, the id pass's). A scene with
     /// an array larger than the device allows is refused before any buffer

@@ -191,13 +191,11 @@ impl Viewport {
     /// Uploads a changed scene and restarts refinement. A scene too large
     /// for the device's buffers is refused and the last one stays.
     pub fn set_scene(&mut self, gpu: &Gpu, scene: &Scene) -> Result<(), BufferLimitError> {
-        let (width, height) = self.traced_size();
-        let packed = PackedScene::new(scene, width, height);
-        self.scene = SceneBuffers::reusing(
+        self.scene = self.scene.changed_to(
             (&gpu.device, &gpu.queue),
             &self.pipelines,
-            packed,
-            &self.scene,
+            scene,
+            self.traced_size(),
         )?;
         self.restart_refinement();
         Ok(())
